@@ -1,0 +1,25 @@
+#pragma once
+// The sub-commands of the `pounding` program. Each one reads its inputs through the library,
+// prints, and returns the process exit code; errors propagate as exceptions to main().
+
+#include <optional>
+#include <string>
+
+namespace pounding::cli {
+
+struct ModesCommand {
+  std::string scene;
+  std::string json_file;  // empty: no JSON
+  int count = 6;          // modes printed per building
+};
+
+struct CheckCommand {
+  std::string scene;
+  std::optional<double> gap_m;
+  std::optional<double> restitution;
+};
+
+int run_modes(const ModesCommand& command);
+int run_check(const CheckCommand& command);
+
+}  // namespace pounding::cli

@@ -1,0 +1,52 @@
+// The `pounding` command-line program: parses arguments, calls a command, maps errors to exit
+// codes (2 for bad input, 1 for anything else).
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "pounding/input_error.hpp"
+
+namespace {
+
+void add_scene_argument(CLI::App& command, std::string& scene) {
+  command.add_option("scene", scene, "Scene file (TOML)")->required();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pounding: seismic pounding of two adjacent multistorey buildings"};
+  app.require_subcommand(1);
+
+  pounding::cli::ModesCommand modes;
+  CLI::App* modes_app = app.add_subcommand("modes", "Modal analysis of both buildings");
+  add_scene_argument(*modes_app, modes.scene);
+  modes_app->add_option("--json", modes.json_file, "Also write the modes as JSON to this file");
+  modes_app->add_option("--count", modes.count, "Modes printed per building")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+
+  pounding::cli::CheckCommand check;
+  CLI::App* check_app = app.add_subcommand("check", "Validate a scene and print what it describes");
+  add_scene_argument(*check_app, check.scene);
+  check_app->add_option("--gap", check.gap_m, "Clear gap (m); moves building 2 along x");
+  check_app->add_option("--restitution", check.restitution, "Coefficient of restitution k in [0, 1]");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+
+  try {
+    if (*modes_app) return pounding::cli::run_modes(modes);
+    if (*check_app) return pounding::cli::run_check(check);
+  } catch (const pounding::InputError& error) {
+    fmt::print(stderr, "error: {}\n", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    fmt::print(stderr, "error: {}\n", error.what());
+    return 1;
+  }
+  return 1;
+}

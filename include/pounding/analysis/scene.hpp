@@ -1,0 +1,56 @@
+#pragma once
+// One whole analysis as a scene file describes it: two buildings, the excitation, the contact
+// parameters, and the solver and output settings.
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pounding/excitation/ground_motion.hpp"
+#include "pounding/model/building.hpp"
+
+namespace pounding::analysis {
+
+struct ContactSettings {
+  double gap_m = 0.0;        // clear distance along x between the facing sides at rest (m)
+  double restitution = 0.5;  // Newton coefficient k ∈ [0, 1]
+};
+
+/// Read and validated now; used by the time-history solvers.
+struct SolverSettings {
+  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams
+  double rtol = 1e-8;
+  double atol = 1e-10;               // m, rad (and their rates)
+};
+
+/// Read and validated now; used by the time-history solvers.
+struct OutputSettings {
+  std::vector<int> history_floors;   // empty: every floor both buildings have
+  double history_interval_s = 0.01;
+};
+
+struct Scene {
+  std::string name;
+  std::filesystem::path file;  // where it was read from; empty for scenes built in code
+  std::array<model::BuildingDefinition, 2> buildings;  // building 1 on the −x side
+  excitation::ExcitationSpec excitation;
+  ContactSettings contact;
+  SolverSettings solver;
+  OutputSettings output;
+
+  /// Floors that both buildings have: 1 … min(N₁, N₂).
+  int common_floors() const { return std::min(buildings[0].storeys, buildings[1].storeys); }
+
+  /// Moves building 2 along x so that the clear distance becomes `gap_m`.
+  /// @throws InputError (key `contact.gap_m`) if the gap is negative or not finite.
+  void set_gap(double gap_m);
+
+  /// Checks each building, the contact and solver settings, and the pair: building 2 on the +x
+  /// side of building 1 facing it, the slabs not overlapping at rest, and contact.gap_m equal to
+  /// the clear distance the slab outlines show. @throws InputError naming the key and value.
+  void validate() const;
+};
+
+}  // namespace pounding::analysis

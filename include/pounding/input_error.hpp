@@ -1,0 +1,33 @@
+#pragma once
+// The one exception type for bad input: every layer that validates user data throws it.
+
+#include <stdexcept>
+#include <string>
+
+namespace pounding {
+
+/// Bad input, located as precisely as the thrower knows: the file, the key (a dotted path
+/// such as `building[2].mass_t[3]`, or `line 12` in a record file) and the offending value.
+/// Layers that do not know the file (the model's validators) leave it empty; the reader that
+/// does know it adds it with `in_file()` before the error reaches the user.
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string key, std::string value, std::string reason, std::string file = {});
+
+  const std::string& file() const { return file_; }
+  const std::string& key() const { return key_; }
+  const std::string& value() const { return value_; }
+  const std::string& reason() const { return reason_; }
+
+  /// The same error seen from an enclosing scope: `file` is set if it was empty and
+  /// `key_prefix` (e.g. `building[1]`) is put in front of the key.
+  InputError in_context(const std::string& file, const std::string& key_prefix = {}) const;
+
+ private:
+  std::string file_, key_, value_, reason_;
+};
+
+/// Formats a number for an error message the way a user would type it (shortest round trip).
+std::string format_value(double value);
+
+}  // namespace pounding

@@ -1,0 +1,101 @@
+#pragma once
+// A building as the structural model sees it: rigid floor slabs (u, v, φ about the CM) joined by
+// storeys of columns. Units: m, s, t, kN, rad (so forces in kN, moments in kN·m).
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pounding/model/polygon.hpp"
+
+namespace pounding::model {
+
+/// A column between two floors, fixed at both ends. b is its size along x, h along y (m).
+struct Column {
+  Point2 position_m = Point2::Zero();
+  double b_m = 0.0;
+  double h_m = 0.0;
+};
+
+/// Rayleigh damping C = a0 M + a1 K fitted to one ratio at two modes (1-based, sorted by period
+/// from the longest).
+struct RayleighSpec {
+  double ratio = 0.05;
+  std::array<int, 2> modes{1, 3};
+};
+
+/// Everything a scene says about one building. All floors share the slab outline and the CM.
+struct BuildingDefinition {
+  std::string name;
+  int storeys = 0;
+  double storey_height_m = 0.0;
+  Polygon slab;                                // global plan coordinates at rest, CCW
+  Point2 centre_of_mass = Point2::Zero();      // global plan coordinates at rest (m)
+  std::vector<double> mass_t;                  // one per floor, floor 1 first
+  std::vector<double> polar_moment_tm2;        // about the CM, one per floor
+
+  // Storey stiffness, either from columns ...
+  std::vector<Column> columns;
+  double E_kPa = 0.0;                          // Young's modulus of the columns
+  double frame_factor = 1.0;                   // ignored when target_period_s is set
+  std::optional<double> target_period_s;       // solve the frame factor for this T₁ (s)
+  // ... or given directly: one 3×3 matrix per storey about the CM (kN/m, kN, kN·m/rad).
+  std::vector<Eigen::Matrix3d> storey_stiffness;
+
+  RayleighSpec damping;
+
+  bool uses_columns() const { return storey_stiffness.empty(); }
+  /// @throws InputError naming the offending field (as the scene key, relative to the building)
+  /// and its value.
+  void validate() const;
+};
+
+/// Polar moment about the CM of a slab of mass `mass_t` spread uniformly over `slab`:
+/// J = m · (Ix + Iy)/A about the slab's centroid (t·m²). The offset of the CM from the centroid
+/// is deliberately not added (it comes from non-uniform mass such as cores and cladding).
+double uniform_polar_moment(const Polygon& slab, double mass_t);
+
+/// Lateral stiffnesses (kN/m) of one column fixed at both ends: k_x = 12 E (h b³/12)/H³,
+/// k_y = 12 E (b h³/12)/H³, times the frame factor.
+Eigen::Vector2d column_stiffness(const Column& column, double elastic_modulus_kPa,
+                                 double storey_height_m, double frame_factor);
+
+/// Storey stiffness about `centre_of_mass`: Σ Tᵀ diag(k_x, k_y) T, T = [[1,0,−Δy],[0,1,Δx]].
+Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns,
+                                              const Point2& centre_of_mass,
+                                              double elastic_modulus_kPa, double storey_height_m,
+                                              double frame_factor);
+
+/// Block-tridiagonal stiffness (3N×3N) from the storey matrices, storey 1 (to the ground) first.
+Eigen::MatrixXd assemble_stiffness(const std::vector<Eigen::Matrix3d>& storeys);
+
+struct RayleighCoefficients {
+  double a0_per_s = 0.0;  // mass-proportional
+  double a1_s = 0.0;      // stiffness-proportional
+};
+
+/// a0, a1 such that the modal damping ratio equals `ratio` at ω_i and ω_j (rad/s).
+/// @pre 0 < ω_i, 0 < ω_j, ω_i ≠ ω_j.
+RayleighCoefficients fit_rayleigh(double omega_i, double omega_j, double ratio);
+
+/// The assembled linear model of one building: M q̈ + C q̇ + K q = −M r a_g.
+struct Building {
+  BuildingDefinition definition;   // with frame_factor resolved
+  Eigen::VectorXd mass_diagonal;   // (m₁, m₁, J₁, m₂, …), size 3N
+  Eigen::MatrixXd stiffness;       // 3N×3N, symmetric positive definite
+  Eigen::MatrixXd damping;         // 3N×3N
+  RayleighCoefficients rayleigh;
+  double frame_factor = 1.0;       // the one used (given, solved, or 1 for direct matrices)
+
+  int storeys() const { return definition.storeys; }
+  int dof() const { return 3 * definition.storeys; }
+};
+
+/// Validates `definition`, solves the frame factor if a target period is given, assembles
+/// M, K, C. @throws InputError (field relative to the building) for invalid data or a
+/// stiffness that is not positive definite.
+Building make_building(const BuildingDefinition& definition);
+
+}  // namespace pounding::model

@@ -1,0 +1,102 @@
+#include "pounding/analysis/scene.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "pounding/input_error.hpp"
+
+namespace pounding::analysis {
+namespace {
+
+constexpr double kGapTolerance_m = 1e-6;
+
+std::string building_key(std::size_t index) { return fmt::format("building[{}]", index + 1); }
+
+void validate_contact(const ContactSettings& contact) {
+  if (!(contact.gap_m >= 0.0) || !std::isfinite(contact.gap_m)) {
+    throw InputError("contact.gap_m", format_value(contact.gap_m), "must be zero or positive (m)");
+  }
+  if (!(contact.restitution >= 0.0 && contact.restitution <= 1.0)) {
+    throw InputError("contact.restitution", format_value(contact.restitution), "must lie in [0, 1]");
+  }
+}
+
+void validate_solver(const SolverSettings& solver) {
+  if (solver.method != "cvode-bdf" && solver.method != "cvode-adams") {
+    throw InputError("solver.method", "\"" + solver.method + "\"", "expected cvode-bdf or cvode-adams");
+  }
+  if (!(solver.rtol > 0.0 && solver.rtol < 1.0)) {
+    throw InputError("solver.rtol", format_value(solver.rtol), "must lie in (0, 1)");
+  }
+  if (!(solver.atol > 0.0) || !std::isfinite(solver.atol)) {
+    throw InputError("solver.atol", format_value(solver.atol), "must be positive");
+  }
+}
+
+void validate_output(const OutputSettings& output, int common_floors) {
+  for (std::size_t i = 0; i < output.history_floors.size(); ++i) {
+    const int floor = output.history_floors[i];
+    if (floor < 1 || floor > common_floors) {
+      throw InputError(fmt::format("output.history_floors[{}]", i + 1), std::to_string(floor),
+                       fmt::format("floors both buildings have are 1..{}", common_floors));
+    }
+  }
+  if (!(output.history_interval_s > 0.0) || !std::isfinite(output.history_interval_s)) {
+    throw InputError("output.history_interval_s", format_value(output.history_interval_s),
+                     "must be positive (s)");
+  }
+}
+
+void validate_pair(const Scene& scene) {
+  const model::Polygon& left = scene.buildings[0].slab;
+  const model::Polygon& right = scene.buildings[1].slab;
+  if (model::interiors_overlap(left, right)) {
+    throw InputError(building_key(1) + ".slab", "", "overlaps the slab of building 1 at rest");
+  }
+  const std::optional<double> clearance = model::horizontal_clearance(left, right);
+  if (!clearance || *clearance < 0.0) {
+    throw InputError(building_key(1) + ".slab", "",
+                     "building 2 must stand on the +x side of building 1, facing it over a "
+                     "common range of y");
+  }
+  if (std::abs(*clearance - scene.contact.gap_m) > kGapTolerance_m) {
+    throw InputError("contact.gap_m", format_value(scene.contact.gap_m),
+                     fmt::format("disagrees with the slab outlines, whose clear distance along x "
+                                 "is {} m", *clearance));
+  }
+}
+
+}  // namespace
+
+void Scene::set_gap(double gap_m) {
+  if (!(gap_m >= 0.0) || !std::isfinite(gap_m)) {
+    throw InputError("contact.gap_m", format_value(gap_m), "must be zero or positive (m)");
+  }
+  const model::Point2 shift(gap_m - contact.gap_m, 0.0);
+  model::BuildingDefinition& right = buildings[1];
+  right.slab = right.slab.translated(shift);
+  right.centre_of_mass += shift;
+  for (model::Column& column : right.columns) column.position_m += shift;
+  contact.gap_m = gap_m;
+}
+
+void Scene::validate() const {
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    try {
+      buildings[i].validate();
+    } catch (const InputError& error) {
+      throw error.in_context(file.string(), building_key(i));
+    }
+  }
+  try {
+    excitation.validate();
+    validate_contact(contact);
+    validate_solver(solver);
+    validate_output(output, common_floors());
+    validate_pair(*this);
+  } catch (const InputError& error) {
+    throw error.in_context(file.string());
+  }
+}
+
+}  // namespace pounding::analysis

@@ -1,0 +1,149 @@
+#include "pounding/excitation/ground_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "pounding/input_error.hpp"
+
+namespace pounding::excitation {
+namespace {
+
+double unit_to_mps2(AccelUnits units, double g_mps2) {
+  switch (units) {
+    case AccelUnits::g: return g_mps2;
+    case AccelUnits::m_per_s2: return 1.0;
+    case AccelUnits::cm_per_s2: return 0.01;
+  }
+  return 1.0;
+}
+
+/// Linear interpolation of (t, a) at `at`. @pre t.front() <= at <= t.back().
+double interpolate(const std::vector<double>& t, const std::vector<double>& a, double at) {
+  if (at >= t.back()) return a.back();
+  const auto upper = std::upper_bound(t.begin(), t.end(), at);
+  const std::size_t i = static_cast<std::size_t>(upper - t.begin());
+  const double s = (at - t[i - 1]) / (t[i] - t[i - 1]);
+  return a[i - 1] + s * (a[i] - a[i - 1]);
+}
+
+/// Keeps [start, end] of the record, shifted back by `start_s`. The end values are interpolated so
+/// the cut is exactly as long as asked; samples within a millionth of a step of a bound are
+/// taken as lying on it (i·dt carries round-off).
+RecordSamples cut(const RecordSamples& in, double start_s, double end_s) {
+  const double slack = 1e-6 * (in.time_s[1] - in.time_s[0]);
+  RecordSamples out;
+  auto push = [&](double t, double a) {
+    out.time_s.push_back(t - start_s);
+    out.accel.push_back(a);
+  };
+  const double from_s = std::max(start_s, in.time_s.front());  // a record may begin after 0
+  push(from_s, interpolate(in.time_s, in.accel, from_s));
+  for (std::size_t i = 0; i < in.time_s.size(); ++i) {
+    if (in.time_s[i] > from_s + slack && in.time_s[i] < end_s - slack) push(in.time_s[i], in.accel[i]);
+  }
+  push(end_s, interpolate(in.time_s, in.accel, end_s));
+  return out;
+}
+
+}  // namespace
+
+std::optional<AccelUnits> parse_accel_units(std::string_view name) {
+  if (name == "g") return AccelUnits::g;
+  if (name == "m/s2") return AccelUnits::m_per_s2;
+  if (name == "cm/s2") return AccelUnits::cm_per_s2;
+  return std::nullopt;
+}
+
+void ExcitationSpec::validate() const {
+  auto positive = [](std::optional<double> value, const char* key) {
+    if (value && !(*value > 0.0 && std::isfinite(*value))) {
+      throw InputError(key, format_value(*value), "must be a positive finite number");
+    }
+  };
+  positive(dt_override_s, "excitation.dt_s");
+  positive(duration_s, "excitation.duration_s");
+  positive(scale_to_pga_g, "excitation.scale_to_pga_g");
+  positive(g_mps2, "excitation.g_mps2");
+  if (!(start_s >= 0.0 && std::isfinite(start_s))) {
+    throw InputError("excitation.start_s", format_value(start_s), "must be zero or positive");
+  }
+  if (!std::isfinite(scale_factor) || scale_factor == 0.0) {
+    throw InputError("excitation.scale_factor", format_value(scale_factor), "must be finite and non-zero");
+  }
+  if (scale_to_pga_g && scale_factor != 1.0) {
+    throw InputError("excitation.scale_factor", format_value(scale_factor),
+                     "give either scale_factor or scale_to_pga_g, not both");
+  }
+  if (!std::isfinite(direction_deg)) {
+    throw InputError("excitation.direction_deg", format_value(direction_deg), "must be finite");
+  }
+  if (read.format == RecordFormat::single && !read.dt_s) {
+    throw InputError("excitation.dt_s", "missing", "format 'single' needs the time step");
+  }
+  if (read.time_column < 1) {
+    throw InputError("excitation.time_column", std::to_string(read.time_column), "columns are numbered from 1");
+  }
+  if (read.accel_column && *read.accel_column < 1) {
+    throw InputError("excitation.accel_column", std::to_string(*read.accel_column), "columns are numbered from 1");
+  }
+}
+
+GroundMotion::GroundMotion(std::vector<double> time_s, std::vector<double> accel_mps2,
+                           double direction_rad)
+    : time_s_(std::move(time_s)), accel_mps2_(std::move(accel_mps2)), direction_rad_(direction_rad) {
+  for (std::size_t i = 1; i < accel_mps2_.size(); ++i) {
+    if (std::abs(accel_mps2_[i]) > std::abs(accel_mps2_[peak_index_])) peak_index_ = i;
+  }
+}
+
+double GroundMotion::accel_at(double t_s) const {
+  if (t_s < time_s_.front() || t_s > time_s_.back()) return 0.0;
+  if (t_s == time_s_.back()) return accel_mps2_.back();
+  return interpolate(time_s_, accel_mps2_, t_s);
+}
+
+double GroundMotion::peak_mps2() const { return std::abs(accel_mps2_[peak_index_]); }
+double GroundMotion::peak_time_s() const { return time_s_[peak_index_]; }
+
+GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec) {
+  spec.validate();
+  const std::string file = spec.file.string();
+  if (spec.dt_override_s) {
+    for (std::size_t i = 0; i < samples.time_s.size(); ++i) {
+      samples.time_s[i] = static_cast<double>(i) * *spec.dt_override_s;
+    }
+  }
+  const double record_end_s = samples.time_s.back();
+  if (spec.start_s >= record_end_s) {
+    throw InputError("excitation.start_s", format_value(spec.start_s),
+                     fmt::format("starts after the record ends at {} s", record_end_s), file);
+  }
+  const double end_s = spec.duration_s ? std::min(spec.start_s + *spec.duration_s, record_end_s)
+                                       : record_end_s;
+  if (spec.start_s > 0.0 || end_s < record_end_s) samples = cut(samples, spec.start_s, end_s);
+
+  double factor = unit_to_mps2(spec.units, spec.g_mps2) * spec.scale_factor;
+  std::vector<double> accel(samples.accel.size());
+  for (std::size_t i = 0; i < accel.size(); ++i) accel[i] = factor * samples.accel[i];
+  if (spec.scale_to_pga_g) {
+    const double peak = std::abs(*std::max_element(accel.begin(), accel.end(),
+        [](double a, double b) { return std::abs(a) < std::abs(b); }));
+    if (peak == 0.0) {
+      throw InputError("excitation.scale_to_pga_g", format_value(*spec.scale_to_pga_g),
+                       "cannot scale a record that is zero throughout", file);
+    }
+    const double scale = *spec.scale_to_pga_g * spec.g_mps2 / peak;
+    for (double& a : accel) a *= scale;
+  }
+  return GroundMotion(std::move(samples.time_s), std::move(accel),
+                      spec.direction_deg * std::numbers::pi / 180.0);
+}
+
+GroundMotion load_ground_motion(const ExcitationSpec& spec) {
+  spec.validate();
+  return process_record(read_record(spec.file, spec.read), spec);
+}
+
+}  // namespace pounding::excitation

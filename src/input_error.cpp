@@ -1,0 +1,34 @@
+#include "pounding/input_error.hpp"
+
+#include <fmt/format.h>
+
+namespace pounding {
+namespace {
+
+std::string compose(const std::string& file, const std::string& key, const std::string& value,
+                    const std::string& reason) {
+  std::string message = file.empty() ? std::string{} : file + ": ";
+  if (!key.empty()) message += key;
+  if (!value.empty()) message += (key.empty() ? "" : " = ") + value;
+  if (!key.empty() || !value.empty()) message += ": ";
+  return message + reason;
+}
+
+}  // namespace
+
+InputError::InputError(std::string key, std::string value, std::string reason, std::string file)
+    : std::runtime_error(compose(file, key, value, reason)),
+      file_(std::move(file)),
+      key_(std::move(key)),
+      value_(std::move(value)),
+      reason_(std::move(reason)) {}
+
+InputError InputError::in_context(const std::string& file, const std::string& key_prefix) const {
+  std::string key = key_;
+  if (!key_prefix.empty()) key = key.empty() ? key_prefix : key_prefix + "." + key;
+  return InputError(key, value_, reason_, file_.empty() ? file : file_);
+}
+
+std::string format_value(double value) { return fmt::format("{}", value); }
+
+}  // namespace pounding

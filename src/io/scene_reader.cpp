@@ -1,0 +1,413 @@
+#include "pounding/io/scene_reader.hpp"
+
+#include <fmt/format.h>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "pounding/input_error.hpp"
+
+namespace pounding::io {
+namespace {
+
+using model::Point2;
+
+std::string node_text(const toml::node& node) {
+  std::ostringstream out;
+  node.visit([&](const auto& value) { out << value; });
+  return out.str();
+}
+
+std::string located(const std::string& file, const toml::node& node) {
+  const auto line = node.source().begin.line;
+  return line > 0 ? fmt::format("{}:{}", file, line) : file;
+}
+
+/// One TOML table being read: remembers which keys were used so that leftovers (typos, keys
+/// from another version) are reported instead of silently ignored.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, std::string file)
+      : table_(table), path_(std::move(path)), file_(std::move(file)) {}
+
+  std::string key_path(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+  const std::string& file() const { return file_; }
+
+  const toml::node* find(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+  bool has(std::string_view key) const { return table_.contains(key); }
+
+  const toml::node& require(std::string_view key) {
+    const toml::node* node = find(key);
+    if (!node) throw InputError(key_path(key), "missing", "this key is required", located(file_, table_));
+    return *node;
+  }
+
+  InputError error(const toml::node& node, const std::string& key, const std::string& reason) const {
+    return InputError(key, node_text(node), reason, located(file_, node));
+  }
+
+  double number_of(const toml::node& node, const std::string& key) const {
+    if (const auto value = node.value<double>(); value && node.is_number()) return *value;
+    throw error(node, key, "expected a number");
+  }
+
+  double number(std::string_view key) { return number_of(require(key), key_path(key)); }
+  std::optional<double> optional_number(std::string_view key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    return number_of(*node, key_path(key));
+  }
+  double number_or(std::string_view key, double fallback) {
+    return optional_number(key).value_or(fallback);
+  }
+
+  int integer_of(const toml::node& node, const std::string& key) const {
+    if (!node.is_integer()) throw error(node, key, "expected a whole number");
+    const auto value = *node.value<std::int64_t>();
+    if (value < -1000000 || value > 1000000) throw error(node, key, "is out of range");
+    return static_cast<int>(value);
+  }
+  int integer(std::string_view key) { return integer_of(require(key), key_path(key)); }
+  std::optional<int> optional_integer(std::string_view key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    return integer_of(*node, key_path(key));
+  }
+
+  std::string string_of(const toml::node& node, const std::string& key) const {
+    if (!node.is_string()) throw error(node, key, "expected a string");
+    return *node.value<std::string>();
+  }
+  std::string string(std::string_view key) { return string_of(require(key), key_path(key)); }
+  std::optional<std::string> optional_string(std::string_view key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    return string_of(*node, key_path(key));
+  }
+
+  const toml::array& array_of(const toml::node& node, const std::string& key) const {
+    if (!node.is_array()) throw error(node, key, "expected an array");
+    return *node.as_array();
+  }
+
+  std::vector<double> numbers_of(const toml::node& node, const std::string& key,
+                                 std::optional<std::size_t> size = {}) const {
+    const toml::array& array = array_of(node, key);
+    if (size && array.size() != *size) {
+      throw error(node, key, fmt::format("expected {} numbers", *size));
+    }
+    std::vector<double> values;
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      values.push_back(number_of(array[i], fmt::format("{}[{}]", key, i + 1)));
+    }
+    return values;
+  }
+
+  Point2 point_of(const toml::node& node, const std::string& key) const {
+    const auto xy = numbers_of(node, key, 2);
+    return {xy[0], xy[1]};
+  }
+
+  TableReader subtable(std::string_view key) {
+    const toml::node& node = require(key);
+    if (!node.is_table()) throw error(node, key_path(key), "expected a table");
+    return TableReader(*node.as_table(), key_path(key), file_);
+  }
+  std::optional<TableReader> optional_subtable(std::string_view key) {
+    if (!has(key)) return std::nullopt;
+    return subtable(key);
+  }
+
+  /// @throws InputError for the first key that was never asked for.
+  void finish() const {
+    for (const auto& [key, node] : table_) {
+      if (!used_.count(std::string(key.str()))) {
+        throw InputError(key_path(key.str()), node_text(node), "unknown key", located(file_, node));
+      }
+    }
+  }
+
+ private:
+  const toml::table& table_;
+  std::string path_;
+  std::string file_;
+  std::set<std::string> used_;
+};
+
+/// A number that must be positive, checked where it is read so the error names the key typed.
+double positive(TableReader& table, const toml::node& node, const std::string& key) {
+  const double value = table.number_of(node, key);
+  if (!(value > 0.0)) throw table.error(node, key, "must be positive");
+  return value;
+}
+
+std::vector<double> per_floor_masses(TableReader& table, int storeys) {
+  const toml::node& node = table.require("mass_t");
+  const std::string key = table.key_path("mass_t");
+  const toml::node* top = table.find("top_floor_mass_t");
+  if (node.is_array()) {
+    if (top) throw table.error(*top, table.key_path("top_floor_mass_t"), "only with a single mass_t value");
+    return table.numbers_of(node, key);
+  }
+  std::vector<double> masses(std::max(storeys, 0), positive(table, node, key));
+  if (top && !masses.empty()) masses.back() = positive(table, *top, table.key_path("top_floor_mass_t"));
+  return masses;
+}
+
+std::vector<double> polar_moments(TableReader& table, const model::BuildingDefinition& b) {
+  const toml::node* node = table.find("polar_moment_tm2");
+  const std::string key = table.key_path("polar_moment_tm2");
+  if (node && node->is_array()) return table.numbers_of(*node, key);
+  if (node && node->is_number()) return std::vector<double>(b.mass_t.size(), positive(table, *node, key));
+  if (node && !(node->is_string() && *node->value<std::string>() == "uniform")) {
+    throw table.error(*node, key, "expected \"uniform\", a number or one number per floor");
+  }
+  // "uniform" (the default) needs a valid slab; skip it here if the slab is broken so that
+  // validation reports the slab rather than a meaningless moment.
+  std::vector<double> moments;
+  if (b.slab.size() < 3 || !(b.slab.signed_area() > 0.0)) return std::vector<double>(b.mass_t.size(), 1.0);
+  for (double mass : b.mass_t) moments.push_back(model::uniform_polar_moment(b.slab, mass));
+  return moments;
+}
+
+std::vector<model::Column> read_columns(TableReader& table) {
+  std::vector<model::Column> columns;
+  if (const toml::node* node = table.find("columns")) {
+    const std::string key = table.key_path("columns");
+    const toml::array& array = table.array_of(*node, key);
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      const auto v = table.numbers_of(array[i], fmt::format("{}[{}]", key, i + 1), 4);
+      columns.push_back({Point2(v[0], v[1]), v[2], v[3]});
+    }
+  }
+  if (const toml::node* node = table.find("column_grid")) {
+    const std::string key = table.key_path("column_grid");
+    const toml::array& grids = table.array_of(*node, key);
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+      const std::string grid_key = fmt::format("{}[{}]", key, g + 1);
+      if (!grids[g].is_table()) throw table.error(grids[g], grid_key, "expected a table");
+      TableReader grid(*grids[g].as_table(), grid_key, table.file());
+      const auto xs = grid.numbers_of(grid.require("x"), grid.key_path("x"));
+      const auto ys = grid.numbers_of(grid.require("y"), grid.key_path("y"));
+      const double b = grid.number("b_m"), h = grid.number("h_m");
+      grid.finish();
+      for (double y : ys) {
+        for (double x : xs) columns.push_back({Point2(x, y), b, h});
+      }
+    }
+  }
+  return columns;
+}
+
+Eigen::Matrix3d matrix_of(TableReader& table, const toml::node& node, const std::string& key) {
+  const toml::array& rows = table.array_of(node, key);
+  if (rows.size() != 3) throw table.error(node, key, "expected a 3x3 matrix (3 rows of 3 numbers)");
+  Eigen::Matrix3d matrix;
+  for (int r = 0; r < 3; ++r) {
+    const auto row = table.numbers_of(rows[r], fmt::format("{}[{}]", key, r + 1), 3);
+    for (int c = 0; c < 3; ++c) matrix(r, c) = row[c];
+  }
+  return matrix;
+}
+
+std::vector<Eigen::Matrix3d> storey_matrices(TableReader& table, const toml::node& node, int storeys) {
+  const std::string key = table.key_path("storey_stiffness");
+  const toml::array& array = table.array_of(node, key);
+  // One 3×3 matrix (rows of numbers) applies to every storey; otherwise one matrix a storey.
+  const bool single = !array.empty() && array[0].is_array() && !array[0].as_array()->empty() &&
+                      array[0].as_array()->get(0)->is_number();
+  if (single) return std::vector<Eigen::Matrix3d>(std::max(storeys, 0), matrix_of(table, node, key));
+  std::vector<Eigen::Matrix3d> matrices;
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    matrices.push_back(matrix_of(table, array[i], fmt::format("{}[{}]", key, i + 1)));
+  }
+  return matrices;
+}
+
+void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
+  if (const toml::node* node = table.find("storey_stiffness")) {
+    for (const char* other : {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s"}) {
+      if (table.has(other)) {
+        throw table.error(*node, table.key_path("storey_stiffness"),
+                          fmt::format("give either storey_stiffness or columns with {}, not both", other));
+      }
+    }
+    b.storey_stiffness = storey_matrices(table, *node, b.storeys);
+    return;
+  }
+  b.columns = read_columns(table);
+  b.E_kPa = table.number("E_kPa");
+  const toml::node* factor = table.find("frame_factor");
+  const toml::node* period = table.find("target_period_s");
+  if (factor && period) {
+    throw table.error(*period, table.key_path("target_period_s"),
+                      "give either frame_factor or target_period_s, not both");
+  }
+  if (!factor && !period) {
+    throw InputError(table.key_path("frame_factor"), "missing",
+                     "give frame_factor or target_period_s", table.file());
+  }
+  if (factor) b.frame_factor = table.number_of(*factor, table.key_path("frame_factor"));
+  if (period) b.target_period_s = table.number_of(*period, table.key_path("target_period_s"));
+}
+
+model::BuildingDefinition read_building(TableReader table) {
+  model::BuildingDefinition b;
+  b.name = table.string("name");
+  b.storeys = table.integer("storeys");
+  b.storey_height_m = table.number("storey_height_m");
+  {
+    const std::string key = table.key_path("slab");
+    const toml::array& vertices = table.array_of(table.require("slab"), key);
+    std::vector<Point2> points;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+      points.push_back(table.point_of(vertices[i], fmt::format("{}[{}]", key, i + 1)));
+    }
+    b.slab = model::Polygon(std::move(points));
+  }
+  b.centre_of_mass = table.point_of(table.require("centre_of_mass"), table.key_path("centre_of_mass"));
+  b.mass_t = per_floor_masses(table, b.storeys);
+  b.polar_moment_tm2 = polar_moments(table, b);
+  read_stiffness(table, b);
+  if (auto damping = table.optional_subtable("damping")) {
+    b.damping.ratio = damping->number_or("ratio", b.damping.ratio);
+    if (const toml::node* modes = damping->find("modes")) {
+      const std::string key = damping->key_path("modes");
+      const toml::array& array = damping->array_of(*modes, key);
+      if (array.size() != 2) throw damping->error(*modes, key, "expected two mode numbers");
+      b.damping.modes = {damping->integer_of(array[0], key + "[1]"),
+                         damping->integer_of(array[1], key + "[2]")};
+    }
+    damping->finish();
+  }
+  table.finish();
+  return b;
+}
+
+excitation::ExcitationSpec read_excitation(TableReader table, const std::filesystem::path& scene_dir) {
+  excitation::ExcitationSpec spec;
+  const toml::node& file_node = table.require("file");
+  const std::filesystem::path file = table.string_of(file_node, table.key_path("file"));
+  spec.file = file.is_absolute() ? file : scene_dir / file;
+  if (!std::filesystem::is_regular_file(spec.file)) {
+    throw table.error(file_node, table.key_path("file"),
+                      fmt::format("no such record file (looked for {})", spec.file.string()));
+  }
+  const toml::node& format_node = table.require("format");
+  const auto format = excitation::parse_record_format(table.string_of(format_node, table.key_path("format")));
+  if (!format) throw table.error(format_node, table.key_path("format"), "expected peer-at2, columns or single");
+  spec.read.format = *format;
+  const toml::node& units_node = table.require("units");
+  const auto units = excitation::parse_accel_units(table.string_of(units_node, table.key_path("units")));
+  if (!units) throw table.error(units_node, table.key_path("units"), "expected g, m/s2 or cm/s2");
+  spec.units = *units;
+
+  const std::optional<double> dt = table.optional_number("dt_s");
+  if (spec.read.format == excitation::RecordFormat::single) {
+    spec.read.dt_s = dt;
+  } else {
+    spec.dt_override_s = dt;
+  }
+  spec.read.time_column = table.optional_integer("time_column").value_or(1);
+  spec.read.accel_column = table.optional_integer("accel_column");
+  spec.start_s = table.number_or("start_s", 0.0);
+  spec.duration_s = table.optional_number("duration_s");
+  spec.scale_to_pga_g = table.optional_number("scale_to_pga_g");
+  spec.scale_factor = table.number_or("scale_factor", 1.0);
+  spec.direction_deg = table.number_or("direction_deg", 0.0);
+  spec.g_mps2 = table.number_or("g_mps2", spec.g_mps2);
+  table.finish();
+  return spec;
+}
+
+analysis::SolverSettings read_solver(std::optional<TableReader> table) {
+  analysis::SolverSettings solver;
+  if (!table) return solver;
+  solver.method = table->optional_string("method").value_or(solver.method);
+  solver.rtol = table->number_or("rtol", solver.rtol);
+  solver.atol = table->number_or("atol", solver.atol);
+  table->finish();
+  return solver;
+}
+
+analysis::OutputSettings read_output(std::optional<TableReader> table) {
+  analysis::OutputSettings output;
+  if (!table) return output;
+  if (const toml::node* floors = table->find("history_floors")) {
+    const std::string key = table->key_path("history_floors");
+    const toml::array& array = table->array_of(*floors, key);
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      output.history_floors.push_back(table->integer_of(array[i], fmt::format("{}[{}]", key, i + 1)));
+    }
+  }
+  output.history_interval_s = table->number_or("history_interval_s", output.history_interval_s);
+  table->finish();
+  return output;
+}
+
+analysis::Scene read_document(const toml::table& document, const std::filesystem::path& path) {
+  TableReader root(document, "", path.string());
+  analysis::Scene scene;
+  scene.file = path;
+  scene.name = root.optional_string("name").value_or(path.stem().string());
+  root.optional_string("description");
+
+  const toml::node& buildings_node = root.require("building");
+  const toml::array* buildings = buildings_node.as_array();
+  if (!buildings || buildings->size() != 2 || !buildings->is_array_of_tables()) {
+    throw root.error(buildings_node, "building", "expected exactly two [[building]] tables");
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    scene.buildings[i] = read_building(
+        TableReader(*(*buildings)[i].as_table(), fmt::format("building[{}]", i + 1), path.string()));
+  }
+  scene.excitation = read_excitation(root.subtable("excitation"), path.parent_path());
+  TableReader contact = root.subtable("contact");
+  scene.contact.gap_m = contact.number("gap_m");
+  scene.contact.restitution = contact.number("restitution");
+  contact.finish();
+  scene.solver = read_solver(root.optional_subtable("solver"));
+  scene.output = read_output(root.optional_subtable("output"));
+  root.finish();
+  return scene;
+}
+
+}  // namespace
+
+analysis::Scene read_scene(const std::filesystem::path& file, const SceneOverrides& overrides) {
+  if (!std::filesystem::is_regular_file(file)) {
+    throw InputError("", "", "no such scene file", file.string());
+  }
+  toml::table document;
+  try {
+    document = toml::parse_file(file.string());
+  } catch (const toml::parse_error& error) {
+    throw InputError("", "", std::string(error.description()),
+                     fmt::format("{}:{}:{}", file.string(), error.source().begin.line,
+                                 error.source().begin.column));
+  }
+  analysis::Scene scene = read_document(document, file);
+  // The file's own data is checked first so that an override is never blamed for it, and an
+  // override's error names the option rather than the key it replaces.
+  scene.validate();
+  auto apply_option = [&](const char* option, auto&& apply) {
+    try {
+      apply();
+      scene.validate();
+    } catch (const InputError& error) {
+      throw InputError(option, error.value(), error.reason(), file.string());
+    }
+  };
+  if (overrides.gap_m) apply_option("--gap", [&] { scene.set_gap(*overrides.gap_m); });
+  if (overrides.restitution) {
+    apply_option("--restitution", [&] { scene.contact.restitution = *overrides.restitution; });
+  }
+  return scene;
+}
+
+}  // namespace pounding::io

@@ -1,0 +1,228 @@
+#include "pounding/model/building.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "pounding/input_error.hpp"
+#include "pounding/model/modal.hpp"
+
+namespace pounding::model {
+namespace {
+
+std::string indexed(const char* key, std::size_t index) { return fmt::format("{}[{}]", key, index + 1); }
+
+void require_positive(double value, const std::string& key) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw InputError(key, format_value(value), "must be a positive finite number");
+  }
+}
+
+std::string point_text(const Point2& p) { return fmt::format("[{}, {}]", p.x(), p.y()); }
+
+void validate_slab(const BuildingDefinition& b) {
+  if (b.slab.size() < 3) {
+    throw InputError("slab", fmt::format("{} vertices", b.slab.size()),
+                     "a slab needs at least 3 vertices");
+  }
+  for (std::size_t i = 0; i < b.slab.size(); ++i) {
+    if (!b.slab.vertex(i).allFinite()) {
+      throw InputError(indexed("slab", i), point_text(b.slab.vertex(i)), "must be finite");
+    }
+  }
+  if (!b.slab.is_simple()) {
+    throw InputError("slab", "", "the polygon is not simple (edges cross, touch or repeat a vertex)");
+  }
+  if (b.slab.signed_area() <= 0.0) {
+    throw InputError("slab", "", "vertices must be listed counter-clockwise (the signed area is negative)");
+  }
+  if (!b.slab.contains(b.centre_of_mass)) {
+    throw InputError("centre_of_mass", point_text(b.centre_of_mass), "lies outside the slab");
+  }
+}
+
+void validate_per_floor(const std::vector<double>& values, const char* key, int storeys) {
+  if (values.size() != static_cast<std::size_t>(storeys)) {
+    throw InputError(key, fmt::format("{} values", values.size()),
+                     fmt::format("needs one value per floor ({})", storeys));
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) require_positive(values[i], indexed(key, i));
+}
+
+void validate_columns(const BuildingDefinition& b) {
+  if (b.columns.empty()) {
+    throw InputError("columns", "none", "give columns (or column_grid), or storey_stiffness");
+  }
+  for (std::size_t i = 0; i < b.columns.size(); ++i) {
+    const Column& c = b.columns[i];
+    if (!c.position_m.allFinite()) {
+      throw InputError(indexed("columns", i), point_text(c.position_m), "position must be finite");
+    }
+    require_positive(c.b_m, indexed("columns", i) + ".b");
+    require_positive(c.h_m, indexed("columns", i) + ".h");
+  }
+  require_positive(b.E_kPa, "E_kPa");
+  if (b.target_period_s) {
+    require_positive(*b.target_period_s, "target_period_s");
+  } else {
+    require_positive(b.frame_factor, "frame_factor");
+  }
+}
+
+void validate_storey_matrices(const BuildingDefinition& b) {
+  if (b.storey_stiffness.size() != static_cast<std::size_t>(b.storeys)) {
+    throw InputError("storey_stiffness", fmt::format("{} matrices", b.storey_stiffness.size()),
+                     fmt::format("needs one 3x3 matrix per storey ({})", b.storeys));
+  }
+  for (std::size_t i = 0; i < b.storey_stiffness.size(); ++i) {
+    const Eigen::Matrix3d& k = b.storey_stiffness[i];
+    const std::string key = indexed("storey_stiffness", i);
+    if (!k.allFinite()) throw InputError(key, "", "entries must be finite");
+    if (!k.isApprox(k.transpose(), 1e-12)) throw InputError(key, "", "must be symmetric");
+    if (Eigen::LLT<Eigen::Matrix3d>(k).info() != Eigen::Success) {
+      throw InputError(key, "", "must be positive definite");
+    }
+  }
+}
+
+void validate_damping(const BuildingDefinition& b) {
+  const double ratio = b.damping.ratio;
+  if (!(ratio >= 0.0 && ratio < 1.0)) {
+    throw InputError("damping.ratio", format_value(ratio), "must lie in [0, 1)");
+  }
+  const auto [i, j] = b.damping.modes;
+  const int modes = 3 * b.storeys;
+  for (int mode : {i, j}) {
+    if (mode < 1 || mode > modes) {
+      throw InputError("damping.modes", fmt::format("[{}, {}]", i, j),
+                       fmt::format("modes are numbered 1..{} (3 per floor)", modes));
+    }
+  }
+  if (i == j) {
+    throw InputError("damping.modes", fmt::format("[{}, {}]", i, j), "the two modes must differ");
+  }
+}
+
+Eigen::VectorXd assemble_mass(const BuildingDefinition& b) {
+  Eigen::VectorXd diagonal(3 * b.storeys);
+  for (int floor = 0; floor < b.storeys; ++floor) {
+    diagonal.segment<3>(3 * floor) << b.mass_t[floor], b.mass_t[floor], b.polar_moment_tm2[floor];
+  }
+  return diagonal;
+}
+
+Eigen::MatrixXd column_building_stiffness(const BuildingDefinition& b, double frame_factor) {
+  const Eigen::Matrix3d storey = storey_stiffness_from_columns(
+      b.columns, b.centre_of_mass, b.E_kPa, b.storey_height_m, frame_factor);
+  return assemble_stiffness(std::vector<Eigen::Matrix3d>(b.storeys, storey));
+}
+
+void require_positive_definite(const Eigen::MatrixXd& stiffness, const BuildingDefinition& b) {
+  if (Eigen::LLT<Eigen::MatrixXd>(stiffness).info() == Eigen::Success) return;
+  if (b.uses_columns()) {
+    throw InputError("columns", fmt::format("{} columns", b.columns.size()),
+                     "the storey stiffness is singular: the columns cannot resist both "
+                     "translations and torsion (they need at least two non-collinear positions)");
+  }
+  throw InputError("storey_stiffness", "", "the assembled stiffness is not positive definite");
+}
+
+}  // namespace
+
+void BuildingDefinition::validate() const {
+  if (name.empty()) throw InputError("name", "\"\"", "must not be empty");
+  if (storeys < 1) throw InputError("storeys", std::to_string(storeys), "must be at least 1");
+  require_positive(storey_height_m, "storey_height_m");
+  validate_slab(*this);
+  validate_per_floor(mass_t, "mass_t", storeys);
+  validate_per_floor(polar_moment_tm2, "polar_moment_tm2", storeys);
+  if (uses_columns()) {
+    validate_columns(*this);
+  } else {
+    validate_storey_matrices(*this);
+  }
+  validate_damping(*this);
+}
+
+double uniform_polar_moment(const Polygon& slab, double mass_t) {
+  return mass_t * slab.polar_area_moment_about_centroid() / slab.signed_area();
+}
+
+Eigen::Vector2d column_stiffness(const Column& column, double elastic_modulus_kPa,
+                                 double storey_height_m, double frame_factor) {
+  const double b = column.b_m, h = column.h_m;
+  const double bending = 12.0 * elastic_modulus_kPa / std::pow(storey_height_m, 3);
+  return frame_factor * bending * Eigen::Vector2d(h * b * b * b / 12.0, b * h * h * h / 12.0);
+}
+
+Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns,
+                                              const Point2& centre_of_mass,
+                                              double elastic_modulus_kPa, double storey_height_m,
+                                              double frame_factor) {
+  Eigen::Matrix3d storey = Eigen::Matrix3d::Zero();
+  for (const Column& column : columns) {
+    const Point2 arm = column.position_m - centre_of_mass;
+    Eigen::Matrix<double, 2, 3> t;
+    t << 1.0, 0.0, -arm.y(), 0.0, 1.0, arm.x();
+    const Eigen::Vector2d k =
+        column_stiffness(column, elastic_modulus_kPa, storey_height_m, frame_factor);
+    storey += t.transpose() * k.asDiagonal() * t;
+  }
+  return storey;
+}
+
+Eigen::MatrixXd assemble_stiffness(const std::vector<Eigen::Matrix3d>& storeys) {
+  const int n = static_cast<int>(storeys.size());
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+  for (int s = 0; s < n; ++s) {
+    // Storey s + 1 joins floor s (the ground when s = 0) and floor s + 1.
+    k.block<3, 3>(3 * s, 3 * s) += storeys[s];
+    if (s == 0) continue;
+    k.block<3, 3>(3 * (s - 1), 3 * (s - 1)) += storeys[s];
+    k.block<3, 3>(3 * s, 3 * (s - 1)) -= storeys[s];
+    k.block<3, 3>(3 * (s - 1), 3 * s) -= storeys[s];
+  }
+  return k;
+}
+
+RayleighCoefficients fit_rayleigh(double omega_i, double omega_j, double ratio) {
+  // ζ(ω) = a0/(2ω) + a1 ω/2 equal to `ratio` at both frequencies.
+  const double sum = omega_i + omega_j;
+  return {2.0 * ratio * omega_i * omega_j / sum, 2.0 * ratio / sum};
+}
+
+Building make_building(const BuildingDefinition& definition) {
+  definition.validate();
+  Building building;
+  building.definition = definition;
+  building.mass_diagonal = assemble_mass(definition);
+
+  if (definition.uses_columns()) {
+    // K is linear in the frame factor, so ω² ∝ f and T₁(f) = T₁(1)/√f: the factor that gives
+    // the target period follows in closed form from one eigen-analysis at f = 1.
+    double f = definition.frame_factor;
+    if (definition.target_period_s) {
+      const Eigen::MatrixXd k_unit = column_building_stiffness(definition, 1.0);
+      require_positive_definite(k_unit, definition);
+      const double period_unit = modal_analysis(building.mass_diagonal, k_unit).front().period_s;
+      f = std::pow(period_unit / *definition.target_period_s, 2);
+    }
+    building.frame_factor = f;
+    building.definition.frame_factor = f;
+    building.stiffness = column_building_stiffness(definition, f);
+  } else {
+    building.frame_factor = 1.0;
+    building.stiffness = assemble_stiffness(definition.storey_stiffness);
+  }
+  require_positive_definite(building.stiffness, definition);
+
+  const std::vector<Mode> modes = modal_analysis(building.mass_diagonal, building.stiffness);
+  const auto [i, j] = definition.damping.modes;
+  building.rayleigh =
+      fit_rayleigh(modes[i - 1].omega_rad_s, modes[j - 1].omega_rad_s, definition.damping.ratio);
+  building.damping = building.rayleigh.a0_per_s * Eigen::MatrixXd(building.mass_diagonal.asDiagonal()) +
+                     building.rayleigh.a1_s * building.stiffness;
+  return building;
+}
+
+}  // namespace pounding::model
