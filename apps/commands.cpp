@@ -11,7 +11,7 @@ namespace pounding::cli {
 namespace {
 
 void print_modes_table(const analysis::BuildingSummary& building, int count) {
-  fmt::print("{} ({} storeys, {} DOF, frame factor {:.6f}{})\n", building.name, building.storeys,
+  fmt::print("{} ({} storeys, {} DOF, frame factor {:.8f}{})\n", building.name, building.storeys,
              building.dof, building.frame_factor, building.frame_factor_solved ? ", solved" : "");
   fmt::print("  {:>4}  {:>10}  {:>10}  {:>8}  {:>8}  {:>8}  {:>8}\n", "mode", "T [s]", "f [Hz]",
              "dominant", "Meff,x", "Meff,y", "Meff,rz");
@@ -71,7 +71,7 @@ int run_check(const CheckCommand& command) {
     const auto& definition = scene.buildings[i];
     total_dof += b.dof;
     fmt::print("Building {} '{}': {} storeys of {} m, {} DOF, total mass {:.1f} t, frame factor "
-               "{:.6f}{}\n",
+               "{:.8f}{}\n",
                i + 1, b.name, b.storeys, definition.storey_height_m, b.dof, b.total_mass_t,
                b.frame_factor, b.frame_factor_solved ? " (solved for the target period)" : "");
     fmt::print("  floor mass {:.1f} t (top {:.1f} t), polar moment {:.1f} t·m² (top {:.1f} t·m²)\n",

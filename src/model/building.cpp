@@ -121,8 +121,8 @@ void require_positive_definite(const Eigen::MatrixXd& stiffness, const BuildingD
   if (Eigen::LLT<Eigen::MatrixXd>(stiffness).info() == Eigen::Success) return;
   if (b.uses_columns()) {
     throw InputError("columns", fmt::format("{} columns", b.columns.size()),
-                     "the storey stiffness is singular: the columns cannot resist both "
-                     "translations and torsion (they need at least two non-collinear positions)");
+                     "the storey stiffness is singular: columns that all stand at one point "
+                     "cannot resist torsion");
   }
   throw InputError("storey_stiffness", "", "the assembled stiffness is not positive definite");
 }

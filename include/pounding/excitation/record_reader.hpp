@@ -24,9 +24,9 @@ struct RecordReadOptions {
   /// of the acceleration in each line (for files with several components); otherwise every
   /// number in reading order.
   int time_column = 1;
-  std::optional<int> accel_column;
+  std::optional<int> accel_column{};
   /// `single` only: the sample spacing (s). Required there.
-  std::optional<double> dt_s;
+  std::optional<double> dt_s{};
 };
 
 /// Samples as read: strictly increasing times (s) and accelerations in the file's unit.

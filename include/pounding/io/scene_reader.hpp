@@ -11,8 +11,8 @@ namespace pounding::io {
 
 /// Values given on the command line that replace the file's.
 struct SceneOverrides {
-  std::optional<double> gap_m;        // moves building 2 along x
-  std::optional<double> restitution;
+  std::optional<double> gap_m{};      // moves building 2 along x
+  std::optional<double> restitution{};
 };
 
 /// Reads, applies overrides and validates a scene. Relative record paths resolve against the

@@ -1,0 +1,111 @@
+#define BOOST_TEST_MODULE ground_motion
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+
+#include "pounding/excitation/ground_motion.hpp"
+#include "pounding/input_error.hpp"
+
+namespace tt = boost::test_tools;
+using namespace pounding::excitation;
+
+namespace {
+
+/// a_i = i (so the value at a time says where it was read from), t_i = i·dt.
+RecordSamples ramp(std::size_t count, double dt) {
+  RecordSamples samples;
+  for (std::size_t i = 0; i < count; ++i) {
+    samples.time_s.push_back(static_cast<double>(i) * dt);
+    samples.accel.push_back(static_cast<double>(i));
+  }
+  return samples;
+}
+
+ExcitationSpec spec_in(AccelUnits units) {
+  ExcitationSpec spec;
+  spec.file = "synthetic";
+  spec.units = units;
+  return spec;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(InterpolatesLinearlyAndIsZeroOutsideTheRecord) {
+  const GroundMotion motion({0.0, 0.1, 0.3}, {0.0, 2.0, -2.0}, 0.0);
+  BOOST_TEST(motion.accel_at(0.05) == 1.0, tt::tolerance(1e-14));
+  BOOST_TEST(motion.accel_at(0.2) == 0.0, tt::tolerance(1e-14));
+  BOOST_TEST(motion.accel_at(0.3) == -2.0);
+  BOOST_TEST(motion.accel_at(0.31) == 0.0);
+  BOOST_TEST(motion.accel_at(-0.01) == 0.0);
+  BOOST_TEST(motion.peak_mps2() == 2.0);
+  BOOST_TEST(motion.peak_time_s() == 0.1);
+}
+
+BOOST_AUTO_TEST_CASE(ConvertsUnitsToMetresPerSecondSquared) {
+  BOOST_TEST(process_record(ramp(3, 0.01), spec_in(AccelUnits::cm_per_s2)).accel_mps2()[2] == 0.02,
+             tt::tolerance(1e-15));
+  ExcitationSpec in_g = spec_in(AccelUnits::g);
+  in_g.g_mps2 = 9.80665;
+  BOOST_TEST(process_record(ramp(3, 0.01), in_g).accel_mps2()[2] == 2 * 9.80665, tt::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(TimeStepOverrideRespacesTheSamples) {
+  ExcitationSpec spec = spec_in(AccelUnits::m_per_s2);
+  spec.dt_override_s = 0.05;
+  const GroundMotion motion = process_record(ramp(11, 0.02), spec);
+  BOOST_TEST(motion.end_s() == 0.5, tt::tolerance(1e-14));
+  BOOST_TEST(motion.accel_at(0.075) == 1.5, tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(CutInterpolatesItsEndsAndStartsAtZero) {
+  ExcitationSpec spec = spec_in(AccelUnits::m_per_s2);
+  spec.start_s = 0.015;
+  spec.duration_s = 0.04;  // [0.015, 0.055] of a record sampled every 0.01 s
+  const GroundMotion motion = process_record(ramp(11, 0.01), spec);
+  const std::vector<double> expected_t = {0.0, 0.005, 0.015, 0.025, 0.035, 0.04};
+  const std::vector<double> expected_a = {1.5, 2, 3, 4, 5, 5.5};
+  BOOST_TEST_REQUIRE(motion.time_s().size() == expected_t.size());
+  for (std::size_t i = 0; i < expected_t.size(); ++i) {
+    BOOST_TEST(motion.time_s()[i] == expected_t[i], tt::tolerance(1e-12));
+    BOOST_TEST(motion.accel_mps2()[i] == expected_a[i], tt::tolerance(1e-12));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(ScalingToPeakSetsTheLargestMagnitude) {
+  RecordSamples samples{{0, 1, 2, 3}, {0.1, -0.4, 0.3, 0.2}};
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.scale_to_pga_g = 0.32;
+  const GroundMotion motion = process_record(samples, spec);
+  BOOST_TEST(motion.accel_mps2()[1] == -0.32 * 9.81, tt::tolerance(1e-14));  // sign kept
+  BOOST_TEST(motion.accel_mps2()[2] == 0.24 * 9.81, tt::tolerance(1e-14));
+}
+
+BOOST_AUTO_TEST_CASE(DirectionIsStoredInRadians) {
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.direction_deg = 30.0;
+  BOOST_TEST(process_record(ramp(3, 0.01), spec).direction_rad() == M_PI / 6, tt::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(PaperReadingKeeps245SamplesScaledTo032g) {
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.file = POUNDING_EXAMPLES_DIR "/records/elcentro1940_ns_0.02s.AT2";
+  spec.dt_override_s = 0.05;
+  spec.duration_s = 12.2;
+  spec.scale_to_pga_g = 0.32;
+  const GroundMotion motion = load_ground_motion(spec);
+  BOOST_TEST(motion.time_s().size() == 245u);
+  BOOST_TEST(motion.end_s() == 12.2, tt::tolerance(1e-12));
+  BOOST_TEST(motion.peak_mps2() == 0.32 * 9.81, tt::tolerance(1e-14));
+  BOOST_TEST(motion.peak_time_s() == 101 * 0.05, tt::tolerance(1e-12));  // file peak is sample 101
+}
+
+BOOST_AUTO_TEST_CASE(BadProcessingOptionsNameTheirKey) {
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.dt_override_s = 0.0;
+  BOOST_CHECK_EXCEPTION(process_record(ramp(3, 0.01), spec), pounding::InputError,
+                        [](const auto& e) { return e.key() == "excitation.dt_s" && e.value() == "0"; });
+  spec = spec_in(AccelUnits::g);
+  spec.start_s = 5.0;
+  BOOST_CHECK_EXCEPTION(process_record(ramp(3, 0.01), spec), pounding::InputError,
+                        [](const auto& e) { return e.key() == "excitation.start_s"; });
+}

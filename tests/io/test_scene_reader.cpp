@@ -1,0 +1,245 @@
+#define BOOST_TEST_MODULE scene_reader
+#include <boost/test/unit_test.hpp>
+
+#include <string>
+
+#include "../support/fixtures.hpp"
+#include "pounding/analysis/modal_summary.hpp"
+#include "pounding/input_error.hpp"
+#include "pounding/io/scene_reader.hpp"
+
+namespace tt = boost::test_tools;
+using pounding::InputError;
+using pounding::io::read_scene;
+using pounding::testing::TempDir;
+
+namespace {
+
+// A small valid scene: 2- and 3-storey buildings 0.1 m apart, a 4-sample record beside it.
+const std::string kScene = R"(name = "small"
+[[building]]
+name = "A"
+storeys = 2
+storey_height_m = 3.0
+slab = [[-10.0, 0.0], [0.0, 0.0], [0.0, 8.0], [-10.0, 8.0]]
+centre_of_mass = [-5.0, 4.0]
+mass_t = 100.0
+polar_moment_tm2 = "uniform"
+E_kPa = 3.0e7
+frame_factor = 1.0
+columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]
+
+[[building]]
+name = "B"
+storeys = 3
+storey_height_m = 3.0
+slab = [[0.1, 2.0], [10.1, 2.0], [10.1, 10.0], [0.1, 10.0]]
+centre_of_mass = [5.1, 6.0]
+mass_t = [120.0, 120.0, 110.0]
+polar_moment_tm2 = [1600.0, 1600.0, 1500.0]
+storey_stiffness = [[50000.0, 0.0, 0.0], [0.0, 60000.0, 0.0], [0.0, 0.0, 2.0e6]]
+[building.damping]
+ratio = 0.02
+modes = [1, 2]
+
+[excitation]
+file = "record.txt"
+format = "columns"
+units = "m/s2"
+
+[contact]
+gap_m = 0.1
+restitution = 0.5
+)";
+
+const std::string kRecord = "0 0\n0.01 1\n0.02 -1\n0.03 0\n";
+
+/// The base scene with `from` replaced by `to` (which must occur exactly once).
+std::string edited(const std::string& from, const std::string& to) {
+  const auto at = kScene.find(from);
+  BOOST_REQUIRE_MESSAGE(at != std::string::npos && kScene.find(from, at + 1) == std::string::npos,
+                        "edit anchor not unique: " << from);
+  return std::string(kScene).replace(at, from.size(), to);
+}
+
+struct Case {
+  TempDir dir;
+  std::filesystem::path file;
+  explicit Case(const std::string& scene) {
+    dir.write("record.txt", kRecord);
+    file = dir.write("scene.toml", scene);
+  }
+};
+
+/// Reads the scene and returns the error; fails the test if the scene was accepted.
+std::string error_of(const std::string& scene, const pounding::io::SceneOverrides& overrides = {}) {
+  Case c(scene);
+  try {
+    read_scene(c.file, overrides);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  BOOST_FAIL("scene accepted");
+  return {};
+}
+
+bool mentions(const std::string& text, std::initializer_list<std::string> parts) {
+  for (const auto& part : parts) {
+    if (text.find(part) == std::string::npos) {
+      BOOST_TEST_MESSAGE("'" << part << "' missing from: " << text);
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(ValidSceneIsReadCompletely) {
+  Case c(kScene);
+  const auto scene = read_scene(c.file);
+  BOOST_TEST(scene.name == "small");
+  BOOST_TEST(scene.buildings[0].mass_t == std::vector<double>({100.0, 100.0}), tt::per_element());
+  BOOST_TEST(scene.buildings[0].polar_moment_tm2[0] == 100.0 * (100 + 64) / 12.0, tt::tolerance(1e-12));
+  BOOST_TEST(scene.buildings[1].storey_stiffness.size() == 3u);  // one matrix for every storey
+  BOOST_TEST(scene.buildings[1].damping.modes[1] == 2);
+  BOOST_TEST(scene.excitation.file == c.dir.path() / "record.txt");  // relative to the scene
+  BOOST_TEST(scene.common_floors() == 2);
+  BOOST_TEST(scene.solver.rtol == 1e-8);
+}
+
+BOOST_AUTO_TEST_CASE(GapOverrideMovesBuildingTwoAlongX) {
+  Case c(kScene);
+  const auto scene = read_scene(c.file, {.gap_m = 0.35});
+  BOOST_TEST(scene.contact.gap_m == 0.35);
+  BOOST_TEST(scene.buildings[1].slab.vertex(0).x() == 0.35, tt::tolerance(1e-12));
+  BOOST_TEST(scene.buildings[1].centre_of_mass.x() == 5.35, tt::tolerance(1e-12));
+  BOOST_TEST(scene.buildings[0].slab.vertex(1).x() == 0.0);  // building 1 stays
+}
+
+BOOST_AUTO_TEST_CASE(SyntaxErrorNamesFileAndLine) {
+  BOOST_TEST(mentions(error_of(edited("storeys = 2", "storeys = = 2")), {"scene.toml:4"}));
+}
+
+BOOST_AUTO_TEST_CASE(UnknownKeyIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("frame_factor = 1.0", "frame_factor = 1.0\nframe_facter = 2")),
+                      {"scene.toml", "building[1].frame_facter", "2", "unknown key"}));
+  BOOST_TEST(mentions(error_of(kScene + "\n[solvr]\nrtol = 1\n"), {"solvr", "unknown key"}));
+}
+
+BOOST_AUTO_TEST_CASE(MissingKeyIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("storey_height_m = 3.0\nslab = [[-10", "slab = [[-10")),
+                      {"scene.toml", "building[1].storey_height_m", "missing", "required"}));
+}
+
+BOOST_AUTO_TEST_CASE(WrongTypeIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("storeys = 2", "storeys = \"two\"")),
+                      {"scene.toml:4", "building[1].storeys", "two", "whole number"}));
+  BOOST_TEST(mentions(error_of(edited("gap_m = 0.1", "gap_m = [0.1]")), {"contact.gap_m", "expected a number"}));
+}
+
+BOOST_AUTO_TEST_CASE(NonPositiveMassIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("mass_t = 100.0", "mass_t = -100.0")),
+                      {"scene.toml", "building[1].mass_t", "-100", "positive"}));
+  BOOST_TEST(mentions(error_of(edited("[120.0, 120.0, 110.0]", "[120.0, 0.0, 110.0]")),
+                      {"scene.toml", "building[2].mass_t[2]", "0", "positive"}));
+}
+
+BOOST_AUTO_TEST_CASE(NonPositiveInertiaIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("[1600.0, 1600.0, 1500.0]", "[1600.0, 1600.0, -1500.0]")),
+                      {"building[2].polar_moment_tm2[3]", "-1500", "positive"}));
+}
+
+BOOST_AUTO_TEST_CASE(NonPositiveHeightAndModulusAreRefused) {
+  BOOST_TEST(mentions(error_of(edited("storeys = 2\nstorey_height_m = 3.0", "storeys = 2\nstorey_height_m = 0.0")),
+                      {"building[1].storey_height_m", "0", "positive"}));
+  BOOST_TEST(mentions(error_of(edited("E_kPa = 3.0e7", "E_kPa = -3.0e7")),
+                      {"building[1].E_kPa", "-30000000", "positive"}));
+}
+
+BOOST_AUTO_TEST_CASE(RestitutionOutsideUnitIntervalIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = 1.5")),
+                      {"scene.toml", "contact.restitution", "1.5", "[0, 1]"}));
+  BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = -0.1")),
+                      {"contact.restitution", "-0.1"}));
+  BOOST_TEST(mentions(error_of(kScene, {.restitution = 2.0}), {"--restitution", "2", "[0, 1]"}));
+}
+
+BOOST_AUTO_TEST_CASE(NegativeGapIsRefused) {
+  BOOST_TEST(mentions(error_of(kScene, {.gap_m = -0.05}), {"scene.toml", "--gap", "-0.05", "positive"}));
+}
+
+BOOST_AUTO_TEST_CASE(GapDisagreeingWithTheOutlinesIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("gap_m = 0.1", "gap_m = 0.2")),
+                      {"contact.gap_m", "0.2", "clear distance along x is 0.1"}));
+}
+
+BOOST_AUTO_TEST_CASE(PolygonThatIsNotSimpleIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("[[-10.0, 0.0], [0.0, 0.0], [0.0, 8.0], [-10.0, 8.0]]",
+                                      "[[-10.0, 0.0], [0.0, 8.0], [0.0, 0.0], [-10.0, 8.0]]")),
+                      {"building[1].slab", "not simple"}));
+}
+
+BOOST_AUTO_TEST_CASE(ClockwisePolygonIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("[[-10.0, 0.0], [0.0, 0.0], [0.0, 8.0], [-10.0, 8.0]]",
+                                      "[[-10.0, 0.0], [-10.0, 8.0], [0.0, 8.0], [0.0, 0.0]]")),
+                      {"building[1].slab", "counter-clockwise"}));
+}
+
+BOOST_AUTO_TEST_CASE(CentreOfMassOutsideTheSlabIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("centre_of_mass = [-5.0, 4.0]", "centre_of_mass = [-5.0, 9.0]")),
+                      {"building[1].centre_of_mass", "[-5, 9]", "outside the slab"}));
+}
+
+BOOST_AUTO_TEST_CASE(SlabsOverlappingAtRestAreRefused) {
+  const std::string overlapping = edited("[[0.1, 2.0], [10.1, 2.0], [10.1, 10.0], [0.1, 10.0]]",
+                                         "[[-0.1, 2.0], [10.1, 2.0], [10.1, 10.0], [-0.1, 10.0]]");
+  BOOST_TEST(mentions(error_of(overlapping), {"scene.toml", "building[2].slab", "overlaps"}));
+}
+
+BOOST_AUTO_TEST_CASE(StiffnessThatIsNotPositiveDefiniteIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("[0.0, 0.0, 2.0e6]]", "[0.0, 0.0, -2.0e6]]")),
+                      {"scene.toml", "building[2].storey_stiffness[1]", "positive definite"}));
+  BOOST_TEST(mentions(error_of(edited("[50000.0, 0.0, 0.0], [0.0, 60000.0", "[50000.0, 1.0, 0.0], [0.0, 60000.0")),
+                      {"building[2].storey_stiffness[1]", "symmetric"}));
+}
+
+BOOST_AUTO_TEST_CASE(MissingRecordIsRefused) {
+  BOOST_TEST(mentions(error_of(edited("file = \"record.txt\"", "file = \"nowhere.txt\"")),
+                      {"scene.toml", "excitation.file", "nowhere.txt", "no such record file"}));
+}
+
+BOOST_AUTO_TEST_CASE(UnknownFormatAndUnitsAreRefused) {
+  BOOST_TEST(mentions(error_of(edited("format = \"columns\"", "format = \"csv\"")),
+                      {"excitation.format", "csv", "peer-at2"}));
+  BOOST_TEST(mentions(error_of(edited("units = \"m/s2\"", "units = \"gal\"")), {"excitation.units", "gal"}));
+}
+
+BOOST_AUTO_TEST_CASE(DampingModesOutOfRangeAreRefused) {
+  BOOST_TEST(mentions(error_of(edited("modes = [1, 2]", "modes = [1, 12]")),
+                      {"building[2].damping.modes", "[1, 12]", "1..9"}));
+}
+
+BOOST_AUTO_TEST_CASE(ExclusiveStiffnessKeysAreRefusedTogether) {
+  BOOST_TEST(mentions(error_of(edited("frame_factor = 1.0", "frame_factor = 1.0\ntarget_period_s = 0.2")),
+                      {"building[1].target_period_s", "not both"}));
+  BOOST_TEST(mentions(error_of(edited("storey_stiffness =", "E_kPa = 1.0\nstorey_stiffness =")),
+                      {"building[2].storey_stiffness", "not both"}));
+}
+
+BOOST_AUTO_TEST_CASE(PaperSceneHasThePublishedPeriods) {
+  const auto scene = read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml");
+  const auto buildings = pounding::analysis::summarise_buildings(scene);
+  BOOST_TEST(buildings[0].modes[0].period_s == 0.765, tt::tolerance(1e-3));
+  BOOST_TEST(buildings[1].modes[0].period_s == 1.119, tt::tolerance(1e-3));
+  BOOST_TEST(buildings[0].dof == 21);
+  BOOST_TEST(buildings[1].dof == 30);
+}
+
+BOOST_AUTO_TEST_CASE(TargetPeriodSceneSolvesThePublishedFrameFactors) {
+  const auto scene = read_scene(POUNDING_EXAMPLES_DIR "/paper/paper-target-periods.toml");
+  const auto buildings = pounding::analysis::summarise_buildings(scene);
+  BOOST_TEST(std::abs(buildings[0].frame_factor - 0.74625) < 1e-5);
+  BOOST_TEST(std::abs(buildings[1].frame_factor - 0.57268) < 1e-5);
+  BOOST_TEST(buildings[0].modes[0].period_s == 0.765, tt::tolerance(1e-10));
+}

@@ -1,0 +1,174 @@
+#define BOOST_TEST_MODULE building
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "../support/fixtures.hpp"
+#include "pounding/input_error.hpp"
+#include "pounding/model/building.hpp"
+#include "pounding/model/modal.hpp"
+
+namespace tt = boost::test_tools;
+using namespace pounding::model;
+using pounding::testing::square_building;
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// Column stiffnesses of a 0.3 (x) × 0.5 (y) column, by the textbook formula 12 E I / H³.
+struct RectangularColumn {
+  double b = 0.3, h = 0.5, E = 3.0e7, H = 3.0;
+  double kx() const { return 12 * E * (h * b * b * b / 12) / (H * H * H); }
+  double ky() const { return 12 * E * (b * h * h * h / 12) / (H * H * H); }
+};
+
+BuildingDefinition one_storey_rectangular_columns(Point2 cm) {
+  BuildingDefinition b = square_building(1, 10.0, 100.0, 1000.0, cm);
+  for (Column& column : b.columns) {
+    column.b_m = 0.3;
+    column.h_m = 0.5;
+  }
+  return b;
+}
+
+/// Share of the mode's φᵀMφ carried by component c (0 = u, 1 = v, 2 = φ).
+double component_share(const Mode& mode, const Eigen::VectorXd& mass, int c) {
+  double share = 0, total = 0;
+  for (Eigen::Index d = 0; d < mode.shape.size(); ++d) {
+    const double energy = mass[d] * mode.shape[d] * mode.shape[d];
+    total += energy;
+    if (d % 3 == c) share += energy;
+  }
+  return share / total;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(ColumnStiffnessFollowsTwelveEIOverHCubed) {
+  const RectangularColumn c;
+  const Eigen::Vector2d k = column_stiffness({Point2::Zero(), c.b, c.h}, c.E, c.H, 0.5);
+  BOOST_TEST(k.x() == 0.5 * c.kx(), tt::tolerance(1e-14));
+  BOOST_TEST(k.y() == 0.5 * c.ky(), tt::tolerance(1e-14));
+}
+
+BOOST_AUTO_TEST_CASE(OneStoreySymmetricBuildingHasPeriodTwoPiSqrtMOverK) {
+  const Building building = make_building(one_storey_rectangular_columns(Point2::Zero()));
+  const RectangularColumn c;
+  const double kx = 4 * c.kx(), ky = 4 * c.ky();
+  const double k_theta = 4 * (c.kx() * 25 + c.ky() * 25);  // Σ kx y² + ky x², corners at ±5 m
+  const auto modes = modal_analysis(building);
+  // Expected periods, longest first: x (soft direction), then torsion or y.
+  std::vector<double> expected = {kTwoPi * std::sqrt(100 / kx), kTwoPi * std::sqrt(100 / ky),
+                                  kTwoPi * std::sqrt(1000 / k_theta)};
+  std::sort(expected.rbegin(), expected.rend());
+  for (int k = 0; k < 3; ++k) BOOST_TEST(modes[k].period_s == expected[k], tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(SymmetricPlanHasUncoupledXYAndTorsionModes) {
+  const Building building = make_building(one_storey_rectangular_columns(Point2::Zero()));
+  for (const Mode& mode : modal_analysis(building)) {
+    const int c = static_cast<int>(mode.dominant);
+    BOOST_TEST(component_share(mode, building.mass_diagonal, c) == 1.0, tt::tolerance(1e-12));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(OneStoreyEccentricMassMatchesClosedForm) {
+  // Columns symmetric about the origin, CM at (e, 0). About the CM the storey stiffness is
+  // [[Kx, 0, 0], [0, Ky, −e Ky], [0, −e Ky, Kθ,S + e² Ky]], so u stays uncoupled (ω² = Kx/m)
+  // and v–φ satisfy m J ω⁴ − (m (Kθ,S + e² Ky) + J Ky) ω² + Ky Kθ,S = 0.
+  const double e = 1.5, m = 100.0, J = 1000.0;
+  const Building building = make_building(one_storey_rectangular_columns(Point2(e, 0.0)));
+  const RectangularColumn c;
+  const double kx = 4 * c.kx(), ky = 4 * c.ky(), k_theta_s = 4 * (c.kx() * 25 + c.ky() * 25);
+
+  const double p = m * (k_theta_s + e * e * ky) + J * ky;
+  const double disc = std::sqrt(p * p - 4 * m * J * ky * k_theta_s);
+  std::vector<double> expected = {kTwoPi / std::sqrt(kx / m),
+                                  kTwoPi / std::sqrt((p - disc) / (2 * m * J)),
+                                  kTwoPi / std::sqrt((p + disc) / (2 * m * J))};
+  std::sort(expected.rbegin(), expected.rend());
+  const auto modes = modal_analysis(building);
+  for (int k = 0; k < 3; ++k) BOOST_TEST(modes[k].period_s == expected[k], tt::tolerance(1e-12));
+
+  // The coupled modes move both v and φ; the x mode moves u only.
+  int coupled = 0;
+  for (const Mode& mode : modes) {
+    const double v_share = component_share(mode, building.mass_diagonal, 1);
+    if (v_share > 1e-9 && v_share < 1 - 1e-9) ++coupled;
+  }
+  BOOST_TEST(coupled == 2);
+}
+
+BOOST_AUTO_TEST_CASE(TwoStoreyShearBuildingMatchesClosedFormFrequencies) {
+  // Storey matrices given directly, uncoupled directions; x: k1 = 2000, k2 = 1500 kN/m,
+  // m1 = 10 t, m2 = 8 t. m1 m2 ω⁴ − (m1 k2 + m2 (k1 + k2)) ω² + k1 k2 = 0.
+  BuildingDefinition b = square_building(2, 10.0, 10.0, 100.0);
+  b.mass_t = {10.0, 8.0};
+  b.polar_moment_tm2 = {100.0, 80.0};
+  b.columns.clear();
+  b.storey_stiffness = {Eigen::Vector3d(2000, 9000, 5e5).asDiagonal(),
+                        Eigen::Vector3d(1500, 7000, 4e5).asDiagonal()};
+  const Building building = make_building(b);
+
+  const double m1 = 10, m2 = 8, k1 = 2000, k2 = 1500;
+  const double p = m1 * k2 + m2 * (k1 + k2);
+  const double disc = std::sqrt(p * p - 4 * m1 * m2 * k1 * k2);
+  const double omega_low = std::sqrt((p - disc) / (2 * m1 * m2));
+  const double omega_high = std::sqrt((p + disc) / (2 * m1 * m2));
+
+  std::vector<double> x_omegas;
+  for (const Mode& mode : modal_analysis(building)) {
+    if (mode.dominant == ModeComponent::x) x_omegas.push_back(mode.omega_rad_s);
+  }
+  BOOST_TEST_REQUIRE(x_omegas.size() == 2u);
+  BOOST_TEST(x_omegas[0] == omega_low, tt::tolerance(1e-12));
+  BOOST_TEST(x_omegas[1] == omega_high, tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(RayleighCoefficientsReproduceTheRatioAtBothChosenModes) {
+  BuildingDefinition b = square_building(4, 12.0, 300.0, 7200.0, Point2(1.0, -0.5));
+  b.damping = {0.05, {1, 3}};
+  const Building building = make_building(b);
+  const auto modes = modal_analysis(building);
+  // Independent check through the assembled C: ζ_n = φₙᵀ C φₙ / (2 ωₙ) for mass-normalised φ.
+  auto modal_ratio = [&](int n) {
+    const Mode& mode = modes[n - 1];
+    return mode.shape.dot(building.damping * mode.shape) / (2 * mode.omega_rad_s);
+  };
+  BOOST_TEST(modal_ratio(1) == 0.05, tt::tolerance(1e-10));
+  BOOST_TEST(modal_ratio(3) == 0.05, tt::tolerance(1e-10));
+  BOOST_TEST(modal_ratio(2) < 0.05);   // between the anchors Rayleigh damping dips
+  BOOST_TEST(modal_ratio(6) > 0.05);   // and above them it grows
+}
+
+BOOST_AUTO_TEST_CASE(FrameFactorIsSolvedForTheTargetPeriod) {
+  BuildingDefinition b = square_building(5, 15.0, 400.0, 15000.0, Point2(1.0, 0.5));
+  b.target_period_s = 0.8;
+  const Building building = make_building(b);
+  BOOST_TEST(modal_analysis(building).front().period_s == 0.8, tt::tolerance(1e-10));
+
+  BuildingDefinition unit = b;
+  unit.target_period_s.reset();
+  const double period_unit = modal_analysis(make_building(unit)).front().period_s;
+  BOOST_TEST(building.frame_factor == std::pow(period_unit / 0.8, 2), tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(UniformPolarMomentOfRectangleIsMassTimesDiagonalSquaredOverTwelve) {
+  const Polygon slab({{-24, 0}, {0, 0}, {0, 20}, {-24, 20}});
+  BOOST_TEST(uniform_polar_moment(slab, 555.0) == 555.0 * (24.0 * 24 + 20 * 20) / 12,
+             tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(ColumnsAtOnePointCannotResistTorsion) {
+  // Two columns on one line still resist torsion by the couple of their x forces; columns that
+  // all stand at one point do not.
+  BuildingDefinition b = square_building(1, 10.0, 100.0, 1000.0);
+  b.columns = {{Point2(0, -5), 0.4, 0.4}, {Point2(0, 5), 0.4, 0.4}};
+  BOOST_CHECK_NO_THROW(make_building(b));
+  b.columns = {{Point2(0, 0), 0.4, 0.4}, {Point2(0, 0), 0.5, 0.5}};
+  BOOST_CHECK_EXCEPTION(make_building(b), pounding::InputError, [](const pounding::InputError& e) {
+    return e.key() == "columns" && std::string(e.what()).find("singular") != std::string::npos;
+  });
+}
