@@ -1,0 +1,43 @@
+#pragma once
+// Signed gap of one candidate in the current configuration, with exact planar rotation, and its
+// first and second time derivatives.
+
+#include <Eigen/Core>
+
+#include "pounding/contact/candidates.hpp"
+
+namespace pounding::contact {
+
+/// Motion of one slab: displacements of its CM and rotation, and their rates.
+struct SlabMotion {
+  model::Point2 centre_rest = model::Point2::Zero();  // CM at rest (m)
+  Eigen::Vector3d q = Eigen::Vector3d::Zero();        // u (m), v (m), φ (rad)
+  Eigen::Vector3d q_dot = Eigen::Vector3d::Zero();    // m/s, m/s, rad/s
+};
+
+/// Everything about one candidate at one instant.
+/// Sign convention: g > 0 separated, g = 0 contact, g < 0 overlap; ġ < 0 approaching.
+struct GapState {
+  double gap_m = 0.0;
+  double gap_rate_mps = 0.0;          // ġ = G q̇
+  double segment_param = 0.0;         // projection of P on Q1Q2: 0 at Q1, 1 at Q2
+  model::Point2 contact_point;        // current position of P (m)
+  model::Point2 normal;               // current outward unit normal of the struck edge
+  /// ġ = striking_row · q̇_striking + struck_row · q̇_struck. striking_row = (n_x, n_y, ρ_A × n),
+  /// struck_row = −(n_x, n_y, ρ_B × n), ρ = arm from each slab's CM to the current P.
+  Eigen::RowVector3d striking_row;
+  Eigen::RowVector3d struck_row;
+  double curvature_mps2 = 0.0;        // h in g̈ = G q̈ + h (centripetal and normal-rotation terms)
+
+  bool on_segment(double tolerance = 1e-9) const {
+    return segment_param >= -tolerance && segment_param <= 1.0 + tolerance;
+  }
+};
+
+/// Evaluates the candidate for the given slab motions. No preconditions; O(1).
+GapState evaluate_gap(const Candidate& candidate, const SlabMotion& striking, const SlabMotion& struck);
+
+/// Current position of a material point of a slab given at rest as `point_rest` (m).
+model::Point2 current_position(const SlabMotion& slab, const model::Point2& point_rest);
+
+}  // namespace pounding::contact

@@ -1,0 +1,126 @@
+#include "pounding/contact/impact.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numeric>
+#include <optional>
+
+namespace pounding::contact {
+namespace {
+
+constexpr std::size_t kMaxEnumerated = 12;
+
+struct Lcp {
+  Eigen::MatrixXd w_matrix;  // W = G M⁻¹ Gᵀ
+  Eigen::VectorXd offset;    // ġ⁻ − e: w = W I + offset
+};
+
+Lcp assemble(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass, double k) {
+  const Eigen::Index m = static_cast<Eigen::Index>(contacts.size());
+  Eigen::MatrixXd g(m, 6);
+  Lcp lcp{Eigen::MatrixXd(m, m), Eigen::VectorXd(m)};
+  for (Eigen::Index i = 0; i < m; ++i) {
+    g.row(i) = contacts[i].jacobian;
+    const double rate = contacts[i].gap_rate_mps;
+    lcp.offset[i] = rate + k * std::min(rate, 0.0);
+  }
+  lcp.w_matrix = g * inverse_mass.asDiagonal() * g.transpose();
+  return lcp;
+}
+
+/// Tries the active set `mask`; returns the impulses if they satisfy the LCP to `tolerance`.
+std::optional<Eigen::VectorXd> try_active_set(const Lcp& lcp, unsigned mask, double tolerance) {
+  const Eigen::Index m = lcp.offset.size();
+  std::vector<Eigen::Index> active;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (mask & (1u << i)) active.push_back(i);
+  }
+  Eigen::VectorXd impulses = Eigen::VectorXd::Zero(m);
+  if (!active.empty()) {
+    const Eigen::Index a = static_cast<Eigen::Index>(active.size());
+    Eigen::MatrixXd w_aa(a, a);
+    Eigen::VectorXd rhs(a);
+    for (Eigen::Index r = 0; r < a; ++r) {
+      rhs[r] = -lcp.offset[active[r]];
+      for (Eigen::Index c = 0; c < a; ++c) w_aa(r, c) = lcp.w_matrix(active[r], active[c]);
+    }
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(w_aa);
+    if (lu.rank() < a) return std::nullopt;  // dependent contacts: a smaller set will do
+    const Eigen::VectorXd solved = lu.solve(rhs);
+    for (Eigen::Index r = 0; r < a; ++r) impulses[active[r]] = solved[r];
+  }
+  const Eigen::VectorXd w = lcp.w_matrix * impulses + lcp.offset;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (impulses[i] < -tolerance || w[i] < -tolerance) return std::nullopt;
+  }
+  return impulses.cwiseMax(0.0);
+}
+
+Eigen::VectorXd enumerate(const Lcp& lcp, double tolerance) {
+  const unsigned m = static_cast<unsigned>(lcp.offset.size());
+  std::vector<unsigned> masks(1u << m);
+  std::iota(masks.begin(), masks.end(), 0u);
+  // Fewest active contacts first: the sparsest impulse set that satisfies the LCP.
+  std::stable_sort(masks.begin(), masks.end(),
+                   [](unsigned a, unsigned b) { return std::popcount(a) < std::popcount(b); });
+  for (unsigned mask : masks) {
+    if (auto impulses = try_active_set(lcp, mask, tolerance)) return *impulses;
+  }
+  return {};
+}
+
+Eigen::VectorXd gauss_seidel(const Lcp& lcp) {
+  const Eigen::Index m = lcp.offset.size();
+  Eigen::VectorXd impulses = Eigen::VectorXd::Zero(m);
+  for (int sweep = 0; sweep < 1000; ++sweep) {
+    for (Eigen::Index i = 0; i < m; ++i) {
+      if (lcp.w_matrix(i, i) <= 0.0) continue;
+      const double w = lcp.w_matrix.row(i).dot(impulses) + lcp.offset[i];
+      impulses[i] = std::max(0.0, impulses[i] - w / lcp.w_matrix(i, i));
+    }
+  }
+  return impulses;
+}
+
+}  // namespace
+
+Vector6d inverse_mass(double mass1_t, double polar1_tm2, double mass2_t, double polar2_tm2) {
+  Vector6d inv;
+  inv << 1 / mass1_t, 1 / mass1_t, 1 / polar1_tm2, 1 / mass2_t, 1 / mass2_t, 1 / polar2_tm2;
+  return inv;
+}
+
+double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass, double restitution) {
+  const double a = contact.jacobian.cwiseAbs2().dot(inverse_mass.transpose());
+  return (1.0 + restitution) * (-contact.gap_rate_mps) / a;
+}
+
+ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass,
+                               double restitution) {
+  ImpulseSolution solution;
+  if (contacts.empty()) return solution;
+  const Lcp lcp = assemble(contacts, inverse_mass, restitution);
+  double scale = 0.0;
+  for (const ContactRow& c : contacts) scale = std::max(scale, std::abs(c.gap_rate_mps));
+  const double tolerance = 1e-12 * (scale + 1e-12) * (1.0 + lcp.w_matrix.diagonal().maxCoeff());
+
+  Eigen::VectorXd impulses;
+  if (contacts.size() <= kMaxEnumerated) impulses = enumerate(lcp, tolerance);
+  if (impulses.size() == 0) {
+    impulses = gauss_seidel(lcp);
+    solution.exact = false;
+  }
+  solution.impulses_kNs.assign(impulses.data(), impulses.data() + impulses.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    solution.velocity_change += inverse_mass.cwiseProduct(contacts[i].jacobian.transpose()) * impulses[i];
+  }
+  return solution;
+}
+
+double kinetic_energy(const Vector6d& velocities, const Vector6d& inverse_mass) {
+  return 0.5 * velocities.cwiseAbs2().dot(inverse_mass.cwiseInverse());
+}
+
+}  // namespace pounding::contact
