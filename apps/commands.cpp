@@ -2,9 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <map>
+
 #include "pounding/analysis/modal_summary.hpp"
+#include "pounding/analysis/run_scene.hpp"
+#include "pounding/contact/candidates.hpp"
+#include "pounding/io/run_writer.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/io/json_report.hpp"
+#include "pounding/input_error.hpp"
 #include "pounding/io/scene_reader.hpp"
 
 namespace pounding::cli {
@@ -45,7 +51,64 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
              spec.direction_deg);
 }
 
+void print_run_summary(const analysis::RunReport& report, const std::string& folder) {
+  const solvers::RunResult& r = report.result;
+  fmt::print("Run '{}' with {} (rtol {}, atol {}), gap {} m, k = {}: {}{}\n", report.scene, r.method,
+             report.solver.rtol, report.solver.atol, report.gap_m, report.restitution, solvers::to_string(r.status),
+             r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
+  std::map<int, int> by_floor;
+  for (const auto& i : r.impacts) ++by_floor[i.floor];
+  fmt::print("Impacts: {}", r.impacts.size());
+  for (const auto& [floor, count] : by_floor) fmt::print("; floor {}: {}", floor, count);
+  fmt::print("\n");
+  if (!r.impacts.empty()) {
+    const auto& first = r.impacts.front();
+    fmt::print("  first at t = {:.6f} s on floor {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
+               first.t_s, first.floor, first.striking_building, first.vertex, first.approach_velocity_mps,
+               first.impulse_kNs);
+  }
+  fmt::print("Touches (contact without impact): {}\n", r.touches.size());
+  for (const auto& t : r.touches) fmt::print("  t = {:.6f} s, floor {}, B{} vertex {}\n", t.t_s, t.floor, t.striking_building, t.vertex);
+  fmt::print("Sustained contacts: {}\n", r.sustained_contacts.size());
+  for (const auto& s : r.sustained_contacts) {
+    fmt::print("  floor {}, B{} vertex {}: {:.6f} s to {:.6f} s ({}), max force {:.1f} kN\n", s.floor,
+               s.striking_building, s.vertex, s.start_s, s.release_s, s.release_reason, s.max_force_kN);
+  }
+  for (const auto& building : r.peaks) {
+    const auto& top = building.floors[std::min<std::size_t>(building.floors.size(), r.peaks[0].floors.size()) - 1];
+    fmt::print("Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",
+               building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
+               top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
+  }
+  const auto& e = r.energy;
+  fmt::print("Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ, residual {:.3e} kJ ({:.2e} of input)\n",
+             e.input_kJ, e.damping_kJ, e.impact_loss_kJ, e.residual_kJ(),
+             e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
+  const auto& s = r.statistics;
+  fmt::print("Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
+             s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
+  fmt::print("Wrote {}/summary.json, impacts.csv, history.csv\n", folder);
+}
+
 }  // namespace
+
+int run_run(const RunCommand& command) {
+  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
+  if (command.method) scene.solver.method = *command.method;
+  if (command.rtol) scene.solver.rtol = *command.rtol;
+  if (command.atol) scene.solver.atol = *command.atol;
+  try {
+    scene.validate();
+  } catch (const InputError& error) {
+    const std::string option = error.key() == "solver.method" ? "--method" : error.key() == "solver.rtol" ? "--rtol" : "--atol";
+    throw InputError(option, error.value(), error.reason(), command.scene);
+  }
+  const analysis::RunReport report = analysis::run_scene(scene);
+  const std::string folder = command.out_dir.empty() ? "out/" + scene.name : command.out_dir;
+  io::write_run(report, folder);
+  print_run_summary(report, folder);
+  return report.result.status == solvers::RunStatus::completed ? 0 : 3;
+}
 
 int run_modes(const ModesCommand& command) {
   const analysis::Scene scene = io::read_scene(command.scene);
@@ -86,6 +149,10 @@ int run_check(const CheckCommand& command) {
              2 * total_dof, scene.common_floors());
   print_excitation(scene, motion);
   fmt::print("Contact: gap {} m, restitution k = {}\n", scene.contact.gap_m, scene.contact.restitution);
+  const auto candidates = analysis::scene_candidates(scene);
+  fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same floor)\n",
+             candidates.size());
+  for (const auto& c : candidates) fmt::print("  floor {}: {}\n", c.floor, contact::describe(c));
   fmt::print("Solver: {}, rtol {}, atol {}\n", scene.solver.method, scene.solver.rtol, scene.solver.atol);
   return 0;
 }

@@ -19,7 +19,18 @@ struct CheckCommand {
   std::optional<double> restitution;
 };
 
+struct RunCommand {
+  std::string scene;
+  std::optional<double> gap_m;
+  std::optional<double> restitution;
+  std::optional<std::string> method;
+  std::optional<double> rtol;
+  std::optional<double> atol;
+  std::string out_dir;  // empty: out/<scene name>
+};
+
 int run_modes(const ModesCommand& command);
+int run_run(const RunCommand& command);
 int run_check(const CheckCommand& command);
 
 }  // namespace pounding::cli

@@ -1,5 +1,5 @@
 // The `pounding` command-line program: parses arguments, calls a command, maps errors to exit
-// codes (2 for bad input, 1 for anything else).
+// codes (2 for bad input, 3 for a run that did not complete, 1 for anything else).
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -32,6 +32,16 @@ int main(int argc, char** argv) {
   check_app->add_option("--gap", check.gap_m, "Clear gap (m); moves building 2 along x");
   check_app->add_option("--restitution", check.restitution, "Coefficient of restitution k in [0, 1]");
 
+  pounding::cli::RunCommand run;
+  CLI::App* run_app = app.add_subcommand("run", "Time-history analysis with event-driven contact");
+  add_scene_argument(*run_app, run.scene);
+  run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
+  run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
+  run_app->add_option("--method", run.method, "cvode-bdf (default) or cvode-adams");
+  run_app->add_option("--rtol", run.rtol, "Relative tolerance (default 1e-8)");
+  run_app->add_option("--atol", run.atol, "Absolute tolerance, m and rad (default 1e-10)");
+  run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -41,6 +51,7 @@ int main(int argc, char** argv) {
   try {
     if (*modes_app) return pounding::cli::run_modes(modes);
     if (*check_app) return pounding::cli::run_check(check);
+    if (*run_app) return pounding::cli::run_run(run);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

@@ -19,6 +19,12 @@ void validate_contact(const ContactSettings& contact) {
   if (!(contact.restitution >= 0.0 && contact.restitution <= 1.0)) {
     throw InputError("contact.restitution", format_value(contact.restitution), "must lie in [0, 1]");
   }
+  if (!(contact.candidate_margin_m > 0.0) || !std::isfinite(contact.candidate_margin_m)) {
+    throw InputError("contact.candidate_margin_m", format_value(contact.candidate_margin_m), "must be positive (m)");
+  }
+  if (!(contact.hold_velocity_mps > 0.0) || !std::isfinite(contact.hold_velocity_mps)) {
+    throw InputError("contact.hold_velocity_mps", format_value(contact.hold_velocity_mps), "must be positive (m/s)");
+  }
 }
 
 void validate_solver(const SolverSettings& solver) {

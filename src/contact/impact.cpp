@@ -17,14 +17,14 @@ struct Lcp {
   Eigen::VectorXd offset;    // ġ⁻ − e: w = W I + offset
 };
 
-Lcp assemble(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass, double k) {
+Lcp assemble(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass) {
   const Eigen::Index m = static_cast<Eigen::Index>(contacts.size());
   Eigen::MatrixXd g(m, 6);
   Lcp lcp{Eigen::MatrixXd(m, m), Eigen::VectorXd(m)};
   for (Eigen::Index i = 0; i < m; ++i) {
     g.row(i) = contacts[i].jacobian;
     const double rate = contacts[i].gap_rate_mps;
-    lcp.offset[i] = rate + k * std::min(rate, 0.0);
+    lcp.offset[i] = rate + contacts[i].restitution * std::min(rate, 0.0);
   }
   lcp.w_matrix = g * inverse_mass.asDiagonal() * g.transpose();
   return lcp;
@@ -92,16 +92,15 @@ Vector6d inverse_mass(double mass1_t, double polar1_tm2, double mass2_t, double 
   return inv;
 }
 
-double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass, double restitution) {
+double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass) {
   const double a = contact.jacobian.cwiseAbs2().dot(inverse_mass.transpose());
-  return (1.0 + restitution) * (-contact.gap_rate_mps) / a;
+  return (1.0 + contact.restitution) * (-contact.gap_rate_mps) / a;
 }
 
-ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass,
-                               double restitution) {
+ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass) {
   ImpulseSolution solution;
   if (contacts.empty()) return solution;
-  const Lcp lcp = assemble(contacts, inverse_mass, restitution);
+  const Lcp lcp = assemble(contacts, inverse_mass);
   double scale = 0.0;
   for (const ContactRow& c : contacts) scale = std::max(scale, std::abs(c.gap_rate_mps));
   const double tolerance = 1e-12 * (scale + 1e-12) * (1.0 + lcp.w_matrix.diagonal().maxCoeff());

@@ -370,6 +370,8 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
   TableReader contact = root.subtable("contact");
   scene.contact.gap_m = contact.number("gap_m");
   scene.contact.restitution = contact.number("restitution");
+  scene.contact.candidate_margin_m = contact.number_or("candidate_margin_m", scene.contact.candidate_margin_m);
+  scene.contact.hold_velocity_mps = contact.number_or("hold_velocity_mps", scene.contact.hold_velocity_mps);
   contact.finish();
   scene.solver = read_solver(root.optional_subtable("solver"));
   scene.output = read_output(root.optional_subtable("output"));

@@ -14,8 +14,10 @@
 namespace pounding::analysis {
 
 struct ContactSettings {
-  double gap_m = 0.0;        // clear distance along x between the facing sides at rest (m)
-  double restitution = 0.5;  // Newton coefficient k ∈ [0, 1]
+  double gap_m = 0.0;              // clear distance along x between the facing sides at rest (m)
+  double restitution = 0.5;        // Newton coefficient k ∈ [0, 1]
+  double candidate_margin_m = 1.0; // reach of the candidate search beyond gap and edge ends (m)
+  double hold_velocity_mps = 1e-3; // sticking threshold: slower separations of pressed pairs are held
 };
 
 /// Read and validated now; used by the time-history solvers.

@@ -18,11 +18,12 @@ Vector6d inverse_mass(double mass1_t, double polar1_tm2, double mass2_t, double 
 struct ContactRow {
   RowVector6d jacobian;
   double gap_rate_mps = 0.0;  // ġ⁻, before the impact
+  double restitution = 0.5;   // k ∈ [0, 1] for this contact
 };
 
 /// Single contact, the paper's law: a = G M⁻¹ Gᵀ, I = (1 + k)(−ġ⁻)/a (kN·s), Δq̇ = M⁻¹ Gᵀ I.
 /// Gives ġ⁺ = −k ġ⁻. @pre ġ⁻ < 0, 0 ≤ k ≤ 1.
-double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass, double restitution);
+double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass);
 
 struct ImpulseSolution {
   std::vector<double> impulses_kNs;            // one per contact, ≥ 0
@@ -35,8 +36,7 @@ struct ImpulseSolution {
 /// (restitution acts on approaching contacts; the others only may not start to approach).
 /// For one approaching contact this is single_impulse(). Exact by active-set enumeration up to
 /// 12 contacts, projected Gauss–Seidel beyond.
-ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass,
-                               double restitution);
+ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass);
 
 /// Kinetic energy ½ q̇ᵀ M q̇ of the floor pair (kJ).
 double kinetic_energy(const Vector6d& velocities, const Vector6d& inverse_mass);

@@ -1,0 +1,89 @@
+#pragma once
+// The two buildings as one first-order system, independent of any solver:
+//   y = (q₁, q₂, q̇₁, q̇₂),  ẏ = A y + B a_g(t),  A = [[0, I], [−M⁻¹K, −M⁻¹C]],  B = [0; −r],
+// with q_b ordered floor by floor (u, v, φ). Units: m, rad, s, t, kN.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "pounding/contact/candidates.hpp"
+#include "pounding/contact/gap.hpp"
+#include "pounding/contact/impact.hpp"
+#include "pounding/excitation/ground_motion.hpp"
+#include "pounding/model/building.hpp"
+
+namespace pounding::dynamics {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using ConstVectorRef = const Eigen::Ref<const VectorXd>&;
+
+class CoupledSystem {
+ public:
+  /// @pre candidate floors within both buildings.
+  CoupledSystem(std::array<model::Building, 2> buildings, excitation::GroundMotion ground_motion,
+                std::vector<contact::Candidate> candidates);
+
+  int dof() const { return dof_; }
+  int state_size() const { return 2 * dof_; }
+  /// Index in q of the u of `floor` (1-based) of `building` (0 or 1).
+  int floor_index(int building, int floor) const { return offset_[building] + 3 * (floor - 1); }
+
+  const model::Building& building(int b) const { return buildings_[b]; }
+  const excitation::GroundMotion& ground_motion() const { return ground_motion_; }
+  const std::vector<contact::Candidate>& candidates() const { return candidates_; }
+  const VectorXd& mass_diagonal() const { return mass_; }
+
+  /// Free motion (no contact): ẏ = A y + B a_g(t).
+  void rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) const;
+  /// The constant Jacobian A of the free motion.
+  const MatrixXd& jacobian() const { return a_matrix_; }
+
+  /// Gap state of candidate `index` in state y.
+  contact::GapState gap(ConstVectorRef y, std::size_t index) const;
+  /// ġ = G q̇ as a row over the floor pair's six velocities (building 1's slab first).
+  contact::RowVector6d pair_row(const contact::GapState& state, const contact::Candidate& c) const;
+  /// Velocities of the floor pair of `floor` in state y, and their inverse masses.
+  contact::Vector6d pair_velocities(ConstVectorRef y, int floor) const;
+  void add_pair_velocities(Eigen::Ref<VectorXd> y, int floor, const contact::Vector6d& change) const;
+  contact::Vector6d pair_inverse_mass(int floor) const;
+
+  /// Motion with the contacts `held` kept closed (g̈ = −2ġ/τ − g/τ², a Baumgarte correction with
+  /// τ = `hold_time_constant_s` that stops drift) by normal forces λ (kN, ≥ 0 pushes the slabs
+  /// apart). Writes ẏ and λ (one per held contact). Dependent contacts share their force
+  /// (least squares).
+  void constrained_rhs(double t, ConstVectorRef y, const std::vector<std::size_t>& held,
+                       Eigen::Ref<VectorXd> y_dot, Eigen::Ref<VectorXd> forces_kN) const;
+  /// Jacobian of constrained_rhs with the constraint rows frozen at y: the free Jacobian with
+  /// the acceleration rows projected by P = I − M⁻¹Gᵀ W⁻¹ G, plus the Baumgarte terms.
+  void constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
+                            Eigen::Ref<MatrixXd> jacobian) const;
+
+  /// Energies (kJ) and powers (kW) of the relative motion.
+  double kinetic_energy(ConstVectorRef y) const;
+  double strain_energy(ConstVectorRef y) const;
+  double damping_power(ConstVectorRef y) const;            // q̇ᵀ C q̇ ≥ 0
+  double input_power(double t, ConstVectorRef y) const;    // −q̇ᵀ M r a_g(t)
+
+  static constexpr double hold_time_constant_s = 1e-2;
+
+ private:
+  contact::SlabMotion slab(ConstVectorRef y, int building, int floor) const;
+  /// Rows G (one per held contact, over all n velocities) and g̈'s velocity-only part.
+  void constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows,
+                       VectorXd& bias) const;
+
+  std::array<model::Building, 2> buildings_;
+  excitation::GroundMotion ground_motion_;
+  std::vector<contact::Candidate> candidates_;
+  int dof_ = 0;
+  std::array<int, 2> offset_{0, 0};
+  VectorXd mass_;          // diagonal of M, size n
+  MatrixXd stiffness_;     // block-diagonal K
+  MatrixXd damping_;       // block-diagonal C
+  VectorXd influence_;     // r: (cos β, sin β, 0) per floor
+  MatrixXd a_matrix_;      // A
+};
+
+}  // namespace pounding::dynamics

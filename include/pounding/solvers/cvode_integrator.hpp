@@ -1,0 +1,56 @@
+#pragma once
+// CVODE (BDF or Adams) behind the Integrator seam: dense direct linear solver with the
+// analytic Jacobian from OdeFunctions, root finding on OdeFunctions::roots (direction −1).
+
+#include <memory>
+
+#include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/sundials_handles.hpp"
+
+namespace pounding::solvers {
+
+enum class CvodeMethod { bdf, adams };
+
+struct CvodeSettings {
+  CvodeMethod method = CvodeMethod::bdf;
+  double rtol = 1e-8;
+  double atol = 1e-10;   // m, rad and their rates
+};
+
+class CvodeIntegrator final : public Integrator {
+ public:
+  /// `functions` must outlive the integrator. @throws std::runtime_error if SUNDIALS set-up fails.
+  CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& settings, double t0, const Eigen::VectorXd& y0);
+  ~CvodeIntegrator() override;
+  CvodeIntegrator(const CvodeIntegrator&) = delete;
+  CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
+
+  void restart(double t, const Eigen::VectorXd& y) override;
+  void set_max_step(double h_s) override;
+  void set_stop_time(double t_s) override;
+  StepOutcome step(double t_final) override;
+  const Eigen::VectorXd& state() const override { return state_; }
+  void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
+  std::vector<int> roots_found() override;
+  IntegratorCounters counters() override;
+
+ private:
+  static int rhs_callback(double t, N_Vector y, N_Vector y_dot, void* self);
+  static int jacobian_callback(double t, N_Vector y, N_Vector f, SUNMatrix jac, void* self,
+                               N_Vector, N_Vector, N_Vector);
+  static int root_callback(double t, N_Vector y, double* g, void* self);
+  static void error_callback(int code, const char* module, const char* function, char* message, void* self);
+
+  OdeFunctions& functions_;
+  sundials::Context context_;
+  sundials::Vector y_;
+  sundials::Vector scratch_;
+  sundials::Matrix matrix_;
+  sundials::LinearSolver linear_solver_;
+  void* memory_ = nullptr;
+  std::vector<int> root_directions_;
+  Eigen::VectorXd state_;
+  std::string last_error_;  // from CVODE's error handler or a callback's exception
+};
+
+}  // namespace pounding::solvers

@@ -1,0 +1,56 @@
+#pragma once
+// The event-driven solution: an ODE integrator (behind the Integrator seam) advances the smooth
+// motion, its root finder stops at each contact, the impact module resets the velocities, and
+// the integrator restarts there. DESIGN.md §3 lists the pitfalls handled here.
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::solvers {
+
+struct EventOptions {
+  double restitution = 0.5;            // Newton k ∈ [0, 1]
+  /// A candidate counts as in contact at an event when |g| ≤ this (m): contacts this close at the
+  /// same instant are solved together as simultaneous.
+  double contact_tolerance_m = 1e-8;
+  /// A contact that just took an impulse is masked until its gap re-opens beyond this (m); far
+  /// below the height of the shortest flight that is not held (hold_velocity² / 2|g̈|). A released
+  /// sustained contact opens only cubically (its force, so g̈, starts at zero) and is masked until
+  /// its gap exceeds contact_tolerance_m instead, so solver noise is not taken for a new contact.
+  double reopen_gap_m = 1e-10;
+  /// Sticking threshold: after an impact, a pair that separates slower than this (m/s) while
+  /// pressed together (free g̈ < 0) is held in sustained contact. With k < 1 the bounce speeds
+  /// fall geometrically; this cuts the accumulation off after the bounce that drops below it.
+  double hold_velocity_mps = 1e-3;
+  /// A run with more events than this within one simulated second stops with event_limit.
+  double max_events_per_s = 2000;
+  long max_steps = 10'000'000;
+  /// Largest step (s). 0: a quarter of the shortest natural period of either building, so no
+  /// gap rate can change sign twice inside a step and every minimum of a gap inside a step is
+  /// examined (see the interpolant check in the loop).
+  double max_step_s = 0.0;
+  Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
+  std::vector<int> history_floors;     // empty: all floors both buildings have
+  double history_interval_s = 0.01;
+
+  /// @throws InputError naming the field.
+  void validate() const;
+};
+
+using IntegratorFactory =
+    std::function<std::unique_ptr<Integrator>(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0)>;
+
+/// Runs the coupled system from rest over the whole ground motion. Never throws for a numerical
+/// failure: the result's status says what happened. @throws InputError for invalid options.
+RunResult run_event_driven(const dynamics::CoupledSystem& system, const EventOptions& options,
+                           const IntegratorFactory& make_integrator, const std::string& method);
+
+/// The shortest natural period (s) of the two buildings.
+double shortest_period_s(const dynamics::CoupledSystem& system);
+
+}  // namespace pounding::solvers

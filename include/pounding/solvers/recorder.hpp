@@ -1,0 +1,48 @@
+#pragma once
+// Collects what a run reports from its states: peaks, the sampled history and the energy
+// integrals. Shared by every solution path so their outputs compare column for column.
+
+#include <functional>
+#include <vector>
+
+#include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::solvers {
+
+class Recorder {
+ public:
+  /// `history_floors` empty: every floor both buildings have. @pre floors valid.
+  Recorder(const dynamics::CoupledSystem& system, std::vector<int> history_floors, double history_interval_s);
+
+  /// A state the run passes through (step ends, samples, events): updates the peaks.
+  void observe(double t, const dynamics::VectorXd& y);
+  /// Writes a history row at t (also observes it).
+  void sample(double t, const dynamics::VectorXd& y);
+  /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns: history samples
+  /// that fall inside, peaks at both ends, and the energy integrals (3-point Gauss–Legendre).
+  /// `constraint_power(t, y)` is the power of sustained-contact forces (kW).
+  void advance(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+               const std::function<double(double, const dynamics::VectorXd&)>& constraint_power);
+  void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
+
+  /// Moves the collected peaks, history and energy (with the final state's energies) into `result`.
+  void finish(const dynamics::VectorXd& final_state, RunResult& result);
+
+ private:
+  void append_row(double t, const dynamics::VectorXd& y);
+
+  const dynamics::CoupledSystem& system_;
+  std::vector<int> history_floors_;
+  double interval_s_;
+  double next_sample_s_;
+  std::array<std::vector<model::Point2>, 2> vertices_;  // contact vertices per building
+  std::vector<BuildingPeaks> peaks_;
+  History history_;
+  EnergyAudit energy_;
+};
+
+/// Vertices of `building`'s slab that take part in some candidate (as vertex or edge end).
+std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate>& candidates, int building);
+
+}  // namespace pounding::solvers

@@ -1,0 +1,130 @@
+#pragma once
+// What every solution path returns: events, peaks, history, energy audit, statistics and a
+// status with a named reason. Units in the member names.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "pounding/model/polygon.hpp"
+
+namespace pounding::solvers {
+
+enum class RunStatus {
+  completed,       // reached the end of the record
+  solver_failure,  // the integrator gave up; detail names its flag
+  event_limit,     // more events per simulated second than allowed: an unresolved accumulation
+  step_limit,      // more internal steps than allowed
+};
+std::string_view to_string(RunStatus status);
+
+struct ImpactRecord {
+  double t_s = 0.0;
+  int floor = 0;
+  int striking_building = 0;          // 1 or 2
+  std::size_t vertex = 0;             // 1-based index in the striking slab's outline
+  std::size_t struck_edge = 0;        // 1-based edge of the struck slab
+  std::size_t candidate = 0;          // index into the candidate list
+  model::Point2 vertex_rest;          // the striking vertex at rest (m)
+  model::Point2 point;                // contact point at impact (m)
+  double approach_velocity_mps = 0.0;    // −ġ⁻ > 0
+  double separation_velocity_mps = 0.0;  // ġ⁺ (= k·approach for a lone contact)
+  double impulse_kNs = 0.0;
+  double energy_lost_kJ = 0.0;        // of the whole floor pair, shared by its simultaneous contacts
+  bool starts_hold = false;           // the pair was then held in sustained contact
+};
+
+struct TouchRecord {  // contact with ġ ≥ 0: no impulse
+  double t_s = 0.0;
+  int floor = 0;
+  int striking_building = 0;
+  std::size_t vertex = 0;
+  std::size_t candidate = 0;
+  model::Point2 point;
+  double gap_rate_mps = 0.0;
+  double gap_m = 0.0;
+};
+
+struct SustainedContactRecord {
+  int floor = 0;
+  int striking_building = 0;
+  std::size_t vertex = 0;
+  std::size_t candidate = 0;
+  double start_s = 0.0;
+  double release_s = 0.0;
+  std::string release_reason;       // "tensile force", "slid off the edge", "end of run", ...
+  double max_force_kN = 0.0;
+  double max_gap_drift_m = 0.0;     // max |g| while held
+};
+
+struct Peak {
+  double value = 0.0;  // max |x| (signed value at that instant)
+  double t_s = 0.0;
+  void update(double x, double t) {
+    if (std::abs(x) > std::abs(value)) {
+      value = x;
+      t_s = t;
+    }
+  }
+};
+
+struct FloorPeaks {
+  int floor = 0;
+  Peak u_m, v_m, phi_rad;
+  std::vector<Peak> vertex_dx_m;  // x-displacement of each contact vertex of the building
+};
+
+struct BuildingPeaks {
+  std::string name;
+  std::vector<model::Point2> contact_vertices_rest;  // the vertices tracked in vertex_dx_m
+  std::vector<FloorPeaks> floors;                      // every floor of the building
+};
+
+struct EnergyAudit {  // relative motion, kJ, integrated along the run
+  double input_kJ = 0.0;          // ∫ −q̇ᵀ M r a_g dt
+  double kinetic_kJ = 0.0;        // at the end
+  double strain_kJ = 0.0;         // at the end
+  double damping_kJ = 0.0;        // ∫ q̇ᵀ C q̇ dt
+  double impact_loss_kJ = 0.0;    // Σ over impacts
+  double constraint_work_kJ = 0.0;  // ∫ λ ġ dt during holds (ideally 0)
+  double residual_kJ() const {
+    return input_kJ + constraint_work_kJ - kinetic_kJ - strain_kJ - damping_kJ - impact_loss_kJ;
+  }
+};
+
+struct SolverStatistics {
+  long steps = 0;
+  long rhs_evaluations = 0;
+  long root_evaluations = 0;
+  long jacobian_evaluations = 0;
+  long error_test_failures = 0;
+  long restarts = 0;            // re-initialisations after events
+  long events = 0;              // root returns handled (impacts, touches, releases, ...)
+  long interpolant_events = 0;  // contacts found inside a step from the interpolant (grazing)
+  long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
+  double wall_time_s = 0.0;
+};
+
+/// Sampled time history: one row per sample, columns named in `columns` (units in the name).
+struct History {
+  std::vector<std::string> columns;
+  std::vector<double> time_s;
+  std::vector<Eigen::VectorXd> rows;
+};
+
+struct RunResult {
+  RunStatus status = RunStatus::completed;
+  std::string status_detail;
+  std::string method;
+  double start_s = 0.0;
+  double end_s = 0.0;  // where the run stopped
+  std::vector<ImpactRecord> impacts;
+  std::vector<TouchRecord> touches;
+  std::vector<SustainedContactRecord> sustained_contacts;
+  std::vector<BuildingPeaks> peaks;
+  EnergyAudit energy;
+  SolverStatistics statistics;
+  History history;
+};
+
+}  // namespace pounding::solvers

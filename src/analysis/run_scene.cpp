@@ -1,0 +1,51 @@
+#include "pounding/analysis/run_scene.hpp"
+
+#include <fmt/format.h>
+
+#include "pounding/input_error.hpp"
+#include "pounding/solvers/cvode_integrator.hpp"
+#include "pounding/solvers/event_driven.hpp"
+
+namespace pounding::analysis {
+
+std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
+  contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
+                                 {scene.buildings[0].centre_of_mass, scene.buildings[1].centre_of_mass}};
+  return contact::find_candidates(geometry, scene.common_floors(),
+                                  {.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m});
+}
+
+dynamics::CoupledSystem build_system(const Scene& scene) {
+  std::array<model::Building, 2> buildings;
+  for (std::size_t b = 0; b < 2; ++b) {
+    try {
+      buildings[b] = model::make_building(scene.buildings[b]);
+    } catch (const InputError& error) {
+      throw error.in_context(scene.file.string(), fmt::format("building[{}]", b + 1));
+    }
+  }
+  return dynamics::CoupledSystem(std::move(buildings), excitation::load_ground_motion(scene.excitation),
+                                 scene_candidates(scene));
+}
+
+RunReport run_scene(const Scene& scene) {
+  const dynamics::CoupledSystem system = build_system(scene);
+  solvers::EventOptions options;
+  options.restitution = scene.contact.restitution;
+  options.hold_velocity_mps = scene.contact.hold_velocity_mps;
+  options.history_floors = scene.output.history_floors;
+  options.history_interval_s = scene.output.history_interval_s;
+
+  solvers::CvodeSettings settings;
+  settings.method = scene.solver.method == "cvode-adams" ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
+  settings.rtol = scene.solver.rtol;
+  settings.atol = scene.solver.atol;
+  auto make = [&](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) {
+    return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
+  };
+  return {scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
+          scene.contact.hold_velocity_mps, system.candidates(),
+          solvers::run_event_driven(system, options, make, scene.solver.method)};
+}
+
+}  // namespace pounding::analysis

@@ -1,0 +1,141 @@
+#include "pounding/dynamics/coupled_system.hpp"
+
+#include <Eigen/QR>
+#include <cmath>
+
+namespace pounding::dynamics {
+
+CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
+                             excitation::GroundMotion ground_motion,
+                             std::vector<contact::Candidate> candidates)
+    : buildings_(std::move(buildings)),
+      ground_motion_(std::move(ground_motion)),
+      candidates_(std::move(candidates)) {
+  const int n1 = buildings_[0].dof(), n2 = buildings_[1].dof();
+  dof_ = n1 + n2;
+  offset_ = {0, n1};
+  mass_.resize(dof_);
+  mass_ << buildings_[0].mass_diagonal, buildings_[1].mass_diagonal;
+  stiffness_ = MatrixXd::Zero(dof_, dof_);
+  damping_ = MatrixXd::Zero(dof_, dof_);
+  for (int b = 0; b < 2; ++b) {
+    const int size = buildings_[b].dof();
+    stiffness_.block(offset_[b], offset_[b], size, size) = buildings_[b].stiffness;
+    damping_.block(offset_[b], offset_[b], size, size) = buildings_[b].damping;
+  }
+  influence_ = VectorXd::Zero(dof_);
+  const double beta = ground_motion_.direction_rad();
+  for (int i = 0; i < dof_; i += 3) influence_.segment<2>(i) << std::cos(beta), std::sin(beta);
+
+  a_matrix_ = MatrixXd::Zero(2 * dof_, 2 * dof_);
+  a_matrix_.topRightCorner(dof_, dof_).setIdentity();
+  const VectorXd inverse_mass = mass_.cwiseInverse();
+  a_matrix_.bottomLeftCorner(dof_, dof_) = -(inverse_mass.asDiagonal() * stiffness_);
+  a_matrix_.bottomRightCorner(dof_, dof_) = -(inverse_mass.asDiagonal() * damping_);
+}
+
+void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) const {
+  y_dot.noalias() = a_matrix_ * y;
+  y_dot.tail(dof_) -= influence_ * ground_motion_.accel_at(t);
+}
+
+contact::SlabMotion CoupledSystem::slab(ConstVectorRef y, int building, int floor) const {
+  const int i = floor_index(building, floor);
+  return {buildings_[building].definition.centre_of_mass, y.segment<3>(i), y.segment<3>(dof_ + i)};
+}
+
+contact::GapState CoupledSystem::gap(ConstVectorRef y, std::size_t index) const {
+  const contact::Candidate& c = candidates_[index];
+  return contact::evaluate_gap(c, slab(y, c.striking_building, c.floor), slab(y, c.struck_building, c.floor));
+}
+
+contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
+                                             const contact::Candidate& c) const {
+  contact::RowVector6d row;
+  row.segment<3>(3 * c.striking_building) = state.striking_row;
+  row.segment<3>(3 * c.struck_building) = state.struck_row;
+  return row;
+}
+
+contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, int floor) const {
+  contact::Vector6d v;
+  v << y.segment<3>(dof_ + floor_index(0, floor)), y.segment<3>(dof_ + floor_index(1, floor));
+  return v;
+}
+
+void CoupledSystem::add_pair_velocities(Eigen::Ref<VectorXd> y, int floor,
+                                        const contact::Vector6d& change) const {
+  y.segment<3>(dof_ + floor_index(0, floor)) += change.head<3>();
+  y.segment<3>(dof_ + floor_index(1, floor)) += change.tail<3>();
+}
+
+contact::Vector6d CoupledSystem::pair_inverse_mass(int floor) const {
+  const int i = floor_index(0, floor), j = floor_index(1, floor);
+  return contact::inverse_mass(mass_[i], mass_[i + 2], mass_[j], mass_[j + 2]);
+}
+
+void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held,
+                                    MatrixXd& rows, VectorXd& bias) const {
+  const Eigen::Index k = static_cast<Eigen::Index>(held.size());
+  rows = MatrixXd::Zero(k, dof_);
+  bias.resize(k);
+  for (Eigen::Index r = 0; r < k; ++r) {
+    const contact::Candidate& c = candidates_[held[r]];
+    const contact::GapState s = gap(y, held[r]);
+    rows.block<1, 3>(r, floor_index(c.striking_building, c.floor)) = s.striking_row;
+    rows.block<1, 3>(r, floor_index(c.struck_building, c.floor)) = s.struck_row;
+    constexpr double tau = hold_time_constant_s;
+    bias[r] = s.curvature_mps2 + 2.0 * s.gap_rate_mps / tau + s.gap_m / (tau * tau);
+  }
+}
+
+void CoupledSystem::constrained_rhs(double t, ConstVectorRef y, const std::vector<std::size_t>& held,
+                                    Eigen::Ref<VectorXd> y_dot, Eigen::Ref<VectorXd> forces_kN) const {
+  rhs(t, y, y_dot);
+  if (held.empty()) return;
+  MatrixXd rows;
+  VectorXd bias;
+  constraint_rows(y, held, rows, bias);
+  const VectorXd inverse_mass = mass_.cwiseInverse();
+  const MatrixXd w = rows * inverse_mass.asDiagonal() * rows.transpose();
+  // W λ = −(G q̈_free + bias): the forces that make every held gap's (stabilised) g̈ vanish.
+  const VectorXd needed = -(rows * y_dot.tail(dof_) + bias);
+  forces_kN = w.completeOrthogonalDecomposition().solve(needed);
+  y_dot.tail(dof_) += inverse_mass.asDiagonal() * (rows.transpose() * forces_kN);
+}
+
+void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
+                                         Eigen::Ref<MatrixXd> jacobian) const {
+  jacobian = a_matrix_;
+  if (held.empty()) return;
+  MatrixXd rows;
+  VectorXd bias;
+  constraint_rows(y, held, rows, bias);
+  const VectorXd inverse_mass = mass_.cwiseInverse();
+  const MatrixXd m_inv_gt = inverse_mass.asDiagonal() * rows.transpose();
+  const MatrixXd w = rows * m_inv_gt;
+  const MatrixXd coupling = m_inv_gt * w.completeOrthogonalDecomposition().solve(rows);  // M⁻¹Gᵀ W⁻¹ G
+  jacobian.bottomRows(dof_) -= coupling * a_matrix_.bottomRows(dof_);
+  // The Baumgarte terms depend on y through g ≈ G q and ġ = G q̇ (rows frozen at y).
+  constexpr double tau = hold_time_constant_s;
+  jacobian.bottomLeftCorner(dof_, dof_) -= coupling / (tau * tau);
+  jacobian.bottomRightCorner(dof_, dof_) -= coupling * (2.0 / tau);
+}
+
+double CoupledSystem::kinetic_energy(ConstVectorRef y) const {
+  return 0.5 * y.tail(dof_).cwiseAbs2().dot(mass_);
+}
+
+double CoupledSystem::strain_energy(ConstVectorRef y) const {
+  return 0.5 * y.head(dof_).dot(stiffness_ * y.head(dof_));
+}
+
+double CoupledSystem::damping_power(ConstVectorRef y) const {
+  return y.tail(dof_).dot(damping_ * y.tail(dof_));
+}
+
+double CoupledSystem::input_power(double t, ConstVectorRef y) const {
+  return -y.tail(dof_).dot(mass_.cwiseProduct(influence_)) * ground_motion_.accel_at(t);
+}
+
+}  // namespace pounding::dynamics

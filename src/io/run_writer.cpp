@@ -1,0 +1,165 @@
+#include "pounding/io/run_writer.hpp"
+
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+
+#include "pounding/io/json_report.hpp"
+
+namespace pounding::io {
+namespace {
+
+using nlohmann::json;
+
+json point(const model::Point2& p) { return json::array({p.x(), p.y()}); }
+json peak(const solvers::Peak& p) { return {{"value", p.value}, {"t_s", p.t_s}}; }
+
+json candidates_json(const std::vector<contact::Candidate>& candidates) {
+  json list = json::array();
+  for (const contact::Candidate& c : candidates) {
+    list.push_back({{"floor", c.floor},
+                    {"striking_building", c.striking_building + 1},
+                    {"vertex", c.vertex_index + 1},
+                    {"vertex_rest", point(c.vertex_rest)},
+                    {"struck_building", c.struck_building + 1},
+                    {"edge", c.edge_index + 1},
+                    {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}});
+  }
+  return list;
+}
+
+json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
+  json list = json::array();
+  for (const auto& i : impacts) {
+    list.push_back({{"t_s", i.t_s},
+                    {"floor", i.floor},
+                    {"striking_building", i.striking_building},
+                    {"vertex", i.vertex},
+                    {"vertex_rest", point(i.vertex_rest)},
+                    {"struck_edge", i.struck_edge},
+                    {"point", point(i.point)},
+                    {"approach_velocity_mps", i.approach_velocity_mps},
+                    {"separation_velocity_mps", i.separation_velocity_mps},
+                    {"impulse_kNs", i.impulse_kNs},
+                    {"energy_lost_kJ", i.energy_lost_kJ},
+                    {"starts_sustained_contact", i.starts_hold}});
+  }
+  return list;
+}
+
+json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks) {
+  json list = json::array();
+  for (const auto& building : peaks) {
+    json vertices = json::array(), floors = json::array();
+    for (const auto& v : building.contact_vertices_rest) vertices.push_back(point(v));
+    for (const auto& f : building.floors) {
+      json dx = json::array();
+      for (const auto& p : f.vertex_dx_m) dx.push_back(peak(p));
+      floors.push_back({{"floor", f.floor}, {"u_m", peak(f.u_m)}, {"v_m", peak(f.v_m)},
+                        {"phi_rad", peak(f.phi_rad)}, {"vertex_dx_m", dx}});
+    }
+    list.push_back({{"building", building.name}, {"contact_vertices_rest", vertices}, {"floors", floors}});
+  }
+  return list;
+}
+
+json energy_json(const solvers::EnergyAudit& e) {
+  return {{"input_kJ", e.input_kJ},
+          {"kinetic_final_kJ", e.kinetic_kJ},
+          {"strain_final_kJ", e.strain_kJ},
+          {"damping_kJ", e.damping_kJ},
+          {"impact_loss_kJ", e.impact_loss_kJ},
+          {"constraint_work_kJ", e.constraint_work_kJ},
+          {"residual_kJ", e.residual_kJ()},
+          {"relative_residual", e.input_kJ != 0.0 ? e.residual_kJ() / e.input_kJ : 0.0}};
+}
+
+json statistics_json(const solvers::SolverStatistics& s) {
+  return {{"steps", s.steps},
+          {"rhs_evaluations", s.rhs_evaluations},
+          {"root_evaluations", s.root_evaluations},
+          {"jacobian_evaluations", s.jacobian_evaluations},
+          {"error_test_failures", s.error_test_failures},
+          {"restarts", s.restarts},
+          {"events", s.events},
+          {"interpolant_events", s.interpolant_events},
+          {"off_segment_crossings", s.off_segment_crossings},
+          {"wall_time_s", s.wall_time_s}};
+}
+
+std::ofstream open_for_writing(const std::filesystem::path& file) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  out.precision(17);
+  return out;
+}
+
+void write_impacts_csv(const std::vector<solvers::ImpactRecord>& impacts, const std::filesystem::path& file) {
+  std::ofstream out = open_for_writing(file);
+  out << "t_s,floor,striking_building,vertex,struck_edge,point_x_m,point_y_m,approach_velocity_mps,"
+         "separation_velocity_mps,impulse_kNs,energy_lost_kJ,starts_sustained_contact\n";
+  for (const auto& i : impacts) {
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", i.t_s, i.floor, i.striking_building, i.vertex,
+                       i.struck_edge, i.point.x(), i.point.y(), i.approach_velocity_mps,
+                       i.separation_velocity_mps, i.impulse_kNs, i.energy_lost_kJ, i.starts_hold ? 1 : 0);
+  }
+}
+
+void write_history_csv(const solvers::History& history, const std::filesystem::path& file) {
+  std::ofstream out = open_for_writing(file);
+  for (std::size_t c = 0; c < history.columns.size(); ++c) out << (c ? "," : "") << history.columns[c];
+  out << '\n';
+  for (std::size_t r = 0; r < history.time_s.size(); ++r) {
+    out << fmt::format("{}", history.time_s[r]);
+    for (double value : history.rows[r]) out << fmt::format(",{}", value);
+    out << '\n';
+  }
+}
+
+}  // namespace
+
+json run_json(const analysis::RunReport& report) {
+  const solvers::RunResult& r = report.result;
+  std::map<std::string, int> by_floor;
+  for (const auto& i : r.impacts) ++by_floor[std::to_string(i.floor)];
+  json touches = json::array(), sustained = json::array();
+  for (const auto& t : r.touches) {
+    touches.push_back({{"t_s", t.t_s}, {"floor", t.floor}, {"striking_building", t.striking_building},
+                       {"vertex", t.vertex}, {"point", point(t.point)}, {"gap_rate_mps", t.gap_rate_mps},
+                       {"gap_m", t.gap_m}});
+  }
+  for (const auto& s : r.sustained_contacts) {
+    sustained.push_back({{"floor", s.floor}, {"striking_building", s.striking_building}, {"vertex", s.vertex},
+                         {"start_s", s.start_s}, {"release_s", s.release_s}, {"release_reason", s.release_reason},
+                         {"max_force_kN", s.max_force_kN}, {"max_gap_drift_m", s.max_gap_drift_m}});
+  }
+  return {{"scene", report.scene},
+          {"method", r.method},
+          {"gap_m", report.gap_m},
+          {"restitution", report.restitution},
+          {"rtol", report.solver.rtol},
+          {"atol", report.solver.atol},
+          {"hold_velocity_mps", report.hold_velocity_mps},
+          {"status", solvers::to_string(r.status)},
+          {"status_detail", r.status_detail},
+          {"start_s", r.start_s},
+          {"end_s", r.end_s},
+          {"candidates", candidates_json(report.candidates)},
+          {"impact_count", r.impacts.size()},
+          {"impacts_by_floor", by_floor},
+          {"impacts", impacts_json(r.impacts)},
+          {"touches", touches},
+          {"sustained_contacts", sustained},
+          {"peaks", peaks_json(r.peaks)},
+          {"energy", energy_json(r.energy)},
+          {"statistics", statistics_json(r.statistics)}};
+}
+
+void write_run(const analysis::RunReport& report, const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  write_json(run_json(report), folder / "summary.json");
+  write_impacts_csv(report.result.impacts, folder / "impacts.csv");
+  write_history_csv(report.result.history, folder / "history.csv");
+}
+
+}  // namespace pounding::io

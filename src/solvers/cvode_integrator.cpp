@@ -1,0 +1,133 @@
+#include "pounding/solvers/cvode_integrator.hpp"
+
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+namespace pounding::solvers {
+namespace {
+
+Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
+  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
+}
+
+void check(int flag, const char* call) { sundials::check(flag, call, CVodeGetReturnFlagName); }
+
+}  // namespace
+
+CvodeIntegrator::CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& settings, double t0,
+                                 const Eigen::VectorXd& y0)
+    : functions_(functions), context_(sundials::make_context()) {
+  const long n = functions.state_size();
+  y_ = sundials::make_vector(n, context_.get());
+  scratch_ = sundials::make_vector(n, context_.get());
+  view(y_.get()) = y0;
+  state_ = y0;
+  matrix_ = sundials::make_dense_matrix(n, context_.get());
+  linear_solver_ = sundials::make_dense_solver(y_.get(), matrix_.get(), context_.get());
+
+  memory_ = CVodeCreate(settings.method == CvodeMethod::bdf ? CV_BDF : CV_ADAMS, context_.get());
+  if (!memory_) throw std::runtime_error("CVodeCreate failed");
+  check(CVodeSetErrHandlerFn(memory_, error_callback, this), "CVodeSetErrHandlerFn");
+  check(CVodeInit(memory_, rhs_callback, t0, y_.get()), "CVodeInit");
+  check(CVodeSetUserData(memory_, this), "CVodeSetUserData");
+  check(CVodeSStolerances(memory_, settings.rtol, settings.atol), "CVodeSStolerances");
+  check(CVodeSetLinearSolver(memory_, linear_solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
+  check(CVodeSetJacFn(memory_, jacobian_callback), "CVodeSetJacFn");
+  check(CVodeRootInit(memory_, functions.root_count(), root_callback), "CVodeRootInit");
+  root_directions_.assign(functions.root_count(), -1);  // only closing gaps / falling forces
+  check(CVodeSetRootDirection(memory_, root_directions_.data()), "CVodeSetRootDirection");
+  check(CVodeSetNoInactiveRootWarn(memory_), "CVodeSetNoInactiveRootWarn");
+  check(CVodeSetMaxNumSteps(memory_, -1), "CVodeSetMaxNumSteps");  // the loop caps steps itself
+}
+
+CvodeIntegrator::~CvodeIntegrator() { CVodeFree(&memory_); }
+
+void CvodeIntegrator::restart(double t, const Eigen::VectorXd& y) {
+  view(y_.get()) = y;
+  state_ = y;
+  check(CVodeReInit(memory_, t, y_.get()), "CVodeReInit");
+}
+
+void CvodeIntegrator::set_max_step(double h_s) { check(CVodeSetMaxStep(memory_, h_s), "CVodeSetMaxStep"); }
+
+void CvodeIntegrator::set_stop_time(double t_s) { check(CVodeSetStopTime(memory_, t_s), "CVodeSetStopTime"); }
+
+StepOutcome CvodeIntegrator::step(double t_final) {
+  double t = 0.0;
+  last_error_.clear();
+  const int flag = CVode(memory_, t_final, y_.get(), &t, CV_ONE_STEP);
+  state_ = view(y_.get());
+  if (flag == CV_ROOT_RETURN) return {StepKind::root, t, {}};
+  if (flag == CV_TSTOP_RETURN) return {StepKind::stop_time, t, {}};
+  if (flag >= 0) return {StepKind::step, t, {}};
+  std::string failure = sundials::take_flag_name(CVodeGetReturnFlagName(flag));
+  if (!last_error_.empty()) failure += ": " + last_error_;
+  return {StepKind::failure, t, failure};
+}
+
+void CvodeIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
+  check(CVodeGetDky(memory_, t, 0, scratch_.get()), "CVodeGetDky");
+  y = view(scratch_.get());
+}
+
+std::vector<int> CvodeIntegrator::roots_found() {
+  std::vector<int> found(root_directions_.size(), 0);
+  check(CVodeGetRootInfo(memory_, found.data()), "CVodeGetRootInfo");
+  return found;
+}
+
+IntegratorCounters CvodeIntegrator::counters() {
+  IntegratorCounters c;
+  check(CVodeGetNumSteps(memory_, &c.steps), "CVodeGetNumSteps");
+  check(CVodeGetNumRhsEvals(memory_, &c.rhs_evaluations), "CVodeGetNumRhsEvals");
+  check(CVodeGetNumGEvals(memory_, &c.root_evaluations), "CVodeGetNumGEvals");
+  check(CVodeGetNumJacEvals(memory_, &c.jacobian_evaluations), "CVodeGetNumJacEvals");
+  check(CVodeGetNumErrTestFails(memory_, &c.error_test_failures), "CVodeGetNumErrTestFails");
+  return c;
+}
+
+// The callbacks never let an exception cross into C: they record it and return a negative flag
+// (unrecoverable), which CVODE turns into a failed step that the loop reports.
+int CvodeIntegrator::rhs_callback(double t, N_Vector y, N_Vector y_dot, void* self) {
+  auto* me = static_cast<CvodeIntegrator*>(self);
+  try {
+    me->functions_.rhs(t, view(y), view(y_dot));
+    return 0;
+  } catch (const std::exception& error) {
+    me->last_error_ = error.what();
+    return -1;
+  }
+}
+
+int CvodeIntegrator::jacobian_callback(double t, N_Vector y, N_Vector, SUNMatrix jac, void* self,
+                                       N_Vector, N_Vector, N_Vector) {
+  auto* me = static_cast<CvodeIntegrator*>(self);
+  try {
+    const Eigen::Index n = static_cast<Eigen::Index>(SUNDenseMatrix_Rows(jac));
+    Eigen::Map<Eigen::MatrixXd> matrix(SUNDenseMatrix_Data(jac), n, n);  // column-major
+    me->functions_.jacobian(t, view(y), matrix);
+    return 0;
+  } catch (const std::exception& error) {
+    me->last_error_ = error.what();
+    return -1;
+  }
+}
+
+int CvodeIntegrator::root_callback(double t, N_Vector y, double* g, void* self) {
+  auto* me = static_cast<CvodeIntegrator*>(self);
+  try {
+    me->functions_.roots(t, view(y), Eigen::Map<Eigen::VectorXd>(g, me->functions_.root_count()));
+    return 0;
+  } catch (const std::exception& error) {
+    me->last_error_ = error.what();
+    return -1;
+  }
+}
+
+void CvodeIntegrator::error_callback(int, const char*, const char* function, char* message, void* self) {
+  auto* me = static_cast<CvodeIntegrator*>(self);
+  if (me->last_error_.empty()) me->last_error_ = std::string(function) + ": " + message;
+}
+
+}  // namespace pounding::solvers

@@ -1,0 +1,574 @@
+#include "pounding/solvers/event_driven.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <fmt/format.h>
+#include <optional>
+#include <set>
+
+#include "pounding/input_error.hpp"
+#include "pounding/model/modal.hpp"
+#include "pounding/solvers/recorder.hpp"
+
+namespace pounding::solvers {
+
+std::string_view to_string(RunStatus status) {
+  switch (status) {
+    case RunStatus::completed: return "completed";
+    case RunStatus::solver_failure: return "solver_failure";
+    case RunStatus::event_limit: return "event_limit";
+    case RunStatus::step_limit: return "step_limit";
+  }
+  return "?";
+}
+
+void EventOptions::validate() const {
+  auto positive = [](double value, const char* field) {
+    if (!(value > 0.0) || !std::isfinite(value)) throw InputError(field, format_value(value), "must be positive");
+  };
+  if (!(restitution >= 0.0 && restitution <= 1.0)) {
+    throw InputError("restitution", format_value(restitution), "must lie in [0, 1]");
+  }
+  positive(contact_tolerance_m, "contact_tolerance_m");
+  positive(reopen_gap_m, "reopen_gap_m");
+  positive(hold_velocity_mps, "hold_velocity_mps");
+  positive(max_events_per_s, "max_events_per_s");
+  positive(history_interval_s, "history_interval_s");
+  if (max_step_s < 0.0) throw InputError("max_step_s", format_value(max_step_s), "must be zero (automatic) or positive");
+  if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
+  if (initial_state.size() != 0 && !initial_state.allFinite()) {
+    throw InputError("initial_state", "", "must be finite");
+  }
+}
+
+double shortest_period_s(const dynamics::CoupledSystem& system) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int b = 0; b < 2; ++b) shortest = std::min(shortest, model::modal_analysis(system.building(b)).back().period_s);
+  return shortest;
+}
+
+namespace {
+
+using dynamics::VectorXd;
+
+enum class Mode { armed, masked, held };
+
+/// Illinois (modified regula falsi) on [a, b] with f(a), f(b) of opposite signs. Returns the end
+/// of the final bracket on b's side, so a root of a falling gap comes back with g ≤ 0.
+double find_root(const std::function<double(double)>& f, double a, double b, double fa, double fb) {
+  int side = 0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    if (b - a <= 4e-16 * std::max(1.0, std::abs(b))) break;
+    double c = (a * fb - b * fa) / (fb - fa);
+    if (!(c > a && c < b)) c = 0.5 * (a + b);
+    const double fc = f(c);
+    if (fc == 0.0) return c;
+    if ((fc < 0.0) == (fb < 0.0)) {
+      b = c;
+      fb = fc;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    } else {
+      a = c;
+      fa = fc;
+      if (side == +1) fb *= 0.5;
+      side = +1;
+    }
+  }
+  return b;
+}
+
+class EventDrivenRun final : public OdeFunctions {
+ public:
+  EventDrivenRun(const dynamics::CoupledSystem& system, const EventOptions& options)
+      : system_(system),
+        options_(options),
+        count_(system.candidates().size()),
+        modes_(count_, Mode::armed),
+        reopen_at_m_(count_, options.reopen_gap_m),
+        hold_record_(count_, -1),
+        recorder_(system, options.history_floors, options.history_interval_s) {}
+
+  int state_size() const override { return system_.state_size(); }
+  int root_count() const override { return static_cast<int>(3 * count_); }
+
+  void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
+    forces_.resize(static_cast<Eigen::Index>(held_.size()));
+    system_.constrained_rhs(t, y, held_, y_dot, forces_);
+  }
+
+  void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
+    system_.constrained_jacobian(y, held_, jac);
+  }
+
+  // Root vector: [0, n) gaps of armed candidates; [n, 2n) forces of held ones; [2n, 3n) how far
+  // a held contact point is from the nearer end of its edge (fraction of the edge). Components
+  // that do not apply are held at +1, so they never cross.
+  void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
+    g.setConstant(1.0);
+    for (std::size_t i = 0; i < count_; ++i) {
+      if (modes_[i] == Mode::armed) g[i] = system_.gap(y, i).gap_m;
+    }
+    if (held_.empty()) return;
+    const VectorXd forces = hold_forces(t, y);
+    for (std::size_t r = 0; r < held_.size(); ++r) {
+      const std::size_t i = held_[r];
+      const double s = system_.gap(y, i).segment_param;
+      g[count_ + i] = forces[r];
+      g[2 * count_ + i] = std::min(s, 1.0 - s);
+    }
+  }
+
+  RunResult run(const IntegratorFactory& make_integrator, const std::string& method);
+
+ private:
+  struct Hidden {
+    double t_s;
+    std::size_t candidate;
+  };
+
+  VectorXd hold_forces(double t, const Eigen::Ref<const VectorXd>& y) const {
+    VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(held_.size()));
+    system_.constrained_rhs(t, y, held_, y_dot, forces);
+    return forces;
+  }
+  double constraint_power(double t, const VectorXd& y) const {
+    if (held_.empty()) return 0.0;
+    const VectorXd forces = hold_forces(t, y);
+    double power = 0.0;
+    for (std::size_t r = 0; r < held_.size(); ++r) power += forces[r] * system_.gap(y, held_[r]).gap_rate_mps;
+    return power;
+  }
+
+  void start(double t, VectorXd& y);
+  bool step_once();
+  std::optional<Hidden> hidden_contact(double t, const VectorXd& y);
+  void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
+                    const std::vector<std::size_t>& released, const char* release_reason);
+  struct FloorContacts {
+    std::vector<std::size_t> members;
+    std::vector<contact::GapState> states;
+    std::vector<contact::ContactRow> rows;
+  };
+  FloorContacts floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const;
+  std::vector<bool> settle_floor(double t, VectorXd& y, int floor, FloorContacts& contacts,
+                                 contact::ImpulseSolution& solution) const;
+  void resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired);
+  void mask(std::size_t i, double reopen_m) {
+    modes_[i] = Mode::masked;
+    reopen_at_m_[i] = reopen_m;
+  }
+  void hold(std::size_t i, double t);
+  void release(std::size_t i, double t, const std::string& reason);
+  void restart(double t, const VectorXd& y);
+  void after_step(double t, const VectorXd& y);
+  void update_step_bound(double t, const VectorXd& y);
+  void count_event(double t);
+  void set_next_stop(double t);
+  void accumulate_counters();
+
+  const dynamics::CoupledSystem& system_;
+  const EventOptions& options_;
+  std::size_t count_;
+  std::vector<Mode> modes_;
+  std::vector<double> reopen_at_m_;  // gap beyond which a masked candidate is re-armed
+  std::vector<std::size_t> held_;
+  std::vector<int> hold_record_;  // index into result_.sustained_contacts while held
+  VectorXd forces_;
+  Recorder recorder_;
+  RunResult result_;
+  std::unique_ptr<Integrator> integrator_;
+  double default_max_step_s_ = 0.0, current_max_step_s_ = 0.0;
+  double prev_t_ = 0.0;
+  VectorXd prev_y_;
+  std::deque<double> recent_events_;
+  bool stop_ = false;
+};
+
+void EventDrivenRun::set_next_stop(double t) {
+  // Record samples are where the forcing's slope changes: never step across one.
+  const auto& knots = system_.ground_motion().time_s();
+  const auto next = std::upper_bound(knots.begin(), knots.end(), t + 1e-12 * std::max(1.0, std::abs(t)));
+  if (next != knots.end()) integrator_->set_stop_time(*next);
+}
+
+void EventDrivenRun::accumulate_counters() {
+  const IntegratorCounters c = integrator_->counters();
+  SolverStatistics& s = result_.statistics;
+  s.steps += c.steps;
+  s.rhs_evaluations += c.rhs_evaluations;
+  s.root_evaluations += c.root_evaluations;
+  s.jacobian_evaluations += c.jacobian_evaluations;
+  s.error_test_failures += c.error_test_failures;
+}
+
+void EventDrivenRun::restart(double t, const VectorXd& y) {
+  accumulate_counters();  // re-initialisation resets the integrator's own counters
+  integrator_->restart(t, y);
+  ++result_.statistics.restarts;
+  current_max_step_s_ = default_max_step_s_;
+  integrator_->set_max_step(current_max_step_s_);
+  set_next_stop(t);
+  update_step_bound(t, y);
+  prev_t_ = t;
+  prev_y_ = y;
+}
+
+void EventDrivenRun::count_event(double t) {
+  ++result_.statistics.events;
+  recent_events_.push_back(t);
+  while (!recent_events_.empty() && recent_events_.front() < t - 1.0) recent_events_.pop_front();
+  if (static_cast<double>(recent_events_.size()) > options_.max_events_per_s) {
+    result_.status = RunStatus::event_limit;
+    result_.status_detail = fmt::format("more than {} events within one simulated second before t = {} s",
+                                        options_.max_events_per_s, t);
+    stop_ = true;
+  }
+}
+
+void EventDrivenRun::hold(std::size_t i, double t) {
+  if (modes_[i] == Mode::held) return;
+  modes_[i] = Mode::held;
+  held_.push_back(i);
+  const contact::Candidate& c = system_.candidates()[i];
+  SustainedContactRecord record;
+  record.floor = c.floor;
+  record.striking_building = c.striking_building + 1;
+  record.vertex = c.vertex_index + 1;
+  record.candidate = i;
+  record.start_s = t;
+  hold_record_[i] = static_cast<int>(result_.sustained_contacts.size());
+  result_.sustained_contacts.push_back(record);
+}
+
+void EventDrivenRun::release(std::size_t i, double t, const std::string& reason) {
+  if (modes_[i] != Mode::held) return;
+  mask(i, options_.contact_tolerance_m);  // at g ≈ 0, opening slowly: re-armed once clearly open
+  held_.erase(std::find(held_.begin(), held_.end(), i));
+  SustainedContactRecord& record = result_.sustained_contacts[hold_record_[i]];
+  record.release_s = t;
+  record.release_reason = reason;
+  hold_record_[i] = -1;
+}
+
+void EventDrivenRun::start(double t, VectorXd& y) {
+  // CVODE does not report roots at the initial time: contacts that exist at rest (a zero gap)
+  // are handled here as an event.
+  std::vector<std::size_t> touching;
+  for (std::size_t i = 0; i < count_; ++i) {
+    const contact::GapState s = system_.gap(y, i);
+    if (s.gap_m <= options_.contact_tolerance_m && s.on_segment()) touching.push_back(i);
+  }
+  if (!touching.empty()) handle_event(t, y, touching, {}, "");
+}
+
+void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
+                                  const std::vector<std::size_t>& released, const char* release_reason) {
+  count_event(t);
+  for (std::size_t i : released) release(i, t, release_reason);
+  std::set<std::size_t> fired;
+  std::set<int> floors;
+  for (std::size_t i : gap_roots) {
+    if (!system_.gap(y, i).on_segment()) {
+      mask(i, options_.reopen_gap_m);  // the vertex crossed the edge's extension, not the edge
+      ++result_.statistics.off_segment_crossings;
+      continue;
+    }
+    fired.insert(i);
+    floors.insert(system_.candidates()[i].floor);
+  }
+  for (int floor : floors) resolve_floor(t, y, floor, fired);
+  recorder_.sample(t, y);
+}
+
+EventDrivenRun::FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int floor,
+                                                            const std::set<std::size_t>& fired) const {
+  // Every contact of this floor pair that is closed now takes part, so simultaneous contacts
+  // are solved together, never one after another.
+  FloorContacts contacts;
+  for (std::size_t i = 0; i < count_; ++i) {
+    const contact::Candidate& c = system_.candidates()[i];
+    if (c.floor != floor) continue;
+    const contact::GapState s = system_.gap(y, i);
+    const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
+    if (modes_[i] != Mode::held && !fired.count(i) && !closed) continue;
+    contacts.members.push_back(i);
+    contacts.states.push_back(s);
+    contacts.rows.push_back({system_.pair_row(s, c), s.gap_rate_mps, options_.restitution});
+  }
+  return contacts;
+}
+
+std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, int floor, FloorContacts& contacts,
+                                               contact::ImpulseSolution& solution) const {
+  // First the impact law with restitution k. A contact that then separates slower than the hold
+  // velocity is held if the force holding it is compressive; held contacts are solved again
+  // with k = 0 so they stay exactly closed. Repeats until the held set no longer changes.
+  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(floor);
+  const contact::Vector6d v_before = system_.pair_velocities(y, floor);
+  const std::size_t n = contacts.members.size();
+  std::vector<bool> holding(n, false);
+  VectorXd y_after = y;
+  for (std::size_t pass = 0; pass <= n; ++pass) {
+    for (std::size_t k = 0; k < n; ++k) contacts.rows[k].restitution = holding[k] ? 0.0 : options_.restitution;
+    solution = contact::solve_impulses(contacts.rows, inverse_mass);
+    y_after = y;
+    system_.add_pair_velocities(y_after, floor, solution.velocity_change);
+    const contact::Vector6d v_after = v_before + solution.velocity_change;
+
+    std::vector<std::size_t> trial;  // held elsewhere, plus this floor's slow separations
+    for (std::size_t i : held_) {
+      if (system_.candidates()[i].floor != floor) trial.push_back(i);
+    }
+    const std::size_t others = trial.size();
+    std::vector<std::size_t> slow;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (contacts.rows[k].jacobian.dot(v_after) < options_.hold_velocity_mps) {
+        trial.push_back(contacts.members[k]);
+        slow.push_back(k);
+      }
+    }
+    std::vector<bool> proposal(n, false);
+    if (!slow.empty()) {
+      VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(trial.size()));
+      system_.constrained_rhs(t, y_after, trial, y_dot, forces);
+      for (std::size_t s = 0; s < slow.size(); ++s) proposal[slow[s]] = forces[others + s] > 0.0;
+    }
+    if (proposal == holding) break;
+    holding = proposal;
+  }
+  y = y_after;
+  return holding;
+}
+
+void EventDrivenRun::resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired) {
+  FloorContacts contacts = floor_contacts(y, floor, fired);
+  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(floor);
+  const double energy_before = contact::kinetic_energy(system_.pair_velocities(y, floor), inverse_mass);
+  contact::ImpulseSolution solution;
+  const std::vector<bool> holding = settle_floor(t, y, floor, contacts, solution);
+  const contact::Vector6d v_after = system_.pair_velocities(y, floor);
+  recorder_.add_impact_loss(energy_before - contact::kinetic_energy(v_after, inverse_mass));
+
+  for (std::size_t k = 0; k < contacts.members.size(); ++k) {
+    const std::size_t i = contacts.members[k];
+    const contact::Candidate& c = system_.candidates()[i];
+    const contact::GapState& s = contacts.states[k];
+    const double impulse = solution.impulses_kNs[k];
+    const double rate_before = contacts.rows[k].gap_rate_mps;
+    const double rate_after = contacts.rows[k].jacobian.dot(v_after);
+    if (impulse > 0.0 && rate_before < 0.0) {
+      ImpactRecord r;
+      r.t_s = t;
+      r.floor = floor;
+      r.striking_building = c.striking_building + 1;
+      r.vertex = c.vertex_index + 1;
+      r.struck_edge = c.edge_index + 1;
+      r.candidate = i;
+      r.vertex_rest = c.vertex_rest;
+      r.point = s.contact_point;
+      r.approach_velocity_mps = -rate_before;
+      r.separation_velocity_mps = rate_after;
+      r.impulse_kNs = impulse;
+      r.energy_lost_kJ = -impulse * (rate_before + rate_after) / 2.0;  // sums to the pair's loss
+      r.starts_hold = holding[k];
+      result_.impacts.push_back(r);
+    } else if (fired.count(i)) {
+      result_.touches.push_back({t, floor, c.striking_building + 1, c.vertex_index + 1, i, s.contact_point,
+                                 rate_before, s.gap_m});
+    }
+    if (holding[k]) {
+      hold(i, t);
+    } else if (modes_[i] == Mode::held) {
+      release(i, t, "separated by an impact");
+    } else {
+      mask(i, options_.reopen_gap_m);
+    }
+  }
+}
+
+std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, const VectorXd& y) {
+  // CVODE sees a root only where a gap changes sign between step ends. A gap that dips below
+  // zero and recovers within one step (or just grazes zero) does not; it shows as a minimum
+  // inside the step: ġ < 0 at the start, ġ > 0 at the end. Examine that minimum on the
+  // integrator's interpolant.
+  std::optional<Hidden> earliest;
+  VectorXd at(system_.state_size());
+  auto keep_earliest = [&](double t_hit, std::size_t i) {
+    if (!earliest || t_hit < earliest->t_s) earliest = Hidden{t_hit, i};
+  };
+  for (std::size_t i = 0; i < count_; ++i) {
+    const contact::GapState s0 = system_.gap(prev_y_, i), s1 = system_.gap(y, i);
+    if (modes_[i] == Mode::masked && s1.on_segment() && s1.gap_m < -options_.contact_tolerance_m) {
+      // Closed again before its gap re-opened past the re-arming threshold (a flight lower than
+      // the threshold): never let that pass as interpenetration.
+      const double t_hit = s0.gap_m >= 0.0
+          ? find_root([&](double time) { integrator_->interpolate(time, at); return system_.gap(at, i).gap_m; },
+                      prev_t_, t, s0.gap_m, s1.gap_m)
+          : t;
+      keep_earliest(t_hit, i);
+      continue;
+    }
+    if (modes_[i] != Mode::armed) continue;
+    if (!(s0.gap_m > 0.0 && s1.gap_m > 0.0 && s0.gap_rate_mps < 0.0 && s1.gap_rate_mps > 0.0)) continue;
+    auto state_at = [&](double time) {
+      integrator_->interpolate(time, at);
+      return system_.gap(at, i);
+    };
+    const double t_min = find_root([&](double time) { return state_at(time).gap_rate_mps; }, prev_t_, t,
+                                   s0.gap_rate_mps, s1.gap_rate_mps);
+    const contact::GapState lowest = state_at(t_min);
+    if (!lowest.on_segment()) continue;
+    if (lowest.gap_m < 0.0) {
+      const double t_cross =
+          find_root([&](double time) { return state_at(time).gap_m; }, prev_t_, t_min, s0.gap_m, lowest.gap_m);
+      keep_earliest(t_cross, i);
+    } else if (lowest.gap_m <= options_.contact_tolerance_m) {
+      const contact::Candidate& c = system_.candidates()[i];
+      result_.touches.push_back({t_min, c.floor, c.striking_building + 1, c.vertex_index + 1, i,
+                                 lowest.contact_point, lowest.gap_rate_mps, lowest.gap_m});
+    }
+  }
+  return earliest;
+}
+
+void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
+  // After an impact the next flight of that pair can be far shorter than the last step: bound the
+  // step by a quarter of the predicted time to re-closure, g + ġτ + ½g̈τ² = 0, while it is masked.
+  double bound = default_max_step_s_;
+  VectorXd y_dot(system_.state_size());
+  bool have_accel = false;
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (modes_[i] != Mode::masked) continue;
+    const contact::GapState s = system_.gap(y, i);
+    if (!s.on_segment() || s.gap_m < -options_.contact_tolerance_m) continue;
+    if (!have_accel) {
+      rhs(t, y, y_dot);
+      have_accel = true;
+    }
+    const contact::Candidate& c = system_.candidates()[i];
+    const double accel = s.striking_row.dot(y_dot.segment<3>(system_.dof() + system_.floor_index(c.striking_building, c.floor))) +
+                         s.struck_row.dot(y_dot.segment<3>(system_.dof() + system_.floor_index(c.struck_building, c.floor))) +
+                         s.curvature_mps2;
+    if (accel >= 0.0) continue;
+    const double g = std::max(s.gap_m, 0.0), rate = s.gap_rate_mps;
+    const double reclose = (rate + std::sqrt(rate * rate - 2.0 * g * accel)) / (-accel);
+    bound = std::min(bound, std::max(reclose / 4.0, 1e-12));
+  }
+  if (bound != current_max_step_s_) {
+    integrator_->set_max_step(bound);
+    current_max_step_s_ = bound;
+  }
+}
+
+void EventDrivenRun::after_step(double t, const VectorXd& y) {
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (modes_[i] == Mode::masked && system_.gap(y, i).gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
+  }
+  if (!held_.empty()) {
+    const VectorXd forces = hold_forces(t, y);
+    for (std::size_t r = 0; r < held_.size(); ++r) {
+      SustainedContactRecord& record = result_.sustained_contacts[hold_record_[held_[r]]];
+      record.max_force_kN = std::max(record.max_force_kN, forces[r]);
+      record.max_gap_drift_m = std::max(record.max_gap_drift_m, std::abs(system_.gap(y, held_[r]).gap_m));
+    }
+  }
+  update_step_bound(t, y);
+}
+
+bool EventDrivenRun::step_once() {
+  const double t_end = system_.ground_motion().end_s();
+  const StepOutcome outcome = integrator_->step(t_end);
+  if (outcome.kind == StepKind::failure) {
+    result_.status = RunStatus::solver_failure;
+    result_.status_detail = fmt::format("at t = {} s: {}", outcome.t_s, outcome.failure);
+    return false;
+  }
+  const double t = outcome.t_s;
+  VectorXd y = integrator_->state();
+  auto interpolated = [&](double time) {
+    VectorXd state(system_.state_size());
+    integrator_->interpolate(time, state);
+    return state;
+  };
+  auto power = [&](double time, const VectorXd& state) { return constraint_power(time, state); };
+
+  if (const std::optional<Hidden> hidden = hidden_contact(t, y)) {
+    ++result_.statistics.interpolant_events;
+    VectorXd y_event = interpolated(hidden->t_s);
+    recorder_.advance(prev_t_, hidden->t_s, interpolated, power);
+    handle_event(hidden->t_s, y_event, {hidden->candidate}, {}, "");
+    restart(hidden->t_s, y_event);
+    return !stop_;
+  }
+  recorder_.advance(prev_t_, t, interpolated, power);
+
+  if (outcome.kind == StepKind::root) {
+    const std::vector<int> found = integrator_->roots_found();
+    std::vector<std::size_t> gap_roots, force_roots, edge_roots;
+    for (std::size_t i = 0; i < count_; ++i) {
+      if (found[i] != 0) gap_roots.push_back(i);
+      if (found[count_ + i] != 0) force_roots.push_back(i);
+      if (found[2 * count_ + i] != 0) edge_roots.push_back(i);
+    }
+    for (std::size_t i : edge_roots) release(i, t, "slid off the edge");
+    handle_event(t, y, gap_roots, force_roots, "tensile force");
+    restart(t, y);
+    return !stop_;
+  }
+  if (outcome.kind == StepKind::stop_time) set_next_stop(t);
+  after_step(t, y);
+  prev_t_ = t;
+  prev_y_ = y;
+  if (result_.statistics.steps + integrator_->counters().steps > options_.max_steps) {
+    result_.status = RunStatus::step_limit;
+    result_.status_detail = fmt::format("more than {} steps by t = {} s", options_.max_steps, t);
+    return false;
+  }
+  return t < t_end;
+}
+
+RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const std::string& method) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  result_.method = method;
+  const double t0 = system_.ground_motion().start_s();
+  result_.start_s = t0;
+  VectorXd y = options_.initial_state.size() ? options_.initial_state : VectorXd::Zero(system_.state_size());
+  default_max_step_s_ = options_.max_step_s > 0.0 ? options_.max_step_s : shortest_period_s(system_) / 4.0;
+
+  recorder_.sample(t0, y);
+  start(t0, y);
+  integrator_ = make_integrator(*this, t0, y);
+  current_max_step_s_ = default_max_step_s_;
+  integrator_->set_max_step(current_max_step_s_);
+  set_next_stop(t0);
+  update_step_bound(t0, y);
+  prev_t_ = t0;
+  prev_y_ = y;
+
+  while (!stop_ && step_once()) {
+  }
+  accumulate_counters();
+  result_.end_s = prev_t_;
+  for (std::size_t i : std::vector<std::size_t>(held_)) release(i, prev_t_, "end of run");
+  recorder_.finish(prev_y_, result_);
+  result_.statistics.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return std::move(result_);
+}
+
+}  // namespace
+
+RunResult run_event_driven(const dynamics::CoupledSystem& system, const EventOptions& options,
+                           const IntegratorFactory& make_integrator, const std::string& method) {
+  options.validate();
+  if (options.initial_state.size() != 0 && options.initial_state.size() != system.state_size()) {
+    throw InputError("initial_state", std::to_string(options.initial_state.size()) + " values",
+                     "needs one value per state (" + std::to_string(system.state_size()) + ")");
+  }
+  EventDrivenRun run(system, options);
+  return run.run(make_integrator, method);
+}
+
+}  // namespace pounding::solvers

@@ -1,0 +1,138 @@
+#include "pounding/solvers/recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace pounding::solvers {
+namespace {
+
+void add_unique(std::vector<model::Point2>& points, const model::Point2& p) {
+  if (std::find(points.begin(), points.end(), p) == points.end()) points.push_back(p);
+}
+
+/// x-displacement of a slab point given at rest, exact rotation.
+double vertex_dx(const model::Point2& vertex, const model::Point2& centre, double u, double phi) {
+  const model::Point2 arm = vertex - centre;
+  return u + (std::cos(phi) - 1.0) * arm.x() - std::sin(phi) * arm.y();
+}
+
+}  // namespace
+
+std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate>& candidates, int building) {
+  std::vector<model::Point2> points;
+  for (const contact::Candidate& c : candidates) {
+    if (c.striking_building == building) add_unique(points, c.vertex_rest);
+    if (c.struck_building == building) {
+      add_unique(points, c.edge_start_rest);
+      add_unique(points, c.edge_end_rest);
+    }
+  }
+  return points;
+}
+
+Recorder::Recorder(const dynamics::CoupledSystem& system, std::vector<int> history_floors,
+                   double history_interval_s)
+    : system_(system), history_floors_(std::move(history_floors)), interval_s_(history_interval_s) {
+  if (history_floors_.empty()) {
+    const int common = std::min(system.building(0).storeys(), system.building(1).storeys());
+    for (int f = 1; f <= common; ++f) history_floors_.push_back(f);
+  }
+  next_sample_s_ = system.ground_motion().start_s();
+  history_.columns.push_back("t_s");
+  for (int b = 0; b < 2; ++b) {
+    vertices_[b] = contact_vertices(system.candidates(), b);
+    BuildingPeaks peaks;
+    peaks.name = system.building(b).definition.name;
+    peaks.contact_vertices_rest = vertices_[b];
+    for (int f = 1; f <= system.building(b).storeys(); ++f) {
+      FloorPeaks floor;
+      floor.floor = f;
+      floor.vertex_dx_m.resize(vertices_[b].size());
+      peaks.floors.push_back(floor);
+    }
+    peaks_.push_back(std::move(peaks));
+  }
+  for (int f : history_floors_) {
+    for (int b = 0; b < 2; ++b) {
+      const std::string prefix = fmt::format("B{}_f{}_", b + 1, f);
+      history_.columns.push_back(prefix + "u_m");
+      history_.columns.push_back(prefix + "v_m");
+      history_.columns.push_back(prefix + "phi_rad");
+      for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
+        history_.columns.push_back(fmt::format("{}vtx{}_dx_m", prefix, k + 1));
+      }
+    }
+  }
+}
+
+void Recorder::observe(double t, const dynamics::VectorXd& y) {
+  for (int b = 0; b < 2; ++b) {
+    const model::Point2 centre = system_.building(b).definition.centre_of_mass;
+    for (FloorPeaks& floor : peaks_[b].floors) {
+      const int i = system_.floor_index(b, floor.floor);
+      floor.u_m.update(y[i], t);
+      floor.v_m.update(y[i + 1], t);
+      floor.phi_rad.update(y[i + 2], t);
+      for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
+        floor.vertex_dx_m[k].update(vertex_dx(vertices_[b][k], centre, y[i], y[i + 2]), t);
+      }
+    }
+  }
+}
+
+void Recorder::append_row(double t, const dynamics::VectorXd& y) {
+  Eigen::VectorXd row(static_cast<Eigen::Index>(history_.columns.size()) - 1);
+  Eigen::Index c = 0;
+  for (int f : history_floors_) {
+    for (int b = 0; b < 2; ++b) {
+      const int i = system_.floor_index(b, f);
+      row[c++] = y[i];
+      row[c++] = y[i + 1];
+      row[c++] = y[i + 2];
+      const model::Point2 centre = system_.building(b).definition.centre_of_mass;
+      for (const model::Point2& vertex : vertices_[b]) row[c++] = vertex_dx(vertex, centre, y[i], y[i + 2]);
+    }
+  }
+  history_.time_s.push_back(t);
+  history_.rows.push_back(std::move(row));
+}
+
+void Recorder::sample(double t, const dynamics::VectorXd& y) {
+  observe(t, y);
+  if (!history_.time_s.empty() && history_.time_s.back() == t) return;
+  append_row(t, y);
+}
+
+void Recorder::advance(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+                       const std::function<double(double, const dynamics::VectorXd&)>& constraint_power) {
+  if (!(t_b > t_a)) return;
+  // 3-point Gauss–Legendre on [t_a, t_b]: exact for the input power of a degree-5 interpolant
+  // times the linear a_g of one record interval.
+  static constexpr double kNodes[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  const double half = 0.5 * (t_b - t_a), mid = 0.5 * (t_a + t_b);
+  for (int k = 0; k < 3; ++k) {
+    const double t = mid + half * kNodes[k];
+    const dynamics::VectorXd y = at(t);
+    energy_.input_kJ += half * kWeights[k] * system_.input_power(t, y);
+    energy_.damping_kJ += half * kWeights[k] * system_.damping_power(y);
+    energy_.constraint_work_kJ += half * kWeights[k] * constraint_power(t, y);
+  }
+  while (next_sample_s_ <= t_b) {
+    if (next_sample_s_ > t_a) sample(next_sample_s_, at(next_sample_s_));
+    next_sample_s_ = system_.ground_motion().start_s() +
+                     interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
+  }
+  observe(t_b, at(t_b));
+}
+
+void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result) {
+  energy_.kinetic_kJ = system_.kinetic_energy(final_state);
+  energy_.strain_kJ = system_.strain_energy(final_state);
+  result.energy = energy_;
+  result.peaks = std::move(peaks_);
+  result.history = std::move(history_);
+}
+
+}  // namespace pounding::solvers
