@@ -434,27 +434,32 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
 }
 
 void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
-  // After an impact the next flight of that pair can be far shorter than the last step: bound the
-  // step by a quarter of the predicted time to re-closure, g + ġτ + ½g̈τ² = 0, while it is masked.
+  // After an impact the next flight of that pair can be far shorter than the last step. While it
+  // is masked, bound the step by a quarter of the predicted time until its gap reaches
+  // −contact_tolerance (where the masked-closure check takes over), from
+  // (g + tol) + ġτ + ½g̈τ² = 0: a step then always ends mid-flight, where the pair re-arms.
   double bound = default_max_step_s_;
   VectorXd y_dot(system_.state_size());
   bool have_accel = false;
   for (std::size_t i = 0; i < count_; ++i) {
     if (modes_[i] != Mode::masked) continue;
     const contact::GapState s = system_.gap(y, i);
-    if (!s.on_segment() || s.gap_m < -options_.contact_tolerance_m) continue;
+    const double height = s.gap_m + options_.contact_tolerance_m;
+    if (!s.on_segment() || height <= 0.0) continue;
     if (!have_accel) {
       rhs(t, y, y_dot);
       have_accel = true;
     }
     const contact::Candidate& c = system_.candidates()[i];
-    const double accel = s.striking_row.dot(y_dot.segment<3>(system_.dof() + system_.floor_index(c.striking_building, c.floor))) +
-                         s.struck_row.dot(y_dot.segment<3>(system_.dof() + system_.floor_index(c.struck_building, c.floor))) +
-                         s.curvature_mps2;
+    const auto accel_of = [&](int building) {
+      return y_dot.segment<3>(system_.dof() + system_.floor_index(building, c.floor));
+    };
+    const double accel = s.striking_row.dot(accel_of(c.striking_building)) +
+                         s.struck_row.dot(accel_of(c.struck_building)) + s.curvature_mps2;
     if (accel >= 0.0) continue;
-    const double g = std::max(s.gap_m, 0.0), rate = s.gap_rate_mps;
-    const double reclose = (rate + std::sqrt(rate * rate - 2.0 * g * accel)) / (-accel);
-    bound = std::min(bound, std::max(reclose / 4.0, 1e-12));
+    const double rate = s.gap_rate_mps;
+    const double reclose = (rate + std::sqrt(rate * rate - 2.0 * height * accel)) / (-accel);
+    bound = std::min(bound, reclose / 4.0);
   }
   if (bound != current_max_step_s_) {
     integrator_->set_max_step(bound);
