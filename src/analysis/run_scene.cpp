@@ -40,6 +40,7 @@ RunReport run_scene(const Scene& scene) {
   settings.method = scene.solver.method == "cvode-adams" ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
   settings.rtol = scene.solver.rtol;
   settings.atol = scene.solver.atol;
+  settings.newton_solver = scene.solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
   auto make = [&](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) {
     return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
   };

@@ -37,6 +37,9 @@ void validate_solver(const SolverSettings& solver) {
   if (!(solver.atol > 0.0) || !std::isfinite(solver.atol)) {
     throw InputError("solver.atol", format_value(solver.atol), "must be positive");
   }
+  if (solver.newton != "reduced" && solver.newton != "dense") {
+    throw InputError("solver.newton", "\"" + solver.newton + "\"", "expected reduced or dense");
+  }
 }
 
 void validate_output(const OutputSettings& output, int common_floors) {

@@ -331,6 +331,7 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   solver.method = table->optional_string("method").value_or(solver.method);
   solver.rtol = table->number_or("rtol", solver.rtol);
   solver.atol = table->number_or("atol", solver.atol);
+  solver.newton = table->optional_string("newton").value_or(solver.newton);
   table->finish();
   return solver;
 }

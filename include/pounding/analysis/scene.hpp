@@ -20,14 +20,15 @@ struct ContactSettings {
   double hold_velocity_mps = 1e-3; // sticking threshold: slower separations of pressed pairs are held
 };
 
-/// Read and validated now; used by the time-history solvers.
+/// Time integration of `pounding run`.
 struct SolverSettings {
   std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams
   double rtol = 1e-8;
   double atol = 1e-10;               // m, rad (and their rates)
+  std::string newton = "reduced";    // reduced (n×n structural system) | dense (2n×2n LU)
 };
 
-/// Read and validated now; used by the time-history solvers.
+/// What `pounding run` writes to history.csv.
 struct OutputSettings {
   std::vector<int> history_floors;   // empty: every floor both buildings have
   double history_interval_s = 0.01;

@@ -5,16 +5,23 @@
 #include <memory>
 
 #include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/second_order_solver.hpp"
 #include "pounding/solvers/sundials_handles.hpp"
 
 namespace pounding::solvers {
 
 enum class CvodeMethod { bdf, adams };
 
+/// How the Newton systems are solved: `second_order` reduces them to the n×n structural system
+/// (SecondOrderLinearSolver); `dense` is SUNDIALS' dense LU of the full 2n×2n matrix. Both are
+/// direct solvers with the analytic Jacobian and give the same iterates up to round-off.
+enum class NewtonSolver { second_order, dense };
+
 struct CvodeSettings {
   CvodeMethod method = CvodeMethod::bdf;
   double rtol = 1e-8;
   double atol = 1e-10;   // m, rad and their rates
+  NewtonSolver newton_solver = NewtonSolver::second_order;
 };
 
 class CvodeIntegrator final : public Integrator {
@@ -32,6 +39,7 @@ class CvodeIntegrator final : public Integrator {
   const Eigen::VectorXd& state() const override { return state_; }
   void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
   std::vector<int> roots_found() override;
+  /// Counts since the last restart (CVodeReInit resets CVODE's own counters).
   IntegratorCounters counters() override;
 
  private:
@@ -45,9 +53,11 @@ class CvodeIntegrator final : public Integrator {
   sundials::Context context_;
   sundials::Vector y_;
   sundials::Vector scratch_;
-  sundials::Matrix matrix_;
-  sundials::LinearSolver linear_solver_;
   void* memory_ = nullptr;
+  sundials::Matrix matrix_;                         // dense Newton solver only
+  sundials::LinearSolver linear_solver_;            // dense Newton solver only
+  std::unique_ptr<SecondOrderLinearSolver> second_order_;
+  long factorizations_at_restart_ = 0;  // counters() counts from the last restart, like CVODE's
   std::vector<int> root_directions_;
   Eigen::VectorXd state_;
   std::string last_error_;  // from CVODE's error handler or a callback's exception

@@ -1,0 +1,79 @@
+#include "pounding/solvers/second_order_solver.hpp"
+
+#include <stdexcept>
+
+namespace pounding::solvers {
+namespace {
+
+Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
+  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
+}
+
+SecondOrderLinearSolver* self(SUNLinearSolver solver) {
+  return static_cast<SecondOrderLinearSolver*>(solver->content);
+}
+
+}  // namespace
+
+SecondOrderLinearSolver::SecondOrderLinearSolver(OdeFunctions& functions, std::function<NewtonData()> newton_data,
+                                                 SUNContext context)
+    : functions_(functions), newton_data_(std::move(newton_data)), n_(functions.state_size() / 2) {
+  SUNLinearSolver solver = SUNLinSolNewEmpty(context);
+  if (!solver) throw std::runtime_error("SUNDIALS: could not create a linear solver");
+  solver->content = this;
+  solver->ops->gettype = type;
+  solver->ops->setup = setup;
+  solver->ops->solve = solve;
+  solver->ops->free = release;
+  handle_.reset(solver);
+  jacobian_.resize(2 * n_, 2 * n_);
+}
+
+SUNLinearSolver_Type SecondOrderLinearSolver::type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
+
+// The integrator calls setup when it judges the Newton matrix out of date (step size or order
+// changed much, or Newton converged badly): refactor at the next solve with the current γ.
+int SecondOrderLinearSolver::setup(SUNLinearSolver solver, SUNMatrix) {
+  self(solver)->stale_ = true;
+  return SUNLS_SUCCESS;
+}
+
+void SecondOrderLinearSolver::factor(const NewtonData& data) {
+  functions_.jacobian(data.t_s, view(data.prediction), jacobian_);
+  const double g = data.gamma;
+  Eigen::MatrixXd reduced = -g * jacobian_.bottomRightCorner(n_, n_) - g * g * jacobian_.bottomLeftCorner(n_, n_);
+  reduced.diagonal().array() += 1.0;
+  reduced_.compute(reduced);
+  gamma_ = g;
+  stale_ = false;
+  ++factorizations_;
+}
+
+int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x, N_Vector b, double) {
+  SecondOrderLinearSolver* me = self(solver);
+  try {
+    const NewtonData data = me->newton_data_();
+    if (me->stale_) me->factor(data);
+    const Eigen::Index n = me->n_;
+    const auto rhs = view(b);
+    auto out = view(x);
+    // A factorisation made with an older γ is still a good Newton matrix; the integrator
+    // asks for a new one through setup() when it is not.
+    const double g = me->gamma_;
+    const Eigen::VectorXd x2 = me->reduced_.solve(rhs.tail(n) + g * (me->jacobian_.bottomLeftCorner(n, n) * rhs.head(n)));
+    out.head(n) = rhs.head(n) + g * x2;
+    out.tail(n) = x2;
+    return SUNLS_SUCCESS;
+  } catch (const std::exception& error) {
+    me->error_ = error.what();
+    return SUNLS_PACKAGE_FAIL_UNREC;
+  }
+}
+
+int SecondOrderLinearSolver::release(SUNLinearSolver solver) {
+  solver->content = nullptr;  // owned by the C++ object, not by SUNDIALS
+  SUNLinSolFreeEmpty(solver);
+  return SUNLS_SUCCESS;
+}
+
+}  // namespace pounding::solvers

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# End-to-end checks of the command-line program: a run writes its three files with the
+# expected content, the plot script draws them, and bad input exits 2 with a message that
+# names the option or key. Usage: test_cli.sh POUNDING_BINARY SOURCE_DIR
+set -uo pipefail
+pounding=$1
+source_dir=$2
+scene=$source_dir/examples/paper/paper.toml
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+"$pounding" run "$scene" --out "$work/d20" > "$work/d20.txt" || fail "run at 0.20 m exited $?"
+for f in summary.json impacts.csv history.csv; do [ -s "$work/d20/$f" ] || fail "missing $f"; done
+grep -q "^Impacts: [1-9]" "$work/d20.txt" || fail "no impacts printed at 0.20 m"
+grep -q "run time" "$work/d20.txt" || fail "no run time printed"
+/usr/bin/python3 - "$work/d20" <<'PY' || fail "summary.json content"
+import csv, json, sys
+folder = sys.argv[1]
+s = json.load(open(f"{folder}/summary.json"))
+assert s["status"] == "completed", s["status"]
+assert s["impact_count"] == len(s["impacts"]) > 0
+assert all(i["floor"] >= 5 for i in s["impacts"])
+assert len(s["candidates"]) == 14
+rows = list(csv.reader(open(f"{folder}/impacts.csv")))
+assert len(rows) == s["impact_count"] + 1
+for key in ("t_s", "floor", "striking_building", "vertex", "point", "approach_velocity_mps",
+            "separation_velocity_mps", "impulse_kNs", "energy_lost_kJ"):
+    assert key in s["impacts"][0], key
+assert abs(s["energy"]["relative_residual"]) < 1e-6
+PY
+
+"$pounding" run "$scene" --gap 0.5 --out "$work/d50" > /dev/null || fail "run at 0.50 m exited $?"
+/usr/bin/python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['impact_count'] == 0" "$work/d50/summary.json" \
+  || fail "impacts at 0.50 m"
+
+/usr/bin/python3 "$source_dir/tools/plot_run.py" "$work/d20" --compare "$work/d50" --out "$work/plot.png" > /dev/null \
+  || fail "plot_run.py exited $?"
+[ "$(stat -c %s "$work/plot.png" 2>/dev/null || echo 0)" -gt 20000 ] || fail "plot.png missing or empty"
+
+expect_refusal() {  # expected text, then the command's arguments
+  local expected=$1; shift
+  "$pounding" "$@" > "$work/out.txt" 2> "$work/err.txt"
+  local code=$?
+  [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2"
+  grep -q -- "$expected" "$work/err.txt" || fail "'$*' did not say '$expected': $(cat "$work/err.txt")"
+  [ ! -s "$work/out.txt" ] || fail "'$*' printed output before refusing"
+}
+expect_refusal "--gap = -0.1" run "$scene" --gap -0.1 --out "$work/bad"
+expect_refusal "--restitution = 1.5" run "$scene" --restitution 1.5 --out "$work/bad"
+expect_refusal "--method" run "$scene" --method euler --out "$work/bad"
+expect_refusal "--rtol = 0" run "$scene" --rtol 0 --out "$work/bad"
+expect_refusal "no such scene file" run "$work/none.toml"
+[ ! -e "$work/bad" ] || fail "a refused run left an output folder"
+
+echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
+[ "$failures" -eq 0 ]
