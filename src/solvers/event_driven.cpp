@@ -161,6 +161,8 @@ class EventDrivenRun final : public OdeFunctions {
   }
   void hold(std::size_t i, double t);
   void release(std::size_t i, double t, const std::string& reason);
+  /// Step limits and bookkeeping for a new smooth stretch starting at (t, y).
+  void begin_phase(double t, const VectorXd& y);
   void restart(double t, const VectorXd& y);
   void after_step(double t, const VectorXd& y);
   void update_step_bound(double t, const VectorXd& y);
@@ -203,16 +205,20 @@ void EventDrivenRun::accumulate_counters() {
   s.error_test_failures += c.error_test_failures;
 }
 
-void EventDrivenRun::restart(double t, const VectorXd& y) {
-  accumulate_counters();  // re-initialisation resets the integrator's own counters
-  integrator_->restart(t, y);
-  ++result_.statistics.restarts;
+void EventDrivenRun::begin_phase(double t, const VectorXd& y) {
   current_max_step_s_ = default_max_step_s_;
   integrator_->set_max_step(current_max_step_s_);
   set_next_stop(t);
   update_step_bound(t, y);
   prev_t_ = t;
   prev_y_ = y;
+}
+
+void EventDrivenRun::restart(double t, const VectorXd& y) {
+  accumulate_counters();  // re-initialisation resets the integrator's own counters
+  integrator_->restart(t, y);
+  ++result_.statistics.restarts;
+  begin_phase(t, y);
 }
 
 void EventDrivenRun::count_event(double t) {
@@ -545,12 +551,7 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   recorder_.sample(t0, y);
   start(t0, y);
   integrator_ = make_integrator(*this, t0, y);
-  current_max_step_s_ = default_max_step_s_;
-  integrator_->set_max_step(current_max_step_s_);
-  set_next_stop(t0);
-  update_step_bound(t0, y);
-  prev_t_ = t0;
-  prev_y_ = y;
+  begin_phase(t0, y);
 
   while (!stop_ && step_once()) {
   }
