@@ -95,12 +95,17 @@ void print_run_summary(const analysis::RunReport& report, const std::string& fol
 int run_run(const RunCommand& command) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
   if (command.method) scene.solver.method = *command.method;
+  if (command.order) scene.solver.order = *command.order;
   if (command.rtol) scene.solver.rtol = *command.rtol;
   if (command.atol) scene.solver.atol = *command.atol;
   try {
     scene.validate();
   } catch (const InputError& error) {
-    const std::string option = error.key() == "solver.method" ? "--method" : error.key() == "solver.rtol" ? "--rtol" : "--atol";
+    const std::string& key = error.key();
+    const std::string option = key == "solver.method" ? "--method"
+                               : key == "solver.order" ? "--order"
+                               : key == "solver.rtol"  ? "--rtol"
+                                                       : "--atol";
     throw InputError(option, error.value(), error.reason(), command.scene);
   }
   const analysis::RunReport report = analysis::run_scene(scene);

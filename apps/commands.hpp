@@ -24,6 +24,7 @@ struct RunCommand {
   std::optional<double> gap_m;
   std::optional<double> restitution;
   std::optional<std::string> method;
+  std::optional<int> order;
   std::optional<double> rtol;
   std::optional<double> atol;
   std::string out_dir;  // empty: out/<scene name>

@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
   add_scene_argument(*run_app, run.scene);
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
-  run_app->add_option("--method", run.method, "cvode-bdf (default) or cvode-adams");
+  run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk or arkode-dirk");
+  run_app->add_option("--order", run.order, "ARKODE table order: erk 5 (default) or 8, dirk 4 (default) or 3");
   run_app->add_option("--rtol", run.rtol, "Relative tolerance (default 1e-8)");
   run_app->add_option("--atol", run.atol, "Absolute tolerance, m and rad (default 1e-10)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");

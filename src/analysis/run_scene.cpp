@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "pounding/input_error.hpp"
+#include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
 
@@ -36,17 +37,31 @@ RunReport run_scene(const Scene& scene) {
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
 
-  solvers::CvodeSettings settings;
-  settings.method = scene.solver.method == "cvode-adams" ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
-  settings.rtol = scene.solver.rtol;
-  settings.atol = scene.solver.atol;
-  settings.newton_solver = scene.solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
-  auto make = [&](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) {
-    return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
-  };
   return {scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
           scene.contact.hold_velocity_mps, system.candidates(),
-          solvers::run_event_driven(system, options, make, scene.solver.method)};
+          solvers::run_event_driven(system, options, integrator_factory(scene.solver), scene.solver.method)};
+}
+
+solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
+  if (solver.method.starts_with("arkode")) {
+    solvers::ArkodeSettings settings;
+    settings.method = solver.method == "arkode-erk" ? solvers::ArkodeMethod::erk : solvers::ArkodeMethod::dirk;
+    settings.order = solver.order;
+    settings.newton_solver = solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
+    settings.rtol = solver.rtol;
+    settings.atol = solver.atol;
+    return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) {
+      return solvers::make_arkode_integrator(functions, settings, t0, y0);
+    };
+  }
+  solvers::CvodeSettings settings;
+  settings.method = solver.method == "cvode-adams" ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
+  settings.rtol = solver.rtol;
+  settings.atol = solver.atol;
+  settings.newton_solver = solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
+  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+    return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
+  };
 }
 
 }  // namespace pounding::analysis

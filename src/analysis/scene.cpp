@@ -1,6 +1,7 @@
 #include "pounding/analysis/scene.hpp"
 
 #include <cmath>
+#include <set>
 #include <fmt/format.h>
 
 #include "pounding/input_error.hpp"
@@ -28,8 +29,16 @@ void validate_contact(const ContactSettings& contact) {
 }
 
 void validate_solver(const SolverSettings& solver) {
-  if (solver.method != "cvode-bdf" && solver.method != "cvode-adams") {
-    throw InputError("solver.method", "\"" + solver.method + "\"", "expected cvode-bdf or cvode-adams");
+  static const std::set<std::string> kMethods = {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk"};
+  if (!kMethods.count(solver.method)) {
+    throw InputError("solver.method", "\"" + solver.method + "\"",
+                     "expected cvode-bdf, cvode-adams, arkode-erk or arkode-dirk");
+  }
+  const bool order_ok = solver.order == 0 || (solver.method == "arkode-erk" && (solver.order == 5 || solver.order == 8)) ||
+                        (solver.method == "arkode-dirk" && (solver.order == 3 || solver.order == 4));
+  if (!order_ok) {
+    throw InputError("solver.order", std::to_string(solver.order),
+                     "arkode-erk offers orders 5 and 8, arkode-dirk 3 and 4; other methods take none");
   }
   if (!(solver.rtol > 0.0 && solver.rtol < 1.0)) {
     throw InputError("solver.rtol", format_value(solver.rtol), "must lie in (0, 1)");

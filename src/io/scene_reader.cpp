@@ -329,6 +329,7 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   analysis::SolverSettings solver;
   if (!table) return solver;
   solver.method = table->optional_string("method").value_or(solver.method);
+  solver.order = table->optional_integer("order").value_or(solver.order);
   solver.rtol = table->number_or("rtol", solver.rtol);
   solver.atol = table->number_or("atol", solver.atol);
   solver.newton = table->optional_string("newton").value_or(solver.newton);

@@ -7,22 +7,14 @@
 namespace pounding::solvers {
 namespace {
 
-Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
-}
-
 void check(int flag, const char* call) { sundials::check(flag, call, CVodeGetReturnFlagName); }
 
 }  // namespace
 
 CvodeIntegrator::CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& settings, double t0,
                                  const Eigen::VectorXd& y0)
-    : functions_(functions), context_(sundials::make_context()) {
+    : SundialsIntegrator(functions, y0) {
   const long n = functions.state_size();
-  y_ = sundials::make_vector(n, context_.get());
-  scratch_ = sundials::make_vector(n, context_.get());
-  view(y_.get()) = y0;
-  state_ = y0;
   memory_ = CVodeCreate(settings.method == CvodeMethod::bdf ? CV_BDF : CV_ADAMS, context_.get());
   if (!memory_) throw std::runtime_error("CVodeCreate failed");
   check(CVodeSetErrHandlerFn(memory_, error_callback, this), "CVodeSetErrHandlerFn");
@@ -49,7 +41,6 @@ CvodeIntegrator::CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& s
     check(CVodeSetLinearSolver(memory_, second_order_->get(), nullptr), "CVodeSetLinearSolver");
   }
   check(CVodeRootInit(memory_, functions.root_count(), root_callback), "CVodeRootInit");
-  root_directions_.assign(functions.root_count(), -1);  // only closing gaps / falling forces
   check(CVodeSetRootDirection(memory_, root_directions_.data()), "CVodeSetRootDirection");
   check(CVodeSetNoInactiveRootWarn(memory_), "CVodeSetNoInactiveRootWarn");
   check(CVodeSetMaxNumSteps(memory_, -1), "CVodeSetMaxNumSteps");  // the loop caps steps itself
@@ -75,13 +66,7 @@ StepOutcome CvodeIntegrator::step(double t_final) {
   double t = 0.0;
   last_error_.clear();
   const int flag = CVode(memory_, t_final, y_.get(), &t, CV_ONE_STEP);
-  state_ = view(y_.get());
-  if (flag == CV_ROOT_RETURN) return {StepKind::root, t, {}};
-  if (flag == CV_TSTOP_RETURN) return {StepKind::stop_time, t, {}};
-  if (flag >= 0) return {StepKind::step, t, {}};
-  std::string failure = sundials::take_flag_name(CVodeGetReturnFlagName(flag));
-  if (!last_error_.empty()) failure += ": " + last_error_;
-  return {StepKind::failure, t, failure};
+  return outcome(flag, t, CV_ROOT_RETURN, CV_TSTOP_RETURN, CVodeGetReturnFlagName);
 }
 
 void CvodeIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
@@ -107,49 +92,6 @@ IntegratorCounters CvodeIntegrator::counters() {
   }
   check(CVodeGetNumErrTestFails(memory_, &c.error_test_failures), "CVodeGetNumErrTestFails");
   return c;
-}
-
-// The callbacks never let an exception cross into C: they record it and return a negative flag
-// (unrecoverable), which CVODE turns into a failed step that the loop reports.
-int CvodeIntegrator::rhs_callback(double t, N_Vector y, N_Vector y_dot, void* self) {
-  auto* me = static_cast<CvodeIntegrator*>(self);
-  try {
-    me->functions_.rhs(t, view(y), view(y_dot));
-    return 0;
-  } catch (const std::exception& error) {
-    me->last_error_ = error.what();
-    return -1;
-  }
-}
-
-int CvodeIntegrator::jacobian_callback(double t, N_Vector y, N_Vector, SUNMatrix jac, void* self,
-                                       N_Vector, N_Vector, N_Vector) {
-  auto* me = static_cast<CvodeIntegrator*>(self);
-  try {
-    const Eigen::Index n = static_cast<Eigen::Index>(SUNDenseMatrix_Rows(jac));
-    Eigen::Map<Eigen::MatrixXd> matrix(SUNDenseMatrix_Data(jac), n, n);  // column-major
-    me->functions_.jacobian(t, view(y), matrix);
-    return 0;
-  } catch (const std::exception& error) {
-    me->last_error_ = error.what();
-    return -1;
-  }
-}
-
-int CvodeIntegrator::root_callback(double t, N_Vector y, double* g, void* self) {
-  auto* me = static_cast<CvodeIntegrator*>(self);
-  try {
-    me->functions_.roots(t, view(y), Eigen::Map<Eigen::VectorXd>(g, me->functions_.root_count()));
-    return 0;
-  } catch (const std::exception& error) {
-    me->last_error_ = error.what();
-    return -1;
-  }
-}
-
-void CvodeIntegrator::error_callback(int, const char*, const char* function, char* message, void* self) {
-  auto* me = static_cast<CvodeIntegrator*>(self);
-  if (me->last_error_.empty()) me->last_error_ = std::string(function) + ": " + message;
 }
 
 }  // namespace pounding::solvers

@@ -406,9 +406,11 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
   };
   for (std::size_t i = 0; i < count_; ++i) {
     const contact::GapState s0 = system_.gap(prev_y_, i), s1 = system_.gap(y, i);
-    if (modes_[i] == Mode::masked && s1.on_segment() && s1.gap_m < -options_.contact_tolerance_m) {
-      // Closed again before its gap re-opened past the re-arming threshold (a flight lower than
-      // the threshold): never let that pass as interpenetration.
+    if (modes_[i] == Mode::masked && s1.on_segment() && s1.gap_m < -options_.contact_tolerance_m &&
+        s1.gap_rate_mps < 0.0) {
+      // Closing into overlap before its gap re-opened past the re-arming threshold (a flight
+      // lower than the threshold): never let that pass as interpenetration. A pair already
+      // separating again needs nothing.
       const double t_hit = s0.gap_m >= 0.0
           ? find_root([&](double time) { integrator_->interpolate(time, at); return system_.gap(at, i).gap_m; },
                       prev_t_, t, s0.gap_m, s1.gap_m)

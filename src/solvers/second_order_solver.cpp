@@ -1,5 +1,6 @@
 #include "pounding/solvers/second_order_solver.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace pounding::solvers {
@@ -8,6 +9,8 @@ namespace {
 Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
 }
+
+constexpr double kGammaTolerance = 0.2;
 
 SecondOrderLinearSolver* self(SUNLinearSolver solver) {
   return static_cast<SecondOrderLinearSolver*>(solver->content);
@@ -31,8 +34,8 @@ SecondOrderLinearSolver::SecondOrderLinearSolver(OdeFunctions& functions, std::f
 
 SUNLinearSolver_Type SecondOrderLinearSolver::type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
 
-// The integrator calls setup when it judges the Newton matrix out of date (step size or order
-// changed much, or Newton converged badly): refactor at the next solve with the current γ.
+// CVODE and ARKODE (6.4) do not call setup for matrix-embedded solvers, so solve() keeps the
+// factorisation current itself; setup is kept for integrators that do call it.
 int SecondOrderLinearSolver::setup(SUNLinearSolver solver, SUNMatrix) {
   self(solver)->stale_ = true;
   return SUNLS_SUCCESS;
@@ -53,13 +56,14 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
   SecondOrderLinearSolver* me = self(solver);
   try {
     const NewtonData data = me->newton_data_();
-    if (me->stale_) me->factor(data);
+    // Refactor when the contact phase changed or γ moved by more than 20 % from the factored
+    // value (the policy of CVODE's own matrix-based path): a modestly stale Newton matrix still
+    // converges quickly, a badly stale one does not.
+    if (me->stale_ || std::abs(data.gamma - me->gamma_) > kGammaTolerance * std::abs(me->gamma_)) me->factor(data);
     const Eigen::Index n = me->n_;
     const auto rhs = view(b);
     auto out = view(x);
-    // A factorisation made with an older γ is still a good Newton matrix; the integrator
-    // asks for a new one through setup() when it is not.
-    const double g = me->gamma_;
+    const double g = me->gamma_;  // solve the system that was factored, consistently
     const Eigen::VectorXd x2 = me->reduced_.solve(rhs.tail(n) + g * (me->jacobian_.bottomLeftCorner(n, n) * rhs.head(n)));
     out.head(n) = rhs.head(n) + g * x2;
     out.tail(n) = x2;

@@ -7,6 +7,7 @@
 #include "pounding/analysis/scene.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::analysis {
@@ -17,6 +18,9 @@ std::vector<contact::Candidate> scene_candidates(const Scene& scene);
 /// The coupled system of a scene (assembles both buildings, loads the record).
 /// @throws InputError for bad buildings or a bad record.
 dynamics::CoupledSystem build_system(const Scene& scene);
+
+/// The event-driven integrator that `solver` names (CVODE or ARKODE).
+solvers::IntegratorFactory integrator_factory(const SolverSettings& solver);
 
 /// A run together with what it was run on, for writers and printers.
 struct RunReport {

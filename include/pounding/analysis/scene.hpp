@@ -22,7 +22,8 @@ struct ContactSettings {
 
 /// Time integration of `pounding run`.
 struct SolverSettings {
-  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams
+  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams | arkode-erk | arkode-dirk
+  int order = 0;                     // ARKODE table order (erk: 5 or 8; dirk: 4 or 3); 0 = default
   double rtol = 1e-8;
   double atol = 1e-10;               // m, rad (and their rates)
   std::string newton = "reduced";    // reduced (n×n structural system) | dense (2n×2n LU)

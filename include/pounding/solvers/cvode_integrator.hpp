@@ -4,9 +4,8 @@
 
 #include <memory>
 
-#include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/second_order_solver.hpp"
-#include "pounding/solvers/sundials_handles.hpp"
+#include "pounding/solvers/sundials_integrator.hpp"
 
 namespace pounding::solvers {
 
@@ -14,7 +13,8 @@ enum class CvodeMethod { bdf, adams };
 
 /// How the Newton systems are solved: `second_order` reduces them to the n×n structural system
 /// (SecondOrderLinearSolver); `dense` is SUNDIALS' dense LU of the full 2n×2n matrix. Both are
-/// direct solvers with the analytic Jacobian and give the same iterates up to round-off.
+/// direct solvers with the analytic Jacobian; they refresh the Newton matrix on different
+/// schedules, so their runs agree to the integration tolerance.
 enum class NewtonSolver { second_order, dense };
 
 struct CvodeSettings {
@@ -24,7 +24,7 @@ struct CvodeSettings {
   NewtonSolver newton_solver = NewtonSolver::second_order;
 };
 
-class CvodeIntegrator final : public Integrator {
+class CvodeIntegrator final : public SundialsIntegrator {
  public:
   /// `functions` must outlive the integrator. @throws std::runtime_error if SUNDIALS set-up fails.
   CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& settings, double t0, const Eigen::VectorXd& y0);
@@ -36,31 +36,17 @@ class CvodeIntegrator final : public Integrator {
   void set_max_step(double h_s) override;
   void set_stop_time(double t_s) override;
   StepOutcome step(double t_final) override;
-  const Eigen::VectorXd& state() const override { return state_; }
   void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
   std::vector<int> roots_found() override;
   /// Counts since the last restart (CVodeReInit resets CVODE's own counters).
   IntegratorCounters counters() override;
 
  private:
-  static int rhs_callback(double t, N_Vector y, N_Vector y_dot, void* self);
-  static int jacobian_callback(double t, N_Vector y, N_Vector f, SUNMatrix jac, void* self,
-                               N_Vector, N_Vector, N_Vector);
-  static int root_callback(double t, N_Vector y, double* g, void* self);
-  static void error_callback(int code, const char* module, const char* function, char* message, void* self);
-
-  OdeFunctions& functions_;
-  sundials::Context context_;
-  sundials::Vector y_;
-  sundials::Vector scratch_;
   void* memory_ = nullptr;
   sundials::Matrix matrix_;                         // dense Newton solver only
   sundials::LinearSolver linear_solver_;            // dense Newton solver only
   std::unique_ptr<SecondOrderLinearSolver> second_order_;
   long factorizations_at_restart_ = 0;  // counters() counts from the last restart, like CVODE's
-  std::vector<int> root_directions_;
-  Eigen::VectorXd state_;
-  std::string last_error_;  // from CVODE's error handler or a callback's exception
 };
 
 }  // namespace pounding::solvers

@@ -1,0 +1,195 @@
+#include "pounding/solvers/arkode_integrator.hpp"
+
+#include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_erkstep.h>
+
+#include "pounding/input_error.hpp"
+#include "pounding/solvers/second_order_solver.hpp"
+#include "pounding/solvers/sundials_integrator.hpp"
+
+namespace pounding::solvers {
+namespace {
+
+// The two ARKODE steppers expose the same calls under different prefixes.
+struct ErkApi {
+  static constexpr auto reset = ERKStepReset;
+  static constexpr auto set_max_step = ERKStepSetMaxStep;
+  static constexpr auto set_stop_time = ERKStepSetStopTime;
+  static constexpr auto evolve = ERKStepEvolve;
+  static constexpr auto get_dky = ERKStepGetDky;
+  static constexpr auto root_info = ERKStepGetRootInfo;
+  static constexpr auto num_steps = ERKStepGetNumSteps;
+  static constexpr auto num_g_evals = ERKStepGetNumGEvals;
+  static constexpr auto num_err_test_fails = ERKStepGetNumErrTestFails;
+  static constexpr auto flag_name = ERKStepGetReturnFlagName;
+  static constexpr auto sstolerances = ERKStepSStolerances;
+  static constexpr auto set_user_data = ERKStepSetUserData;
+  static constexpr auto set_err_handler = ERKStepSetErrHandlerFn;
+  static constexpr auto root_init = ERKStepRootInit;
+  static constexpr auto set_root_direction = ERKStepSetRootDirection;
+  static constexpr auto no_inactive_root_warn = ERKStepSetNoInactiveRootWarn;
+  static constexpr auto set_max_num_steps = ERKStepSetMaxNumSteps;
+  static constexpr auto set_init_step = ERKStepSetInitStep;
+  static void free(void** memory) { ERKStepFree(memory); }
+  static long rhs_evaluations(void* memory) {
+    long n = 0;
+    ERKStepGetNumRhsEvals(memory, &n);
+    return n;
+  }
+};
+
+struct ArkApi {
+  static constexpr auto reset = ARKStepReset;
+  static constexpr auto set_max_step = ARKStepSetMaxStep;
+  static constexpr auto set_stop_time = ARKStepSetStopTime;
+  static constexpr auto evolve = ARKStepEvolve;
+  static constexpr auto get_dky = ARKStepGetDky;
+  static constexpr auto root_info = ARKStepGetRootInfo;
+  static constexpr auto num_steps = ARKStepGetNumSteps;
+  static constexpr auto num_g_evals = ARKStepGetNumGEvals;
+  static constexpr auto num_err_test_fails = ARKStepGetNumErrTestFails;
+  static constexpr auto flag_name = ARKStepGetReturnFlagName;
+  static constexpr auto sstolerances = ARKStepSStolerances;
+  static constexpr auto set_user_data = ARKStepSetUserData;
+  static constexpr auto set_err_handler = ARKStepSetErrHandlerFn;
+  static constexpr auto root_init = ARKStepRootInit;
+  static constexpr auto set_root_direction = ARKStepSetRootDirection;
+  static constexpr auto no_inactive_root_warn = ARKStepSetNoInactiveRootWarn;
+  static constexpr auto set_max_num_steps = ARKStepSetMaxNumSteps;
+  static constexpr auto set_init_step = ARKStepSetInitStep;
+  static void free(void** memory) { ARKStepFree(memory); }
+  static long rhs_evaluations(void* memory) {
+    long explicit_evals = 0, implicit_evals = 0;
+    ARKStepGetNumRhsEvals(memory, &explicit_evals, &implicit_evals);
+    return explicit_evals + implicit_evals;
+  }
+};
+
+template <typename Api>
+class ArkodeIntegrator final : public SundialsIntegrator {
+ public:
+  ArkodeIntegrator(OdeFunctions& functions, const ArkodeSettings& settings, double t0, const Eigen::VectorXd& y0)
+      : SundialsIntegrator(functions, y0) {
+    if constexpr (std::is_same_v<Api, ErkApi>) {
+      memory_ = ERKStepCreate(rhs_callback, t0, y_.get(), context_.get());
+      if (!memory_) throw std::runtime_error("ERKStepCreate failed");
+      check(ERKStepSetTableNum(memory_, settings.order == 8 ? ARKODE_FEHLBERG_13_7_8 : ARKODE_DORMAND_PRINCE_7_4_5),
+            "ERKStepSetTableNum");
+    } else {
+      memory_ = ARKStepCreate(nullptr, rhs_callback, t0, y_.get(), context_.get());
+      if (!memory_) throw std::runtime_error("ARKStepCreate failed");
+      check(ARKStepSetTableNum(memory_, settings.order == 3 ? ARKODE_KVAERNO_4_2_3 : ARKODE_SDIRK_5_3_4, ARKODE_ERK_NONE),
+            "ARKStepSetTableNum");
+      auto newton_data = [this] {
+        NewtonData data;
+        N_Vector z = nullptr, fi = nullptr, sdata = nullptr;
+        void* user_data = nullptr;
+        check(ARKStepGetNonlinearSystemData(memory_, &data.t_s, &data.prediction, &z, &fi, &data.gamma, &sdata,
+                                            &user_data),
+              "ARKStepGetNonlinearSystemData");
+        return data;
+      };
+      if (settings.newton_solver == NewtonSolver::dense) {
+        matrix_ = sundials::make_dense_matrix(functions.state_size(), context_.get());
+        dense_ = sundials::make_dense_solver(y_.get(), matrix_.get(), context_.get());
+        check(ARKStepSetLinearSolver(memory_, dense_.get(), matrix_.get()), "ARKStepSetLinearSolver");
+        check(ARKStepSetJacFn(memory_, jacobian_callback), "ARKStepSetJacFn");
+      } else {
+        second_order_ = std::make_unique<SecondOrderLinearSolver>(functions, newton_data, context_.get());
+        check(ARKStepSetLinearSolver(memory_, second_order_->get(), nullptr), "ARKStepSetLinearSolver");
+      }
+    }
+    check(Api::set_err_handler(memory_, error_callback, this), "SetErrHandlerFn");
+    check(Api::set_user_data(memory_, this), "SetUserData");
+    check(Api::sstolerances(memory_, settings.rtol, settings.atol), "SStolerances");
+    check(Api::root_init(memory_, functions.root_count(), root_callback), "RootInit");
+    check(Api::set_root_direction(memory_, root_directions_.data()), "SetRootDirection");
+    check(Api::no_inactive_root_warn(memory_), "SetNoInactiveRootWarn");
+    check(Api::set_max_num_steps(memory_, -1), "SetMaxNumSteps");  // the loop caps steps itself
+  }
+  ~ArkodeIntegrator() override { Api::free(&memory_); }
+  ArkodeIntegrator(const ArkodeIntegrator&) = delete;
+  ArkodeIntegrator& operator=(const ArkodeIntegrator&) = delete;
+
+  void restart(double t, const Eigen::VectorXd& y) override {
+    view(y_.get()) = y;
+    state_ = y;
+    baseline_ = raw_counters();  // reset keeps ARKODE's counters running; report per stretch
+    check(Api::reset(memory_, t, y_.get()), "Reset");
+    if (second_order_) second_order_->invalidate();
+    just_reset_ = true;
+  }
+  void set_max_step(double h_s) override {
+    check(Api::set_max_step(memory_, h_s), "SetMaxStep");
+    // After a reset ARKODE's first step reuses the last step size without clipping it to the
+    // maximum; a short flight after an impact would be stepped over. Start it at the bound.
+    if (just_reset_) check(Api::set_init_step(memory_, h_s), "SetInitStep");
+  }
+  void set_stop_time(double t_s) override { check(Api::set_stop_time(memory_, t_s), "SetStopTime"); }
+
+  StepOutcome step(double t_final) override {
+    double t = 0.0;
+    last_error_.clear();
+    const int flag = Api::evolve(memory_, t_final, y_.get(), &t, ARK_ONE_STEP);
+    just_reset_ = false;
+    return outcome(flag, t, ARK_ROOT_RETURN, ARK_TSTOP_RETURN, Api::flag_name);
+  }
+
+  void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override {
+    check(Api::get_dky(memory_, t, 0, scratch_.get()), "GetDky");
+    y = view(scratch_.get());
+  }
+
+  std::vector<int> roots_found() override {
+    std::vector<int> found(root_directions_.size(), 0);
+    check(Api::root_info(memory_, found.data()), "GetRootInfo");
+    return found;
+  }
+
+  IntegratorCounters counters() override {
+    const IntegratorCounters now = raw_counters();
+    IntegratorCounters since{now.steps - baseline_.steps, now.rhs_evaluations - baseline_.rhs_evaluations, 0,
+                             now.jacobian_evaluations - baseline_.jacobian_evaluations,
+                             now.error_test_failures - baseline_.error_test_failures};
+    // The root-function counter, unlike the others, starts again at a reset.
+    check(Api::num_g_evals(memory_, &since.root_evaluations), "GetNumGEvals");
+    return since;
+  }
+
+ private:
+  void check(int flag, const char* call) const { sundials::check(flag, call, Api::flag_name); }
+
+  IntegratorCounters raw_counters() {
+    IntegratorCounters c;
+    check(Api::num_steps(memory_, &c.steps), "GetNumSteps");
+    c.rhs_evaluations = Api::rhs_evaluations(memory_);
+    check(Api::num_err_test_fails(memory_, &c.error_test_failures), "GetNumErrTestFails");
+    c.jacobian_evaluations = second_order_ ? second_order_->factorizations() : 0;
+    return c;
+  }
+
+  void* memory_ = nullptr;
+  sundials::Matrix matrix_;                                // DIRK with the dense Newton solver
+  sundials::LinearSolver dense_;
+  std::unique_ptr<SecondOrderLinearSolver> second_order_;  // DIRK with the reduced Newton solver
+  IntegratorCounters baseline_;
+  bool just_reset_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_arkode_integrator(OdeFunctions& functions, const ArkodeSettings& settings,
+                                                   double t0, const Eigen::VectorXd& y0) {
+  if (settings.method == ArkodeMethod::erk) {
+    if (settings.order != 0 && settings.order != 5 && settings.order != 8) {
+      throw InputError("solver.order", std::to_string(settings.order), "arkode-erk offers orders 5 and 8");
+    }
+    return std::make_unique<ArkodeIntegrator<ErkApi>>(functions, settings, t0, y0);
+  }
+  if (settings.order != 0 && settings.order != 3 && settings.order != 4) {
+    throw InputError("solver.order", std::to_string(settings.order), "arkode-dirk offers orders 3 and 4");
+  }
+  return std::make_unique<ArkodeIntegrator<ArkApi>>(functions, settings, t0, y0);
+}
+
+}  // namespace pounding::solvers
