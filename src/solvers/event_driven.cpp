@@ -9,6 +9,7 @@
 
 #include "pounding/input_error.hpp"
 #include "pounding/model/modal.hpp"
+#include "pounding/solvers/floor_impacts.hpp"
 #include "pounding/solvers/recorder.hpp"
 
 namespace pounding::solvers {
@@ -146,13 +147,8 @@ class EventDrivenRun final : public OdeFunctions {
   std::optional<Hidden> hidden_contact(double t, const VectorXd& y);
   void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
                     const std::vector<std::size_t>& released, const char* release_reason);
-  struct FloorContacts {
-    std::vector<std::size_t> members;
-    std::vector<contact::GapState> states;
-    std::vector<contact::ContactRow> rows;
-  };
   FloorContacts floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const;
-  std::vector<bool> settle_floor(double t, VectorXd& y, int floor, FloorContacts& contacts,
+  std::vector<bool> settle_floor(double t, VectorXd& y, FloorContacts& contacts,
                                  contact::ImpulseSolution& solution) const;
   void resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired);
   void mask(std::size_t i, double reopen_m) {
@@ -288,44 +284,32 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
   recorder_.sample(t, y);
 }
 
-EventDrivenRun::FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int floor,
-                                                            const std::set<std::size_t>& fired) const {
+FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const {
   // Every contact of this floor pair that is closed now takes part, so simultaneous contacts
   // are solved together, never one after another.
-  FloorContacts contacts;
-  for (std::size_t i = 0; i < count_; ++i) {
-    const contact::Candidate& c = system_.candidates()[i];
-    if (c.floor != floor) continue;
-    const contact::GapState s = system_.gap(y, i);
+  return gather_floor_contacts(system_, y, floor, options_.restitution, [&](std::size_t i, const contact::GapState& s) {
     const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
-    if (modes_[i] != Mode::held && !fired.count(i) && !closed) continue;
-    contacts.members.push_back(i);
-    contacts.states.push_back(s);
-    contacts.rows.push_back({system_.pair_row(s, c), s.gap_rate_mps, options_.restitution});
-  }
-  return contacts;
+    return modes_[i] == Mode::held || fired.count(i) || closed;
+  });
 }
 
-std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, int floor, FloorContacts& contacts,
+std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorContacts& contacts,
                                                contact::ImpulseSolution& solution) const {
   // First the impact law with restitution k. A contact that then separates slower than the hold
   // velocity is held if the force holding it is compressive; held contacts are solved again
   // with k = 0 so they stay exactly closed. Repeats until the held set no longer changes.
-  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(floor);
-  const contact::Vector6d v_before = system_.pair_velocities(y, floor);
   const std::size_t n = contacts.members.size();
   std::vector<bool> holding(n, false);
   VectorXd y_after = y;
   for (std::size_t pass = 0; pass <= n; ++pass) {
     for (std::size_t k = 0; k < n; ++k) contacts.rows[k].restitution = holding[k] ? 0.0 : options_.restitution;
-    solution = contact::solve_impulses(contacts.rows, inverse_mass);
     y_after = y;
-    system_.add_pair_velocities(y_after, floor, solution.velocity_change);
-    const contact::Vector6d v_after = v_before + solution.velocity_change;
+    solution = apply_impulses(system_, y_after, contacts);
+    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.floor);
 
     std::vector<std::size_t> trial;  // held elsewhere, plus this floor's slow separations
     for (std::size_t i : held_) {
-      if (system_.candidates()[i].floor != floor) trial.push_back(i);
+      if (system_.candidates()[i].floor != contacts.floor) trial.push_back(i);
     }
     const std::size_t others = trial.size();
     std::vector<std::size_t> slow;
@@ -350,40 +334,12 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, int floor,
 
 void EventDrivenRun::resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired) {
   FloorContacts contacts = floor_contacts(y, floor, fired);
-  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(floor);
-  const double energy_before = contact::kinetic_energy(system_.pair_velocities(y, floor), inverse_mass);
+  const VectorXd y_before = y;
   contact::ImpulseSolution solution;
-  const std::vector<bool> holding = settle_floor(t, y, floor, contacts, solution);
-  const contact::Vector6d v_after = system_.pair_velocities(y, floor);
-  recorder_.add_impact_loss(energy_before - contact::kinetic_energy(v_after, inverse_mass));
-
+  const std::vector<bool> holding = settle_floor(t, y, contacts, solution);
+  recorder_.add_impact_loss(record_floor_outcome(system_, t, contacts, solution, y_before, y, fired, holding, result_));
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
-    const contact::Candidate& c = system_.candidates()[i];
-    const contact::GapState& s = contacts.states[k];
-    const double impulse = solution.impulses_kNs[k];
-    const double rate_before = contacts.rows[k].gap_rate_mps;
-    const double rate_after = contacts.rows[k].jacobian.dot(v_after);
-    if (impulse > 0.0 && rate_before < 0.0) {
-      ImpactRecord r;
-      r.t_s = t;
-      r.floor = floor;
-      r.striking_building = c.striking_building + 1;
-      r.vertex = c.vertex_index + 1;
-      r.struck_edge = c.edge_index + 1;
-      r.candidate = i;
-      r.vertex_rest = c.vertex_rest;
-      r.point = s.contact_point;
-      r.approach_velocity_mps = -rate_before;
-      r.separation_velocity_mps = rate_after;
-      r.impulse_kNs = impulse;
-      r.energy_lost_kJ = -impulse * (rate_before + rate_after) / 2.0;  // sums to the pair's loss
-      r.starts_hold = holding[k];
-      result_.impacts.push_back(r);
-    } else if (fired.count(i)) {
-      result_.touches.push_back({t, floor, c.striking_building + 1, c.vertex_index + 1, i, s.contact_point,
-                                 rate_before, s.gap_m});
-    }
     if (holding[k]) {
       hold(i, t);
     } else if (modes_[i] == Mode::held) {

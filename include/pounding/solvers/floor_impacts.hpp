@@ -1,0 +1,39 @@
+#pragma once
+// The impact step every solution path shares: gather the contacts of one floor pair, solve their
+// impulses together (the LCP of contact/impact.hpp), apply them, and record what happened.
+
+#include <functional>
+#include <set>
+#include <vector>
+
+#include "pounding/contact/impact.hpp"
+#include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::solvers {
+
+struct FloorContacts {
+  int floor = 0;
+  std::vector<std::size_t> members;          // candidate indices
+  std::vector<contact::GapState> states;     // at the impact instant
+  std::vector<contact::ContactRow> rows;     // impact-law rows (restitution per contact)
+};
+
+/// The candidates of `floor` for which take(index, state) holds, with restitution k each.
+FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int floor,
+                                    double restitution,
+                                    const std::function<bool(std::size_t, const contact::GapState&)>& take);
+
+/// Solves the floor's impulses together and adds the velocity change to y.
+contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
+                                        const FloorContacts& contacts);
+
+/// Appends an impact record for each member that took an impulse while approaching, and a touch
+/// record for each member in `touched` that did not. `holds[k]`: member k then went into
+/// sustained contact (empty: none did). Returns the floor pair's kinetic energy lost (kJ).
+double record_floor_outcome(const dynamics::CoupledSystem& system, double t, const FloorContacts& contacts,
+                            const contact::ImpulseSolution& solution, const dynamics::VectorXd& y_before,
+                            const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
+                            const std::vector<bool>& holds, RunResult& result);
+
+}  // namespace pounding::solvers

@@ -1,0 +1,68 @@
+#include "pounding/solvers/floor_impacts.hpp"
+
+namespace pounding::solvers {
+
+FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int floor,
+                                    double restitution,
+                                    const std::function<bool(std::size_t, const contact::GapState&)>& take) {
+  FloorContacts contacts;
+  contacts.floor = floor;
+  for (std::size_t i = 0; i < system.candidates().size(); ++i) {
+    const contact::Candidate& c = system.candidates()[i];
+    if (c.floor != floor) continue;
+    const contact::GapState s = system.gap(y, i);
+    if (!take(i, s)) continue;
+    contacts.members.push_back(i);
+    contacts.states.push_back(s);
+    contacts.rows.push_back({system.pair_row(s, c), s.gap_rate_mps, restitution});
+  }
+  return contacts;
+}
+
+contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
+                                        const FloorContacts& contacts) {
+  contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.floor));
+  system.add_pair_velocities(y, contacts.floor, solution.velocity_change);
+  return solution;
+}
+
+double record_floor_outcome(const dynamics::CoupledSystem& system, double t, const FloorContacts& contacts,
+                            const contact::ImpulseSolution& solution, const dynamics::VectorXd& y_before,
+                            const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
+                            const std::vector<bool>& holds, RunResult& result) {
+  const int floor = contacts.floor;
+  const contact::Vector6d v_after = system.pair_velocities(y_after, floor);
+  for (std::size_t k = 0; k < contacts.members.size(); ++k) {
+    const std::size_t i = contacts.members[k];
+    const contact::Candidate& c = system.candidates()[i];
+    const contact::GapState& s = contacts.states[k];
+    const double impulse = solution.impulses_kNs[k];
+    const double rate_before = contacts.rows[k].gap_rate_mps;
+    const double rate_after = contacts.rows[k].jacobian.dot(v_after);
+    if (impulse > 0.0 && rate_before < 0.0) {
+      ImpactRecord r;
+      r.t_s = t;
+      r.floor = floor;
+      r.striking_building = c.striking_building + 1;
+      r.vertex = c.vertex_index + 1;
+      r.struck_edge = c.edge_index + 1;
+      r.candidate = i;
+      r.vertex_rest = c.vertex_rest;
+      r.point = s.contact_point;
+      r.approach_velocity_mps = -rate_before;
+      r.separation_velocity_mps = rate_after;
+      r.impulse_kNs = impulse;
+      r.energy_lost_kJ = -impulse * (rate_before + rate_after) / 2.0;  // the shares sum to the pair's loss
+      r.starts_hold = !holds.empty() && holds[k];
+      result.impacts.push_back(r);
+    } else if (touched.count(i)) {
+      result.touches.push_back({t, floor, c.striking_building + 1, c.vertex_index + 1, i, s.contact_point,
+                                rate_before, s.gap_m});
+    }
+  }
+  const contact::Vector6d inverse_mass = system.pair_inverse_mass(floor);
+  return contact::kinetic_energy(system.pair_velocities(y_before, floor), inverse_mass) -
+         contact::kinetic_energy(v_after, inverse_mass);
+}
+
+}  // namespace pounding::solvers
