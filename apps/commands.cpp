@@ -53,9 +53,13 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
 
 void print_run_summary(const analysis::RunReport& report, const std::string& folder) {
   const solvers::RunResult& r = report.result;
-  fmt::print("Run '{}' with {} (rtol {}, atol {}), gap {} m, k = {}: {}{}\n", report.scene, r.method,
-             report.solver.rtol, report.solver.atol, report.gap_m, report.restitution, solvers::to_string(r.status),
-             r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
+  const auto& solver = report.solver;
+  const std::string settings = r.method == "hht"
+      ? fmt::format("dt {} s, alpha {}, contact tolerance {} m, event location {}", solver.dt_s, solver.alpha,
+                    solver.contact_tolerance_m, solver.event_location)
+      : fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
+  fmt::print("Run '{}' with {} ({}), gap {} m, k = {}: {}{}\n", report.scene, r.method, settings, report.gap_m,
+             report.restitution, solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
   std::map<int, int> by_floor;
   for (const auto& i : r.impacts) ++by_floor[i.floor];
   fmt::print("Impacts: {}", r.impacts.size());
@@ -85,28 +89,56 @@ void print_run_summary(const analysis::RunReport& report, const std::string& fol
              e.input_kJ, e.damping_kJ, e.impact_loss_kJ, e.residual_kJ(),
              e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
   const auto& s = r.statistics;
-  fmt::print("Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
-             s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
+  if (r.method == "hht") {
+    fmt::print("Solver: {} steps ({} solves), {} factorisations, {} halvings, smallest step {:.3e} s, {} unresolved; "
+               "run time {:.3f} s\n", s.steps, s.rhs_evaluations, s.jacobian_evaluations, s.halvings,
+               s.smallest_step_s, s.unresolved_contacts, s.wall_time_s);
+  } else {
+    fmt::print("Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
+               s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
+  }
   fmt::print("Wrote {}/summary.json, impacts.csv, history.csv\n", folder);
 }
 
 }  // namespace
 
+/// The command-line options of `run` replace their scene keys.
+void apply_run_options(const RunCommand& command, analysis::SolverSettings& solver) {
+  if (command.method) solver.method = *command.method;
+  if (command.order) solver.order = *command.order;
+  if (command.rtol) solver.rtol = *command.rtol;
+  if (command.atol) solver.atol = *command.atol;
+  if (command.dt_s) solver.dt_s = *command.dt_s;
+  if (command.alpha) solver.alpha = *command.alpha;
+  if (command.contact_tolerance_m) solver.contact_tolerance_m = *command.contact_tolerance_m;
+  if (command.max_halvings) solver.max_halvings = *command.max_halvings;
+  if (command.event_location) solver.event_location = *command.event_location;
+  if (command.halving) {
+    if (*command.halving != "on" && *command.halving != "off") {
+      throw InputError("--halving", *command.halving, "expected on or off");
+    }
+    if (*command.halving == "off") solver.event_location = "end-of-step";
+  }
+}
+
+/// The option that sets a [solver] key, for error messages about a value given on the command line.
+std::string option_for(const std::string& key) {
+  static const std::map<std::string, std::string> kOptions = {
+      {"solver.method", "--method"}, {"solver.order", "--order"}, {"solver.rtol", "--rtol"},
+      {"solver.atol", "--atol"}, {"solver.dt_s", "--dt"}, {"solver.alpha", "--alpha"},
+      {"solver.contact_tolerance_m", "--contact-tol"}, {"solver.max_halvings", "--max-halvings"},
+      {"solver.event_location", "--event-location"}};
+  const auto found = kOptions.find(key);
+  return found != kOptions.end() ? found->second : key;
+}
+
 int run_run(const RunCommand& command) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
-  if (command.method) scene.solver.method = *command.method;
-  if (command.order) scene.solver.order = *command.order;
-  if (command.rtol) scene.solver.rtol = *command.rtol;
-  if (command.atol) scene.solver.atol = *command.atol;
+  apply_run_options(command, scene.solver);
   try {
     scene.validate();
   } catch (const InputError& error) {
-    const std::string& key = error.key();
-    const std::string option = key == "solver.method" ? "--method"
-                               : key == "solver.order" ? "--order"
-                               : key == "solver.rtol"  ? "--rtol"
-                                                       : "--atol";
-    throw InputError(option, error.value(), error.reason(), command.scene);
+    throw InputError(option_for(error.key()), error.value(), error.reason(), command.scene);
   }
   const analysis::RunReport report = analysis::run_scene(scene);
   const std::string folder = command.out_dir.empty() ? "out/" + scene.name : command.out_dir;

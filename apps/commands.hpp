@@ -27,6 +27,12 @@ struct RunCommand {
   std::optional<int> order;
   std::optional<double> rtol;
   std::optional<double> atol;
+  std::optional<double> dt_s;
+  std::optional<double> alpha;
+  std::optional<double> contact_tolerance_m;
+  std::optional<int> max_halvings;
+  std::optional<std::string> halving;         // on | off
+  std::optional<std::string> event_location;  // halving | interpolate
   std::string out_dir;  // empty: out/<scene name>
 };
 

@@ -37,10 +37,16 @@ int main(int argc, char** argv) {
   add_scene_argument(*run_app, run.scene);
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
-  run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk or arkode-dirk");
+  run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk, arkode-dirk or hht");
   run_app->add_option("--order", run.order, "ARKODE table order: erk 5 (default) or 8, dirk 4 (default) or 3");
   run_app->add_option("--rtol", run.rtol, "Relative tolerance (default 1e-8)");
   run_app->add_option("--atol", run.atol, "Absolute tolerance, m and rad (default 1e-10)");
+  run_app->add_option("--dt", run.dt_s, "hht: time step in s (default 0.05, as published)");
+  run_app->add_option("--alpha", run.alpha, "hht: alpha in [-1/3, 0] (default -0.05)");
+  run_app->add_option("--contact-tol", run.contact_tolerance_m, "hht: contact tolerance in m (default 1e-4)");
+  run_app->add_option("--max-halvings", run.max_halvings, "hht: deepest step halving (default 30)");
+  run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
+  run_app->add_option("--event-location", run.event_location, "hht: halving (default) or interpolate (Hermite root)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
 
   try {

@@ -5,6 +5,7 @@
 #include "pounding/input_error.hpp"
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
+#include "pounding/solvers/hht.hpp"
 #include "pounding/solvers/event_driven.hpp"
 
 namespace pounding::analysis {
@@ -29,6 +30,22 @@ dynamics::CoupledSystem build_system(const Scene& scene) {
                                  scene_candidates(scene));
 }
 
+solvers::HhtOptions hht_options(const Scene& scene) {
+  solvers::HhtOptions options;
+  options.dt_s = scene.solver.dt_s;
+  options.alpha = scene.solver.alpha;
+  options.contact_tolerance_m = scene.solver.contact_tolerance_m;
+  options.max_halvings = scene.solver.max_halvings;
+  const std::string& location = scene.solver.event_location;
+  options.location = location == "end-of-step"   ? solvers::HhtEventLocation::end_of_step
+                     : location == "interpolate" ? solvers::HhtEventLocation::interpolate
+                                                 : solvers::HhtEventLocation::halving;
+  options.restitution = scene.contact.restitution;
+  options.history_floors = scene.output.history_floors;
+  options.history_interval_s = scene.output.history_interval_s;
+  return options;
+}
+
 RunReport run_scene(const Scene& scene) {
   const dynamics::CoupledSystem system = build_system(scene);
   solvers::EventOptions options;
@@ -37,9 +54,14 @@ RunReport run_scene(const Scene& scene) {
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
 
-  return {scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
-          scene.contact.hold_velocity_mps, system.candidates(),
-          solvers::run_event_driven(system, options, integrator_factory(scene.solver), scene.solver.method)};
+  RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
+                   scene.contact.hold_velocity_mps, system.candidates(), {}};
+  if (scene.solver.method == "hht") {
+    report.result = solvers::run_hht(system, hht_options(scene), "hht");
+  } else {
+    report.result = solvers::run_event_driven(system, options, integrator_factory(scene.solver), scene.solver.method);
+  }
+  return report;
 }
 
 solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {

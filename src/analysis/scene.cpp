@@ -29,10 +29,10 @@ void validate_contact(const ContactSettings& contact) {
 }
 
 void validate_solver(const SolverSettings& solver) {
-  static const std::set<std::string> kMethods = {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk"};
+  static const std::set<std::string> kMethods = {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "hht"};
   if (!kMethods.count(solver.method)) {
     throw InputError("solver.method", "\"" + solver.method + "\"",
-                     "expected cvode-bdf, cvode-adams, arkode-erk or arkode-dirk");
+                     "expected cvode-bdf, cvode-adams, arkode-erk, arkode-dirk or hht");
   }
   const bool order_ok = solver.order == 0 || (solver.method == "arkode-erk" && (solver.order == 5 || solver.order == 8)) ||
                         (solver.method == "arkode-dirk" && (solver.order == 3 || solver.order == 4));
@@ -45,6 +45,23 @@ void validate_solver(const SolverSettings& solver) {
   }
   if (!(solver.atol > 0.0) || !std::isfinite(solver.atol)) {
     throw InputError("solver.atol", format_value(solver.atol), "must be positive");
+  }
+  if (!(solver.dt_s > 0.0) || !std::isfinite(solver.dt_s)) {
+    throw InputError("solver.dt_s", format_value(solver.dt_s), "the time step must be positive (s)");
+  }
+  if (!(solver.alpha >= -1.0 / 3.0 && solver.alpha <= 0.0)) {
+    throw InputError("solver.alpha", format_value(solver.alpha), "must lie in [-1/3, 0]");
+  }
+  if (!(solver.contact_tolerance_m > 0.0) || !std::isfinite(solver.contact_tolerance_m)) {
+    throw InputError("solver.contact_tolerance_m", format_value(solver.contact_tolerance_m), "must be positive (m)");
+  }
+  if (solver.max_halvings < 0 || solver.max_halvings > 60) {
+    throw InputError("solver.max_halvings", std::to_string(solver.max_halvings), "must lie in 0..60");
+  }
+  if (solver.event_location != "halving" && solver.event_location != "end-of-step" &&
+      solver.event_location != "interpolate") {
+    throw InputError("solver.event_location", "\"" + solver.event_location + "\"",
+                     "expected halving, end-of-step or interpolate");
   }
   if (solver.newton != "reduced" && solver.newton != "dense") {
     throw InputError("solver.newton", "\"" + solver.newton + "\"", "expected reduced or dense");

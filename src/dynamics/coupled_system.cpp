@@ -39,6 +39,10 @@ void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) 
   y_dot.tail(dof_) -= influence_ * ground_motion_.accel_at(t);
 }
 
+void CoupledSystem::external_force(double t, Eigen::Ref<VectorXd> force) const {
+  force = -ground_motion_.accel_at(t) * mass_.cwiseProduct(influence_);
+}
+
 contact::SlabMotion CoupledSystem::slab(ConstVectorRef y, int building, int floor) const {
   const int i = floor_index(building, floor);
   return {buildings_[building].definition.centre_of_mass, y.segment<3>(i), y.segment<3>(dof_ + i)};

@@ -84,6 +84,9 @@ json statistics_json(const solvers::SolverStatistics& s) {
           {"events", s.events},
           {"interpolant_events", s.interpolant_events},
           {"off_segment_crossings", s.off_segment_crossings},
+          {"halvings", s.halvings},
+          {"smallest_step_s", s.smallest_step_s},
+          {"unresolved_contacts", s.unresolved_contacts},
           {"wall_time_s", s.wall_time_s}};
 }
 
@@ -133,13 +136,18 @@ json run_json(const analysis::RunReport& report) {
                          {"start_s", s.start_s}, {"release_s", s.release_s}, {"release_reason", s.release_reason},
                          {"max_force_kN", s.max_force_kN}, {"max_gap_drift_m", s.max_gap_drift_m}});
   }
+  json settings = {{"rtol", report.solver.rtol}, {"atol", report.solver.atol}, {"newton", report.solver.newton},
+                   {"order", report.solver.order}, {"hold_velocity_mps", report.hold_velocity_mps}};
+  if (r.method == "hht") {
+    settings = {{"dt_s", report.solver.dt_s}, {"alpha", report.solver.alpha},
+                {"contact_tolerance_m", report.solver.contact_tolerance_m},
+                {"max_halvings", report.solver.max_halvings}, {"event_location", report.solver.event_location}};
+  }
   return {{"scene", report.scene},
           {"method", r.method},
+          {"settings", settings},
           {"gap_m", report.gap_m},
           {"restitution", report.restitution},
-          {"rtol", report.solver.rtol},
-          {"atol", report.solver.atol},
-          {"hold_velocity_mps", report.hold_velocity_mps},
           {"status", solvers::to_string(r.status)},
           {"status_detail", r.status_detail},
           {"start_s", r.start_s},

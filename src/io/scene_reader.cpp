@@ -333,6 +333,11 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   solver.rtol = table->number_or("rtol", solver.rtol);
   solver.atol = table->number_or("atol", solver.atol);
   solver.newton = table->optional_string("newton").value_or(solver.newton);
+  solver.dt_s = table->number_or("dt_s", solver.dt_s);
+  solver.alpha = table->number_or("alpha", solver.alpha);
+  solver.contact_tolerance_m = table->number_or("contact_tolerance_m", solver.contact_tolerance_m);
+  solver.max_halvings = table->optional_integer("max_halvings").value_or(solver.max_halvings);
+  solver.event_location = table->optional_string("event_location").value_or(solver.event_location);
   table->finish();
   return solver;
 }

@@ -39,6 +39,15 @@ PY
   || fail "plot_run.py exited $?"
 [ "$(stat -c %s "$work/plot.png" 2>/dev/null || echo 0)" -gt 20000 ] || fail "plot.png missing or empty"
 
+for method in cvode-adams arkode-erk arkode-dirk hht; do
+  "$pounding" run "$scene" --method "$method" --out "$work/$method" > "$work/$method.txt" || fail "--method $method exited $?"
+  /usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['method']==sys.argv[2] and s['impact_count']>0, s['method']" \
+    "$work/$method/summary.json" "$method" || fail "--method $method summary"
+done
+"$pounding" run "$scene" --method hht --dt 0.01 --halving off --out "$work/naive" > /dev/null || fail "--halving off exited $?"
+/usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['settings']['event_location']=='end-of-step' and s['settings']['dt_s']==0.01 and s['statistics']['halvings']==0" \
+  "$work/naive/summary.json" || fail "--halving off settings"
+
 expect_refusal() {  # expected text, then the command's arguments
   local expected=$1; shift
   "$pounding" "$@" > "$work/out.txt" 2> "$work/err.txt"
@@ -52,6 +61,9 @@ expect_refusal "--restitution = 1.5" run "$scene" --restitution 1.5 --out "$work
 expect_refusal "--method" run "$scene" --method euler --out "$work/bad"
 expect_refusal "--rtol = 0" run "$scene" --rtol 0 --out "$work/bad"
 expect_refusal "no such scene file" run "$work/none.toml"
+expect_refusal "--dt = 0: the time step must be positive" run "$scene" --method hht --dt 0 --out "$work/bad"
+expect_refusal "--alpha = -0.5" run "$scene" --method hht --alpha -0.5 --out "$work/bad"
+expect_refusal "--halving" run "$scene" --method hht --halving sometimes --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"

@@ -8,6 +8,7 @@
 #include "pounding/contact/candidates.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/hht.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::analysis {
@@ -21,6 +22,9 @@ dynamics::CoupledSystem build_system(const Scene& scene);
 
 /// The event-driven integrator that `solver` names (CVODE or ARKODE).
 solvers::IntegratorFactory integrator_factory(const SolverSettings& solver);
+
+/// The HHT-α options that scene.solver and scene.output describe.
+solvers::HhtOptions hht_options(const Scene& scene);
 
 /// A run together with what it was run on, for writers and printers.
 struct RunReport {

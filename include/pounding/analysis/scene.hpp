@@ -22,11 +22,17 @@ struct ContactSettings {
 
 /// Time integration of `pounding run`.
 struct SolverSettings {
-  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams | arkode-erk | arkode-dirk
+  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams | arkode-erk | arkode-dirk | hht
   int order = 0;                     // ARKODE table order (erk: 5 or 8; dirk: 4 or 3); 0 = default
   double rtol = 1e-8;
   double atol = 1e-10;               // m, rad (and their rates)
   std::string newton = "reduced";    // reduced (n×n structural system) | dense (2n×2n LU)
+  // HHT-α (method "hht"):
+  double dt_s = 0.05;                      // fixed step (s), the published value
+  double alpha = -0.05;                    // in [−1/3, 0]
+  double contact_tolerance_m = 1e-4;       // |g| that counts as contact
+  int max_halvings = 30;
+  std::string event_location = "halving";  // halving | end-of-step | interpolate
 };
 
 /// What `pounding run` writes to history.csv.

@@ -34,6 +34,11 @@ class CoupledSystem {
   const excitation::GroundMotion& ground_motion() const { return ground_motion_; }
   const std::vector<contact::Candidate>& candidates() const { return candidates_; }
   const VectorXd& mass_diagonal() const { return mass_; }
+  const MatrixXd& stiffness() const { return stiffness_; }  // block-diagonal K (kN/m, kN, kN·m)
+  const MatrixXd& damping() const { return damping_; }      // block-diagonal C
+
+  /// The ground motion's effective force f(t) = −M r a_g(t) (kN, kN·m).
+  void external_force(double t, Eigen::Ref<VectorXd> force) const;
 
   /// Free motion (no contact): ẏ = A y + B a_g(t).
   void rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) const;

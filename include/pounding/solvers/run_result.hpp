@@ -102,6 +102,9 @@ struct SolverStatistics {
   long events = 0;              // root returns handled (impacts, touches, releases, ...)
   long interpolant_events = 0;  // contacts found inside a step from the interpolant (grazing)
   long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
+  long halvings = 0;               // HHT: step halvings on overlap
+  double smallest_step_s = 0.0;    // HHT: the smallest step taken
+  long unresolved_contacts = 0;    // HHT: overlaps still beyond the tolerance at max_halvings
   double wall_time_s = 0.0;
 };
 
