@@ -48,6 +48,15 @@ done
 /usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['settings']['event_location']=='end-of-step' and s['settings']['dt_s']==0.01 and s['statistics']['halvings']==0" \
   "$work/naive/summary.json" || fail "--halving off settings"
 
+/usr/bin/python3 "$source_dir/tools/compare_runs.py" "$work/d20" "$work/d20" --json "$work/same.json" > /dev/null \
+  || fail "compare_runs.py exited $?"
+/usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['only_in_a']==d['only_in_b']==0 and d['max_impact_time_difference_s']==0 and all(v['value']==0 for v in d['history_max_difference'].values())" \
+  "$work/same.json" || fail "a run compared with itself differs"
+/usr/bin/python3 "$source_dir/tools/compare_runs.py" "$work/d20" "$work/hht" --json "$work/diff.json" > /dev/null \
+  || fail "compare_runs.py cvode vs hht exited $?"
+/usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['matched']>0 and 0<d['max_impact_time_difference_s']<0.05" \
+  "$work/diff.json" || fail "cvode vs hht comparison"
+
 expect_refusal() {  # expected text, then the command's arguments
   local expected=$1; shift
   "$pounding" "$@" > "$work/out.txt" 2> "$work/err.txt"
