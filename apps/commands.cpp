@@ -54,10 +54,11 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
 void print_run_summary(const analysis::RunReport& report, const std::string& folder) {
   const solvers::RunResult& r = report.result;
   const auto& solver = report.solver;
-  const std::string settings = r.method == "hht"
-      ? fmt::format("dt {} s, alpha {}, contact tolerance {} m, event location {}", solver.dt_s, solver.alpha,
-                    solver.contact_tolerance_m, solver.event_location)
-      : fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
+  const std::string settings =
+      r.method == "hht"     ? fmt::format("dt {} s, alpha {}, contact tolerance {} m, event location {}", solver.dt_s,
+                                          solver.alpha, solver.contact_tolerance_m, solver.event_location)
+      : r.method == "exact" ? fmt::format("hold linearisation {}", solver.hold_linearization)
+                            : fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
   fmt::print("Run '{}' with {} ({}), gap {} m, k = {}: {}{}\n", report.scene, r.method, settings, report.gap_m,
              report.restitution, solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
   std::map<int, int> by_floor;
@@ -113,6 +114,7 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
   if (command.contact_tolerance_m) solver.contact_tolerance_m = *command.contact_tolerance_m;
   if (command.max_halvings) solver.max_halvings = *command.max_halvings;
   if (command.event_location) solver.event_location = *command.event_location;
+  if (command.hold_linearization) solver.hold_linearization = *command.hold_linearization;
   if (command.halving) {
     if (*command.halving != "on" && *command.halving != "off") {
       throw InputError("--halving", *command.halving, "expected on or off");
@@ -127,7 +129,7 @@ std::string option_for(const std::string& key) {
       {"solver.method", "--method"}, {"solver.order", "--order"}, {"solver.rtol", "--rtol"},
       {"solver.atol", "--atol"}, {"solver.dt_s", "--dt"}, {"solver.alpha", "--alpha"},
       {"solver.contact_tolerance_m", "--contact-tol"}, {"solver.max_halvings", "--max-halvings"},
-      {"solver.event_location", "--event-location"}};
+      {"solver.event_location", "--event-location"}, {"solver.hold_linearization", "--hold-linearization"}};
   const auto found = kOptions.find(key);
   return found != kOptions.end() ? found->second : key;
 }

@@ -33,6 +33,7 @@ struct RunCommand {
   std::optional<int> max_halvings;
   std::optional<std::string> halving;         // on | off
   std::optional<std::string> event_location;  // halving | interpolate
+  std::optional<std::string> hold_linearization;  // every-step | once
   std::string out_dir;  // empty: out/<scene name>
 };
 

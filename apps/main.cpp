@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   add_scene_argument(*run_app, run.scene);
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
-  run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk, arkode-dirk or hht");
+  run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk, arkode-dirk, hht or exact");
   run_app->add_option("--order", run.order, "ARKODE table order: erk 5 (default) or 8, dirk 4 (default) or 3");
   run_app->add_option("--rtol", run.rtol, "Relative tolerance (default 1e-8)");
   run_app->add_option("--atol", run.atol, "Absolute tolerance, m and rad (default 1e-10)");
@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
   run_app->add_option("--max-halvings", run.max_halvings, "hht: deepest step halving (default 30)");
   run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
   run_app->add_option("--event-location", run.event_location, "hht: halving (default) or interpolate (Hermite root)");
+  run_app->add_option("--hold-linearization", run.hold_linearization,
+                      "exact: linearise a held contact at every step (every-step, default) or once");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
 
   try {

@@ -5,10 +5,15 @@
 #include "pounding/input_error.hpp"
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
+#include "pounding/solvers/exact_integrator.hpp"
 #include "pounding/solvers/hht.hpp"
 #include "pounding/solvers/event_driven.hpp"
 
 namespace pounding::analysis {
+
+namespace {
+constexpr double kExactSubdivisionsPerPeriod = 16.0;
+}  // namespace
 
 std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
   contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
@@ -56,6 +61,10 @@ RunReport run_scene(const Scene& scene) {
 
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
                    scene.contact.hold_velocity_mps, system.candidates(), {}};
+  if (scene.solver.method == "exact") {
+    // Bracket roots on a subdivision fine against the shortest natural period.
+    options.max_step_s = solvers::shortest_period_s(system) / kExactSubdivisionsPerPeriod;
+  }
   if (scene.solver.method == "hht") {
     report.result = solvers::run_hht(system, hht_options(scene), "hht");
   } else {
@@ -65,6 +74,12 @@ RunReport run_scene(const Scene& scene) {
 }
 
 solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
+  if (solver.method == "exact") {
+    const bool relinearize = solver.hold_linearization == "every-step";
+    return [relinearize](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+      return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, relinearize);
+    };
+  }
   if (solver.method.starts_with("arkode")) {
     solvers::ArkodeSettings settings;
     settings.method = solver.method == "arkode-erk" ? solvers::ArkodeMethod::erk : solvers::ArkodeMethod::dirk;

@@ -29,10 +29,10 @@ void validate_contact(const ContactSettings& contact) {
 }
 
 void validate_solver(const SolverSettings& solver) {
-  static const std::set<std::string> kMethods = {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "hht"};
+  static const std::set<std::string> kMethods = {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "hht", "exact"};
   if (!kMethods.count(solver.method)) {
     throw InputError("solver.method", "\"" + solver.method + "\"",
-                     "expected cvode-bdf, cvode-adams, arkode-erk, arkode-dirk or hht");
+                     "expected cvode-bdf, cvode-adams, arkode-erk, arkode-dirk, hht or exact");
   }
   const bool order_ok = solver.order == 0 || (solver.method == "arkode-erk" && (solver.order == 5 || solver.order == 8)) ||
                         (solver.method == "arkode-dirk" && (solver.order == 3 || solver.order == 4));
@@ -62,6 +62,9 @@ void validate_solver(const SolverSettings& solver) {
       solver.event_location != "interpolate") {
     throw InputError("solver.event_location", "\"" + solver.event_location + "\"",
                      "expected halving, end-of-step or interpolate");
+  }
+  if (solver.hold_linearization != "every-step" && solver.hold_linearization != "once") {
+    throw InputError("solver.hold_linearization", "\"" + solver.hold_linearization + "\"", "expected every-step or once");
   }
   if (solver.newton != "reduced" && solver.newton != "dense") {
     throw InputError("solver.newton", "\"" + solver.newton + "\"", "expected reduced or dense");

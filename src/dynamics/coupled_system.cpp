@@ -88,8 +88,10 @@ void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::siz
     const contact::GapState s = gap(y, held[r]);
     rows.block<1, 3>(r, floor_index(c.striking_building, c.floor)) = s.striking_row;
     rows.block<1, 3>(r, floor_index(c.struck_building, c.floor)) = s.struck_row;
+    // Drift correction g̈ = −3ġ/τ − 2g/τ²: roots −1/τ and −2/τ, distinct so that the linearised
+    // held system stays diagonalisable (the exact path relies on it).
     constexpr double tau = hold_time_constant_s;
-    bias[r] = s.curvature_mps2 + 2.0 * s.gap_rate_mps / tau + s.gap_m / (tau * tau);
+    bias[r] = s.curvature_mps2 + 3.0 * s.gap_rate_mps / tau + 2.0 * s.gap_m / (tau * tau);
   }
 }
 
@@ -122,8 +124,8 @@ void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std
   jacobian.bottomRows(dof_) -= coupling * a_matrix_.bottomRows(dof_);
   // The Baumgarte terms depend on y through g ≈ G q and ġ = G q̇ (rows frozen at y).
   constexpr double tau = hold_time_constant_s;
-  jacobian.bottomLeftCorner(dof_, dof_) -= coupling / (tau * tau);
-  jacobian.bottomRightCorner(dof_, dof_) -= coupling * (2.0 / tau);
+  jacobian.bottomLeftCorner(dof_, dof_) -= coupling * (2.0 / (tau * tau));
+  jacobian.bottomRightCorner(dof_, dof_) -= coupling * (3.0 / tau);
 }
 
 double CoupledSystem::kinetic_energy(ConstVectorRef y) const {

@@ -138,6 +138,7 @@ json run_json(const analysis::RunReport& report) {
   }
   json settings = {{"rtol", report.solver.rtol}, {"atol", report.solver.atol}, {"newton", report.solver.newton},
                    {"order", report.solver.order}, {"hold_velocity_mps", report.hold_velocity_mps}};
+  if (r.method == "exact") settings = {{"hold_linearization", report.solver.hold_linearization}};
   if (r.method == "hht") {
     settings = {{"dt_s", report.solver.dt_s}, {"alpha", report.solver.alpha},
                 {"contact_tolerance_m", report.solver.contact_tolerance_m},

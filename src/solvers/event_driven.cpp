@@ -11,6 +11,7 @@
 #include "pounding/model/modal.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
 #include "pounding/solvers/recorder.hpp"
+#include "pounding/solvers/root_finding.hpp"
 
 namespace pounding::solvers {
 
@@ -54,31 +55,6 @@ namespace {
 using dynamics::VectorXd;
 
 enum class Mode { armed, masked, held };
-
-/// Illinois (modified regula falsi) on [a, b] with f(a), f(b) of opposite signs. Returns the end
-/// of the final bracket on b's side, so a root of a falling gap comes back with g ≤ 0.
-double find_root(const std::function<double(double)>& f, double a, double b, double fa, double fb) {
-  int side = 0;
-  for (int iteration = 0; iteration < 200; ++iteration) {
-    if (b - a <= 4e-16 * std::max(1.0, std::abs(b))) break;
-    double c = (a * fb - b * fa) / (fb - fa);
-    if (!(c > a && c < b)) c = 0.5 * (a + b);
-    const double fc = f(c);
-    if (fc == 0.0) return c;
-    if ((fc < 0.0) == (fb < 0.0)) {
-      b = c;
-      fb = fc;
-      if (side == -1) fa *= 0.5;
-      side = -1;
-    } else {
-      a = c;
-      fa = fc;
-      if (side == +1) fb *= 0.5;
-      side = +1;
-    }
-  }
-  return b;
-}
 
 class EventDrivenRun final : public OdeFunctions {
  public:
@@ -162,6 +138,7 @@ class EventDrivenRun final : public OdeFunctions {
   void restart(double t, const VectorXd& y);
   void after_step(double t, const VectorXd& y);
   void update_step_bound(double t, const VectorXd& y);
+  void update_hold_records(double t, const VectorXd& y);
   void count_event(double t);
   void set_next_stop(double t);
   void accumulate_counters();
@@ -281,6 +258,7 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
     floors.insert(system_.candidates()[i].floor);
   }
   for (int floor : floors) resolve_floor(t, y, floor, fired);
+  update_hold_records(t, y);  // a hold may end before the next step does
   recorder_.sample(t, y);
 }
 
@@ -435,15 +413,18 @@ void EventDrivenRun::after_step(double t, const VectorXd& y) {
   for (std::size_t i = 0; i < count_; ++i) {
     if (modes_[i] == Mode::masked && system_.gap(y, i).gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
   }
-  if (!held_.empty()) {
-    const VectorXd forces = hold_forces(t, y);
-    for (std::size_t r = 0; r < held_.size(); ++r) {
-      SustainedContactRecord& record = result_.sustained_contacts[hold_record_[held_[r]]];
-      record.max_force_kN = std::max(record.max_force_kN, forces[r]);
-      record.max_gap_drift_m = std::max(record.max_gap_drift_m, std::abs(system_.gap(y, held_[r]).gap_m));
-    }
-  }
+  update_hold_records(t, y);
   update_step_bound(t, y);
+}
+
+void EventDrivenRun::update_hold_records(double t, const VectorXd& y) {
+  if (held_.empty()) return;
+  const VectorXd forces = hold_forces(t, y);
+  for (std::size_t r = 0; r < held_.size(); ++r) {
+    SustainedContactRecord& record = result_.sustained_contacts[hold_record_[held_[r]]];
+    record.max_force_kN = std::max(record.max_force_kN, forces[r]);
+    record.max_gap_drift_m = std::max(record.max_gap_drift_m, std::abs(system_.gap(y, held_[r]).gap_m));
+  }
 }
 
 bool EventDrivenRun::step_once() {

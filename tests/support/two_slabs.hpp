@@ -11,6 +11,7 @@
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/exact_integrator.hpp"
 
 namespace pounding::testing {
 
@@ -49,14 +50,25 @@ inline model::Polygon diamond(double x_left) {
 /// Building 1 on [−10, 0] × [0, 10]; building 2's slab as given; excitation a_g(t) constant
 /// `ground_accel_mps2` along x over [0, duration].
 inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab,
-                                         const SlabSpec& right, double gap_m, double duration_s,
-                                         double ground_accel_mps2 = 0.0) {
+                                         const SlabSpec& right, double gap_m, excitation::GroundMotion motion) {
   const model::Polygon left_slab = box(-10, 0, 0, 10);
   std::array<model::Building, 2> buildings{slab_building("A", left_slab, left), slab_building("B", right_slab, right)};
   contact::PairGeometry geometry{{left_slab, right_slab}, {left_slab.centroid(), right_slab.centroid()}};
   auto candidates = contact::find_candidates(geometry, 1, {.margin_m = 1.0, .gap_m = gap_m});
-  excitation::GroundMotion motion({0.0, duration_s}, {ground_accel_mps2, ground_accel_mps2}, 0.0);
   return dynamics::CoupledSystem(std::move(buildings), std::move(motion), std::move(candidates));
+}
+
+inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab,
+                                         const SlabSpec& right, double gap_m, double duration_s,
+                                         double ground_accel_mps2 = 0.0) {
+  return two_slabs(left, right_slab, right, gap_m,
+                   excitation::GroundMotion({0.0, duration_s}, {ground_accel_mps2, ground_accel_mps2}, 0.0));
+}
+
+inline solvers::IntegratorFactory exact(bool relinearize = true) {
+  return [=](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+    return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, relinearize);
+  };
 }
 
 inline solvers::IntegratorFactory cvode(double rtol, double atol,

@@ -22,11 +22,14 @@ struct ContactSettings {
 
 /// Time integration of `pounding run`.
 struct SolverSettings {
-  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams | arkode-erk | arkode-dirk | hht
+  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams | arkode-erk | arkode-dirk | hht | exact
   int order = 0;                     // ARKODE table order (erk: 5 or 8; dirk: 4 or 3); 0 = default
   double rtol = 1e-8;
   double atol = 1e-10;               // m, rad (and their rates)
   std::string newton = "reduced";    // reduced (n×n structural system) | dense (2n×2n LU)
+  // exact: a held contact's constraint is linearised again at every step ("every-step") or once,
+  // at the contact instant ("once"); free flight is exact either way.
+  std::string hold_linearization = "every-step";
   // HHT-α (method "hht"):
   double dt_s = 0.05;                      // fixed step (s), the published value
   double alpha = -0.05;                    // in [−1/3, 0]

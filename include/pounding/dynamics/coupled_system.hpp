@@ -54,7 +54,7 @@ class CoupledSystem {
   void add_pair_velocities(Eigen::Ref<VectorXd> y, int floor, const contact::Vector6d& change) const;
   contact::Vector6d pair_inverse_mass(int floor) const;
 
-  /// Motion with the contacts `held` kept closed (g̈ = −2ġ/τ − g/τ², a Baumgarte correction with
+  /// Motion with the contacts `held` kept closed (g̈ = −3ġ/τ − 2g/τ², a Baumgarte correction with
   /// τ = `hold_time_constant_s` that stops drift) by normal forces λ (kN, ≥ 0 pushes the slabs
   /// apart). Writes ẏ and λ (one per held contact). Dependent contacts share their force
   /// (least squares).

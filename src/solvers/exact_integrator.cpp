@@ -1,0 +1,145 @@
+#include "pounding/solvers/exact_integrator.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "pounding/solvers/root_finding.hpp"
+
+namespace pounding::solvers {
+namespace {
+
+using Complex = std::complex<double>;
+
+/// φ₁(z) = (eᶻ − 1)/z and φ₂(z) = (eᶻ − 1 − z)/z², by their series where the closed form
+/// would cancel. Returns (φ₁, φ₂); multiply by τ and τ² for the forced response.
+std::pair<Complex, Complex> phi_functions(Complex z) {
+  if (std::abs(z) < 0.1) {
+    // Terms up to z¹⁰ leave a relative error below 1e-16 for |z| < 0.1.
+    Complex phi1 = 0.0, phi2 = 0.0, term = 1.0;  // term = zᵏ / k!
+    for (int k = 0; k <= 12; ++k) {
+      phi1 += term / double(k + 1);
+      phi2 += term / double((k + 1) * (k + 2));
+      term *= z / double(k + 1);
+    }
+    return {phi1, phi2};
+  }
+  const Complex e = std::exp(z);
+  return {(e - 1.0) / z, (e - 1.0 - z) / (z * z)};
+}
+
+}  // namespace
+
+ExactIntegrator::ExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0, bool relinearize)
+    : functions_(functions),
+      relinearize_(relinearize),
+      jacobian_(functions.state_size(), functions.state_size()),
+      jacobian_now_(functions.state_size(), functions.state_size()) {
+  restart(t0, y0);
+}
+
+void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
+  counters_ = {};  // like CVODE's, the counters run from the last restart
+  freeze_phase(t, y);
+  state_ = y;
+  t_s_ = t;
+  segment_ = segment_from(t, inverse_.solve(y.cast<Complex>()), t + max_step_s_);
+  roots_start_ = roots_at(t, y);
+}
+
+void ExactIntegrator::freeze_phase(double t, const Eigen::VectorXd& y) {
+  functions_.jacobian(t, y, jacobian_);
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(jacobian_);
+  if (solver.info() != Eigen::Success) throw std::runtime_error("exact path: eigendecomposition failed");
+  eigenvalues_ = solver.eigenvalues();
+  vectors_ = solver.eigenvectors();
+  inverse_.compute(vectors_);
+  ++counters_.jacobian_evaluations;
+  // A defective (non-diagonalisable) J would make V singular: refuse rather than be inexact.
+  const double residual = (jacobian_.cast<Complex>() * vectors_ - vectors_ * eigenvalues_.asDiagonal()).norm();
+  if (!(residual <= 1e-8 * jacobian_.norm() * vectors_.norm()) || !std::isfinite(inverse_.rcond()) ||
+      inverse_.rcond() < 1e-13) {
+    throw std::runtime_error("exact path: the phase Jacobian is not safely diagonalisable");
+  }
+  y_phase_ = y;
+}
+
+Eigen::VectorXd ExactIntegrator::forcing(double t) {
+  Eigen::VectorXd f(y_phase_.size());
+  functions_.rhs(t, y_phase_, f);
+  ++counters_.rhs_evaluations;
+  return f - jacobian_ * y_phase_;
+}
+
+ExactIntegrator::Segment ExactIntegrator::segment_from(double t, const ComplexVector& eta, double t_end) {
+  // b is linear between record samples and no step crosses one (they are stop times), so two
+  // values inside the step fix it exactly.
+  const Eigen::VectorXd b0 = forcing(t);
+  const double h = std::max(t_end - t, 1e-12);
+  const Eigen::VectorXd b1 = (forcing(t + h) - b0) / h;
+  return {t, eta, inverse_.solve(b0.cast<Complex>()), inverse_.solve(b1.cast<Complex>())};
+}
+
+ExactIntegrator::ComplexVector ExactIntegrator::modal(const Segment& segment, double t) const {
+  const double tau = t - segment.t_start_s;
+  ComplexVector eta(eigenvalues_.size());
+  for (Eigen::Index k = 0; k < eta.size(); ++k) {
+    const Complex z = eigenvalues_[k] * tau;
+    const auto [phi1, phi2] = phi_functions(z);
+    eta[k] = std::exp(z) * segment.eta_start[k] + segment.beta0[k] * phi1 * tau + segment.beta1[k] * phi2 * tau * tau;
+  }
+  return eta;
+}
+
+Eigen::VectorXd ExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
+  Eigen::VectorXd g(functions_.root_count());
+  functions_.roots(t, y, g);
+  ++counters_.root_evaluations;
+  return g;
+}
+
+StepOutcome ExactIntegrator::step(double t_final) {
+  const double t_end = std::min({t_s_ + max_step_s_, stop_time_s_, t_final});
+  ComplexVector eta_start = modal(segment_, t_s_);
+  if (relinearize_) {
+    functions_.jacobian(t_s_, state_, jacobian_now_);
+    if (jacobian_now_ != jacobian_) {  // a held contact: linearise again here
+      freeze_phase(t_s_, state_);
+      eta_start = inverse_.solve(state_.cast<Complex>());
+    }
+  }
+  segment_ = segment_from(t_s_, eta_start, t_end);
+  ++counters_.steps;
+
+  Eigen::VectorXd y_end = physical(modal(segment_, t_end));
+  const Eigen::VectorXd roots_end = roots_at(t_end, y_end);
+  // Closing crossings (+ to − or onto 0), the direction the loop asks for.
+  double t_root = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < roots_end.size(); ++i) {
+    if (!(roots_start_[i] > 0.0 && roots_end[i] <= 0.0)) continue;
+    const double b = find_root([&](double t) { return roots_at(t, physical(modal(segment_, t)))[i]; }, t_s_, t_end,
+                               roots_start_[i], roots_end[i]);
+    t_root = std::min(t_root, b);  // the root function has reached ≤ 0 there
+  }
+
+  roots_found_.assign(roots_end.size(), 0);
+  if (t_root < std::numeric_limits<double>::infinity()) {
+    state_ = physical(modal(segment_, t_root));
+    const Eigen::VectorXd roots_here = roots_at(t_root, state_);
+    for (Eigen::Index i = 0; i < roots_here.size(); ++i) {
+      if (roots_start_[i] > 0.0 && roots_here[i] <= 0.0) roots_found_[i] = -1;
+    }
+    t_s_ = t_root;
+    roots_start_ = roots_here;
+    return {StepKind::root, t_root, {}};
+  }
+  state_ = std::move(y_end);
+  t_s_ = t_end;
+  roots_start_ = roots_end;
+  return {t_end == stop_time_s_ ? StepKind::stop_time : StepKind::step, t_end, {}};
+}
+
+void ExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) { y = physical(modal(segment_, t)); }
+
+}  // namespace pounding::solvers
