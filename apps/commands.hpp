@@ -37,7 +37,16 @@ struct RunCommand {
   std::string out_dir;  // empty: out/<scene name>
 };
 
+struct StudyCommand {
+  std::string scene;
+  std::optional<double> gap_m;
+  int repeat = 3;
+  bool quick = false;   // a short ladder (for smoke tests)
+  std::string out_dir;  // empty: out/<scene name>-study
+};
+
 int run_modes(const ModesCommand& command);
+int run_study(const StudyCommand& command);
 int run_run(const RunCommand& command);
 int run_check(const CheckCommand& command);
 

@@ -51,6 +51,16 @@ int main(int argc, char** argv) {
                       "exact: linearise a held contact at every step (every-step, default) or once");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
 
+  pounding::cli::StudyCommand study;
+  CLI::App* study_app =
+      app.add_subcommand("study", "Error against run time of every solution path, measured against the exact path");
+  add_scene_argument(*study_app, study.scene);
+  study_app->add_option("--gap", study.gap_m, "Clear gap (m); moves building 2 along x");
+  study_app->add_option("--repeat", study.repeat, "Timed runs per setting; the median is reported")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  study_app->add_flag("--quick", study.quick, "A short ladder: rtol 1e-6 and 1e-8, dt 0.05 and 0.01 s");
+  study_app->add_option("--out", study.out_dir, "Output folder (default out/<scene name>-study)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -61,6 +71,7 @@ int main(int argc, char** argv) {
     if (*modes_app) return pounding::cli::run_modes(modes);
     if (*check_app) return pounding::cli::run_check(check);
     if (*run_app) return pounding::cli::run_run(run);
+    if (*study_app) return pounding::cli::run_study(study);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compares two `pounding run` output folders, whatever method made them.
 
-Prints impact-by-impact differences (impacts matched by floor and time, in time order, within
+Prints impact-by-impact differences (impacts matched by contact and time, in time order, within
 --window seconds), the impacts left unmatched on either side, the differences of the floor
 peaks, and the largest difference of the history curves (B interpolated onto A's times).
 
@@ -28,12 +28,14 @@ def load(folder: Path):
 
 
 def match_impacts(a, b, window):
-    """Greedy in time order: each impact of A takes the nearest unused impact of B on its floor."""
+    """Greedy in time order: each impact of A takes the nearest unused impact of B at the same
+    contact (floor, striking building and vertex, struck edge)."""
     used, pairs, unmatched_a = set(), [], []
     for ia in a:
         best = None
         for j, ib in enumerate(b):
-            if j in used or ib["floor"] != ia["floor"]:
+            same_contact = all(ib[k] == ia[k] for k in ("floor", "striking_building", "vertex", "struck_edge"))
+            if j in used or not same_contact:
                 continue
             dt = abs(ib["t_s"] - ia["t_s"])
             if dt <= window and (best is None or dt < best[0]):

@@ -57,6 +57,18 @@ done
 /usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['matched']>0 and 0<d['max_impact_time_difference_s']<0.05" \
   "$work/diff.json" || fail "cvode vs hht comparison"
 
+"$pounding" study "$scene" --quick --repeat 1 --out "$work/study" > "$work/study.txt" || fail "study exited $?"
+/usr/bin/python3 - "$work/study" <<'PY' || fail "study.csv content"
+import csv, sys
+rows = list(csv.DictReader(open(f"{sys.argv[1]}/study.csv")))
+assert len(rows) == 4 * 2 + 3 * 2, len(rows)
+fine = [r for r in rows if r["method"] == "cvode-bdf"]
+assert float(fine[1]["impact_time_error_before_hold_s"]) < float(fine[0]["impact_time_error_before_hold_s"])
+assert all(float(r["run_time_s"]) > 0 for r in rows)
+PY
+/usr/bin/python3 "$source_dir/tools/plot_study.py" "$work/study" > /dev/null || fail "plot_study.py exited $?"
+[ -s "$work/study/work-precision.png" ] || fail "no work-precision.png"
+
 expect_refusal() {  # expected text, then the command's arguments
   local expected=$1; shift
   "$pounding" "$@" > "$work/out.txt" 2> "$work/err.txt"
@@ -73,6 +85,7 @@ expect_refusal "no such scene file" run "$work/none.toml"
 expect_refusal "--dt = 0: the time step must be positive" run "$scene" --method hht --dt 0 --out "$work/bad"
 expect_refusal "--alpha = -0.5" run "$scene" --method hht --alpha -0.5 --out "$work/bad"
 expect_refusal "--halving" run "$scene" --method hht --halving sometimes --out "$work/bad"
+expect_refusal "--repeat" study "$scene" --repeat 0 --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"

@@ -1,0 +1,63 @@
+#pragma once
+// The work–precision study: every solution path over a ladder of settings, each run measured
+// against the exact path (the ground truth of the linear model) and timed.
+
+#include <string>
+#include <vector>
+
+#include "pounding/analysis/scene.hpp"
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::analysis {
+
+struct StudyOptions {
+  int repeat = 3;                                              // timed runs per case (median)
+  std::vector<double> rtols{1e-4, 1e-6, 1e-8, 1e-10, 1e-12};   // event-driven methods
+  std::vector<double> dts_s{0.05, 0.01, 0.002, 0.0005};        // hht variants
+  double match_window_s = 0.05;                                // impacts further apart are not a match
+  /// @throws InputError naming the field.
+  void validate() const;
+};
+
+/// How one run compares with the reference.
+struct RunErrors {
+  std::size_t matched = 0, missing = 0, extra = 0;  // impacts: in both, only in the reference, only here
+  double impact_time_s = 0.0;                       // max |Δt| over matched impacts faster than 1 cm/s
+  double impact_time_all_s = 0.0;                   // max |Δt| over all matched impacts
+  /// max |Δt| over matched impacts before the reference's first sustained contact: there the
+  /// exact path is exact to round-off, so this ranks methods below the reference's hold error.
+  double impact_time_before_hold_s = 0.0;
+  double impulse_relative = 0.0;                    // max |ΔI|/I_ref over matched impacts > 1 cm/s
+  double history_u_m = 0.0, history_v_m = 0.0, history_phi_rad = 0.0;  // max over contact floors
+  double peak_u_m = 0.0, peak_v_m = 0.0, peak_phi_rad = 0.0;           // max over all floors
+};
+
+/// Impacts matched in time order by contact (same candidate: floor, vertex and edge), each to the
+/// nearest unused one within `window_s`;
+/// histories compared at the samples both runs share (the regular grid).
+RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunResult& run, double window_s);
+
+struct StudyRow {
+  std::string method;   // cvode-bdf, ..., hht-halving, hht-end-of-step, hht-interpolate
+  std::string setting;  // "rtol" or "dt_s"
+  double value = 0.0;
+  std::string status;
+  double run_time_s = 0.0;  // median wall time of the solver over the repeats
+  long steps = 0, rhs_evaluations = 0, restarts = 0;
+  std::size_t impacts = 0;
+  RunErrors errors;
+};
+
+struct StudyResult {
+  std::string scene;
+  double gap_m = 0.0;
+  solvers::RunResult reference;   // the exact path
+  double reference_run_time_s = 0.0;
+  std::vector<StudyRow> rows;
+};
+
+/// Runs the study. `progress` is called with each finished row (for printing as it goes).
+StudyResult run_study(const Scene& scene, const StudyOptions& options,
+                      const std::function<void(const StudyRow&)>& progress = {});
+
+}  // namespace pounding::analysis

@@ -1,0 +1,176 @@
+#include "pounding/analysis/study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "pounding/analysis/run_scene.hpp"
+#include "pounding/input_error.hpp"
+
+namespace pounding::analysis {
+namespace {
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// Index of each regular-grid sample of a history (event rows have off-grid times).
+std::map<long, std::size_t> grid_rows(const solvers::History& history, double interval_s) {
+  std::map<long, std::size_t> rows;
+  if (history.time_s.empty()) return rows;
+  const double t0 = history.time_s.front();
+  for (std::size_t r = 0; r < history.time_s.size(); ++r) {
+    const double k = (history.time_s[r] - t0) / interval_s;
+    if (std::abs(k - std::round(k)) < 1e-9) rows.emplace(std::lround(k), r);
+  }
+  return rows;
+}
+
+void compare_histories(const solvers::History& a, const solvers::History& b, RunErrors& errors) {
+  if (a.time_s.size() < 2 || a.columns != b.columns) return;
+  // The regular sampling interval: the smallest positive spacing of the first rows.
+  double interval = a.time_s[1] - a.time_s[0];
+  for (std::size_t r = 2; r < std::min<std::size_t>(a.time_s.size(), 50); ++r) {
+    interval = std::min(interval, a.time_s[r] - a.time_s[r - 1]);
+  }
+  const auto rows_a = grid_rows(a, interval), rows_b = grid_rows(b, interval);
+  for (std::size_t c = 1; c < a.columns.size(); ++c) {
+    const std::string& name = a.columns[c];
+    double* worst = name.ends_with("_u_m") ? &errors.history_u_m
+                    : name.ends_with("_v_m") ? &errors.history_v_m
+                    : name.ends_with("_phi_rad") ? &errors.history_phi_rad
+                                                 : nullptr;
+    if (!worst) continue;
+    for (const auto& [k, ra] : rows_a) {
+      const auto found = rows_b.find(k);
+      if (found == rows_b.end()) continue;
+      *worst = std::max(*worst, std::abs(a.rows[ra][c - 1] - b.rows[found->second][c - 1]));
+    }
+  }
+}
+
+void compare_peaks(const solvers::RunResult& a, const solvers::RunResult& b, RunErrors& errors) {
+  for (std::size_t building = 0; building < std::min(a.peaks.size(), b.peaks.size()); ++building) {
+    const auto& fa = a.peaks[building].floors;
+    const auto& fb = b.peaks[building].floors;
+    for (std::size_t f = 0; f < std::min(fa.size(), fb.size()); ++f) {
+      errors.peak_u_m = std::max(errors.peak_u_m, std::abs(std::abs(fa[f].u_m.value) - std::abs(fb[f].u_m.value)));
+      errors.peak_v_m = std::max(errors.peak_v_m, std::abs(std::abs(fa[f].v_m.value) - std::abs(fb[f].v_m.value)));
+      errors.peak_phi_rad =
+          std::max(errors.peak_phi_rad, std::abs(std::abs(fa[f].phi_rad.value) - std::abs(fb[f].phi_rad.value)));
+    }
+  }
+}
+
+}  // namespace
+
+void StudyOptions::validate() const {
+  if (repeat < 1) throw InputError("--repeat", std::to_string(repeat), "must be at least 1");
+  for (double rtol : rtols) {
+    if (!(rtol > 0.0 && rtol < 1.0)) throw InputError("rtols", format_value(rtol), "must lie in (0, 1)");
+  }
+  for (double dt : dts_s) {
+    if (!(dt > 0.0)) throw InputError("dts_s", format_value(dt), "the time step must be positive (s)");
+  }
+  if (!(match_window_s > 0.0)) throw InputError("match_window_s", format_value(match_window_s), "must be positive (s)");
+}
+
+RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunResult& run, double window_s) {
+  constexpr double kFastImpact_mps = 0.01;  // slower impacts' times are ill-conditioned (gap/speed)
+  RunErrors errors;
+  std::vector<bool> used(run.impacts.size(), false);
+  double first_hold_s = std::numeric_limits<double>::infinity();
+  for (const auto& hold : reference.sustained_contacts) first_hold_s = std::min(first_hold_s, hold.start_s);
+  for (const auto& a : reference.impacts) {
+    std::size_t best = run.impacts.size();
+    double best_dt = window_s;
+    for (std::size_t j = 0; j < run.impacts.size(); ++j) {
+      const double dt = std::abs(run.impacts[j].t_s - a.t_s);
+      if (!used[j] && run.impacts[j].candidate == a.candidate && dt <= best_dt) {
+        best = j;
+        best_dt = dt;
+      }
+    }
+    if (best == run.impacts.size()) {
+      ++errors.missing;
+      continue;
+    }
+    used[best] = true;
+    ++errors.matched;
+    errors.impact_time_all_s = std::max(errors.impact_time_all_s, best_dt);
+    if (a.t_s < first_hold_s) errors.impact_time_before_hold_s = std::max(errors.impact_time_before_hold_s, best_dt);
+    if (a.approach_velocity_mps >= kFastImpact_mps) {
+      errors.impact_time_s = std::max(errors.impact_time_s, best_dt);
+      errors.impulse_relative = std::max(errors.impulse_relative,
+                                         std::abs(run.impacts[best].impulse_kNs - a.impulse_kNs) / a.impulse_kNs);
+    }
+  }
+  errors.extra = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+  compare_histories(reference.history, run.history, errors);
+  compare_peaks(reference, run, errors);
+  return errors;
+}
+
+StudyResult run_study(const Scene& scene, const StudyOptions& options,
+                      const std::function<void(const StudyRow&)>& progress) {
+  options.validate();
+  auto timed = [&](Scene variant, double& run_time_s) {
+    std::vector<double> times;
+    solvers::RunResult result;
+    for (int i = 0; i < options.repeat; ++i) {
+      result = run_scene(variant).result;
+      times.push_back(result.statistics.wall_time_s);
+    }
+    run_time_s = median(times);
+    return result;
+  };
+
+  StudyResult study;
+  study.scene = scene.name;
+  study.gap_m = scene.contact.gap_m;
+  Scene exact = scene;
+  exact.solver.method = "exact";
+  run_scene(exact);  // warm the process up (caches, page faults) before anything is timed
+  study.reference = timed(exact, study.reference_run_time_s);
+
+  auto add = [&](Scene variant, const std::string& label, const std::string& setting, double value) {
+    StudyRow row;
+    row.method = label;
+    row.setting = setting;
+    row.value = value;
+    const solvers::RunResult result = timed(std::move(variant), row.run_time_s);
+    row.status = std::string(solvers::to_string(result.status));
+    row.steps = result.statistics.steps;
+    row.rhs_evaluations = result.statistics.rhs_evaluations;
+    row.restarts = result.statistics.restarts;
+    row.impacts = result.impacts.size();
+    row.errors = compare_runs(study.reference, result, options.match_window_s);
+    if (progress) progress(row);
+    study.rows.push_back(std::move(row));
+  };
+
+  for (const char* method : {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk"}) {
+    for (double rtol : options.rtols) {
+      Scene variant = scene;
+      variant.solver.method = method;
+      variant.solver.rtol = rtol;
+      variant.solver.atol = rtol * 1e-2;  // m, rad: displacements are centimetres to decimetres
+      add(variant, method, "rtol", rtol);
+    }
+  }
+  for (const char* location : {"halving", "end-of-step", "interpolate"}) {
+    for (double dt : options.dts_s) {
+      Scene variant = scene;
+      variant.solver.method = "hht";
+      variant.solver.dt_s = dt;
+      variant.solver.event_location = location;
+      add(variant, std::string("hht-") + location, "dt_s", dt);
+    }
+  }
+  return study;
+}
+
+}  // namespace pounding::analysis

@@ -1,0 +1,57 @@
+#include "pounding/io/study_writer.hpp"
+
+#include <fmt/format.h>
+#include <fstream>
+
+#include "pounding/io/json_report.hpp"
+
+namespace pounding::io {
+namespace {
+
+const char* kCsvHeader =
+    "method,setting,value,status,run_time_s,steps,rhs_evaluations,restarts,impacts,matched,missing,extra,"
+    "impact_time_error_s,impact_time_error_all_s,impact_time_error_before_hold_s,impulse_relative_error,history_u_error_m,history_v_error_m,history_phi_error_rad,"
+    "peak_u_error_m,peak_v_error_m,peak_phi_error_rad\n";
+
+nlohmann::json row_json(const analysis::StudyRow& row) {
+  const analysis::RunErrors& e = row.errors;
+  return {{"method", row.method}, {"setting", row.setting}, {"value", row.value}, {"status", row.status},
+          {"run_time_s", row.run_time_s}, {"steps", row.steps}, {"rhs_evaluations", row.rhs_evaluations},
+          {"restarts", row.restarts}, {"impacts", row.impacts}, {"matched", e.matched}, {"missing", e.missing},
+          {"extra", e.extra}, {"impact_time_error_s", e.impact_time_s},
+          {"impact_time_error_all_s", e.impact_time_all_s},
+          {"impact_time_error_before_hold_s", e.impact_time_before_hold_s},
+          {"impulse_relative_error", e.impulse_relative}, {"history_u_error_m", e.history_u_m},
+          {"history_v_error_m", e.history_v_m}, {"history_phi_error_rad", e.history_phi_rad},
+          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad}};
+}
+
+}  // namespace
+
+nlohmann::json study_json(const analysis::StudyResult& study) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& row : study.rows) rows.push_back(row_json(row));
+  return {{"scene", study.scene},
+          {"gap_m", study.gap_m},
+          {"reference", {{"method", "exact"}, {"impacts", study.reference.impacts.size()},
+                         {"run_time_s", study.reference_run_time_s}}},
+          {"rows", rows}};
+}
+
+void write_study(const analysis::StudyResult& study, const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  write_json(study_json(study), folder / "study.json");
+  std::ofstream out(folder / "study.csv");
+  if (!out) throw std::runtime_error("cannot write " + (folder / "study.csv").string());
+  out << kCsvHeader;
+  for (const auto& row : study.rows) {
+    const analysis::RunErrors& e = row.errors;
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", row.method, row.setting,
+                       row.value, row.status, row.run_time_s, row.steps, row.rhs_evaluations, row.restarts,
+                       row.impacts, e.matched, e.missing, e.extra, e.impact_time_s, e.impact_time_all_s,
+                       e.impact_time_before_hold_s, e.impulse_relative,
+                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad);
+  }
+}
+
+}  // namespace pounding::io
