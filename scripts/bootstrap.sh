@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ make cmake libsundials-dev libeigen3-dev libboost-test-dev libtomlplusplus-dev
-          libcli11-dev nlohmann-json3-dev libfmt-dev python3-matplotlib)
+          libcli11-dev nlohmann-json3-dev libfmt-dev python3-matplotlib libbenchmark-dev)
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")

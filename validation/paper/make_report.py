@@ -1,0 +1,180 @@
+#!/usr/bin/python3
+"""Regenerates validation/paper/report.md and its figures: the reconstructed published example
+run at the published gaps, the minimum gap, the work–precision study and the paper-style
+figures, next to what the paper reports (shared/paper-example.md).
+
+    validation/paper/make_report.py [--pounding build/apps/pounding] [--repeat 3]
+
+Runs go to out/validation/; only the report and its figures are committed.
+"""
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+HERE = Path(__file__).resolve().parent
+SCENE = ROOT / "examples/paper/paper.toml"
+OUT = ROOT / "out/validation"
+PY = "/usr/bin/python3"
+
+# What the paper reports (shared/paper-example.md); compared with, never tuned to.
+PAPER = {
+    0.50: "no pounding; floor 7 CM peaks u = 20.1 cm (B1), 16.2 cm (B2), v = 2 cm (B1), 0.9 cm (B2); "
+          "floor 7 corner x-peaks 24.2 and 18.8 cm (B1), 21.2 and 13.4 cm (B2); peaks near 6.7–7.3 s",
+    0.37: "no pounding",
+    0.35: "2 impacts on floor 7, at 6.62 s and 6.72 s",
+    0.20: "11 impacts (8 on floor 7, 2 on floor 6, 1 on floor 5), the first at 3.1257 s on floor 7; "
+          "one further contact on floor 7 without impact",
+}
+
+
+def run(pounding, gap, folder, *extra):
+    folder = OUT / folder
+    subprocess.run([pounding, "run", str(SCENE), "--gap", f"{gap}", "--out", str(folder), *extra],
+                   check=True, stdout=subprocess.DEVNULL)
+    return json.loads((folder / "summary.json").read_text())
+
+
+def minimum_gap(pounding, low=0.0, high=1.0, tolerance=1e-4):
+    """Smallest gap with no impact, by bisection: without contact the buildings move
+    independently of the gap, so 'no impact' holds for every gap above the needed one."""
+    if run(pounding, high, "bisect")["impact_count"] > 0:
+        sys.exit(f"error: impacts even at {high} m")
+    while high - low > tolerance:
+        middle = 0.5 * (low + high)
+        if run(pounding, middle, "bisect")["impact_count"] > 0:
+            low = middle
+        else:
+            high = middle
+    return high
+
+
+def floor7(summary, building):
+    peaks = summary["peaks"][building]
+    floor = peaks["floors"][6]
+    corners = ", ".join(f"{100 * abs(p['value']):.1f}" for p in floor["vertex_dx_m"])
+    return (f"u = {100 * abs(floor['u_m']['value']):.1f} cm at {floor['u_m']['t_s']:.2f} s, "
+            f"v = {100 * abs(floor['v_m']['value']):.1f} cm; corner x-peaks {corners} cm")
+
+
+def describe(summary):
+    impacts = summary["impacts"]
+    if not impacts:
+        return f"no impact; {len(summary['touches'])} touches"
+    by_floor = ", ".join(f"{n} on floor {f}" for f, n in sorted(summary["impacts_by_floor"].items(), reverse=True))
+    times = ", ".join(f"{i['t_s']:.3f} s" for i in impacts[:3])
+    noun = "impact" if len(impacts) == 1 else "impacts"
+    return (f"{len(impacts)} {noun} ({by_floor}), the first at {impacts[0]['t_s']:.4f} s on floor "
+            f"{impacts[0]['floor']} (first ones at {times}); {len(summary['sustained_contacts'])} sustained "
+            f"contacts; {len(summary['touches'])} touches")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--pounding", default=str(ROOT / "build/apps/pounding"))
+    parser.add_argument("--repeat", type=int, default=3)
+    args = parser.parse_args()
+    if not Path(args.pounding).is_file():
+        sys.exit(f"error: {args.pounding} not found: build first (./scripts/bootstrap.sh)")
+    OUT.mkdir(parents=True, exist_ok=True)
+    figures = HERE / "figures"
+    figures.mkdir(exist_ok=True)
+
+    runs = {gap: run(args.pounding, gap, f"gap{gap:.2f}") for gap in (0.50, 0.37, 0.35, 0.20)}
+    exact = {gap: run(args.pounding, gap, f"exact-gap{gap:.2f}", "--method", "exact") for gap in (0.35, 0.20)}
+    hht = run(args.pounding, 0.20, "hht-gap0.20", "--method", "hht")
+    needed = minimum_gap(args.pounding)
+
+    for gap in (0.20, 0.35):
+        subprocess.run([PY, ROOT / "tools/plot_run.py", OUT / f"gap{gap:.2f}", "--compare", OUT / "gap0.50",
+                        "--out", figures / f"floor7-gap{gap:.2f}-vs-0.50.png"], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([PY, ROOT / "tools/plot_run.py", OUT / "hht-gap0.20", "--compare", OUT / "gap0.20",
+                    "--out", figures / "floor7-gap0.20-hht-vs-cvode.png"], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([args.pounding, "study", str(SCENE), "--repeat", str(args.repeat), "--out", str(OUT / "study")],
+                   check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([PY, ROOT / "tools/plot_study.py", OUT / "study", "--out", figures / "work-precision.png"],
+                   check=True, stdout=subprocess.DEVNULL)
+    shutil.copy(OUT / "study/study.csv", HERE / "study.csv")
+    study = json.loads((OUT / "study/study.json").read_text())
+
+    lines = [
+        "# Validation: the published example",
+        "",
+        "Generated by `validation/paper/make_report.py` (do not edit by hand). Scene:",
+        "`examples/paper/paper.toml`, the reconstruction fixed in `shared/paper-example.md` (the paper",
+        "does not give the plan, so results should agree in kind, not to the digit). Runs use the",
+        "default method (CVODE BDF, rtol 1e-8) unless stated.",
+        "",
+        "## The paper's figures and this program's",
+        "",
+        "| gap | the paper | this program | difference |",
+        "|---|---|---|---|",
+    ]
+    for gap, summary in runs.items():
+        ours = describe(summary)
+        if gap == 0.50:
+            ours += f"; floor 7: B1 {floor7(summary, 0)}; B2 {floor7(summary, 1)}"
+        same_kind = (summary["impact_count"] == 0) == ("no pounding" in PAPER[gap])
+        diff = "same kind (pounding or not)" if same_kind else "differs in kind"
+        lines.append(f"| {gap:.2f} m | {PAPER[gap]} | {ours} | {diff} |")
+    lines += [
+        f"| needed gap | 0.37 m | {needed:.4f} m (bisection on the gap to 0.1 mm: the smallest gap with no impact) "
+        f"| {100 * (needed - 0.37):+.1f} cm |",
+        "",
+        "At 0.20 m the paper counts single impacts of its Δt = 0.05 s scheme; the event-driven solution",
+        "resolves each collision into a bounce sequence whose approach speed halves (k = 0.5) until the",
+        "pair is held in sustained contact. The published scheme run here (`--method hht`, Δt = 0.05 s)",
+        f"reports {hht['impact_count']} impacts, its first at {hht['impacts'][0]['t_s']:.4f} s: the",
+        "timings differ from the paper's because the plan is a reconstruction, not because of the scheme.",
+        "",
+        "## Exact path against CVODE",
+        "",
+    ]
+    for gap, summary in exact.items():
+        ref = runs[gap]["impacts"]
+        diffs = [abs(a["t_s"] - b["t_s"]) for a, b in zip(ref, summary["impacts"])]
+        worst = max(diffs) if diffs else 0.0
+        lines.append(f"- gap {gap:.2f} m: {summary['impact_count']} impact(s) (CVODE {len(ref)}); largest "
+                     f"impact-time difference {worst:.2e} s; energy residual "
+                     f"{summary['energy']['relative_residual']:.1e} of the input.")
+    lines += [
+        "",
+        "Before the first sustained contact both solve the same linear model and agree to round-off",
+        "and CVODE's tolerance; a hold is nonlinear (the contact geometry rotates) and the exact path",
+        "re-linearises it at every step, which is what the remaining difference measures.",
+        "",
+        "## Figures",
+        "",
+        "Floor 7 of both buildings, pounding (colour) over the run without pounding (grey, 0.50 m):",
+        "",
+        "![gap 0.20 m](figures/floor7-gap0.20-vs-0.50.png)",
+        "",
+        "![gap 0.35 m](figures/floor7-gap0.35-vs-0.50.png)",
+        "",
+        "The published HHT-α scheme (colour) over the event-driven solution (grey), gap 0.20 m:",
+        "",
+        "![hht vs cvode](figures/floor7-gap0.20-hht-vs-cvode.png)",
+        "",
+        "## Work–precision",
+        "",
+        f"Every path against the exact path (gap {study['gap_m']} m, median of {args.repeat} runs; the table is",
+        "`study.csv` beside this report):",
+        "",
+        "![work-precision](figures/work-precision.png)",
+        "",
+        "| method | setting | run time [s] | impacts | impact-time error before the first hold [s] | "
+        "largest u error [m] |",
+        "|---|---|---|---|---|---|",
+    ]
+    for row in study["rows"]:
+        lines.append(f"| {row['method']} | {row['setting']} = {row['value']:g} | {row['run_time_s']:.3f} | "
+                     f"{row['impacts']} | {row['impact_time_error_before_hold_s']:.2e} | {row['history_u_error_m']:.2e} |")
+    (HERE / "report.md").write_text("\n".join(lines) + "\n")
+    print(f"Wrote {HERE / 'report.md'} (needed gap {needed:.4f} m)")
+
+
+if __name__ == "__main__":
+    main()
