@@ -429,6 +429,7 @@ void EventDrivenRun::update_hold_records(double t, const VectorXd& y) {
 
 bool EventDrivenRun::step_once() {
   const double t_end = system_.ground_motion().end_s();
+  if (prev_t_ >= t_end) return false;  // an event exactly at the end: no stop time is left to obey
   const StepOutcome outcome = integrator_->step(t_end);
   if (outcome.kind == StepKind::failure) {
     result_.status = RunStatus::solver_failure;

@@ -8,6 +8,7 @@
 #include "pounding/input_error.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
 #include "pounding/solvers/recorder.hpp"
+#include "pounding/solvers/root_finding.hpp"
 
 namespace pounding::solvers {
 
@@ -78,6 +79,18 @@ namespace {
 using dynamics::VectorXd;
 using State = HhtStepper::State;
 
+/// The state inside a step from the cubic Hermite interpolant of (d, v) at both ends: (q, q̇).
+VectorXd hermite(const State& from, const State& to, double t) {
+  const double h = to.t_s - from.t_s, s = (t - from.t_s) / h;
+  const double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s;
+  const double h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
+  const double d00 = 6 * s * s - 6 * s, d10 = 3 * s * s - 4 * s + 1, d01 = -6 * s * s + 6 * s, d11 = 3 * s * s - 2 * s;
+  VectorXd y(2 * from.d.size());
+  y << h00 * from.d + h10 * h * from.v + h01 * to.d + h11 * h * to.v,
+      (d00 * from.d + d01 * to.d) / h + d10 * from.v + d11 * to.v;
+  return y;
+}
+
 class HhtRun {
  public:
   HhtRun(const dynamics::CoupledSystem& system, const HhtOptions& options)
@@ -141,18 +154,8 @@ void HhtRun::accept(const State& from, const State& to) {
   if (result_.statistics.smallest_step_s == 0.0 || h < result_.statistics.smallest_step_s) {
     result_.statistics.smallest_step_s = h;
   }
-  // States inside the step from the cubic Hermite interpolant of (d, v) at both ends.
-  auto at = [&](double t) {
-    const double s = (t - from.t_s) / h;
-    const double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s;
-    const double h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
-    const double d00 = 6 * s * s - 6 * s, d10 = 3 * s * s - 4 * s + 1, d01 = -6 * s * s + 6 * s, d11 = 3 * s * s - 2 * s;
-    VectorXd y(system_.state_size());
-    y << h00 * from.d + h10 * h * from.v + h01 * to.d + h11 * h * to.v,
-        (d00 * from.d + d01 * to.d) / h + d10 * from.v + d11 * to.v;
-    return y;
-  };
-  recorder_.advance(from.t_s, to.t_s, at, [](double, const VectorXd&) { return 0.0; });
+  recorder_.advance(from.t_s, to.t_s, [&](double t) { return hermite(from, to, t); },
+                    [](double, const VectorXd&) { return 0.0; });
 }
 
 State HhtRun::settle(const State& s, bool include_overlaps) {
@@ -228,23 +231,13 @@ State HhtRun::interpolate(const State& s, const State& trial, const std::vector<
   // Each overlapping gap along the step's cubic Hermite interpolant; the earliest zero is the
   // contact instant, and the step is redone to exactly there.
   const double h = trial.t_s - s.t_s;
-  auto gap_at = [&](double t, std::size_t candidate) {
-    const double u = (t - s.t_s) / h;
-    const double h00 = 2 * u * u * u - 3 * u * u + 1, h10 = u * u * u - 2 * u * u + u;
-    const double h01 = -2 * u * u * u + 3 * u * u, h11 = u * u * u - u * u;
-    VectorXd y = VectorXd::Zero(system_.state_size());
-    y.head(system_.dof()) = h00 * s.d + h10 * h * s.v + h01 * trial.d + h11 * h * trial.v;
-    return system_.gap(y, candidate).gap_m;
-  };
+  auto gap_at = [&](double t, std::size_t candidate) { return system_.gap(hermite(s, trial, t), candidate).gap_m; };
   double t_contact = trial.t_s;
   for (std::size_t candidate : overlaps) {
-    double a = s.t_s, b = trial.t_s;
-    if (!(gap_at(a, candidate) > 0.0)) return halve(s, h);  // in the tolerance band already
-    for (int i = 0; i < 100 && b - a > 1e-14 * std::max(1.0, b); ++i) {
-      const double m = 0.5 * (a + b);
-      (gap_at(m, candidate) > 0.0 ? a : b) = m;
-    }
-    t_contact = std::min(t_contact, b);
+    const double g_start = gap_at(s.t_s, candidate);
+    if (!(g_start > 0.0)) return halve(s, h);  // in the tolerance band already
+    t_contact = std::min(t_contact, find_root([&](double t) { return gap_at(t, candidate); }, s.t_s, trial.t_s,
+                                              g_start, gap_at(trial.t_s, candidate)));
   }
   const State redone = stepper_.step(s, t_contact - s.t_s);
   ++trial_steps_;
