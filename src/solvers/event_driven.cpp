@@ -490,12 +490,20 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
 
   recorder_.sample(t0, y);
   start(t0, y);
-  integrator_ = make_integrator(*this, t0, y);
-  begin_phase(t0, y);
-
-  while (!stop_ && step_once()) {
+  try {
+    integrator_ = make_integrator(*this, t0, y);
+    begin_phase(t0, y);
+    while (!stop_ && step_once()) {
+    }
+    accumulate_counters();
+  } catch (const InputError&) {
+    throw;  // bad settings are the caller's to report
+  } catch (const std::exception& error) {
+    // An integrator that cannot go on (a SUNDIALS call failing, a phase the exact path cannot
+    // diagonalise) ends the run with what it has, and says why.
+    result_.status = RunStatus::solver_failure;
+    result_.status_detail = fmt::format("after t = {} s: {}", prev_t_, error.what());
   }
-  accumulate_counters();
   result_.end_s = prev_t_;
   for (std::size_t i : std::vector<std::size_t>(held_)) release(i, prev_t_, "end of run");
   recorder_.finish(prev_y_, result_);
