@@ -6,8 +6,8 @@
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/exact_integrator.hpp"
-#include "pounding/solvers/hht.hpp"
 #include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/hht.hpp"
 
 namespace pounding::analysis {
 
@@ -51,32 +51,43 @@ solvers::HhtOptions hht_options(const Scene& scene) {
   return options;
 }
 
-RunReport run_scene(const Scene& scene) {
-  const dynamics::CoupledSystem system = build_system(scene);
+namespace {
+
+solvers::NewtonSolver newton_solver(const SolverSettings& solver) {
+  return solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
+}
+
+solvers::EventOptions event_options(const Scene& scene, const dynamics::CoupledSystem& system) {
   solvers::EventOptions options;
   options.restitution = scene.contact.restitution;
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
-
-  RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
-                   scene.contact.hold_velocity_mps, system.candidates(), {}};
   if (scene.solver.method == "exact") {
     // Bracket roots on a subdivision fine against the shortest natural period.
     options.max_step_s = solvers::shortest_period_s(system) / kExactSubdivisionsPerPeriod;
   }
-  if (scene.solver.method == "hht") {
-    report.result = solvers::run_hht(system, hht_options(scene), "hht");
-  } else {
-    report.result = solvers::run_event_driven(system, options, integrator_factory(scene.solver), scene.solver.method);
-  }
+  return options;
+}
+
+}  // namespace
+
+RunReport run_scene(const Scene& scene) {
+  const dynamics::CoupledSystem system = build_system(scene);
+  RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
+                   scene.contact.hold_velocity_mps, system.candidates(), {}};
+  report.result = scene.solver.method == "hht"
+                      ? solvers::run_hht(system, hht_options(scene), "hht")
+                      : solvers::run_event_driven(system, event_options(scene, system),
+                                                  integrator_factory(scene.solver), scene.solver.method);
   return report;
 }
 
 solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
+  using Factory = std::unique_ptr<solvers::Integrator>;
   if (solver.method == "exact") {
     const bool relinearize = solver.hold_linearization == "every-step";
-    return [relinearize](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+    return [relinearize](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> Factory {
       return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, relinearize);
     };
   }
@@ -84,7 +95,7 @@ solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
     solvers::ArkodeSettings settings;
     settings.method = solver.method == "arkode-erk" ? solvers::ArkodeMethod::erk : solvers::ArkodeMethod::dirk;
     settings.order = solver.order;
-    settings.newton_solver = solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
+    settings.newton_solver = newton_solver(solver);
     settings.rtol = solver.rtol;
     settings.atol = solver.atol;
     return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) {
@@ -95,8 +106,8 @@ solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
   settings.method = solver.method == "cvode-adams" ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
   settings.rtol = solver.rtol;
   settings.atol = solver.atol;
-  settings.newton_solver = solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
-  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+  settings.newton_solver = newton_solver(solver);
+  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> Factory {
     return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
   };
 }
