@@ -84,10 +84,10 @@ RunReport run_scene(const Scene& scene) {
 }
 
 solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
-  using Factory = std::unique_ptr<solvers::Integrator>;
+  using IntegratorPtr = std::unique_ptr<solvers::Integrator>;
   if (solver.method == "exact") {
     const bool relinearize = solver.hold_linearization == "every-step";
-    return [relinearize](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> Factory {
+    return [relinearize](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
       return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, relinearize);
     };
   }
@@ -107,7 +107,7 @@ solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
   settings.rtol = solver.rtol;
   settings.atol = solver.atol;
   settings.newton_solver = newton_solver(solver);
-  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> Factory {
+  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
     return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
   };
 }
