@@ -6,14 +6,14 @@
 
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/analysis/run_scene.hpp"
-#include "pounding/contact/candidates.hpp"
 #include "pounding/analysis/study.hpp"
-#include "pounding/io/run_writer.hpp"
-#include "pounding/io/study_writer.hpp"
+#include "pounding/contact/candidates.hpp"
 #include "pounding/excitation/ground_motion.hpp"
-#include "pounding/io/json_report.hpp"
 #include "pounding/input_error.hpp"
+#include "pounding/io/json_report.hpp"
+#include "pounding/io/run_writer.hpp"
 #include "pounding/io/scene_reader.hpp"
+#include "pounding/io/study_writer.hpp"
 
 namespace pounding::cli {
 namespace {
