@@ -164,12 +164,12 @@ int run_study(const StudyCommand& command) {
              scene.name, scene.contact.gap_m, options.repeat);
   fmt::print("Impact-time errors: before the first sustained contact (exact reference), and over impacts faster "
              "than 1 cm/s.\n");
-  fmt::print("{:<16} {:>8} {:>9} {:>8} {:>7} {:>4} {:>5} {:>13} {:>11} {:>9} {:>10} {:>10} {:>12}\n", "method",
-             "setting", "run [s]", "steps", "impacts", "miss", "extra", "pre-hold [s]", "fast [s]", "dI/I",
+  fmt::print("{:<16} {:>10} {:>9} {:>8} {:>7} {:>4} {:>5} {:>13} {:>11} {:>9} {:>10} {:>10} {:>12}\n", "method",
+             "rtol|dt[s]", "run [s]", "steps", "impacts", "miss", "extra", "pre-hold [s]", "fast [s]", "dI/I",
              "u err [m]", "v err [m]", "phi err[rad]");
   auto print_row = [](const analysis::StudyRow& r) {
     const analysis::RunErrors& e = r.errors;
-    fmt::print("{:<16} {:>8.0e} {:>9.4f} {:>8} {:>7} {:>4} {:>5} {:>13.3e} {:>11.3e} {:>9.2e} {:>10.3e} {:>10.3e} "
+    fmt::print("{:<16} {:>10.0e} {:>9.4f} {:>8} {:>7} {:>4} {:>5} {:>13.3e} {:>11.3e} {:>9.2e} {:>10.3e} {:>10.3e} "
                "{:>12.3e}{}\n",
                r.method, r.value, r.run_time_s, r.steps, r.impacts, e.missing, e.extra, e.impact_time_before_hold_s,
                e.impact_time_s, e.impulse_relative, e.history_u_m, e.history_v_m, e.history_phi_rad,

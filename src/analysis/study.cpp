@@ -30,13 +30,8 @@ std::map<long, std::size_t> grid_rows(const solvers::History& history, double in
 }
 
 void compare_histories(const solvers::History& a, const solvers::History& b, RunErrors& errors) {
-  if (a.time_s.size() < 2 || a.columns != b.columns) return;
-  // The regular sampling interval: the smallest positive spacing of the first rows.
-  double interval = a.time_s[1] - a.time_s[0];
-  for (std::size_t r = 2; r < std::min<std::size_t>(a.time_s.size(), 50); ++r) {
-    interval = std::min(interval, a.time_s[r] - a.time_s[r - 1]);
-  }
-  const auto rows_a = grid_rows(a, interval), rows_b = grid_rows(b, interval);
+  if (a.time_s.empty() || a.columns != b.columns || a.interval_s != b.interval_s) return;
+  const auto rows_a = grid_rows(a, a.interval_s), rows_b = grid_rows(b, b.interval_s);
   for (std::size_t c = 1; c < a.columns.size(); ++c) {
     const std::string& name = a.columns[c];
     double* worst = name.ends_with("_u_m") ? &errors.history_u_m

@@ -95,7 +95,7 @@ class ArkodeIntegrator final : public SundialsIntegrator {
         check(ARKStepSetLinearSolver(memory_, dense_.get(), matrix_.get()), "ARKStepSetLinearSolver");
         check(ARKStepSetJacFn(memory_, jacobian_callback), "ARKStepSetJacFn");
       } else {
-        second_order_ = std::make_unique<SecondOrderLinearSolver>(functions, newton_data, context_.get());
+        second_order_ = std::make_unique<SecondOrderLinearSolver>(functions, newton_data, context_.get(), last_error_);
         check(ARKStepSetLinearSolver(memory_, second_order_->get(), nullptr), "ARKStepSetLinearSolver");
       }
     }

@@ -37,7 +37,7 @@ CvodeIntegrator::CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& s
             "CVodeGetNonlinearSystemData");
       return data;
     };
-    second_order_ = std::make_unique<SecondOrderLinearSolver>(functions, newton_data, context_.get());
+    second_order_ = std::make_unique<SecondOrderLinearSolver>(functions, newton_data, context_.get(), last_error_);
     check(CVodeSetLinearSolver(memory_, second_order_->get(), nullptr), "CVodeSetLinearSolver");
   }
   check(CVodeRootInit(memory_, functions.root_count(), root_callback), "CVodeRootInit");

@@ -367,9 +367,7 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
           find_root([&](double time) { return state_at(time).gap_m; }, prev_t_, t_min, s0.gap_m, lowest.gap_m);
       keep_earliest(t_cross, i);
     } else if (lowest.gap_m <= options_.contact_tolerance_m) {
-      const contact::Candidate& c = system_.candidates()[i];
-      result_.touches.push_back({t_min, c.floor, c.striking_building + 1, c.vertex_index + 1, i,
-                                 lowest.contact_point, lowest.gap_rate_mps, lowest.gap_m});
+      result_.touches.push_back(touch_record(system_, t_min, i, lowest));
     }
   }
   return earliest;

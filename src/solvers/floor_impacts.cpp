@@ -19,6 +19,13 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
   return contacts;
 }
 
+TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
+                         const contact::GapState& gap) {
+  const contact::Candidate& c = system.candidates()[index];
+  return {t, c.floor, c.striking_building + 1, c.vertex_index + 1, index, gap.contact_point, gap.gap_rate_mps,
+          gap.gap_m};
+}
+
 contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
                                         const FloorContacts& contacts) {
   contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.floor));
@@ -56,8 +63,7 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
       r.starts_hold = !holds.empty() && holds[k];
       result.impacts.push_back(r);
     } else if (touched.count(i)) {
-      result.touches.push_back({t, floor, c.striking_building + 1, c.vertex_index + 1, i, s.contact_point,
-                                rate_before, s.gap_m});
+      result.touches.push_back(touch_record(system, t, i, s));
     }
   }
   const contact::Vector6d inverse_mass = system.pair_inverse_mass(floor);

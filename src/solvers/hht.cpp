@@ -162,7 +162,6 @@ State HhtRun::settle(const State& s, bool include_overlaps) {
   // Impacts at this step end: per floor, every contact within the tolerance (and, when asked,
   // every overlap) solved together; a touch is a contact that appears without approaching.
   VectorXd y = first_order(s);
-  const VectorXd y_before = y;
   const double tol = options_.contact_tolerance_m;
   std::vector<bool> in_contact(touching_.size(), false);
   std::set<int> floors;
@@ -187,10 +186,7 @@ State HhtRun::settle(const State& s, bool include_overlaps) {
   }
   for (std::size_t i : new_touches) {
     if (floors.count(system_.candidates()[i].floor)) continue;  // recorded with its floor's impact
-    const contact::Candidate& c = system_.candidates()[i];
-    const contact::GapState g = system_.gap(y, i);
-    result_.touches.push_back({s.t_s, c.floor, c.striking_building + 1, c.vertex_index + 1, i, g.contact_point,
-                               g.gap_rate_mps, g.gap_m});
+    result_.touches.push_back(touch_record(system_, s.t_s, i, system_.gap(y, i)));
     ++result_.statistics.events;
   }
   touching_ = in_contact;

@@ -39,6 +39,7 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, std::vector<int> histo
     for (int f = 1; f <= common; ++f) history_floors_.push_back(f);
   }
   next_sample_s_ = system.ground_motion().start_s();
+  history_.interval_s = interval_s_;
   history_.columns.push_back("t_s");
   for (int b = 0; b < 2; ++b) {
     vertices_[b] = contact_vertices(system.candidates(), b);

@@ -19,8 +19,11 @@ SecondOrderLinearSolver* self(SUNLinearSolver solver) {
 }  // namespace
 
 SecondOrderLinearSolver::SecondOrderLinearSolver(OdeFunctions& functions, std::function<NewtonData()> newton_data,
-                                                 SUNContext context)
-    : functions_(functions), newton_data_(std::move(newton_data)), n_(functions.state_size() / 2) {
+                                                 SUNContext context, std::string& error_sink)
+    : functions_(functions),
+      newton_data_(std::move(newton_data)),
+      n_(functions.state_size() / 2),
+      error_sink_(error_sink) {
   SUNLinearSolver solver = SUNLinSolNewEmpty(context);
   if (!solver) throw std::runtime_error("SUNDIALS: could not create a linear solver");
   solver->content = this;
@@ -69,7 +72,7 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
     out.tail(n) = x2;
     return SUNLS_SUCCESS;
   } catch (const std::exception& error) {
-    me->error_ = error.what();
+    me->error_sink_ = std::string("linear solve: ") + error.what();
     return SUNLS_PACKAGE_FAIL_UNREC;
   }
 }

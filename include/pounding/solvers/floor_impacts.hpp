@@ -24,6 +24,10 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
                                     double restitution,
                                     const std::function<bool(std::size_t, const contact::GapState&)>& take);
 
+/// The record of candidate `index` touching (no impulse) at t in the state `gap`.
+TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
+                         const contact::GapState& gap);
+
 /// Solves the floor's impulses together and adds the velocity change to y.
 contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
                                         const FloorContacts& contacts);

@@ -110,6 +110,7 @@ struct SolverStatistics {
 
 /// Sampled time history: one row per sample, columns named in `columns` (units in the name).
 struct History {
+  double interval_s = 0.0;  // regular sampling interval; event rows fall between
   std::vector<std::string> columns;
   std::vector<double> time_s;
   std::vector<Eigen::VectorXd> rows;

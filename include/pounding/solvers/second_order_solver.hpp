@@ -23,9 +23,11 @@ struct NewtonData {
 
 class SecondOrderLinearSolver {
  public:
-  /// `functions` and whatever `newton_data` reads must outlive the solver.
+  /// `functions`, whatever `newton_data` reads and `error_sink` must outlive the solver; a failed
+  /// solve writes its reason to `error_sink` (the integrator's failure message).
   /// @pre functions.jacobian() returns [[0, I], [A21, A22]].
-  SecondOrderLinearSolver(OdeFunctions& functions, std::function<NewtonData()> newton_data, SUNContext context);
+  SecondOrderLinearSolver(OdeFunctions& functions, std::function<NewtonData()> newton_data, SUNContext context,
+                          std::string& error_sink);
 
   SUNLinearSolver get() const { return handle_.get(); }
   long factorizations() const { return factorizations_; }
@@ -48,7 +50,7 @@ class SecondOrderLinearSolver {
   double gamma_ = 0.0;
   bool stale_ = true;
   long factorizations_ = 0;
-  std::string error_;
+  std::string& error_sink_;
 };
 
 }  // namespace pounding::solvers
