@@ -446,12 +446,12 @@ bool EventDrivenRun::step_once() {
   if (const std::optional<Hidden> hidden = hidden_contact(t, y)) {
     ++result_.statistics.interpolant_events;
     VectorXd y_event = interpolated(hidden->t_s);
-    recorder_.advance(prev_t_, hidden->t_s, interpolated, power);
+    recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power);
     handle_event(hidden->t_s, y_event, {hidden->candidate}, {}, "");
     restart(hidden->t_s, y_event);
     return !stop_;
   }
-  recorder_.advance(prev_t_, t, interpolated, power);
+  recorder_.advance(prev_t_, t, y, interpolated, power);
 
   if (outcome.kind == StepKind::root) {
     const std::vector<int> found = integrator_->roots_found();

@@ -154,7 +154,7 @@ void HhtRun::accept(const State& from, const State& to) {
   if (result_.statistics.smallest_step_s == 0.0 || h < result_.statistics.smallest_step_s) {
     result_.statistics.smallest_step_s = h;
   }
-  recorder_.advance(from.t_s, to.t_s, [&](double t) { return hermite(from, to, t); },
+  recorder_.advance(from.t_s, to.t_s, first_order(to), [&](double t) { return hermite(from, to, t); },
                     [](double, const VectorXd&) { return 0.0; });
 }
 

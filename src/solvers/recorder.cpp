@@ -105,7 +105,8 @@ void Recorder::sample(double t, const dynamics::VectorXd& y) {
   append_row(t, y);
 }
 
-void Recorder::advance(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
+                       const std::function<dynamics::VectorXd(double)>& at,
                        const std::function<double(double, const dynamics::VectorXd&)>& constraint_power) {
   if (!(t_b > t_a)) return;
   // 3-point Gauss–Legendre on [t_a, t_b]: exact for the input power of a degree-5 interpolant
@@ -125,7 +126,7 @@ void Recorder::advance(double t_a, double t_b, const std::function<dynamics::Vec
     next_sample_s_ = system_.ground_motion().start_s() +
                      interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
   }
-  observe(t_b, at(t_b));
+  observe(t_b, y_b);
 }
 
 void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result) {

@@ -19,10 +19,12 @@ class Recorder {
   void observe(double t, const dynamics::VectorXd& y);
   /// Writes a history row at t (also observes it).
   void sample(double t, const dynamics::VectorXd& y);
-  /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns: history samples
-  /// that fall inside, peaks at both ends, and the energy integrals (3-point Gauss–Legendre).
-  /// `constraint_power(t, y)` is the power of sustained-contact forces (kW).
-  void advance(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+  /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns and whose end
+  /// state is `y_b`: history samples that fall inside, the peaks at t_b, and the energy
+  /// integrals (3-point Gauss–Legendre). `constraint_power(t, y)` is the power of
+  /// sustained-contact forces (kW).
+  void advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
+               const std::function<dynamics::VectorXd(double)>& at,
                const std::function<double(double, const dynamics::VectorXd&)>& constraint_power);
   void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
 
