@@ -227,7 +227,7 @@ int run_check(const CheckCommand& command) {
   fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same floor)\n",
              candidates.size());
   for (const auto& c : candidates) fmt::print("  floor {}: {}\n", c.floor, contact::describe(c));
-  fmt::print("Solver: {}, rtol {}, atol {}\n", scene.solver.method, scene.solver.rtol, scene.solver.atol);
+  fmt::print("Solver: {}, rtol {}, atol {} (m, rad)\n", scene.solver.method, scene.solver.rtol, scene.solver.atol);
   return 0;
 }
 
