@@ -97,20 +97,28 @@ double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass) {
   return (1.0 + contact.restitution) * (-contact.gap_rate_mps) / a;
 }
 
+LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& offset) {
+  LcpSolution solution;
+  if (offset.size() == 0) return solution;
+  const Lcp lcp{w_matrix, offset};
+  const double tolerance =
+      1e-12 * (offset.cwiseAbs().maxCoeff() + 1e-12) * (1.0 + w_matrix.diagonal().maxCoeff());
+  if (offset.size() <= static_cast<Eigen::Index>(kMaxEnumerated)) solution.x = enumerate(lcp, tolerance);
+  if (solution.x.size() == 0) {
+    solution.x = gauss_seidel(lcp);
+    solution.exact = false;
+  }
+  solution.w = w_matrix * solution.x + offset;
+  return solution;
+}
+
 ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass) {
   ImpulseSolution solution;
   if (contacts.empty()) return solution;
   const Lcp lcp = assemble(contacts, inverse_mass);
-  double scale = 0.0;
-  for (const ContactRow& c : contacts) scale = std::max(scale, std::abs(c.gap_rate_mps));
-  const double tolerance = 1e-12 * (scale + 1e-12) * (1.0 + lcp.w_matrix.diagonal().maxCoeff());
-
-  Eigen::VectorXd impulses;
-  if (contacts.size() <= kMaxEnumerated) impulses = enumerate(lcp, tolerance);
-  if (impulses.size() == 0) {
-    impulses = gauss_seidel(lcp);
-    solution.exact = false;
-  }
+  const LcpSolution lcp_solution = solve_lcp(lcp.w_matrix, lcp.offset);
+  const Eigen::VectorXd& impulses = lcp_solution.x;
+  solution.exact = lcp_solution.exact;
   solution.impulses_kNs.assign(impulses.data(), impulses.data() + impulses.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     solution.velocity_change += inverse_mass.cwiseProduct(contacts[i].jacobian.transpose()) * impulses[i];

@@ -61,6 +61,14 @@ contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
   return row;
 }
 
+double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const {
+  const contact::Candidate& c = candidates_[index];
+  const contact::GapState s = gap(y, index);
+  const auto accel_of = [&](int building) { return y_dot.segment<3>(dof_ + floor_index(building, c.floor)); };
+  return s.striking_row.dot(accel_of(c.striking_building)) + s.struck_row.dot(accel_of(c.struck_building)) +
+         s.curvature_mps2;
+}
+
 contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, int floor) const {
   contact::Vector6d v;
   v << y.segment<3>(dof_ + floor_index(0, floor)), y.segment<3>(dof_ + floor_index(1, floor));
@@ -108,6 +116,17 @@ void CoupledSystem::constrained_rhs(double t, ConstVectorRef y, const std::vecto
   const VectorXd needed = -(rows * y_dot.tail(dof_) + bias);
   forces_kN = w.completeOrthogonalDecomposition().solve(needed);
   y_dot.tail(dof_) += inverse_mass.asDiagonal() * (rows.transpose() * forces_kN);
+}
+
+contact::LcpSolution CoupledSystem::hold_complementarity(double t, ConstVectorRef y,
+                                                        const std::vector<std::size_t>& held) const {
+  VectorXd y_dot(state_size());
+  rhs(t, y, y_dot);
+  MatrixXd rows;
+  VectorXd bias;
+  constraint_rows(y, held, rows, bias);
+  const MatrixXd w = rows * mass_.cwiseInverse().asDiagonal() * rows.transpose();
+  return contact::solve_lcp(w, rows * y_dot.tail(dof_) + bias);
 }
 
 void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,

@@ -74,7 +74,8 @@ json energy_json(const solvers::EnergyAudit& e) {
           {"relative_residual", e.input_kJ != 0.0 ? e.residual_kJ() / e.input_kJ : 0.0}};
 }
 
-json statistics_json(const solvers::SolverStatistics& s) {
+json statistics_json(const solvers::SolverStatistics& s, const std::vector<contact::Candidate>& candidates) {
+  const bool overlapped = s.max_interpenetration_candidate >= 0;
   return {{"steps", s.steps},
           {"rhs_evaluations", s.rhs_evaluations},
           {"root_evaluations", s.root_evaluations},
@@ -87,6 +88,11 @@ json statistics_json(const solvers::SolverStatistics& s) {
           {"halvings", s.halvings},
           {"smallest_step_s", s.smallest_step_s},
           {"unresolved_contacts", s.unresolved_contacts},
+          {"max_interpenetration_m", s.max_interpenetration_m},
+          {"max_interpenetration_t_s", overlapped ? json(s.max_interpenetration_t_s) : json(nullptr)},
+          {"max_interpenetration_pair",
+           overlapped ? json(contact::describe(candidates[static_cast<std::size_t>(s.max_interpenetration_candidate)]))
+                      : json(nullptr)},
           {"wall_time_s", s.wall_time_s}};
 }
 
@@ -134,7 +140,8 @@ json run_json(const analysis::RunReport& report) {
   for (const auto& s : r.sustained_contacts) {
     sustained.push_back({{"floor", s.floor}, {"striking_building", s.striking_building}, {"vertex", s.vertex},
                          {"start_s", s.start_s}, {"release_s", s.release_s}, {"release_reason", s.release_reason},
-                         {"max_force_kN", s.max_force_kN}, {"max_gap_drift_m", s.max_gap_drift_m}});
+                         {"max_force_kN", s.max_force_kN}, {"max_gap_drift_m", s.max_gap_drift_m},
+                         {"impulse_kNs", s.impulse_kNs}});
   }
   json settings = {{"rtol", report.solver.rtol}, {"atol", report.solver.atol}, {"newton", report.solver.newton},
                    {"order", report.solver.order}, {"hold_velocity_mps", report.hold_velocity_mps}};
@@ -161,7 +168,7 @@ json run_json(const analysis::RunReport& report) {
           {"sustained_contacts", sustained},
           {"peaks", peaks_json(r.peaks)},
           {"energy", energy_json(r.energy)},
-          {"statistics", statistics_json(r.statistics)}};
+          {"statistics", statistics_json(r.statistics, report.candidates)}};
 }
 
 void write_run(const analysis::RunReport& report, const std::filesystem::path& folder) {

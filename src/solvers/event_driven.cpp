@@ -1,10 +1,12 @@
 #include "pounding/solvers/event_driven.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <deque>
 #include <fmt/format.h>
 #include <optional>
+#include <Eigen/QR>
 #include <set>
 
 #include "pounding/input_error.hpp"
@@ -34,7 +36,9 @@ void EventOptions::validate() const {
   }
   positive(contact_tolerance_m, "contact_tolerance_m");
   positive(reopen_gap_m, "reopen_gap_m");
+  positive(overlap_allowance_m, "overlap_allowance_m");
   positive(hold_velocity_mps, "hold_velocity_mps");
+  positive(hold_height_m, "hold_height_m");
   positive(max_events_per_s, "max_events_per_s");
   positive(history_interval_s, "history_interval_s");
   if (max_step_s < 0.0) throw InputError("max_step_s", format_value(max_step_s), "must be zero (automatic) or positive");
@@ -53,6 +57,8 @@ double shortest_period_s(const dynamics::CoupledSystem& system) {
 namespace {
 
 using dynamics::VectorXd;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kSegmentTolerance = contact::kOnSegmentTolerance;
 
 enum class Mode { armed, masked, held };
 
@@ -64,6 +70,7 @@ class EventDrivenRun final : public OdeFunctions {
         count_(system.candidates().size()),
         modes_(count_, Mode::armed),
         reopen_at_m_(count_, options.reopen_gap_m),
+        mask_floor_m_(count_, -options.overlap_allowance_m),
         hold_record_(count_, -1),
         recorder_(system, options.history_floors, options.history_interval_s) {}
 
@@ -79,13 +86,16 @@ class EventDrivenRun final : public OdeFunctions {
     system_.constrained_jacobian(y, held_, jac);
   }
 
-  // Root vector: [0, n) gaps of armed candidates; [n, 2n) forces of held ones; [2n, 3n) how far
-  // a held contact point is from the nearer end of its edge (fraction of the edge). Components
-  // that do not apply are held at +1, so they never cross.
+  // Root vector: [0, n) gaps of armed candidates, and of masked ones shifted down to their
+  // floor (a masked pair sinking past it is a re-closure the loop locates); [n, 2n) forces of
+  // held ones; [2n, 3n) how far a held contact point is from the nearer end of its edge
+  // (fraction of the edge), shifted by on_segment()'s tolerance so that a contact at a corner does
+  // not start at a root. Components that do not apply are held at +1, so they never cross.
   void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
     g.setConstant(1.0);
     for (std::size_t i = 0; i < count_; ++i) {
       if (modes_[i] == Mode::armed) g[i] = system_.gap(y, i).gap_m;
+      if (modes_[i] == Mode::masked && mask_floor_m_[i] > -kInfinity) g[i] = system_.gap(y, i).gap_m - mask_floor_m_[i];
     }
     if (held_.empty()) return;
     const VectorXd forces = hold_forces(t, y);
@@ -93,7 +103,7 @@ class EventDrivenRun final : public OdeFunctions {
       const std::size_t i = held_[r];
       const double s = system_.gap(y, i).segment_param;
       g[count_ + i] = forces[r];
-      g[2 * count_ + i] = std::min(s, 1.0 - s);
+      g[2 * count_ + i] = std::min(s, 1.0 - s) + kSegmentTolerance;
     }
   }
 
@@ -121,18 +131,39 @@ class EventDrivenRun final : public OdeFunctions {
   void start(double t, VectorXd& y);
   bool step_once();
   std::optional<Hidden> hidden_contact(double t, const VectorXd& y);
+  std::optional<double> reclosure(std::size_t i, double t, const contact::GapState& start,
+                                  const contact::GapState& end);
+  void settle_holds(double t, const VectorXd& y);
+  void note_overlaps(double t, const VectorXd& y);
   void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
                     const std::vector<std::size_t>& released, const char* release_reason);
   FloorContacts floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const;
+  /// g̈ of each member of `contacts` in state y with the contacts `held` kept closed.
+  VectorXd free_gap_accelerations(double t, const VectorXd& y, const std::vector<std::size_t>& held,
+                                  const FloorContacts& contacts) const {
+    VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(held.size()));
+    system_.constrained_rhs(t, y, held, y_dot, forces);
+    VectorXd accel(static_cast<Eigen::Index>(contacts.members.size()));
+    for (std::size_t k = 0; k < contacts.members.size(); ++k) {
+      accel[static_cast<Eigen::Index>(k)] = system_.gap_acceleration(y, y_dot, contacts.members[k]);
+    }
+    return accel;
+  }
   std::vector<bool> settle_floor(double t, VectorXd& y, FloorContacts& contacts,
                                  contact::ImpulseSolution& solution) const;
+  void stick(const FloorContacts& contacts, const std::vector<bool>& holding, VectorXd& y,
+             contact::ImpulseSolution& solution) const;
   void resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired);
-  void mask(std::size_t i, double reopen_m) {
+  /// Masks candidate i until its gap exceeds reopen_m. A contact (watch = true) keeps a root at
+  /// its floor, so a re-closure cannot be stepped over; a crossing of an edge's extension does not
+  /// (its gap goes on falling while the vertex passes beside the edge).
+  void mask(std::size_t i, double reopen_m, const VectorXd& y, bool watch = true) {
     modes_[i] = Mode::masked;
     reopen_at_m_[i] = reopen_m;
+    mask_floor_m_[i] = watch ? std::min(system_.gap(y, i).gap_m, 0.0) - options_.overlap_allowance_m : -kInfinity;
   }
   void hold(std::size_t i, double t);
-  void release(std::size_t i, double t, const std::string& reason);
+  void release(std::size_t i, double t, const VectorXd& y, const std::string& reason);
   /// Step limits and bookkeeping for a new smooth stretch starting at (t, y).
   void begin_phase(double t, const VectorXd& y);
   void restart(double t, const VectorXd& y);
@@ -148,6 +179,7 @@ class EventDrivenRun final : public OdeFunctions {
   std::size_t count_;
   std::vector<Mode> modes_;
   std::vector<double> reopen_at_m_;  // gap beyond which a masked candidate is re-armed
+  std::vector<double> mask_floor_m_;  // gap below which a masked candidate's root fires
   std::vector<std::size_t> held_;
   std::vector<int> hold_record_;  // index into result_.sustained_contacts while held
   VectorXd forces_;
@@ -221,9 +253,9 @@ void EventDrivenRun::hold(std::size_t i, double t) {
   result_.sustained_contacts.push_back(record);
 }
 
-void EventDrivenRun::release(std::size_t i, double t, const std::string& reason) {
+void EventDrivenRun::release(std::size_t i, double t, const VectorXd& y, const std::string& reason) {
   if (modes_[i] != Mode::held) return;
-  mask(i, options_.contact_tolerance_m);  // at g ≈ 0, opening slowly: re-armed once clearly open
+  mask(i, options_.contact_tolerance_m, y);  // at g ≈ 0, opening slowly: re-armed once clearly open
   held_.erase(std::find(held_.begin(), held_.end(), i));
   SustainedContactRecord& record = result_.sustained_contacts[hold_record_[i]];
   record.release_s = t;
@@ -245,21 +277,41 @@ void EventDrivenRun::start(double t, VectorXd& y) {
 void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
                                   const std::vector<std::size_t>& released, const char* release_reason) {
   count_event(t);
-  for (std::size_t i : released) release(i, t, release_reason);
+  for (std::size_t i : released) release(i, t, y, release_reason);
   std::set<std::size_t> fired;
   std::set<int> floors;
   for (std::size_t i : gap_roots) {
-    if (!system_.gap(y, i).on_segment()) {
-      mask(i, options_.reopen_gap_m);  // the vertex crossed the edge's extension, not the edge
+    const contact::GapState s = system_.gap(y, i);
+    if (!s.on_segment()) {
+      mask(i, options_.reopen_gap_m, y, false);  // the vertex crossed the edge's extension, not the edge
       ++result_.statistics.off_segment_crossings;
       continue;
     }
+    result_.statistics.note_overlap(s.gap_m, t, i);
     fired.insert(i);
     floors.insert(system_.candidates()[i].floor);
   }
   for (int floor : floors) resolve_floor(t, y, floor, fired);
+  settle_holds(t, y);
   update_hold_records(t, y);  // a hold may end before the next step does
   recorder_.sample(t, y);
+}
+
+void EventDrivenRun::settle_holds(double t, const VectorXd& y) {
+  // A velocity jump anywhere (stiffness-proportional damping couples adjacent floors) or a
+  // release changes the force every held contact needs; a force root cannot see a force that
+  // jumped to tensile at the restart. So after every event the held set is settled again, all
+  // together: the held contacts that the complementarity problem leaves without force while
+  // their gap would open are released.
+  if (held_.empty()) return;
+  const contact::LcpSolution solution = system_.hold_complementarity(t, y, held_);
+  std::vector<std::size_t> separating;
+  for (std::size_t r = 0; r < held_.size(); ++r) {
+    if (solution.x[static_cast<Eigen::Index>(r)] <= 0.0 && solution.w[static_cast<Eigen::Index>(r)] > 0.0) {
+      separating.push_back(held_[r]);
+    }
+  }
+  for (std::size_t i : separating) release(i, t, y, "tensile force");
 }
 
 FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const {
@@ -290,9 +342,12 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorConta
       if (system_.candidates()[i].floor != contacts.floor) trial.push_back(i);
     }
     const std::size_t others = trial.size();
+    const VectorXd accel = free_gap_accelerations(t, y_after, trial, contacts);
     std::vector<std::size_t> slow;
     for (std::size_t k = 0; k < n; ++k) {
-      if (contacts.rows[k].jacobian.dot(v_after) < options_.hold_velocity_mps) {
+      const double rate = contacts.rows[k].jacobian.dot(v_after);
+      const double apex_m = accel[k] < 0.0 ? rate * rate / (-2.0 * accel[k]) : kInfinity;
+      if (rate < options_.hold_velocity_mps || apex_m < options_.hold_height_m) {
         trial.push_back(contacts.members[k]);
         slow.push_back(k);
       }
@@ -306,24 +361,53 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorConta
     if (proposal == holding) break;
     holding = proposal;
   }
+  stick(contacts, holding, y_after, solution);
   y = y_after;
   return holding;
+}
+
+void EventDrivenRun::stick(const FloorContacts& contacts, const std::vector<bool>& holding, VectorXd& y,
+                           contact::ImpulseSolution& solution) const {
+  // A contact goes into hold separating at up to hold_velocity_mps (the bounce sequence it cuts
+  // off would have brought it to rest). Left to the drift correction, that speed would open the
+  // gap by ~v·τ and do work against the constraint; instead the held contacts are brought to
+  // ġ = 0 together here, and the kinetic energy this takes counts as impact loss.
+  std::vector<std::size_t> held;
+  for (std::size_t k = 0; k < holding.size(); ++k) {
+    if (holding[k]) held.push_back(k);
+  }
+  if (held.empty()) return;
+  const Eigen::Index m = static_cast<Eigen::Index>(held.size());
+  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(contacts.floor);
+  const contact::Vector6d velocities = system_.pair_velocities(y, contacts.floor);
+  Eigen::MatrixXd rows(m, 6);
+  for (Eigen::Index r = 0; r < m; ++r) rows.row(r) = contacts.rows[held[static_cast<std::size_t>(r)]].jacobian;
+  const Eigen::MatrixXd w = rows * inverse_mass.asDiagonal() * rows.transpose();
+  const VectorXd impulses = w.completeOrthogonalDecomposition().solve(-(rows * velocities));
+  const contact::Vector6d change = inverse_mass.cwiseProduct(rows.transpose() * impulses);
+  system_.add_pair_velocities(y, contacts.floor, change);
+  solution.velocity_change += change;
+  for (Eigen::Index r = 0; r < m; ++r) solution.impulses_kNs[held[static_cast<std::size_t>(r)]] += impulses[r];
 }
 
 void EventDrivenRun::resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired) {
   FloorContacts contacts = floor_contacts(y, floor, fired);
   const VectorXd y_before = y;
   contact::ImpulseSolution solution;
+  std::vector<bool> were_held(contacts.members.size());
+  for (std::size_t k = 0; k < contacts.members.size(); ++k) were_held[k] = modes_[contacts.members[k]] == Mode::held;
   const std::vector<bool> holding = settle_floor(t, y, contacts, solution);
-  recorder_.add_impact_loss(record_floor_outcome(system_, t, contacts, solution, y_before, y, fired, holding, result_));
+  recorder_.add_impact_loss(
+      record_floor_outcome(system_, t, contacts, solution, y_before, y, fired, holding, were_held, result_));
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
+    if (were_held[k]) result_.sustained_contacts[hold_record_[i]].impulse_kNs += solution.impulses_kNs[k];
     if (holding[k]) {
       hold(i, t);
     } else if (modes_[i] == Mode::held) {
-      release(i, t, "separated by an impact");
+      release(i, t, y, "separated by an impact");
     } else {
-      mask(i, options_.reopen_gap_m);
+      mask(i, options_.reopen_gap_m, y);
     }
   }
 }
@@ -340,16 +424,8 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
   };
   for (std::size_t i = 0; i < count_; ++i) {
     const contact::GapState s0 = system_.gap(prev_y_, i), s1 = system_.gap(y, i);
-    if (modes_[i] == Mode::masked && s1.on_segment() && s1.gap_m < -options_.contact_tolerance_m &&
-        s1.gap_rate_mps < 0.0) {
-      // Closing into overlap before its gap re-opened past the re-arming threshold (a flight
-      // lower than the threshold): never let that pass as interpenetration. A pair already
-      // separating again needs nothing.
-      const double t_hit = s0.gap_m >= 0.0
-          ? find_root([&](double time) { integrator_->interpolate(time, at); return system_.gap(at, i).gap_m; },
-                      prev_t_, t, s0.gap_m, s1.gap_m)
-          : t;
-      keep_earliest(t_hit, i);
+    if (modes_[i] == Mode::masked) {
+      if (const std::optional<double> t_hit = reclosure(i, t, s0, s1)) keep_earliest(*t_hit, i);
       continue;
     }
     if (modes_[i] != Mode::armed) continue;
@@ -362,6 +438,7 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
                                    s0.gap_rate_mps, s1.gap_rate_mps);
     const contact::GapState lowest = state_at(t_min);
     if (!lowest.on_segment()) continue;
+    result_.statistics.note_overlap(lowest.gap_m, t_min, i);
     if (lowest.gap_m < 0.0) {
       const double t_cross =
           find_root([&](double time) { return state_at(time).gap_m; }, prev_t_, t_min, s0.gap_m, lowest.gap_m);
@@ -373,29 +450,73 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
   return earliest;
 }
 
+std::optional<double> EventDrivenRun::reclosure(std::size_t i, double t, const contact::GapState& start,
+                                                const contact::GapState& end) {
+  // A masked pair sinking at the step end (g < 0, ġ < 0) closed again after it was handled. If
+  // the gap rose to g ≥ 0 inside the step, the re-closure is the last crossing of zero, at any
+  // height (a flight from rest at ġ⁺ ≈ 0 rises only by nanometres, and its rate may change sign
+  // twice in the step: rounding leaves ġ⁺ at −1e−17 while g̈ lifts the pair). The step is scanned
+  // on the interpolant, the highest sample polished to the maximum. If the gap never rose, the
+  // pair has been in contact (within the allowance) since before the step; once past its floor,
+  // the contact is taken at the step end, where its own root stopped the integrator.
+  if (!end.on_segment() || !(end.gap_m < 0.0 && end.gap_rate_mps < 0.0)) return std::nullopt;
+  VectorXd at(system_.state_size());
+  auto state_at = [&](double time) {
+    integrator_->interpolate(time, at);
+    return system_.gap(at, i);
+  };
+  constexpr int kSamples = 32;
+  std::array<double, kSamples + 1> times{}, gaps{}, rates{};
+  for (int k = 0; k <= kSamples; ++k) {
+    times[k] = k == kSamples ? t : prev_t_ + (t - prev_t_) * k / kSamples;
+    const contact::GapState s = k == 0 ? start : k == kSamples ? end : state_at(times[k]);
+    gaps[k] = s.gap_m;
+    rates[k] = s.gap_rate_mps;
+  }
+  int last_open = -1;
+  for (int k = 0; k < kSamples; ++k) {
+    if (gaps[k] >= 0.0) last_open = k;
+  }
+  double t_open = last_open >= 0 ? times[last_open] : 0.0, g_open = last_open >= 0 ? gaps[last_open] : 0.0;
+  int after = last_open + 1;
+  if (last_open < 0) {
+    // No sample open: the top of a flight lower than the samples resolve may still be above zero.
+    const int top = static_cast<int>(std::max_element(gaps.begin(), gaps.end()) - gaps.begin());
+    for (int k : {top - 1, top}) {
+      if (k < 0 || k >= kSamples || !(rates[k] > 0.0 && rates[k + 1] < 0.0)) continue;
+      const double t_top = find_root([&](double time) { return state_at(time).gap_rate_mps; }, times[k],
+                                     times[k + 1], rates[k], rates[k + 1]);
+      const double g_top = state_at(t_top).gap_m;
+      if (g_top >= 0.0) t_open = t_top, g_open = g_top, after = k + 1;
+    }
+  }
+  if (after > 0) {
+    const double t_hit =
+        find_root([&](double time) { return state_at(time).gap_m; }, t_open, times[after], g_open, gaps[after]);
+    return state_at(t_hit).on_segment() ? t_hit : t;  // closed beside the edge, then slid onto it
+  }
+  if (end.gap_m <= mask_floor_m_[i] * (1.0 - 1e-9)) return t;
+  return std::nullopt;
+}
+
 void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
   // After an impact the next flight of that pair can be far shorter than the last step. While it
-  // is masked, bound the step by a quarter of the predicted time until its gap reaches
-  // −contact_tolerance (where the masked-closure check takes over), from
-  // (g + tol) + ġτ + ½g̈τ² = 0: a step then always ends mid-flight, where the pair re-arms.
+  // is masked, bound the step by a quarter of the predicted time until its gap reaches its mask
+  // floor (where its root fires), from (g − floor) + ġτ + ½g̈τ² = 0, so that the interpolant
+  // that locates the re-closure spans a short stretch of a smooth flight.
   double bound = default_max_step_s_;
   VectorXd y_dot(system_.state_size());
   bool have_accel = false;
   for (std::size_t i = 0; i < count_; ++i) {
     if (modes_[i] != Mode::masked) continue;
     const contact::GapState s = system_.gap(y, i);
-    const double height = s.gap_m + options_.contact_tolerance_m;
-    if (!s.on_segment() || height <= 0.0) continue;
+    const double height = s.gap_m - mask_floor_m_[i];
+    if (!s.on_segment() || !(height > 0.0) || std::isinf(height)) continue;
     if (!have_accel) {
       rhs(t, y, y_dot);
       have_accel = true;
     }
-    const contact::Candidate& c = system_.candidates()[i];
-    const auto accel_of = [&](int building) {
-      return y_dot.segment<3>(system_.dof() + system_.floor_index(building, c.floor));
-    };
-    const double accel = s.striking_row.dot(accel_of(c.striking_building)) +
-                         s.struck_row.dot(accel_of(c.struck_building)) + s.curvature_mps2;
+    const double accel = system_.gap_acceleration(y, y_dot, i);
     if (accel >= 0.0) continue;
     const double rate = s.gap_rate_mps;
     const double reclose = (rate + std::sqrt(rate * rate - 2.0 * height * accel)) / (-accel);
@@ -407,7 +528,16 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
   }
 }
 
+void EventDrivenRun::note_overlaps(double t, const VectorXd& y) {
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (modes_[i] == Mode::held) continue;  // a held gap's drift is reported with its hold
+    const contact::GapState s = system_.gap(y, i);
+    if (s.on_segment()) result_.statistics.note_overlap(s.gap_m, t, i);
+  }
+}
+
 void EventDrivenRun::after_step(double t, const VectorXd& y) {
+  note_overlaps(t, y);
   for (std::size_t i = 0; i < count_; ++i) {
     if (modes_[i] == Mode::masked && system_.gap(y, i).gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
   }
@@ -431,7 +561,7 @@ bool EventDrivenRun::step_once() {
   const StepOutcome outcome = integrator_->step(t_end);
   if (outcome.kind == StepKind::failure) {
     result_.status = RunStatus::solver_failure;
-    result_.status_detail = fmt::format("at t = {} s: {}", outcome.t_s, outcome.failure);
+    result_.status_detail = fmt::format("after t = {} s: {}", prev_t_, outcome.failure);
     return false;
   }
   const double t = outcome.t_s;
@@ -461,7 +591,7 @@ bool EventDrivenRun::step_once() {
       if (found[count_ + i] != 0) force_roots.push_back(i);
       if (found[2 * count_ + i] != 0) edge_roots.push_back(i);
     }
-    for (std::size_t i : edge_roots) release(i, t, "slid off the edge");
+    for (std::size_t i : edge_roots) release(i, t, y, "slid off the edge");
     handle_event(t, y, gap_roots, force_roots, "tensile force");
     restart(t, y);
     return !stop_;
@@ -503,7 +633,7 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
     result_.status_detail = fmt::format("after t = {} s: {}", prev_t_, error.what());
   }
   result_.end_s = prev_t_;
-  for (std::size_t i : std::vector<std::size_t>(held_)) release(i, prev_t_, "end of run");
+  for (std::size_t i : std::vector<std::size_t>(held_)) release(i, prev_t_, prev_y_, "end of run");
   recorder_.finish(prev_y_, result_);
   result_.statistics.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();

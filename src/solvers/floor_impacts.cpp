@@ -36,11 +36,13 @@ contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, d
 double record_floor_outcome(const dynamics::CoupledSystem& system, double t, const FloorContacts& contacts,
                             const contact::ImpulseSolution& solution, const dynamics::VectorXd& y_before,
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
-                            const std::vector<bool>& holds, RunResult& result) {
+                            const std::vector<bool>& holds, const std::vector<bool>& were_held,
+                            RunResult& result) {
   const int floor = contacts.floor;
   const contact::Vector6d v_after = system.pair_velocities(y_after, floor);
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
+    if (!were_held.empty() && were_held[k]) continue;  // a held contact's share: not an impact
     const contact::Candidate& c = system.candidates()[i];
     const contact::GapState& s = contacts.states[k];
     const double impulse = solution.impulses_kNs[k];
@@ -62,7 +64,9 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
       r.energy_lost_kJ = -impulse * (rate_before + rate_after) / 2.0;  // the shares sum to the pair's loss
       r.starts_hold = !holds.empty() && holds[k];
       result.impacts.push_back(r);
-    } else if (touched.count(i)) {
+    } else if (touched.count(i) && rate_before >= 0.0) {
+      // A closing contact that took no impulse was stopped by its neighbours' (a coincident
+      // corner, a dependent row): it is part of their impact, not a touch.
       result.touches.push_back(touch_record(system, t, i, s));
     }
   }

@@ -179,7 +179,7 @@ State HhtRun::settle(const State& s, bool include_overlaps) {
         [&](std::size_t i, const contact::GapState&) { return in_contact[i]; });
     const VectorXd before = y;
     const contact::ImpulseSolution solution = apply_impulses(system_, y, contacts);
-    recorder_.add_impact_loss(record_floor_outcome(system_, s.t_s, contacts, solution, before, y, new_touches, {}, result_));
+    recorder_.add_impact_loss(record_floor_outcome(system_, s.t_s, contacts, solution, before, y, new_touches, {}, {}, result_));
     ++result_.statistics.restarts;
     ++result_.statistics.events;
     changed = true;

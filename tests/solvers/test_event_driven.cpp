@@ -149,6 +149,7 @@ BOOST_AUTO_TEST_CASE(EventCapEndsAnUnresolvedAccumulation) {
   solvers::EventOptions options;
   options.restitution = 0.5;
   options.hold_velocity_mps = 1e-12;  // practically never hold: bounces accumulate at t∞ ≈ 0.42 s
+  options.hold_height_m = 1e-30;
   options.max_events_per_s = 20;
   const auto result = solvers::run_event_driven(pressed.system, options, cvode(1e-10, 1e-12), "cvode-bdf");
   BOOST_TEST(solvers::to_string(result.status) == "event_limit");

@@ -8,6 +8,9 @@
 
 namespace pounding::contact {
 
+/// How far beyond an edge's ends (fraction of the edge) a vertex still counts as on the edge.
+inline constexpr double kOnSegmentTolerance = 1e-9;
+
 /// Motion of one slab: displacements of its CM and rotation, and their rates.
 struct SlabMotion {
   model::Point2 centre_rest = model::Point2::Zero();  // CM at rest (m)
@@ -29,7 +32,7 @@ struct GapState {
   Eigen::RowVector3d struck_row;
   double curvature_mps2 = 0.0;        // h in g̈ = G q̈ + h (centripetal and normal-rotation terms)
 
-  bool on_segment(double tolerance = 1e-9) const {
+  bool on_segment(double tolerance = kOnSegmentTolerance) const {
     return segment_param >= -tolerance && segment_param <= 1.0 + tolerance;
   }
 };

@@ -38,6 +38,17 @@ struct ImpulseSolution {
 /// 12 contacts, projected Gauss–Seidel beyond.
 ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass);
 
+struct LcpSolution {
+  Eigen::VectorXd x;      // ≥ 0
+  Eigen::VectorXd w;      // W x + offset ≥ 0, xᵢ wᵢ = 0
+  bool exact = true;      // false when the iterative fallback was used
+};
+
+/// The linear complementarity problem w = W x + offset ≥ 0, x ≥ 0, xᵢ wᵢ = 0 for a symmetric
+/// positive semi-definite W: by active-set enumeration (sparsest solution first) up to 12
+/// unknowns, projected Gauss–Seidel beyond. @pre W square, offset of the same size.
+LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& offset);
+
 /// Kinetic energy ½ q̇ᵀ M q̇ of the floor pair (kJ).
 double kinetic_energy(const Vector6d& velocities, const Vector6d& inverse_mass);
 

@@ -47,6 +47,8 @@ class CoupledSystem {
 
   /// Gap state of candidate `index` in state y.
   contact::GapState gap(ConstVectorRef y, std::size_t index) const;
+  /// g̈ (m/s²) of candidate `index` in state y moving with ẏ = y_dot: G q̈ + h.
+  double gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const;
   /// ġ = G q̇ as a row over the floor pair's six velocities (building 1's slab first).
   contact::RowVector6d pair_row(const contact::GapState& state, const contact::Candidate& c) const;
   /// Velocities of the floor pair of `floor` in state y, and their inverse masses.
@@ -60,6 +62,11 @@ class CoupledSystem {
   /// (least squares).
   void constrained_rhs(double t, ConstVectorRef y, const std::vector<std::size_t>& held,
                        Eigen::Ref<VectorXd> y_dot, Eigen::Ref<VectorXd> forces_kN) const;
+  /// The held contacts' forces as a complementarity problem: λ ≥ 0 (kN), the stabilised g̈ ≥ 0
+  /// (m/s²), λᵢ g̈ᵢ = 0. A held contact with λ = 0 and g̈ > 0 would separate on its own: it is to
+  /// be released. Unlike constrained_rhs, which keeps every held gap closed whatever the sign of
+  /// its force, this decides which contacts can stay held together.
+  contact::LcpSolution hold_complementarity(double t, ConstVectorRef y, const std::vector<std::size_t>& held) const;
   /// Jacobian of constrained_rhs with the constraint rows frozen at y: the free Jacobian with
   /// the acceleration rows projected by P = I − M⁻¹Gᵀ W⁻¹ G, plus the Baumgarte terms.
   void constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,

@@ -19,14 +19,23 @@ struct EventOptions {
   /// same instant are solved together as simultaneous.
   double contact_tolerance_m = 1e-8;
   /// A contact that just took an impulse is masked until its gap re-opens beyond this (m); far
-  /// below the height of the shortest flight that is not held (hold_velocity² / 2|g̈|). A released
+  /// below the height of the shortest flight that is not held (hold_height_m). A released
   /// sustained contact opens only cubically (its force, so g̈, starts at zero) and is masked until
   /// its gap exceeds contact_tolerance_m instead, so solver noise is not taken for a new contact.
   double reopen_gap_m = 1e-10;
+  /// The deepest overlap (m) a masked contact may reach before its own root function stops the
+  /// integrator: a masked pair's root is g − (min(g at masking, 0) − this), so a re-closure is
+  /// never stepped over whatever the step size; the crossing of g = 0 is then located on the
+  /// step's interpolant.
+  double overlap_allowance_m = 1e-9;
   /// Sticking threshold: after an impact, a pair that separates slower than this (m/s) while
   /// pressed together (free g̈ < 0) is held in sustained contact. With k < 1 the bounce speeds
   /// fall geometrically; this cuts the accumulation off after the bounce that drops below it.
   double hold_velocity_mps = 1e-3;
+  /// A pair whose next flight would rise less than this (m), v⁺²/(2|g̈|), is held as well,
+  /// whatever hold_velocity_mps says: such a bounce is below what the integrators resolve at
+  /// their default tolerances, and chasing it only accumulates round-off (and energy).
+  double hold_height_m = 1e-8;
   /// A run with more events than this within one simulated second stops with event_limit.
   double max_events_per_s = 2000;
   long max_steps = 10'000'000;

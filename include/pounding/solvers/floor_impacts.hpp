@@ -33,11 +33,14 @@ contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, d
                                         const FloorContacts& contacts);
 
 /// Appends an impact record for each member that took an impulse while approaching, and a touch
-/// record for each member in `touched` that did not. `holds[k]`: member k then went into
-/// sustained contact (empty: none did). Returns the floor pair's kinetic energy lost (kJ).
+/// record for each member in `touched` that was not approaching. `holds[k]`: member k then went
+/// into sustained contact; `were_held[k]`: it was held already, so its impulse is a share of the
+/// neighbours' impact, not an impact (either empty: none). Returns the floor pair's kinetic
+/// energy lost (kJ).
 double record_floor_outcome(const dynamics::CoupledSystem& system, double t, const FloorContacts& contacts,
                             const contact::ImpulseSolution& solution, const dynamics::VectorXd& y_before,
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
-                            const std::vector<bool>& holds, RunResult& result);
+                            const std::vector<bool>& holds, const std::vector<bool>& were_held,
+                            RunResult& result);
 
 }  // namespace pounding::solvers

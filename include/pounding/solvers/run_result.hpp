@@ -55,6 +55,7 @@ struct SustainedContactRecord {
   std::string release_reason;       // "tensile force", "slid off the edge", "end of run", ...
   double max_force_kN = 0.0;
   double max_gap_drift_m = 0.0;     // max |g| while held
+  double impulse_kNs = 0.0;         // impulse shares taken while held, when impacts struck its floor
 };
 
 struct Peak {
@@ -105,6 +106,18 @@ struct SolverStatistics {
   long halvings = 0;               // HHT: step halvings on overlap
   double smallest_step_s = 0.0;    // HHT: the smallest step taken
   long unresolved_contacts = 0;    // HHT: overlaps still beyond the tolerance at max_halvings
+  /// The deepest overlap −g (m, ≥ 0) of a pair not held in sustained contact, seen at a step end,
+  /// an event or a located minimum; when, and which candidate (−1: none overlapped).
+  double max_interpenetration_m = 0.0;
+  double max_interpenetration_t_s = 0.0;
+  long max_interpenetration_candidate = -1;
+  void note_overlap(double gap_m, double t_s, std::size_t candidate) {
+    if (-gap_m > max_interpenetration_m) {
+      max_interpenetration_m = -gap_m;
+      max_interpenetration_t_s = t_s;
+      max_interpenetration_candidate = static_cast<long>(candidate);
+    }
+  }
   double wall_time_s = 0.0;
 };
 
