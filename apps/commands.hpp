@@ -33,7 +33,7 @@ struct RunCommand {
   std::optional<int> max_halvings;
   std::optional<std::string> halving;         // on | off
   std::optional<std::string> event_location;  // halving | interpolate
-  std::optional<std::string> hold_linearization;  // every-step | once
+  std::optional<double> hold_rtol;
   std::string out_dir;  // empty: out/<scene name>
 };
 

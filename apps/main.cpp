@@ -47,8 +47,8 @@ int main(int argc, char** argv) {
   run_app->add_option("--max-halvings", run.max_halvings, "hht: deepest step halving (default 30)");
   run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
   run_app->add_option("--event-location", run.event_location, "hht: halving (default) or interpolate (Hermite root)");
-  run_app->add_option("--hold-linearization", run.hold_linearization,
-                      "exact: linearise a held contact at every step (every-step, default) or once");
+  run_app->add_option("--hold-rtol", run.hold_rtol,
+                      "exact: relative tolerance of held stretches, integrated by CVODE Adams (default 1e-12)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
 
   pounding::cli::StudyCommand study;

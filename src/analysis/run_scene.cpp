@@ -86,9 +86,9 @@ RunReport run_scene(const Scene& scene) {
 solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
   using IntegratorPtr = std::unique_ptr<solvers::Integrator>;
   if (solver.method == "exact") {
-    const bool relinearize = solver.hold_linearization == "every-step";
-    return [relinearize](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
-      return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, relinearize);
+    const solvers::ExactSettings settings{solver.hold_rtol, solver.hold_rtol / 100};
+    return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
+      return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, settings);
     };
   }
   if (solver.method.starts_with("arkode")) {

@@ -63,8 +63,8 @@ void validate_solver(const SolverSettings& solver) {
     throw InputError("solver.event_location", "\"" + solver.event_location + "\"",
                      "expected halving, end-of-step or interpolate");
   }
-  if (solver.hold_linearization != "every-step" && solver.hold_linearization != "once") {
-    throw InputError("solver.hold_linearization", "\"" + solver.hold_linearization + "\"", "expected every-step or once");
+  if (!(solver.hold_rtol >= 1e-14 && solver.hold_rtol <= 1e-6)) {
+    throw InputError("solver.hold_rtol", format_value(solver.hold_rtol), "must lie in [1e-14, 1e-6]");
   }
   if (solver.newton != "reduced" && solver.newton != "dense") {
     throw InputError("solver.newton", "\"" + solver.newton + "\"", "expected reduced or dense");

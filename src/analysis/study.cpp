@@ -130,6 +130,11 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options,
   exact.solver.method = "exact";
   run_scene(exact);  // warm the process up (caches, page faults) before anything is timed
   study.reference = timed(exact, study.reference_run_time_s);
+  Scene looser = exact;
+  looser.solver.hold_rtol = std::min(exact.solver.hold_rtol * 100, 1e-6);
+  study.reference_error = compare_runs(study.reference, run_scene(looser).result, options.match_window_s);
+  // Errors within this much of the estimate are the reference's, not the run's.
+  constexpr double kMargin = 2.0;
 
   auto add = [&](Scene variant, const std::string& label, const std::string& setting, double value) {
     StudyRow row;
@@ -143,6 +148,8 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options,
     row.restarts = result.statistics.restarts;
     row.impacts = result.impacts.size();
     row.errors = compare_runs(study.reference, result, options.match_window_s);
+    row.impact_time_at_reference = row.errors.impact_time_all_s <= kMargin * study.reference_error.impact_time_all_s;
+    row.history_u_at_reference = row.errors.history_u_m <= kMargin * study.reference_error.history_u_m;
     if (progress) progress(row);
     study.rows.push_back(std::move(row));
   };

@@ -145,7 +145,7 @@ json run_json(const analysis::RunReport& report) {
   }
   json settings = {{"rtol", report.solver.rtol}, {"atol", report.solver.atol}, {"newton", report.solver.newton},
                    {"order", report.solver.order}, {"hold_velocity_mps", report.hold_velocity_mps}};
-  if (r.method == "exact") settings = {{"hold_linearization", report.solver.hold_linearization}};
+  if (r.method == "exact") settings = {{"hold_rtol", report.solver.hold_rtol}, {"hold_atol", report.solver.hold_rtol / 100}};
   if (r.method == "hht") {
     settings = {{"dt_s", report.solver.dt_s}, {"alpha", report.solver.alpha},
                 {"contact_tolerance_m", report.solver.contact_tolerance_m},

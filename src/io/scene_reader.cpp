@@ -333,7 +333,7 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   solver.rtol = table->number_or("rtol", solver.rtol);
   solver.atol = table->number_or("atol", solver.atol);
   solver.newton = table->optional_string("newton").value_or(solver.newton);
-  solver.hold_linearization = table->optional_string("hold_linearization").value_or(solver.hold_linearization);
+  solver.hold_rtol = table->number_or("hold_rtol", solver.hold_rtol);
   solver.dt_s = table->number_or("dt_s", solver.dt_s);
   solver.alpha = table->number_or("alpha", solver.alpha);
   solver.contact_tolerance_m = table->number_or("contact_tolerance_m", solver.contact_tolerance_m);

@@ -11,7 +11,7 @@ namespace {
 const char* kCsvHeader =
     "method,setting,value,status,run_time_s,steps,rhs_evaluations,restarts,impacts,matched,missing,extra,"
     "impact_time_error_s,impact_time_error_all_s,impact_time_error_before_hold_s,impulse_relative_error,history_u_error_m,history_v_error_m,history_phi_error_rad,"
-    "peak_u_error_m,peak_v_error_m,peak_phi_error_rad\n";
+    "peak_u_error_m,peak_v_error_m,peak_phi_error_rad,impact_time_at_reference,history_u_at_reference\n";
 
 nlohmann::json row_json(const analysis::StudyRow& row) {
   const analysis::RunErrors& e = row.errors;
@@ -23,7 +23,9 @@ nlohmann::json row_json(const analysis::StudyRow& row) {
           {"impact_time_error_before_hold_s", e.impact_time_before_hold_s},
           {"impulse_relative_error", e.impulse_relative}, {"history_u_error_m", e.history_u_m},
           {"history_v_error_m", e.history_v_m}, {"history_phi_error_rad", e.history_phi_rad},
-          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad}};
+          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad},
+          {"impact_time_at_reference", row.impact_time_at_reference},
+          {"history_u_at_reference", row.history_u_at_reference}};
 }
 
 }  // namespace
@@ -34,7 +36,14 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
   return {{"scene", study.scene},
           {"gap_m", study.gap_m},
           {"reference", {{"method", "exact"}, {"impacts", study.reference.impacts.size()},
-                         {"run_time_s", study.reference_run_time_s}}},
+                         {"run_time_s", study.reference_run_time_s},
+                         {"error_estimate", {{"impact_time_s", study.reference_error.impact_time_all_s},
+                                             {"impact_time_fast_s", study.reference_error.impact_time_s},
+                                             {"history_u_m", study.reference_error.history_u_m},
+                                             {"history_v_m", study.reference_error.history_v_m},
+                                             {"history_phi_rad", study.reference_error.history_phi_rad},
+                                             {"missing", study.reference_error.missing},
+                                             {"extra", study.reference_error.extra}}}}},
           {"rows", rows}};
 }
 
@@ -46,11 +55,12 @@ void write_study(const analysis::StudyResult& study, const std::filesystem::path
   out << kCsvHeader;
   for (const auto& row : study.rows) {
     const analysis::RunErrors& e = row.errors;
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", row.method, row.setting,
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", row.method, row.setting,
                        row.value, row.status, row.run_time_s, row.steps, row.rhs_evaluations, row.restarts,
                        row.impacts, e.matched, e.missing, e.extra, e.impact_time_s, e.impact_time_all_s,
                        e.impact_time_before_hold_s, e.impulse_relative,
-                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad);
+                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad,
+                       row.impact_time_at_reference, row.history_u_at_reference);
   }
 }
 

@@ -31,21 +31,42 @@ std::pair<Complex, Complex> phi_functions(Complex z) {
 
 }  // namespace
 
-ExactIntegrator::ExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0, bool relinearize)
-    : functions_(functions),
-      relinearize_(relinearize),
-      jacobian_(functions.state_size(), functions.state_size()),
-      jacobian_now_(functions.state_size(), functions.state_size()) {
+ExactIntegrator::ExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0, ExactSettings settings)
+    : functions_(functions), settings_(settings), jacobian_(functions.state_size(), functions.state_size()) {
   restart(t0, y0);
 }
 
 void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   counters_ = {};  // like CVODE's, the counters run from the last restart
+  held_phase_ = !functions_.is_linear();
+  if (held_phase_) {
+    if (held_) {
+      held_->restart(t, y);
+    } else {
+      CvodeSettings tight;
+      tight.method = CvodeMethod::adams;
+      tight.rtol = settings_.hold_rtol;
+      tight.atol = settings_.hold_atol;
+      held_ = std::make_unique<CvodeIntegrator>(functions_, tight, t, y);
+    }
+    held_->set_max_step(max_step_s_);
+    return;
+  }
   freeze_phase(t, y);
   state_ = y;
   t_s_ = t;
   segment_ = segment_from(t, inverse_.solve(y.cast<Complex>()), t + max_step_s_);
   roots_start_ = roots_at(t, y);
+}
+
+void ExactIntegrator::set_max_step(double h_s) {
+  max_step_s_ = h_s;
+  if (held_phase_) held_->set_max_step(h_s);
+}
+
+void ExactIntegrator::set_stop_time(double t_s) {
+  stop_time_s_ = t_s;
+  if (held_phase_) held_->set_stop_time(t_s);
 }
 
 void ExactIntegrator::freeze_phase(double t, const Eigen::VectorXd& y) {
@@ -100,16 +121,9 @@ Eigen::VectorXd ExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
 }
 
 StepOutcome ExactIntegrator::step(double t_final) {
+  if (held_phase_) return held_->step(t_final);
   const double t_end = std::min({t_s_ + max_step_s_, stop_time_s_, t_final});
-  ComplexVector eta_start = modal(segment_, t_s_);
-  if (relinearize_) {
-    functions_.jacobian(t_s_, state_, jacobian_now_);
-    if (jacobian_now_ != jacobian_) {  // a held contact: linearise again here
-      freeze_phase(t_s_, state_);
-      eta_start = inverse_.solve(state_.cast<Complex>());
-    }
-  }
-  segment_ = segment_from(t_s_, eta_start, t_end);
+  segment_ = segment_from(t_s_, modal(segment_, t_s_), t_end);
   ++counters_.steps;
 
   Eigen::VectorXd y_end = physical(modal(segment_, t_end));
@@ -140,6 +154,12 @@ StepOutcome ExactIntegrator::step(double t_final) {
   return {t_end == stop_time_s_ ? StepKind::stop_time : StepKind::step, t_end, {}};
 }
 
-void ExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) { y = physical(modal(segment_, t)); }
+void ExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
+  if (held_phase_) {
+    held_->interpolate(t, y);
+  } else {
+    y = physical(modal(segment_, t));
+  }
+}
 
 }  // namespace pounding::solvers

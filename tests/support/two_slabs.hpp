@@ -65,9 +65,9 @@ inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Poly
                    excitation::GroundMotion({0.0, duration_s}, {ground_accel_mps2, ground_accel_mps2}, 0.0));
 }
 
-inline solvers::IntegratorFactory exact(bool relinearize = true) {
+inline solvers::IntegratorFactory exact(solvers::ExactSettings settings = {}) {
   return [=](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
-    return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, relinearize);
+    return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, settings);
   };
 }
 

@@ -18,6 +18,9 @@ class OdeFunctions {
   virtual void rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> y_dot) = 0;
   virtual void jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) = 0;
   virtual void roots(double t, const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> g) = 0;
+  /// True when rhs is affine in y with a constant jacobian() (free flight); false when it may
+  /// depend on y nonlinearly (a held contact's rotating geometry).
+  virtual bool is_linear() const { return false; }
 };
 
 enum class StepKind { step, root, stop_time, failure };
