@@ -305,12 +305,14 @@ void EventDrivenRun::settle_holds(double t, const VectorXd& y) {
   // together: the held contacts that the complementarity problem leaves without force while
   // their gap would open are released.
   if (held_.empty()) return;
+  // A twin held beside its contact (coincident corners: the same row twice) gets no force and
+  // zero acceleration; only an opening acceleration clearly above round-off releases a pair.
   const contact::LcpSolution solution = system_.hold_complementarity(t, y, held_);
+  const double round_off = 1e-9 * (1.0 + solution.w.cwiseAbs().maxCoeff());
   std::vector<std::size_t> separating;
   for (std::size_t r = 0; r < held_.size(); ++r) {
-    if (solution.x[static_cast<Eigen::Index>(r)] <= 0.0 && solution.w[static_cast<Eigen::Index>(r)] > 0.0) {
-      separating.push_back(held_[r]);
-    }
+    const auto k = static_cast<Eigen::Index>(r);
+    if (solution.x[k] <= 0.0 && solution.w[k] > round_off) separating.push_back(held_[r]);
   }
   for (std::size_t i : separating) release(i, t, y, "tensile force");
 }
