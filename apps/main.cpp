@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
   run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk, arkode-dirk, hht or exact");
-  run_app->add_option("--order", run.order, "ARKODE table order: erk 5 (default) or 8, dirk 4 (default) or 3");
+  run_app->add_option("--order", run.order, "ARKODE table order: erk 5 (the only one), dirk 4 (default) or 3");
   run_app->add_option("--rtol", run.rtol, "Relative tolerance (default 1e-8)");
   run_app->add_option("--atol", run.atol, "Absolute tolerance, m and rad (default 1e-10)");
   run_app->add_option("--dt", run.dt_s, "hht: time step in s (default 0.05, as published)");
