@@ -1,7 +1,9 @@
 #include "commands.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <map>
 
 #include "pounding/analysis/modal_summary.hpp"
@@ -51,6 +53,14 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
   fmt::print("  peak |a_g| = {:.4f} m/s² = {:.4f} g at t = {:.4f} s, direction β = {} deg\n",
              motion.peak_mps2(), motion.peak_mps2() / spec.g_mps2, motion.peak_time_s(),
              spec.direction_deg);
+}
+
+/// "7 storeys of 3 m", or with unequal storeys "7 storeys of 4.5, 3, 3, 3, 3, 3, 3 m" (floor 1 first).
+std::string storeys_text(const model::BuildingDefinition& b) {
+  const std::vector<double>& h = b.storey_height_m;
+  const bool uniform = std::all_of(h.begin(), h.end(), [&](double height) { return height == h.front(); });
+  return uniform ? fmt::format("{} storeys of {} m", b.storeys, h.front())
+                 : fmt::format("{} storeys of {} m", b.storeys, fmt::join(h, ", "));
 }
 
 void print_run_summary(const analysis::RunReport& report, const std::string& folder) {
@@ -207,9 +217,9 @@ int run_check(const CheckCommand& command) {
     const auto& b = buildings[i];
     const auto& definition = scene.buildings[i];
     total_dof += b.dof;
-    fmt::print("Building {} '{}': {} storeys of {} m, {} DOF, total mass {:.1f} t, frame factor "
+    fmt::print("Building {} '{}': {}, {} DOF, total mass {:.1f} t, frame factor "
                "{:.8f}{}\n",
-               i + 1, b.name, b.storeys, definition.storey_height_m, b.dof, b.total_mass_t,
+               i + 1, b.name, storeys_text(definition), b.dof, b.total_mass_t,
                b.frame_factor, b.frame_factor_solved ? " (solved for the target period)" : "");
     fmt::print("  floor mass {:.1f} t (top {:.1f} t), polar moment {:.1f} t·m² (top {:.1f} t·m²)\n",
                definition.mass_t.front(), definition.mass_t.back(),

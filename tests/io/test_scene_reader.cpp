@@ -157,6 +157,34 @@ BOOST_AUTO_TEST_CASE(NonPositiveHeightAndModulusAreRefused) {
                       {"building[1].E_kPa", "-30000000", "positive"}));
 }
 
+BOOST_AUTO_TEST_CASE(StoreyHeightsAreOneNumberOrOneAStorey) {
+  Case scalar(kScene), list(edited("storeys = 2\nstorey_height_m = 3.0", "storeys = 2\nstorey_height_m = [3.0, 3.0]"));
+  const auto a = read_scene(scalar.file), b = read_scene(list.file);
+  BOOST_TEST(a.buildings[0].storey_height_m == std::vector<double>({3.0, 3.0}), tt::per_element());
+  BOOST_TEST(b.buildings[0].storey_height_m == a.buildings[0].storey_height_m, tt::per_element());
+  const Eigen::MatrixXd difference = pounding::model::make_building(a.buildings[0]).stiffness -
+                                     pounding::model::make_building(b.buildings[0]).stiffness;
+  BOOST_TEST(difference.cwiseAbs().maxCoeff() == 0.0);
+
+  Case taller(edited("storeys = 3\nstorey_height_m = 3.0", "storeys = 3\nstorey_height_m = [3.0, 3.0, 4.5]"));
+  BOOST_TEST(read_scene(taller.file).buildings[1].storey_height_m == std::vector<double>({3.0, 3.0, 4.5}),
+             tt::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(BadStoreyHeightListsAreRefusedEntryByEntry) {
+  const std::string anchor = "storeys = 3\nstorey_height_m = 3.0";
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, 3.0, -4.5]")),
+                      {"scene.toml", "building[2].storey_height_m[3]", "-4.5", "positive"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, 3.0]")),
+                      {"building[2].storey_height_m", "2 values", "one value per storey (3)"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, inf, 3.0]")),
+                      {"building[2].storey_height_m[2]", "inf", "finite"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = inf")),
+                      {"building[2].storey_height_m", "inf", "finite"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, \"x\", 3.0]")),
+                      {"building[2].storey_height_m[2]", "expected a number"}));
+}
+
 BOOST_AUTO_TEST_CASE(RestitutionOutsideUnitIntervalIsRefused) {
   BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = 1.5")),
                       {"scene.toml", "contact.restitution", "1.5", "[0, 1]"}));

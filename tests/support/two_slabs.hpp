@@ -25,7 +25,7 @@ inline model::Building slab_building(const char* name, const model::Polygon& sla
   model::BuildingDefinition b;
   b.name = name;
   b.storeys = 1;
-  b.storey_height_m = 3.0;
+  b.storey_height_m = {3.0};
   b.slab = slab;
   b.centre_of_mass = slab.centroid();
   b.mass_t = {spec.mass_t};
