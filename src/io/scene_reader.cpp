@@ -391,6 +391,7 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
   scene.contact.restitution = contact.number("restitution");
   scene.contact.candidate_margin_m = contact.number_or("candidate_margin_m", scene.contact.candidate_margin_m);
   scene.contact.hold_velocity_mps = contact.number_or("hold_velocity_mps", scene.contact.hold_velocity_mps);
+  scene.contact.level_tolerance_m = contact.number_or("level_tolerance_m", scene.contact.level_tolerance_m);
   contact.finish();
   scene.solver = read_solver(root.optional_subtable("solver"));
   scene.output = read_output(root.optional_subtable("output"));

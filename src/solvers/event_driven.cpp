@@ -123,10 +123,10 @@ class EventDrivenRun final : public OdeFunctions {
   std::optional<Hidden> hidden_contact(double t, const VectorXd& y);
   void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
                     const std::vector<std::size_t>& released, const char* release_reason);
-  FloorContacts floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const;
+  FloorContacts floor_contacts(const VectorXd& y, int level, const std::set<std::size_t>& fired) const;
   std::vector<bool> settle_floor(double t, VectorXd& y, FloorContacts& contacts,
                                  contact::ImpulseSolution& solution) const;
-  void resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired);
+  void resolve_floor(double t, VectorXd& y, int level, const std::set<std::size_t>& fired);
   void mask(std::size_t i, double reopen_m) {
     modes_[i] = Mode::masked;
     reopen_at_m_[i] = reopen_m;
@@ -212,7 +212,9 @@ void EventDrivenRun::hold(std::size_t i, double t) {
   held_.push_back(i);
   const contact::Candidate& c = system_.candidates()[i];
   SustainedContactRecord record;
-  record.floor = c.floor;
+  record.level = c.level;
+  record.floors = c.floors;
+  record.elevation_m = c.elevation_m;
   record.striking_building = c.striking_building + 1;
   record.vertex = c.vertex_index + 1;
   record.candidate = i;
@@ -247,7 +249,7 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
   count_event(t);
   for (std::size_t i : released) release(i, t, release_reason);
   std::set<std::size_t> fired;
-  std::set<int> floors;
+  std::set<int> levels;
   for (std::size_t i : gap_roots) {
     if (!system_.gap(y, i).on_segment()) {
       mask(i, options_.reopen_gap_m);  // the vertex crossed the edge's extension, not the edge
@@ -255,17 +257,17 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
       continue;
     }
     fired.insert(i);
-    floors.insert(system_.candidates()[i].floor);
+    levels.insert(system_.candidates()[i].level);
   }
-  for (int floor : floors) resolve_floor(t, y, floor, fired);
+  for (int level : levels) resolve_floor(t, y, level, fired);
   update_hold_records(t, y);  // a hold may end before the next step does
   recorder_.sample(t, y);
 }
 
-FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const {
-  // Every contact of this floor pair that is closed now takes part, so simultaneous contacts
-  // are solved together, never one after another.
-  return gather_floor_contacts(system_, y, floor, options_.restitution, [&](std::size_t i, const contact::GapState& s) {
+FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int level, const std::set<std::size_t>& fired) const {
+  // Every contact of this level's slab pair that is closed now takes part, so simultaneous
+  // contacts are solved together, never one after another.
+  return gather_floor_contacts(system_, y, level, options_.restitution, [&](std::size_t i, const contact::GapState& s) {
     const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
     return modes_[i] == Mode::held || fired.count(i) || closed;
   });
@@ -283,11 +285,11 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorConta
     for (std::size_t k = 0; k < n; ++k) contacts.rows[k].restitution = holding[k] ? 0.0 : options_.restitution;
     y_after = y;
     solution = apply_impulses(system_, y_after, contacts);
-    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.floor);
+    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.floors);
 
     std::vector<std::size_t> trial;  // held elsewhere, plus this floor's slow separations
     for (std::size_t i : held_) {
-      if (system_.candidates()[i].floor != contacts.floor) trial.push_back(i);
+      if (system_.candidates()[i].level != contacts.level) trial.push_back(i);
     }
     const std::size_t others = trial.size();
     std::vector<std::size_t> slow;
@@ -310,8 +312,8 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorConta
   return holding;
 }
 
-void EventDrivenRun::resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired) {
-  FloorContacts contacts = floor_contacts(y, floor, fired);
+void EventDrivenRun::resolve_floor(double t, VectorXd& y, int level, const std::set<std::size_t>& fired) {
+  FloorContacts contacts = floor_contacts(y, level, fired);
   const VectorXd y_before = y;
   contact::ImpulseSolution solution;
   const std::vector<bool> holding = settle_floor(t, y, contacts, solution);
@@ -392,7 +394,7 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
     }
     const contact::Candidate& c = system_.candidates()[i];
     const auto accel_of = [&](int building) {
-      return y_dot.segment<3>(system_.dof() + system_.floor_index(building, c.floor));
+      return y_dot.segment<3>(system_.dof() + system_.floor_index(building, c.floors[building]));
     };
     const double accel = s.striking_row.dot(accel_of(c.striking_building)) +
                          s.struck_row.dot(accel_of(c.struck_building)) + s.curvature_mps2;
