@@ -1,7 +1,9 @@
 #include "commands.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <map>
 
 #include "pounding/analysis/modal_summary.hpp"
@@ -33,6 +35,28 @@ void print_modes_table(const analysis::BuildingSummary& building, int count) {
   }
 }
 
+/// The floor pairs that can touch, with both elevations, and the floors at no level.
+void print_levels(const analysis::Scene& scene) {
+  const std::vector<contact::Level> levels = scene.levels();
+  const std::array<std::vector<double>, 2> z{model::floor_elevations(scene.buildings[0]),
+                                             model::floor_elevations(scene.buildings[1])};
+  fmt::print("Levels (floors at a common elevation, within {} m; only these can touch): {}\n",
+             scene.contact.level_tolerance_m, levels.size());
+  for (const contact::Level& l : levels) {
+    fmt::print("  level {}: B1 floor {} ({:.6g} m) ↔ B2 floor {} ({:.6g} m)\n", l.index, l.floors[0],
+               z[0][l.floors[0] - 1], l.floors[1], z[1][l.floors[1] - 1]);
+  }
+  for (std::size_t b = 0; b < 2; ++b) {
+    std::vector<int> alone;
+    for (int f = 1; f <= static_cast<int>(z[b].size()); ++f) {
+      if (std::none_of(levels.begin(), levels.end(), [&](const contact::Level& l) { return l.floors[b] == f; })) {
+        alone.push_back(f);
+      }
+    }
+    if (!alone.empty()) fmt::print("  B{} floors at no level (no slab of the other building there): {}\n", b + 1, fmt::join(alone, ", "));
+  }
+}
+
 std::string_view format_name(excitation::RecordFormat format) {
   switch (format) {
     case excitation::RecordFormat::peer_at2: return "peer-at2";
@@ -53,6 +77,23 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
              spec.direction_deg);
 }
 
+/// "7 storeys of 3 m", or with unequal storeys "7 storeys of 4.5, 3, 3, 3, 3, 3, 3 m" (floor 1 first).
+std::string storeys_text(const model::BuildingDefinition& b) {
+  const std::vector<double>& h = b.storey_height_m;
+  const bool uniform = std::all_of(h.begin(), h.end(), [&](double height) { return height == h.front(); });
+  return uniform ? fmt::format("{} storeys of {} m", b.storeys, h.front())
+                 : fmt::format("{} storeys of {} m", b.storeys, fmt::join(h, ", "));
+}
+
+/// "level 3 (B1 floor 3, B2 floor 2, 9 m)": where a contact is.
+std::string where(int level, const std::array<int, 2>& floors, double elevation_m) {
+  return fmt::format("level {} (B1 floor {}, B2 floor {}, {:.6g} m)", level, floors[0], floors[1], elevation_m);
+}
+template <class Located>
+std::string where(const Located& r) {
+  return where(r.level, r.floors, r.elevation_m);
+}
+
 void print_run_summary(const analysis::RunReport& report, const std::string& folder) {
   const solvers::RunResult& r = report.result;
   const auto& solver = report.solver;
@@ -63,26 +104,31 @@ void print_run_summary(const analysis::RunReport& report, const std::string& fol
                             : fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
   fmt::print("Run '{}' with {} ({}), gap {} m, k = {}: {}{}\n", report.scene, r.method, settings, report.gap_m,
              report.restitution, solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
-  std::map<int, int> by_floor;
-  for (const auto& i : r.impacts) ++by_floor[i.floor];
+  std::map<int, int> by_level;
+  for (const auto& i : r.impacts) ++by_level[i.level];
   fmt::print("Impacts: {}", r.impacts.size());
-  for (const auto& [floor, count] : by_floor) fmt::print("; floor {}: {}", floor, count);
+  for (const auto& [level, count] : by_level) {
+    const contact::Level& l = report.levels.at(static_cast<std::size_t>(level - 1));
+    fmt::print("; {}: {}", where(l.index, l.floors, l.elevation_m), count);
+  }
   fmt::print("\n");
   if (!r.impacts.empty()) {
     const auto& first = r.impacts.front();
-    fmt::print("  first at t = {:.6f} s on floor {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
-               first.t_s, first.floor, first.striking_building, first.vertex, first.approach_velocity_mps,
+    fmt::print("  first at t = {:.6f} s on {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
+               first.t_s, where(first), first.striking_building, first.vertex, first.approach_velocity_mps,
                first.impulse_kNs);
   }
   fmt::print("Touches (contact without impact): {}\n", r.touches.size());
-  for (const auto& t : r.touches) fmt::print("  t = {:.6f} s, floor {}, B{} vertex {}\n", t.t_s, t.floor, t.striking_building, t.vertex);
+  for (const auto& t : r.touches) fmt::print("  t = {:.6f} s, {}, B{} vertex {}\n", t.t_s, where(t), t.striking_building, t.vertex);
   fmt::print("Sustained contacts: {}\n", r.sustained_contacts.size());
   for (const auto& s : r.sustained_contacts) {
-    fmt::print("  floor {}, B{} vertex {}: {:.6f} s to {:.6f} s ({}), max force {:.1f} kN\n", s.floor,
+    fmt::print("  {}, B{} vertex {}: {:.6f} s to {:.6f} s ({}), max force {:.1f} kN\n", where(s),
                s.striking_building, s.vertex, s.start_s, s.release_s, s.release_reason, s.max_force_kN);
   }
-  for (const auto& building : r.peaks) {
-    const auto& top = building.floors[std::min<std::size_t>(building.floors.size(), r.peaks[0].floors.size()) - 1];
+  // The top level is where the buildings pound hardest; each building's own floor there.
+  for (std::size_t b = 0; b < r.peaks.size(); ++b) {
+    const auto& building = r.peaks[b];
+    const auto& top = building.floors.at(static_cast<std::size_t>(report.levels.back().floors[b] - 1));
     fmt::print("Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",
                building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
                top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
@@ -212,9 +258,9 @@ int run_check(const CheckCommand& command) {
     const auto& b = buildings[i];
     const auto& definition = scene.buildings[i];
     total_dof += b.dof;
-    fmt::print("Building {} '{}': {} storeys of {} m, {} DOF, total mass {:.1f} t, frame factor "
+    fmt::print("Building {} '{}': {}, {} DOF, total mass {:.1f} t, frame factor "
                "{:.8f}{}\n",
-               i + 1, b.name, b.storeys, definition.storey_height_m, b.dof, b.total_mass_t,
+               i + 1, b.name, storeys_text(definition), b.dof, b.total_mass_t,
                b.frame_factor, b.frame_factor_solved ? " (solved for the target period)" : "");
     fmt::print("  floor mass {:.1f} t (top {:.1f} t), polar moment {:.1f} t·m² (top {:.1f} t·m²)\n",
                definition.mass_t.front(), definition.mass_t.back(),
@@ -224,14 +270,14 @@ int run_check(const CheckCommand& command) {
                b.modes[0].period_s, b.modes[1].period_s, b.modes[2].period_s, b.rayleigh.a0_per_s,
                b.rayleigh.a1_s);
   }
-  fmt::print("Coupled system: {} DOF ({} first-order states); floors 1..{} can touch\n", total_dof,
-             2 * total_dof, scene.common_floors());
+  fmt::print("Coupled system: {} DOF ({} first-order states)\n", total_dof, 2 * total_dof);
+  print_levels(scene);
   print_excitation(scene, motion);
   fmt::print("Contact: gap {} m, restitution k = {}\n", scene.contact.gap_m, scene.contact.restitution);
   const auto candidates = analysis::scene_candidates(scene);
-  fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same floor)\n",
+  fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
              candidates.size());
-  for (const auto& c : candidates) fmt::print("  floor {}: {}\n", c.floor, contact::describe(c));
+  for (const auto& c : candidates) fmt::print("  level {}: {}\n", c.level, contact::describe(c));
   fmt::print("Solver: {}, rtol {}, atol {} (m, rad)\n", scene.solver.method, scene.solver.rtol, scene.solver.atol);
   return 0;
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up (bootstrap.sh) and runs the published example: modes of both buildings, the scene
 # check, the time-history run at the paper's 0.20 m gap and at 0.50 m, and the figure of
-# floor 7 with the 0.50 m run in grey underneath.
+# level 7 (floor 7 of both) with the 0.50 m run in grey underneath.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/bootstrap.sh

@@ -29,12 +29,12 @@ def load(folder: Path):
 
 def match_impacts(a, b, window):
     """Greedy in time order: each impact of A takes the nearest unused impact of B at the same
-    contact (floor, striking building and vertex, struck edge)."""
+    contact (level, striking building and vertex, struck edge)."""
     used, pairs, unmatched_a = set(), [], []
     for ia in a:
         best = None
         for j, ib in enumerate(b):
-            same_contact = all(ib[k] == ia[k] for k in ("floor", "striking_building", "vertex", "struck_edge"))
+            same_contact = all(ib[k] == ia[k] for k in ("level", "striking_building", "vertex", "struck_edge"))
             if j in used or not same_contact:
                 continue
             dt = abs(ib["t_s"] - ia["t_s"])
@@ -95,25 +95,26 @@ def main():
 
     pairs, only_a, only_b = match_impacts(sa["impacts"], sb["impacts"], args.window)
     print(f"\nMatched impacts: {len(pairs)}; only in A: {len(only_a)}; only in B: {len(only_b)}")
-    print(f"{'floor':>5} {'t_A [s]':>12} {'t_B - t_A [s]':>14} {'approach A [m/s]':>17} {'approach B':>11} "
+    print(f"{'level':>5} {'t_A [s]':>12} {'t_B - t_A [s]':>14} {'approach A [m/s]':>17} {'approach B':>11} "
           f"{'impulse A [kN s]':>17} {'impulse B':>10}")
     for ia, ib in pairs:
-        print(f"{ia['floor']:>5} {ia['t_s']:>12.6f} {ib['t_s'] - ia['t_s']:>14.3e} {ia['approach_velocity_mps']:>17.5f} "
+        print(f"{ia['level']:>5} {ia['t_s']:>12.6f} {ib['t_s'] - ia['t_s']:>14.3e} {ia['approach_velocity_mps']:>17.5f} "
               f"{ib['approach_velocity_mps']:>11.5f} {ia['impulse_kNs']:>17.3f} {ib['impulse_kNs']:>10.3f}")
     for label, rest in (("A", only_a), ("B", only_b)):
         for i in rest:
-            print(f"  only in {label}: floor {i['floor']} at {i['t_s']:.6f} s, approach {i['approach_velocity_mps']:.5f} m/s")
+            print(f"  only in {label}: level {i['level']} (floors {i['floors'][0]}/{i['floors'][1]}, "
+                  f"{i['elevation_m']:g} m) at {i['t_s']:.6f} s, approach {i['approach_velocity_mps']:.5f} m/s")
     max_dt = max((abs(ib["t_s"] - ia["t_s"]) for ia, ib in pairs), default=0.0)
     print(f"Largest impact-time difference: {max_dt:.3e} s")
 
     print("\nPeak differences (B − A):")
     peak_rows = []
-    for pa, pb in zip(sa["peaks"], sb["peaks"]):
+    for b, (pa, pb) in enumerate(zip(sa["peaks"], sb["peaks"])):
         for fa, fb in zip(pa["floors"], pb["floors"]):
             for key, unit, scale in (("u_m", "cm", 100), ("v_m", "cm", 100), ("phi_rad", "mrad", 1000)):
                 d = abs(fb[key]["value"]) - abs(fa[key]["value"])
                 peak_rows.append({"building": pa["building"], "floor": fa["floor"], "quantity": key, "difference": d})
-        top = pa["floors"][min(len(pa["floors"]), len(sa["peaks"][0]["floors"])) - 1]
+        top = pa["floors"][sa["levels"][-1]["floors"][b] - 1]  # this building's floor at the top level
         top_b = pb["floors"][top["floor"] - 1]
         print(f"  {pa['building']} floor {top['floor']}: |u| {100 * abs(top['u_m']['value']):.2f} -> "
               f"{100 * abs(top_b['u_m']['value']):.2f} cm, |v| {100 * abs(top['v_m']['value']):.2f} -> "

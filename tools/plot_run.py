@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Draws the paper's kind of figure from a `pounding run` output folder.
 
-Four panels for one floor: u, v and φ of both buildings' slabs against time, and the
-x-displacement of the contact vertices; impacts on that floor are marked. --compare overlays a
-second run in grey (e.g. the no-pounding run under the pounding one).
+Four panels for one level (a floor of each building at a common elevation): u, v and φ of both
+slabs against time, and the x-displacement of the contact vertices; impacts at that level are
+marked. --compare overlays a second run of the same buildings in grey (e.g. the no-pounding run
+under the pounding one).
 
-    tools/plot_run.py out/paper [--floor 7] [--compare out/paper-0.5] [--out figure.png]
+    tools/plot_run.py out/paper [--level 7] [--compare out/paper-0.5] [--out figure.png]
 """
 import argparse
 import csv
@@ -37,12 +38,14 @@ def floor_columns(columns, building, floor):
     return {name[len(prefix):]: values for name, values in columns.items() if name.startswith(prefix)}
 
 
-def plot(folder: Path, floor, compare, out):
+def plot(folder: Path, level, compare, out):
     summary, columns = read_run(folder)
-    floors = sorted({int(name.split("_f")[1].split("_")[0]) for name in columns if name.startswith("B1_f")})
-    floor = floor or floors[-1]
-    if floor not in floors:
-        sys.exit(f"error: --floor {floor}: history.csv holds floors {floors}")
+    written = summary["history_levels"]
+    level = level or written[-1]
+    if level not in written:
+        sys.exit(f"error: --level {level}: history.csv holds levels {written}")
+    where = summary["levels"][level - 1]
+    floors = {1: where["floors"][0], 2: where["floors"][1]}  # each building's own floor at that level
     other = read_run(compare) if compare else None
 
     fig, axes = plt.subplots(4, 1, figsize=(10, 11), sharex=True)
@@ -52,9 +55,9 @@ def plot(folder: Path, floor, compare, out):
     for axis, (key, scale, label) in zip(axes, panels):
         for b in (1, 2):
             if other:
-                values = floor_columns(other[1], b, floor)
+                values = floor_columns(other[1], b, floors[b])
                 axis.plot(other[1]["t_s"], [scale * x for x in values[key]], color="0.7", lw=1.0)
-            values = floor_columns(columns, b, floor)
+            values = floor_columns(columns, b, floors[b])
             axis.plot(columns["t_s"], [scale * x for x in values[key]], color=colours[b], lw=1.0,
                       label=f"{names[b]}")
         axis.set_ylabel(label)
@@ -64,11 +67,11 @@ def plot(folder: Path, floor, compare, out):
     vertex_axis = axes[3]
     for b in (1, 2):
         vertices = summary["peaks"][b - 1]["contact_vertices_rest"]
-        values = floor_columns(columns, b, floor)
+        values = floor_columns(columns, b, floors[b])
         for k, vertex in enumerate(vertices, start=1):
             key = f"vtx{k}_dx_m"
             if other:
-                vertex_axis.plot(other[1]["t_s"], [100 * x for x in floor_columns(other[1], b, floor)[key]],
+                vertex_axis.plot(other[1]["t_s"], [100 * x for x in floor_columns(other[1], b, floors[b])[key]],
                                  color="0.7", lw=1.0)
             vertex_axis.plot(columns["t_s"], [100 * x for x in values[key]], lw=1.0,
                              color=colours[b], ls="-" if k == 1 else "--",
@@ -78,17 +81,18 @@ def plot(folder: Path, floor, compare, out):
     vertex_axis.grid(alpha=0.3)
     vertex_axis.legend(loc="upper right", fontsize=8)
 
-    impacts = [i["t_s"] for i in summary["impacts"] if i["floor"] == floor]
+    impacts = [i["t_s"] for i in summary["impacts"] if i["level"] == level]
     for axis in axes:
         for t in impacts:
             axis.axvline(t, color="k", lw=0.5, alpha=0.4)
-    title = (f"{summary['scene']}: floor {floor}, gap {summary['gap_m']} m, k = {summary['restitution']}, "
-             f"{summary['method']} — {len(impacts)} impacts on this floor ({summary['impact_count']} in all)")
+    title = (f"{summary['scene']}: level {level} (B1 floor {floors[1]}, B2 floor {floors[2]}, "
+             f"{where['elevation_m']:g} m), gap {summary['gap_m']} m, k = {summary['restitution']}, "
+             f"{summary['method']} — {len(impacts)} impacts at this level ({summary['impact_count']} in all)")
     if compare:
         title += f"\ngrey: {compare} ({other[0]['impact_count']} impacts)"
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    out = out or folder / f"floor{floor}.png"
+    out = out or folder / f"level{level}.png"
     fig.savefig(out, dpi=110)
     print(f"Wrote {out}")
 
@@ -96,11 +100,11 @@ def plot(folder: Path, floor, compare, out):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder", type=Path, help="output folder of `pounding run`")
-    parser.add_argument("--floor", type=int, help="floor to draw (default: the top floor both buildings have)")
+    parser.add_argument("--level", type=int, help="level to draw (default: the top level in history.csv)")
     parser.add_argument("--compare", type=Path, help="a second run folder drawn in grey underneath")
-    parser.add_argument("--out", type=Path, help="image file (default: FOLDER/floorN.png)")
+    parser.add_argument("--out", type=Path, help="image file (default: FOLDER/levelN.png)")
     args = parser.parse_args()
-    plot(args.folder, args.floor, args.compare, args.out)
+    plot(args.folder, args.level, args.compare, args.out)
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ constexpr double kExactSubdivisionsPerPeriod = 16.0;
 std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
   contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
                                  {scene.buildings[0].centre_of_mass, scene.buildings[1].centre_of_mass}};
-  return contact::find_candidates(geometry, scene.common_floors(),
+  return contact::find_candidates(geometry, scene.levels(),
                                   {.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m});
 }
 
@@ -32,7 +32,7 @@ dynamics::CoupledSystem build_system(const Scene& scene) {
     }
   }
   return dynamics::CoupledSystem(std::move(buildings), excitation::load_ground_motion(scene.excitation),
-                                 scene_candidates(scene));
+                                 scene.levels(), scene_candidates(scene));
 }
 
 solvers::HhtOptions hht_options(const Scene& scene) {
@@ -75,7 +75,7 @@ solvers::EventOptions event_options(const Scene& scene, const dynamics::CoupledS
 RunReport run_scene(const Scene& scene) {
   const dynamics::CoupledSystem system = build_system(scene);
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
-                   scene.contact.hold_velocity_mps, system.candidates(), {}};
+                   scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.result = scene.solver.method == "hht"
                       ? solvers::run_hht(system, hht_options(scene), "hht")
                       : solvers::run_event_driven(system, event_options(scene, system),

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "pounding/input_error.hpp"
 
@@ -26,6 +27,32 @@ void validate_contact(const ContactSettings& contact) {
   if (!(contact.hold_velocity_mps > 0.0) || !std::isfinite(contact.hold_velocity_mps)) {
     throw InputError("contact.hold_velocity_mps", format_value(contact.hold_velocity_mps), "must be positive (m/s)");
   }
+  if (!(contact.level_tolerance_m > 0.0) || !std::isfinite(contact.level_tolerance_m)) {
+    throw InputError("contact.level_tolerance_m", format_value(contact.level_tolerance_m), "must be positive (m)");
+  }
+}
+
+void validate_levels(const Scene& scene) {
+  // Below half a storey height a floor can meet at most one floor of the other building.
+  const double tolerance = scene.contact.level_tolerance_m;
+  for (std::size_t b = 0; b < 2; ++b) {
+    const std::vector<double>& heights = scene.buildings[b].storey_height_m;
+    for (std::size_t s = 0; s < heights.size(); ++s) {
+      if (!(tolerance < heights[s] / 2.0)) {
+        throw InputError("contact.level_tolerance_m", format_value(tolerance),
+                         fmt::format("must be below half of every storey height ({}.storey_height_m[{}] is {} m)",
+                                     building_key(b), s + 1, heights[s]));
+      }
+    }
+  }
+  if (!scene.levels().empty()) return;
+  const auto elevations = [&](std::size_t b) { return model::floor_elevations(scene.buildings[b]); };
+  throw InputError(building_key(1) + ".storey_height_m", fmt::format("[{}]", fmt::join(scene.buildings[1].storey_height_m, ", ")),
+                   fmt::format("no floor of building 2 stands at the elevation of a floor of building 1 "
+                               "(building 1's floors at {} m, building 2's at {} m, matched within "
+                               "contact.level_tolerance_m = {} m): their slabs could only strike columns, and "
+                               "slab-to-column impacts are outside this model",
+                               fmt::join(elevations(0), ", "), fmt::join(elevations(1), ", "), tolerance));
 }
 
 void validate_solver(const SolverSettings& solver) {
@@ -72,12 +99,13 @@ void validate_solver(const SolverSettings& solver) {
   }
 }
 
-void validate_output(const OutputSettings& output, int common_floors) {
+void validate_output(const OutputSettings& output, std::size_t levels) {
   for (std::size_t i = 0; i < output.history_floors.size(); ++i) {
-    const int floor = output.history_floors[i];
-    if (floor < 1 || floor > common_floors) {
-      throw InputError(fmt::format("output.history_floors[{}]", i + 1), std::to_string(floor),
-                       fmt::format("floors both buildings have are 1..{}", common_floors));
+    const int level = output.history_floors[i];
+    if (level < 1 || static_cast<std::size_t>(level) > levels) {
+      throw InputError(fmt::format("output.history_floors[{}]", i + 1), std::to_string(level),
+                       fmt::format("lists levels (floor pairs at a common elevation, as `pounding check` "
+                                   "prints them), numbered 1..{}", levels));
     }
   }
   if (!(output.history_interval_s > 0.0) || !std::isfinite(output.history_interval_s)) {
@@ -119,6 +147,11 @@ void Scene::set_gap(double gap_m) {
   contact.gap_m = gap_m;
 }
 
+std::vector<contact::Level> Scene::levels() const {
+  return contact::common_levels({model::floor_elevations(buildings[0]), model::floor_elevations(buildings[1])},
+                                contact.level_tolerance_m);
+}
+
 void Scene::validate() const {
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     try {
@@ -130,8 +163,9 @@ void Scene::validate() const {
   try {
     excitation.validate();
     validate_contact(contact);
+    validate_levels(*this);
     validate_solver(solver);
-    validate_output(output, common_floors());
+    validate_output(output, levels().size());
     validate_pair(*this);
   } catch (const InputError& error) {
     throw error.in_context(file.string());

@@ -1,5 +1,6 @@
 #include "pounding/contact/candidates.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
 
 namespace pounding::contact {
@@ -20,7 +21,7 @@ bool faces(const Point2& q1, const Point2& normal, const model::Polygon& other) 
   return false;
 }
 
-void add_pairs(const PairGeometry& geometry, int striking, int floor, const CandidateOptions& options,
+void add_pairs(const PairGeometry& geometry, int striking, const Level& level, const CandidateOptions& options,
                std::vector<Candidate>& out) {
   const int struck = 1 - striking;
   const model::Polygon& vertices = geometry.slabs[striking];
@@ -39,7 +40,7 @@ void add_pairs(const PairGeometry& geometry, int striking, int floor, const Cand
       const bool in_front = distance >= -1e-9 && distance <= options.gap_m + options.margin_m;
       const bool over_edge = along >= -options.margin_m && along <= length + options.margin_m;
       if (in_front && over_edge) {
-        out.push_back({floor, striking, struck, v, e, p, q1, q2, normal});
+        out.push_back({level.index, level.floors, level.elevation_m, striking, struck, v, e, p, q1, q2, normal});
       }
     }
   }
@@ -47,12 +48,32 @@ void add_pairs(const PairGeometry& geometry, int striking, int floor, const Cand
 
 }  // namespace
 
-std::vector<Candidate> find_candidates(const PairGeometry& geometry, int common_floors,
+std::vector<Level> common_levels(const std::array<std::vector<double>, 2>& elevations, double tolerance_m) {
+  // Both lists ascend: walk them together, advancing the lower floor until the two meet.
+  const std::vector<double>& z1 = elevations[0];
+  const std::vector<double>& z2 = elevations[1];
+  std::vector<Level> levels;
+  std::size_t i = 0, j = 0;
+  while (i < z1.size() && j < z2.size()) {
+    if (std::abs(z1[i] - z2[j]) <= tolerance_m) {
+      levels.push_back({static_cast<int>(levels.size()) + 1, {static_cast<int>(i) + 1, static_cast<int>(j) + 1}, z1[i]});
+      ++i;
+      ++j;
+    } else if (z1[i] < z2[j]) {
+      ++i;
+    } else {
+      ++j;
+    }
+  }
+  return levels;
+}
+
+std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::vector<Level>& levels,
                                        const CandidateOptions& options) {
   std::vector<Candidate> candidates;
-  for (int floor = 1; floor <= common_floors; ++floor) {
-    add_pairs(geometry, 0, floor, options, candidates);
-    add_pairs(geometry, 1, floor, options, candidates);
+  for (const Level& level : levels) {
+    add_pairs(geometry, 0, level, options, candidates);
+    add_pairs(geometry, 1, level, options, candidates);
   }
   return candidates;
 }

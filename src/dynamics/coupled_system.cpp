@@ -7,9 +7,11 @@ namespace pounding::dynamics {
 
 CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
                              excitation::GroundMotion ground_motion,
+                             std::vector<contact::Level> levels,
                              std::vector<contact::Candidate> candidates)
     : buildings_(std::move(buildings)),
       ground_motion_(std::move(ground_motion)),
+      levels_(std::move(levels)),
       candidates_(std::move(candidates)) {
   const int n1 = buildings_[0].dof(), n2 = buildings_[1].dof();
   dof_ = n1 + n2;
@@ -50,7 +52,8 @@ contact::SlabMotion CoupledSystem::slab(ConstVectorRef y, int building, int floo
 
 contact::GapState CoupledSystem::gap(ConstVectorRef y, std::size_t index) const {
   const contact::Candidate& c = candidates_[index];
-  return contact::evaluate_gap(c, slab(y, c.striking_building, c.floor), slab(y, c.struck_building, c.floor));
+  return contact::evaluate_gap(c, slab(y, c.striking_building, c.floors[c.striking_building]),
+                              slab(y, c.struck_building, c.floors[c.struck_building]));
 }
 
 contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
@@ -64,25 +67,25 @@ contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
 double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const {
   const contact::Candidate& c = candidates_[index];
   const contact::GapState s = gap(y, index);
-  const auto accel_of = [&](int building) { return y_dot.segment<3>(dof_ + floor_index(building, c.floor)); };
+  const auto accel_of = [&](int building) { return y_dot.segment<3>(dof_ + floor_index(building, c.floors[building])); };
   return s.striking_row.dot(accel_of(c.striking_building)) + s.struck_row.dot(accel_of(c.struck_building)) +
          s.curvature_mps2;
 }
 
-contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, int floor) const {
+contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, const std::array<int, 2>& floors) const {
   contact::Vector6d v;
-  v << y.segment<3>(dof_ + floor_index(0, floor)), y.segment<3>(dof_ + floor_index(1, floor));
+  v << y.segment<3>(dof_ + floor_index(0, floors[0])), y.segment<3>(dof_ + floor_index(1, floors[1]));
   return v;
 }
 
-void CoupledSystem::add_pair_velocities(Eigen::Ref<VectorXd> y, int floor,
+void CoupledSystem::add_pair_velocities(Eigen::Ref<VectorXd> y, const std::array<int, 2>& floors,
                                         const contact::Vector6d& change) const {
-  y.segment<3>(dof_ + floor_index(0, floor)) += change.head<3>();
-  y.segment<3>(dof_ + floor_index(1, floor)) += change.tail<3>();
+  y.segment<3>(dof_ + floor_index(0, floors[0])) += change.head<3>();
+  y.segment<3>(dof_ + floor_index(1, floors[1])) += change.tail<3>();
 }
 
-contact::Vector6d CoupledSystem::pair_inverse_mass(int floor) const {
-  const int i = floor_index(0, floor), j = floor_index(1, floor);
+contact::Vector6d CoupledSystem::pair_inverse_mass(const std::array<int, 2>& floors) const {
+  const int i = floor_index(0, floors[0]), j = floor_index(1, floors[1]);
   return contact::inverse_mass(mass_[i], mass_[i + 2], mass_[j], mass_[j + 2]);
 }
 
@@ -94,8 +97,8 @@ void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::siz
   for (Eigen::Index r = 0; r < k; ++r) {
     const contact::Candidate& c = candidates_[held[r]];
     const contact::GapState s = gap(y, held[r]);
-    rows.block<1, 3>(r, floor_index(c.striking_building, c.floor)) = s.striking_row;
-    rows.block<1, 3>(r, floor_index(c.struck_building, c.floor)) = s.struck_row;
+    rows.block<1, 3>(r, floor_index(c.striking_building, c.floors[c.striking_building])) = s.striking_row;
+    rows.block<1, 3>(r, floor_index(c.struck_building, c.floors[c.struck_building])) = s.struck_row;
     // Drift correction g̈ = −3ġ/τ − 2g/τ²: roots −1/τ and −2/τ, distinct so that the linearised
     // held system stays diagonalisable (the exact path relies on it).
     constexpr double tau = hold_time_constant_s;

@@ -14,16 +14,33 @@ using nlohmann::json;
 json point(const model::Point2& p) { return json::array({p.x(), p.y()}); }
 json peak(const solvers::Peak& p) { return {{"value", p.value}, {"t_s", p.t_s}}; }
 
+/// `fields` with where the contact is: its level, the floor of each building there (building 1's
+/// first) and the level's elevation. Candidates and every contact record carry these three.
+template <class Located>
+json at_level(const Located& where, json fields) {
+  fields["level"] = where.level;
+  fields["floors"] = where.floors;
+  fields["elevation_m"] = where.elevation_m;
+  return fields;
+}
+
+json levels_json(const std::vector<contact::Level>& levels) {
+  json list = json::array();
+  for (const contact::Level& l : levels) {
+    list.push_back({{"level", l.index}, {"floors", l.floors}, {"elevation_m", l.elevation_m}});
+  }
+  return list;
+}
+
 json candidates_json(const std::vector<contact::Candidate>& candidates) {
   json list = json::array();
   for (const contact::Candidate& c : candidates) {
-    list.push_back({{"floor", c.floor},
-                    {"striking_building", c.striking_building + 1},
+    list.push_back(at_level(c, {{"striking_building", c.striking_building + 1},
                     {"vertex", c.vertex_index + 1},
                     {"vertex_rest", point(c.vertex_rest)},
                     {"struck_building", c.struck_building + 1},
                     {"edge", c.edge_index + 1},
-                    {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}});
+                    {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}}));
   }
   return list;
 }
@@ -31,8 +48,7 @@ json candidates_json(const std::vector<contact::Candidate>& candidates) {
 json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
   json list = json::array();
   for (const auto& i : impacts) {
-    list.push_back({{"t_s", i.t_s},
-                    {"floor", i.floor},
+    list.push_back(at_level(i, {{"t_s", i.t_s},
                     {"striking_building", i.striking_building},
                     {"vertex", i.vertex},
                     {"vertex_rest", point(i.vertex_rest)},
@@ -42,7 +58,7 @@ json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
                     {"separation_velocity_mps", i.separation_velocity_mps},
                     {"impulse_kNs", i.impulse_kNs},
                     {"energy_lost_kJ", i.energy_lost_kJ},
-                    {"starts_sustained_contact", i.starts_hold}});
+                    {"starts_sustained_contact", i.starts_hold}}));
   }
   return list;
 }
@@ -105,10 +121,11 @@ std::ofstream open_for_writing(const std::filesystem::path& file) {
 
 void write_impacts_csv(const std::vector<solvers::ImpactRecord>& impacts, const std::filesystem::path& file) {
   std::ofstream out = open_for_writing(file);
-  out << "t_s,floor,striking_building,vertex,struck_edge,point_x_m,point_y_m,approach_velocity_mps,"
-         "separation_velocity_mps,impulse_kNs,energy_lost_kJ,starts_sustained_contact\n";
+  out << "t_s,level,floor_b1,floor_b2,elevation_m,striking_building,vertex,struck_edge,point_x_m,point_y_m,"
+         "approach_velocity_mps,separation_velocity_mps,impulse_kNs,energy_lost_kJ,starts_sustained_contact\n";
   for (const auto& i : impacts) {
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", i.t_s, i.floor, i.striking_building, i.vertex,
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", i.t_s, i.level, i.floors[0], i.floors[1],
+                       i.elevation_m, i.striking_building, i.vertex,
                        i.struck_edge, i.point.x(), i.point.y(), i.approach_velocity_mps,
                        i.separation_velocity_mps, i.impulse_kNs, i.energy_lost_kJ, i.starts_hold ? 1 : 0);
   }
@@ -129,19 +146,20 @@ void write_history_csv(const solvers::History& history, const std::filesystem::p
 
 json run_json(const analysis::RunReport& report) {
   const solvers::RunResult& r = report.result;
-  std::map<std::string, int> by_floor;
-  for (const auto& i : r.impacts) ++by_floor[std::to_string(i.floor)];
+  std::map<std::string, int> by_level;
+  for (const auto& i : r.impacts) ++by_level[std::to_string(i.level)];
   json touches = json::array(), sustained = json::array();
   for (const auto& t : r.touches) {
-    touches.push_back({{"t_s", t.t_s}, {"floor", t.floor}, {"striking_building", t.striking_building},
-                       {"vertex", t.vertex}, {"point", point(t.point)}, {"gap_rate_mps", t.gap_rate_mps},
-                       {"gap_m", t.gap_m}});
+    touches.push_back(at_level(t, {{"t_s", t.t_s}, {"striking_building", t.striking_building},
+                                   {"vertex", t.vertex}, {"point", point(t.point)}, {"gap_rate_mps", t.gap_rate_mps},
+                                   {"gap_m", t.gap_m}}));
   }
   for (const auto& s : r.sustained_contacts) {
-    sustained.push_back({{"floor", s.floor}, {"striking_building", s.striking_building}, {"vertex", s.vertex},
-                         {"start_s", s.start_s}, {"release_s", s.release_s}, {"release_reason", s.release_reason},
-                         {"max_force_kN", s.max_force_kN}, {"max_gap_drift_m", s.max_gap_drift_m},
-                         {"impulse_kNs", s.impulse_kNs}});
+    sustained.push_back(at_level(s, {{"striking_building", s.striking_building}, {"vertex", s.vertex},
+                                     {"start_s", s.start_s}, {"release_s", s.release_s},
+                                     {"release_reason", s.release_reason}, {"max_force_kN", s.max_force_kN},
+                                     {"max_gap_drift_m", s.max_gap_drift_m},
+                                     {"impulse_kNs", s.impulse_kNs}}));
   }
   json settings = {{"rtol", report.solver.rtol}, {"atol", report.solver.atol}, {"newton", report.solver.newton},
                    {"order", report.solver.order}, {"hold_velocity_mps", report.hold_velocity_mps}};
@@ -160,9 +178,11 @@ json run_json(const analysis::RunReport& report) {
           {"status_detail", r.status_detail},
           {"start_s", r.start_s},
           {"end_s", r.end_s},
+          {"levels", levels_json(report.levels)},
+          {"history_levels", r.history.levels},
           {"candidates", candidates_json(report.candidates)},
           {"impact_count", r.impacts.size()},
-          {"impacts_by_floor", by_floor},
+          {"impacts_by_level", by_level},
           {"impacts", impacts_json(r.impacts)},
           {"touches", touches},
           {"sustained_contacts", sustained},

@@ -1,5 +1,6 @@
 #include "pounding/io/scene_reader.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
 #include <set>
 #include <sstream>
@@ -139,11 +140,21 @@ class TableReader {
   std::set<std::string> used_;
 };
 
-/// A number that must be positive, checked where it is read so the error names the key typed.
+/// A number that must be positive and finite, checked where it is read so that the error of a
+/// single value standing for every floor names the key typed, not an index the user never wrote.
 double positive(TableReader& table, const toml::node& node, const std::string& key) {
   const double value = table.number_of(node, key);
-  if (!(value > 0.0)) throw table.error(node, key, "must be positive");
+  if (!(value > 0.0) || !std::isfinite(value)) throw table.error(node, key, "must be a positive finite number");
   return value;
+}
+
+/// `storey_height_m`: one number for every storey, or one a storey, storey 1 (the ground storey)
+/// first. A list is checked entry by entry by BuildingDefinition::validate().
+std::vector<double> storey_heights(TableReader& table, int storeys) {
+  const toml::node& node = table.require("storey_height_m");
+  const std::string key = table.key_path("storey_height_m");
+  if (node.is_array()) return table.numbers_of(node, key);
+  return std::vector<double>(std::max(storeys, 0), positive(table, node, key));
 }
 
 std::vector<double> per_floor_masses(TableReader& table, int storeys) {
@@ -260,7 +271,7 @@ model::BuildingDefinition read_building(TableReader table) {
   model::BuildingDefinition b;
   b.name = table.string("name");
   b.storeys = table.integer("storeys");
-  b.storey_height_m = table.number("storey_height_m");
+  b.storey_height_m = storey_heights(table, b.storeys);
   {
     const std::string key = table.key_path("slab");
     const toml::array& vertices = table.array_of(table.require("slab"), key);
@@ -380,6 +391,7 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
   scene.contact.restitution = contact.number("restitution");
   scene.contact.candidate_margin_m = contact.number_or("candidate_margin_m", scene.contact.candidate_margin_m);
   scene.contact.hold_velocity_mps = contact.number_or("hold_velocity_mps", scene.contact.hold_velocity_mps);
+  scene.contact.level_tolerance_m = contact.number_or("level_tolerance_m", scene.contact.level_tolerance_m);
   contact.finish();
   scene.solver = read_solver(root.optional_subtable("solver"));
   scene.output = read_output(root.optional_subtable("output"));

@@ -41,10 +41,11 @@ void validate_slab(const BuildingDefinition& b) {
   }
 }
 
-void validate_per_floor(const std::vector<double>& values, const char* key, int storeys) {
+void validate_per_floor(const std::vector<double>& values, const char* key, int storeys,
+                        const char* unit = "floor") {
   if (values.size() != static_cast<std::size_t>(storeys)) {
     throw InputError(key, fmt::format("{} values", values.size()),
-                     fmt::format("needs one value per floor ({})", storeys));
+                     fmt::format("needs one value per {} ({})", unit, storeys));
   }
   for (std::size_t i = 0; i < values.size(); ++i) require_positive(values[i], indexed(key, i));
 }
@@ -112,9 +113,7 @@ Eigen::VectorXd assemble_mass(const BuildingDefinition& b) {
 }
 
 Eigen::MatrixXd column_building_stiffness(const BuildingDefinition& b, double frame_factor) {
-  const Eigen::Matrix3d storey = storey_stiffness_from_columns(
-      b.columns, b.centre_of_mass, b.E_kPa, b.storey_height_m, frame_factor);
-  return assemble_stiffness(std::vector<Eigen::Matrix3d>(b.storeys, storey));
+  return assemble_stiffness(column_storey_matrices(b, frame_factor));
 }
 
 void require_positive_definite(const Eigen::MatrixXd& stiffness, const BuildingDefinition& b) {
@@ -132,7 +131,9 @@ void require_positive_definite(const Eigen::MatrixXd& stiffness, const BuildingD
 void BuildingDefinition::validate() const {
   if (name.empty()) throw InputError("name", "\"\"", "must not be empty");
   if (storeys < 1) throw InputError("storeys", std::to_string(storeys), "must be at least 1");
-  require_positive(storey_height_m, "storey_height_m");
+  // Heights are needed even with storey matrices given directly: they place the floors, and
+  // only floors at a common elevation can touch.
+  validate_per_floor(storey_height_m, "storey_height_m", storeys, "storey");
   validate_slab(*this);
   validate_per_floor(mass_t, "mass_t", storeys);
   validate_per_floor(polar_moment_tm2, "polar_moment_tm2", storeys);
@@ -183,6 +184,21 @@ Eigen::MatrixXd assemble_stiffness(const std::vector<Eigen::Matrix3d>& storeys) 
     k.block<3, 3>(3 * (s - 1), 3 * s) -= storeys[s];
   }
   return k;
+}
+
+std::vector<Eigen::Matrix3d> column_storey_matrices(const BuildingDefinition& b, double frame_factor) {
+  std::vector<Eigen::Matrix3d> storeys;
+  for (double height : b.storey_height_m) {
+    storeys.push_back(storey_stiffness_from_columns(b.columns, b.centre_of_mass, b.E_kPa, height, frame_factor));
+  }
+  return storeys;
+}
+
+std::vector<double> floor_elevations(const BuildingDefinition& b) {
+  std::vector<double> elevations;
+  double z = 0.0;
+  for (double height : b.storey_height_m) elevations.push_back(z += height);
+  return elevations;
 }
 
 RayleighCoefficients fit_rayleigh(double omega_i, double omega_j, double ratio) {

@@ -138,7 +138,7 @@ class EventDrivenRun final : public OdeFunctions {
   void note_overlaps(double t, const VectorXd& y);
   void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
                     const std::vector<std::size_t>& released, const char* release_reason);
-  FloorContacts floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const;
+  FloorContacts floor_contacts(const VectorXd& y, int level, const std::set<std::size_t>& fired) const;
   /// g̈ of each member of `contacts` in state y with the contacts `held` kept closed.
   VectorXd free_gap_accelerations(double t, const VectorXd& y, const std::vector<std::size_t>& held,
                                   const FloorContacts& contacts) const {
@@ -154,7 +154,7 @@ class EventDrivenRun final : public OdeFunctions {
                                  contact::ImpulseSolution& solution) const;
   void stick(const FloorContacts& contacts, const std::vector<bool>& holding, VectorXd& y,
              contact::ImpulseSolution& solution) const;
-  void resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired);
+  void resolve_floor(double t, VectorXd& y, int level, const std::set<std::size_t>& fired);
   /// Masks candidate i until its gap exceeds reopen_m. A contact (watch = true) keeps a root at
   /// its floor, so a re-closure cannot be stepped over; a crossing of an edge's extension does not
   /// (its gap goes on falling while the vertex passes beside the edge).
@@ -245,7 +245,9 @@ void EventDrivenRun::hold(std::size_t i, double t) {
   held_.push_back(i);
   const contact::Candidate& c = system_.candidates()[i];
   SustainedContactRecord record;
-  record.floor = c.floor;
+  record.level = c.level;
+  record.floors = c.floors;
+  record.elevation_m = c.elevation_m;
   record.striking_building = c.striking_building + 1;
   record.vertex = c.vertex_index + 1;
   record.candidate = i;
@@ -280,7 +282,7 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
   count_event(t);
   for (std::size_t i : released) release(i, t, y, release_reason);
   std::set<std::size_t> fired;
-  std::set<int> floors;
+  std::set<int> levels;
   for (std::size_t i : gap_roots) {
     const contact::GapState s = system_.gap(y, i);
     if (!s.on_segment()) {
@@ -290,9 +292,9 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
     }
     result_.statistics.note_overlap(s.gap_m, t, i);
     fired.insert(i);
-    floors.insert(system_.candidates()[i].floor);
+    levels.insert(system_.candidates()[i].level);
   }
-  for (int floor : floors) resolve_floor(t, y, floor, fired);
+  for (int level : levels) resolve_floor(t, y, level, fired);
   settle_holds(t, y);
   update_hold_records(t, y);  // a hold may end before the next step does
   recorder_.sample(t, y);
@@ -317,10 +319,10 @@ void EventDrivenRun::settle_holds(double t, const VectorXd& y) {
   for (std::size_t i : separating) release(i, t, y, "tensile force");
 }
 
-FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int floor, const std::set<std::size_t>& fired) const {
-  // Every contact of this floor pair that is closed now takes part, so simultaneous contacts
-  // are solved together, never one after another.
-  return gather_floor_contacts(system_, y, floor, options_.restitution, [&](std::size_t i, const contact::GapState& s) {
+FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int level, const std::set<std::size_t>& fired) const {
+  // Every contact of this level's slab pair that is closed now takes part, so simultaneous
+  // contacts are solved together, never one after another.
+  return gather_floor_contacts(system_, y, level, options_.restitution, [&](std::size_t i, const contact::GapState& s) {
     const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
     return modes_[i] == Mode::held || fired.count(i) || closed;
   });
@@ -338,11 +340,11 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorConta
     for (std::size_t k = 0; k < n; ++k) contacts.rows[k].restitution = holding[k] ? 0.0 : options_.restitution;
     y_after = y;
     solution = apply_impulses(system_, y_after, contacts);
-    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.floor);
+    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.floors);
 
     std::vector<std::size_t> trial;  // held elsewhere, plus this floor's slow separations
     for (std::size_t i : held_) {
-      if (system_.candidates()[i].floor != contacts.floor) trial.push_back(i);
+      if (system_.candidates()[i].level != contacts.level) trial.push_back(i);
     }
     const std::size_t others = trial.size();
     const VectorXd accel = free_gap_accelerations(t, y_after, trial, contacts);
@@ -381,20 +383,20 @@ void EventDrivenRun::stick(const FloorContacts& contacts, const std::vector<bool
   }
   if (held.empty()) return;
   const Eigen::Index m = static_cast<Eigen::Index>(held.size());
-  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(contacts.floor);
-  const contact::Vector6d velocities = system_.pair_velocities(y, contacts.floor);
+  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(contacts.floors);
+  const contact::Vector6d velocities = system_.pair_velocities(y, contacts.floors);
   Eigen::MatrixXd rows(m, 6);
   for (Eigen::Index r = 0; r < m; ++r) rows.row(r) = contacts.rows[held[static_cast<std::size_t>(r)]].jacobian;
   const Eigen::MatrixXd w = rows * inverse_mass.asDiagonal() * rows.transpose();
   const VectorXd impulses = w.completeOrthogonalDecomposition().solve(-(rows * velocities));
   const contact::Vector6d change = inverse_mass.cwiseProduct(rows.transpose() * impulses);
-  system_.add_pair_velocities(y, contacts.floor, change);
+  system_.add_pair_velocities(y, contacts.floors, change);
   solution.velocity_change += change;
   for (Eigen::Index r = 0; r < m; ++r) solution.impulses_kNs[held[static_cast<std::size_t>(r)]] += impulses[r];
 }
 
-void EventDrivenRun::resolve_floor(double t, VectorXd& y, int floor, const std::set<std::size_t>& fired) {
-  FloorContacts contacts = floor_contacts(y, floor, fired);
+void EventDrivenRun::resolve_floor(double t, VectorXd& y, int level, const std::set<std::size_t>& fired) {
+  FloorContacts contacts = floor_contacts(y, level, fired);
   const VectorXd y_before = y;
   contact::ImpulseSolution solution;
   std::vector<bool> were_held(contacts.members.size());

@@ -2,14 +2,15 @@
 
 namespace pounding::solvers {
 
-FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int floor,
+FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int level,
                                     double restitution,
                                     const std::function<bool(std::size_t, const contact::GapState&)>& take) {
   FloorContacts contacts;
-  contacts.floor = floor;
+  contacts.level = level;
+  contacts.floors = system.levels().at(static_cast<std::size_t>(level - 1)).floors;
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     const contact::Candidate& c = system.candidates()[i];
-    if (c.floor != floor) continue;
+    if (c.level != level) continue;
     const contact::GapState s = system.gap(y, i);
     if (!take(i, s)) continue;
     contacts.members.push_back(i);
@@ -22,14 +23,14 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
 TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
                          const contact::GapState& gap) {
   const contact::Candidate& c = system.candidates()[index];
-  return {t, c.floor, c.striking_building + 1, c.vertex_index + 1, index, gap.contact_point, gap.gap_rate_mps,
+  return {t, c.level, c.floors, c.elevation_m, c.striking_building + 1, c.vertex_index + 1, index, gap.contact_point, gap.gap_rate_mps,
           gap.gap_m};
 }
 
 contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
                                         const FloorContacts& contacts) {
-  contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.floor));
-  system.add_pair_velocities(y, contacts.floor, solution.velocity_change);
+  contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.floors));
+  system.add_pair_velocities(y, contacts.floors, solution.velocity_change);
   return solution;
 }
 
@@ -38,8 +39,8 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
                             const std::vector<bool>& holds, const std::vector<bool>& were_held,
                             RunResult& result) {
-  const int floor = contacts.floor;
-  const contact::Vector6d v_after = system.pair_velocities(y_after, floor);
+  const std::array<int, 2>& floors = contacts.floors;
+  const contact::Vector6d v_after = system.pair_velocities(y_after, floors);
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
     if (!were_held.empty() && were_held[k]) continue;  // a held contact's share: not an impact
@@ -51,7 +52,9 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
     if (impulse > 0.0 && rate_before < 0.0) {
       ImpactRecord r;
       r.t_s = t;
-      r.floor = floor;
+      r.level = c.level;
+      r.floors = c.floors;
+      r.elevation_m = c.elevation_m;
       r.striking_building = c.striking_building + 1;
       r.vertex = c.vertex_index + 1;
       r.struck_edge = c.edge_index + 1;
@@ -70,8 +73,8 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
       result.touches.push_back(touch_record(system, t, i, s));
     }
   }
-  const contact::Vector6d inverse_mass = system.pair_inverse_mass(floor);
-  return contact::kinetic_energy(system.pair_velocities(y_before, floor), inverse_mass) -
+  const contact::Vector6d inverse_mass = system.pair_inverse_mass(floors);
+  return contact::kinetic_energy(system.pair_velocities(y_before, floors), inverse_mass) -
          contact::kinetic_energy(v_after, inverse_mass);
 }
 

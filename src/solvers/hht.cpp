@@ -159,23 +159,23 @@ void HhtRun::accept(const State& from, const State& to) {
 }
 
 State HhtRun::settle(const State& s, bool include_overlaps) {
-  // Impacts at this step end: per floor, every contact within the tolerance (and, when asked,
+  // Impacts at this step end: per level, every contact within the tolerance (and, when asked,
   // every overlap) solved together; a touch is a contact that appears without approaching.
   VectorXd y = first_order(s);
   const double tol = options_.contact_tolerance_m;
   std::vector<bool> in_contact(touching_.size(), false);
-  std::set<int> floors;
+  std::set<int> levels;
   std::set<std::size_t> new_touches;
   for (std::size_t i = 0; i < touching_.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
     in_contact[i] = g.on_segment() && g.gap_m <= tol && (include_overlaps || g.gap_m >= -tol);
     if (!in_contact[i]) continue;
-    if (g.gap_rate_mps < 0.0) floors.insert(system_.candidates()[i].floor);
+    if (g.gap_rate_mps < 0.0) levels.insert(system_.candidates()[i].level);
     else if (!touching_[i]) new_touches.insert(i);
   }
   bool changed = false;
-  for (int floor : floors) {
-    const FloorContacts contacts = gather_floor_contacts(system_, y, floor, options_.restitution,
+  for (int level : levels) {
+    const FloorContacts contacts = gather_floor_contacts(system_, y, level, options_.restitution,
         [&](std::size_t i, const contact::GapState&) { return in_contact[i]; });
     const VectorXd before = y;
     const contact::ImpulseSolution solution = apply_impulses(system_, y, contacts);
@@ -185,7 +185,7 @@ State HhtRun::settle(const State& s, bool include_overlaps) {
     changed = true;
   }
   for (std::size_t i : new_touches) {
-    if (floors.count(system_.candidates()[i].floor)) continue;  // recorded with its floor's impact
+    if (levels.count(system_.candidates()[i].level)) continue;  // recorded with its level's impact
     result_.touches.push_back(touch_record(system_, s.t_s, i, system_.gap(y, i)));
     ++result_.statistics.events;
   }

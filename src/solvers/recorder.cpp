@@ -31,13 +31,12 @@ std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate
   return points;
 }
 
-Recorder::Recorder(const dynamics::CoupledSystem& system, std::vector<int> history_floors,
+Recorder::Recorder(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels,
                    double history_interval_s)
-    : system_(system), history_floors_(std::move(history_floors)), interval_s_(history_interval_s) {
-  if (history_floors_.empty()) {
-    const int common = std::min(system.building(0).storeys(), system.building(1).storeys());
-    for (int f = 1; f <= common; ++f) history_floors_.push_back(f);
-  }
+    : system_(system), interval_s_(history_interval_s) {
+  for (int level : history_levels) history_levels_.push_back(system.levels().at(static_cast<std::size_t>(level - 1)));
+  if (history_levels.empty()) history_levels_ = system.levels();
+  for (const contact::Level& level : history_levels_) history_.levels.push_back(level.index);
   next_sample_s_ = system.ground_motion().start_s();
   history_.interval_s = interval_s_;
   history_.columns.push_back("t_s");
@@ -54,9 +53,9 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, std::vector<int> histo
     }
     peaks_.push_back(std::move(peaks));
   }
-  for (int f : history_floors_) {
+  for (const contact::Level& level : history_levels_) {
     for (int b = 0; b < 2; ++b) {
-      const std::string prefix = fmt::format("B{}_f{}_", b + 1, f);
+      const std::string prefix = fmt::format("B{}_f{}_", b + 1, level.floors[b]);
       history_.columns.push_back(prefix + "u_m");
       history_.columns.push_back(prefix + "v_m");
       history_.columns.push_back(prefix + "phi_rad");
@@ -85,9 +84,9 @@ void Recorder::observe(double t, const dynamics::VectorXd& y) {
 void Recorder::append_row(double t, const dynamics::VectorXd& y) {
   Eigen::VectorXd row(static_cast<Eigen::Index>(history_.columns.size()) - 1);
   Eigen::Index c = 0;
-  for (int f : history_floors_) {
+  for (const contact::Level& level : history_levels_) {
     for (int b = 0; b < 2; ++b) {
-      const int i = system_.floor_index(b, f);
+      const int i = system_.floor_index(b, level.floors[b]);
       row[c++] = y[i];
       row[c++] = y[i + 1];
       row[c++] = y[i + 2];

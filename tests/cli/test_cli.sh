@@ -21,13 +21,22 @@ folder = sys.argv[1]
 s = json.load(open(f"{folder}/summary.json"))
 assert s["status"] == "completed", s["status"]
 assert s["impact_count"] == len(s["impacts"]) > 0
-assert all(i["floor"] >= 5 for i in s["impacts"])
+# Equal storeys: level j is floor j of both buildings, at 3j m.
+assert [l["floors"] for l in s["levels"]] == [[j, j] for j in range(1, 8)], s["levels"]
+assert all(i["floors"] == [i["level"], i["level"]] and i["level"] >= 5 for i in s["impacts"])
+assert all(abs(i["elevation_m"] - 3.0 * i["level"]) < 1e-9 for i in s["impacts"])
+assert s["history_levels"] == list(range(1, 8))
 assert len(s["candidates"]) == 14
-rows = list(csv.reader(open(f"{folder}/impacts.csv")))
-assert len(rows) == s["impact_count"] + 1
-for key in ("t_s", "floor", "striking_building", "vertex", "point", "approach_velocity_mps",
-            "separation_velocity_mps", "impulse_kNs", "energy_lost_kJ"):
+rows = list(csv.DictReader(open(f"{folder}/impacts.csv")))
+assert len(rows) == s["impact_count"]
+for row, i in zip(rows, s["impacts"]):  # the two impact lists say the same
+    assert (int(row["level"]), int(row["floor_b1"]), int(row["floor_b2"])) == (i["level"], *i["floors"]), row
+    assert float(row["elevation_m"]) == i["elevation_m"] and float(row["t_s"]) == i["t_s"], row
+for key in ("t_s", "level", "floors", "elevation_m", "striking_building", "vertex", "point",
+            "approach_velocity_mps", "separation_velocity_mps", "impulse_kNs", "energy_lost_kJ"):
     assert key in s["impacts"][0], key
+for record in s["sustained_contacts"] + s["touches"]:
+    assert {"level", "floors", "elevation_m"} <= record.keys(), record
 assert abs(s["energy"]["relative_residual"]) < 1e-6
 PY
 
@@ -69,6 +78,37 @@ PY
 /usr/bin/python3 "$source_dir/tools/plot_study.py" "$work/study" > /dev/null || fail "plot_study.py exited $?"
 [ -s "$work/study/work-precision.png" ] || fail "no work-precision.png"
 
+# Building 2 on a 6 m ground storey: B1 floor j (3j m) meets B2 floor j - 1, and nothing else.
+levels_scene=$source_dir/examples/levels/unequal-storeys.toml
+"$pounding" check "$levels_scene" > "$work/levels-check.txt" || fail "check of the levels example exited $?"
+grep -q "level 1: B1 floor 2 (6 m) ↔ B2 floor 1 (6 m)" "$work/levels-check.txt" || fail "check does not print level 1"
+grep -q "level 6: B1 floor 7 (21 m) ↔ B2 floor 6 (21 m)" "$work/levels-check.txt" || fail "check does not print level 6"
+grep -q "can touch" "$work/levels-check.txt" && grep -q "floors 1\.\." "$work/levels-check.txt" && fail "check still matches floors by number"
+"$pounding" run "$levels_scene" --out "$work/levels" > "$work/levels.txt" || fail "run of the levels example exited $?"
+/usr/bin/python3 - "$work/levels" <<'PY' || fail "levels example: impacts between floors at one elevation"
+import json, sys
+s = json.load(open(f"{sys.argv[1]}/summary.json"))
+z1 = [3.0 * j for j in range(1, 8)]        # B1: 3 m storeys
+z2 = [6.0 + 3.0 * j for j in range(0, 10)]  # B2: 6 m ground storey, then 3 m
+assert s["status"] == "completed" and s["impact_count"] > 0
+assert [l["floors"] for l in s["levels"]] == [[j, j - 1] for j in range(2, 8)], s["levels"]
+for i in s["impacts"] + s["sustained_contacts"]:
+    f1, f2 = i["floors"]
+    assert z1[f1 - 1] == z2[f2 - 1] == i["elevation_m"], i
+PY
+/usr/bin/python3 "$source_dir/tools/plot_run.py" "$work/levels" --out "$work/levels.png" > /dev/null \
+  || fail "plot_run.py on shifted levels exited $?"
+[ -s "$work/levels.png" ] || fail "no plot of the levels run"
+# Issue 8's case: B2 on 4.5 m storeys meets B1 (3 m) only at 9 m and 18 m, not floor for floor.
+sed -e 's|storey_height_m = \[6.0, 3.0.*|storey_height_m = 4.5|' \
+    -e "s|\.\./records/|$source_dir/examples/records/|" "$levels_scene" > "$work/tall.toml"
+"$pounding" check "$work/tall.toml" > "$work/tall.txt" || fail "check of 4.5 m storeys exited $?"
+grep -q "level 1: B1 floor 3 (9 m) ↔ B2 floor 2 (9 m)" "$work/tall.txt" && grep -q "level 2: B1 floor 6 (18 m) ↔ B2 floor 4 (18 m)" "$work/tall.txt" \
+  && grep -q "^Levels .*: 2$" "$work/tall.txt" || fail "4.5 m against 3 m storeys: levels at 9 and 18 m expected"
+# A 4.5 m ground storey under 3 m storeys puts B2's floors at 4.5 + 3k m: no level at all.
+sed -e 's|storey_height_m = \[6.0, |storey_height_m = [4.5, |' \
+    -e "s|\.\./records/|$source_dir/examples/records/|" "$levels_scene" > "$work/no-levels.toml"
+
 expect_refusal() {  # expected text, then the command's arguments
   local expected=$1; shift
   "$pounding" "$@" > "$work/out.txt" 2> "$work/err.txt"
@@ -86,6 +126,8 @@ expect_refusal "--dt = 0: the time step must be positive" run "$scene" --method 
 expect_refusal "--alpha = -0.5" run "$scene" --method hht --alpha -0.5 --out "$work/bad"
 expect_refusal "--halving" run "$scene" --method hht --halving sometimes --out "$work/bad"
 expect_refusal "--repeat" study "$scene" --repeat 0 --out "$work/bad"
+expect_refusal "building\[2\].storey_height_m = \[4.5, 3, 3" check "$work/no-levels.toml"
+expect_refusal "slab-to-column impacts are outside this model" run "$work/no-levels.toml" --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"

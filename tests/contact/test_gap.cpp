@@ -11,7 +11,7 @@ namespace {
 
 // B1 corner (0, 20) against B2's left edge x = 0.2 (from (0.2, 33) down to (0.2, 8)).
 Candidate paper_candidate() {
-  return {1, 0, 1, 2, 3, Point2(0, 20), Point2(0.2, 33), Point2(0.2, 8), Point2(-1, 0)};
+  return {1, {1, 1}, 3.0, 0, 1, 2, 3, Point2(0, 20), Point2(0.2, 33), Point2(0.2, 8), Point2(-1, 0)};
 }
 
 SlabMotion slab(Point2 centre, Eigen::Vector3d q, Eigen::Vector3d q_dot = Eigen::Vector3d::Zero()) {

@@ -20,7 +20,7 @@ struct FreePair {
   Vector6d inverse() const { return inverse_mass(m_a, j_a, m_b, j_b); }
 
   Candidate corner(Point2 vertex) const {
-    return {1, 0, 1, 1, 3, vertex, Point2(0, 8), Point2(0, -2), Point2(-1, 0)};
+    return {1, {1, 1}, 3.0, 0, 1, 1, 3, vertex, Point2(0, 8), Point2(0, -2), Point2(-1, 0)};
   }
   ContactRow row(const Candidate& c, const Vector6d& velocity, double k) const {
     const SlabMotion a{centre_a, Eigen::Vector3d::Zero(), velocity.head<3>()};
@@ -97,8 +97,8 @@ BOOST_AUTO_TEST_CASE(SymmetricFaceImpactSolvedTogetherGivesNoRotation) {
   const double k = 0.5, v_a = 1.0;
   Vector6d before;
   before << v_a, 0, 0, 0, 0, 0;
-  const Candidate lower{1, 0, 1, 1, 3, Point2(0, 0), Point2(0, 10), Point2(0, 0), Point2(-1, 0)};
-  const Candidate upper{1, 0, 1, 2, 3, Point2(0, 10), Point2(0, 10), Point2(0, 0), Point2(-1, 0)};
+  const Candidate lower{1, {1, 1}, 3.0, 0, 1, 1, 3, Point2(0, 0), Point2(0, 10), Point2(0, 0), Point2(-1, 0)};
+  const Candidate upper{1, {1, 1}, 3.0, 0, 1, 2, 3, Point2(0, 10), Point2(0, 10), Point2(0, 0), Point2(-1, 0)};
 
   const auto joint = solve_impulses({pair.row(lower, before, k), pair.row(upper, before, k)}, pair.inverse());
   const Vector6d after = before + joint.velocity_change;

@@ -104,7 +104,7 @@ BOOST_AUTO_TEST_CASE(ValidSceneIsReadCompletely) {
   BOOST_TEST(scene.buildings[1].storey_stiffness.size() == 3u);  // one matrix for every storey
   BOOST_TEST(scene.buildings[1].damping.modes[1] == 2);
   BOOST_TEST(scene.excitation.file == c.dir.path() / "record.txt");  // relative to the scene
-  BOOST_TEST(scene.common_floors() == 2);
+  BOOST_TEST(scene.levels().size() == 2u);
   BOOST_TEST(scene.solver.rtol == 1e-8);
 }
 
@@ -155,6 +155,34 @@ BOOST_AUTO_TEST_CASE(NonPositiveHeightAndModulusAreRefused) {
                       {"building[1].storey_height_m", "0", "positive"}));
   BOOST_TEST(mentions(error_of(edited("E_kPa = 3.0e7", "E_kPa = -3.0e7")),
                       {"building[1].E_kPa", "-30000000", "positive"}));
+}
+
+BOOST_AUTO_TEST_CASE(StoreyHeightsAreOneNumberOrOneAStorey) {
+  Case scalar(kScene), list(edited("storeys = 2\nstorey_height_m = 3.0", "storeys = 2\nstorey_height_m = [3.0, 3.0]"));
+  const auto a = read_scene(scalar.file), b = read_scene(list.file);
+  BOOST_TEST(a.buildings[0].storey_height_m == std::vector<double>({3.0, 3.0}), tt::per_element());
+  BOOST_TEST(b.buildings[0].storey_height_m == a.buildings[0].storey_height_m, tt::per_element());
+  const Eigen::MatrixXd difference = pounding::model::make_building(a.buildings[0]).stiffness -
+                                     pounding::model::make_building(b.buildings[0]).stiffness;
+  BOOST_TEST(difference.cwiseAbs().maxCoeff() == 0.0);
+
+  Case taller(edited("storeys = 3\nstorey_height_m = 3.0", "storeys = 3\nstorey_height_m = [3.0, 3.0, 4.5]"));
+  BOOST_TEST(read_scene(taller.file).buildings[1].storey_height_m == std::vector<double>({3.0, 3.0, 4.5}),
+             tt::per_element());
+}
+
+BOOST_AUTO_TEST_CASE(BadStoreyHeightListsAreRefusedEntryByEntry) {
+  const std::string anchor = "storeys = 3\nstorey_height_m = 3.0";
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, 3.0, -4.5]")),
+                      {"scene.toml", "building[2].storey_height_m[3]", "-4.5", "positive"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, 3.0]")),
+                      {"building[2].storey_height_m", "2 values", "one value per storey (3)"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, inf, 3.0]")),
+                      {"building[2].storey_height_m[2]", "inf", "finite"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = inf")),
+                      {"building[2].storey_height_m", "inf", "finite"}));
+  BOOST_TEST(mentions(error_of(edited(anchor, "storeys = 3\nstorey_height_m = [3.0, \"x\", 3.0]")),
+                      {"building[2].storey_height_m[2]", "expected a number"}));
 }
 
 BOOST_AUTO_TEST_CASE(RestitutionOutsideUnitIntervalIsRefused) {
@@ -242,4 +270,37 @@ BOOST_AUTO_TEST_CASE(TargetPeriodSceneSolvesThePublishedFrameFactors) {
   BOOST_TEST(std::abs(buildings[0].frame_factor - 0.74625) < 1e-5);
   BOOST_TEST(std::abs(buildings[1].frame_factor - 0.57268) < 1e-5);
   BOOST_TEST(buildings[0].modes[0].period_s == 0.765, tt::tolerance(1e-10));
+}
+
+BOOST_AUTO_TEST_CASE(SceneWithoutACommonLevelIsRefusedWithTheReason) {
+  // B1 floors at 3 and 6 m; B2 on a 4.5 m ground storey then 3 m: floors at 4.5, 7.5, 10.5 m.
+  const std::string error = error_of(edited("storeys = 3\nstorey_height_m = 3.0", "storeys = 3\nstorey_height_m = [4.5, 3.0, 3.0]"));
+  BOOST_TEST(mentions(error, {"scene.toml", "building[2].storey_height_m", "[4.5, 3, 3]", "3, 6 m", "4.5, 7.5, 10.5 m",
+                              "slab-to-column impacts are outside this model"}));
+}
+
+BOOST_AUTO_TEST_CASE(LevelsFollowStoreyHeightsAndTheTolerance) {
+  // B2's storeys 3, 3.0005, 2.9995 m: floors at 3, 6.0005, 9.0000 m. At the default 1 mm both
+  // of B1's floors (3, 6 m) find a level; at 0.1 mm only floor 1 does.
+  const std::string heights = "storeys = 3\nstorey_height_m = [3.0, 3.0005, 2.9995]";
+  Case loose(edited("storeys = 3\nstorey_height_m = 3.0", heights));
+  const auto levels = read_scene(loose.file).levels();
+  BOOST_TEST_REQUIRE(levels.size() == 2u);
+  BOOST_TEST((levels[1].floors == std::array<int, 2>{2, 2}));
+  Case tight(edited("storeys = 3\nstorey_height_m = 3.0", heights) + "level_tolerance_m = 1e-4\n");
+  BOOST_TEST(read_scene(tight.file).levels().size() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(LevelToleranceMustStayBelowHalfAStorey) {
+  BOOST_TEST(mentions(error_of(kScene + "level_tolerance_m = 0.0\n"), {"contact.level_tolerance_m", "0", "positive"}));
+  BOOST_TEST(mentions(error_of(kScene + "level_tolerance_m = 1.5\n"),
+                      {"contact.level_tolerance_m", "1.5", "half of every storey height", "building[1].storey_height_m[1]"}));
+}
+
+BOOST_AUTO_TEST_CASE(HistoryFloorsNameLevels) {
+  Case ok(kScene + "[output]\nhistory_floors = [2]\n");
+  BOOST_TEST(read_scene(ok.file).output.history_floors == std::vector<int>({2}), tt::per_element());
+  // Building 2 has a floor 3, but there are only two levels.
+  BOOST_TEST(mentions(error_of(kScene + "[output]\nhistory_floors = [3]\n"),
+                      {"output.history_floors[1]", "3", "levels", "1..2"}));
 }

@@ -2,6 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "../support/fixtures.hpp"
@@ -170,5 +171,70 @@ BOOST_AUTO_TEST_CASE(ColumnsAtOnePointCannotResistTorsion) {
   b.columns = {{Point2(0, 0), 0.4, 0.4}, {Point2(0, 0), 0.5, 0.5}};
   BOOST_CHECK_EXCEPTION(make_building(b), pounding::InputError, [](const pounding::InputError& e) {
     return e.key() == "columns" && std::string(e.what()).find("singular") != std::string::npos;
+  });
+}
+
+BOOST_AUTO_TEST_CASE(EqualStoreyHeightsGiveTheStiffnessOfOneRepeatedStorey) {
+  // The per-storey assembly must reduce to the uniform one: every storey the same 12 E I / H³.
+  const BuildingDefinition b = square_building(4, 12.0, 300.0, 7200.0, Point2(1.0, -0.5));
+  const Eigen::Matrix3d storey = storey_stiffness_from_columns(b.columns, b.centre_of_mass, b.E_kPa, 3.0, 1.0);
+  const Eigen::MatrixXd uniform = assemble_stiffness(std::vector<Eigen::Matrix3d>(4, storey));
+  const Eigen::MatrixXd k = make_building(b).stiffness;
+  BOOST_TEST((k - uniform).cwiseAbs().maxCoeff() <= 1e-12 * uniform.cwiseAbs().maxCoeff());
+}
+
+BOOST_AUTO_TEST_CASE(EachStoreyStiffnessUsesItsOwnHeight) {
+  // Two storeys, H = 4.5 m (ground) and 3 m, four 0.4 × 0.4 columns at (±5, ±5), CM at the
+  // centre: per storey k = 4 · 12 E (b⁴/12) / H³ along x and y, and Σ k_c (x² + y²) = 50 k in
+  // torsion, uncoupled. Assembled by hand: K = [[k1 + k2, −k2], [−k2, k2]] per direction.
+  BuildingDefinition b = square_building(2, 10.0, 100.0, 1000.0);
+  b.storey_height_m = {4.5, 3.0};
+  const double e = b.E_kPa, side = 0.4;
+  auto lateral = [&](double height) { return 4 * 12 * e * std::pow(side, 4) / 12 / std::pow(height, 3); };
+  const double k1 = lateral(4.5), k2 = lateral(3.0);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(6, 6);
+  for (int d = 0; d < 3; ++d) {
+    const double scale = d == 2 ? 50.0 : 1.0;  // torsion: lever arm² = 25 + 25 m² per column
+    expected(d, d) = scale * (k1 + k2);
+    expected(d, 3 + d) = expected(3 + d, d) = -scale * k2;
+    expected(3 + d, 3 + d) = scale * k2;
+  }
+  const Eigen::MatrixXd k = make_building(b).stiffness;
+  BOOST_TEST((k - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.cwiseAbs().maxCoeff());
+  BOOST_TEST(k(0, 0) != 2 * k(3, 3));  // fails if both storeys took one height
+}
+
+BOOST_AUTO_TEST_CASE(FrameFactorIsSolvedForTheTargetPeriodWithUnequalStoreys) {
+  // K stays linear in f when each storey has its own height, so the closed-form solve holds.
+  BuildingDefinition b = square_building(5, 15.0, 400.0, 15000.0, Point2(1.0, 0.5));
+  b.storey_height_m = {4.5, 3.0, 3.0, 3.2, 3.0};
+  b.target_period_s = 0.8;
+  BOOST_TEST(modal_analysis(make_building(b)).front().period_s == 0.8, tt::tolerance(1e-10));
+}
+
+BOOST_AUTO_TEST_CASE(FloorElevationsAreSumsOfStoreyHeights) {
+  BuildingDefinition b = square_building(3, 10.0, 100.0, 1000.0);
+  b.storey_height_m = {4.5, 3.0, 3.25};
+  const std::vector<double> z = floor_elevations(b);
+  BOOST_TEST_REQUIRE(z.size() == 3u);
+  BOOST_TEST(z[0] == 4.5);
+  BOOST_TEST(z[1] == 7.5);
+  BOOST_TEST(z[2] == 10.75);
+}
+
+BOOST_AUTO_TEST_CASE(StoreyHeightsAreValidatedOneByOne) {
+  BuildingDefinition b = square_building(3, 10.0, 100.0, 1000.0);
+  b.storey_height_m = {4.5, 3.0};
+  BOOST_CHECK_EXCEPTION(b.validate(), pounding::InputError, [](const pounding::InputError& e) {
+    return e.key() == "storey_height_m" && e.value() == "2 values" &&
+           e.reason().find("one value per storey (3)") != std::string::npos;
+  });
+  b.storey_height_m = {4.5, 3.0, -3.0};
+  BOOST_CHECK_EXCEPTION(b.validate(), pounding::InputError, [](const pounding::InputError& e) {
+    return e.key() == "storey_height_m[3]" && e.value() == "-3" && e.reason().find("positive") != std::string::npos;
+  });
+  b.storey_height_m = {4.5, std::numeric_limits<double>::infinity(), 3.0};
+  BOOST_CHECK_EXCEPTION(b.validate(), pounding::InputError, [](const pounding::InputError& e) {
+    return e.key() == "storey_height_m[2]" && e.reason().find("finite") != std::string::npos;
   });
 }

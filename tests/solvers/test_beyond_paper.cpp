@@ -34,8 +34,8 @@ double direct_hold_force(const dynamics::CoupledSystem& system, const Eigen::Vec
   const contact::GapState s = system.gap(y, index);
   const contact::Candidate& c = system.candidates()[index];
   Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(n);
-  g.segment<3>(system.floor_index(c.striking_building, c.floor)) = s.striking_row;
-  g.segment<3>(system.floor_index(c.struck_building, c.floor)) = s.struck_row;
+  g.segment<3>(system.floor_index(c.striking_building, c.floors[c.striking_building])) = s.striking_row;
+  g.segment<3>(system.floor_index(c.struck_building, c.floors[c.struck_building])) = s.struck_row;
   const double tau = dynamics::CoupledSystem::hold_time_constant_s;
   const double bias = s.curvature_mps2 + 3.0 * s.gap_rate_mps / tau + 2.0 * s.gap_m / (tau * tau);
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + 1, n + 1);
@@ -59,7 +59,7 @@ BOOST_AUTO_TEST_CASE(HeldForceAfterAJumpOnTheNextFloorMatchesADirectSolve) {
   const auto system = analysis::build_system(scene);
   std::size_t index = system.candidates().size();
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
-    if (system.candidates()[i].floor == 1 && system.candidates()[i].striking_building == 0) index = i;
+    if (system.candidates()[i].level == 1 && system.candidates()[i].striking_building == 0) index = i;
   }
   BOOST_TEST_REQUIRE(index < system.candidates().size());
   const int n = system.dof();
@@ -95,7 +95,7 @@ BOOST_AUTO_TEST_CASE(ReclosureAfterAPlasticImpactIsFoundOnTime) {
   const auto reference = run("six-storeys-plastic.toml", "cvode-adams", {}, 1e-12, 1e-14);
   auto reclosure = [](const solvers::RunResult& r) {
     for (const auto& impact : r.impacts) {
-      if (impact.floor == 5 && impact.t_s > 6.2929 && impact.t_s < 6.30) return impact.t_s;
+      if (impact.level == 5 && impact.t_s > 6.2929 && impact.t_s < 6.30) return impact.t_s;
     }
     return -1.0;
   };

@@ -107,7 +107,7 @@ BOOST_AUTO_TEST_CASE(AgreesWithCvodeOnThePaperSceneImpacts) {
   for (std::size_t i = 0; i < exact_run.impacts.size(); ++i) {
     const auto& a = cvode_run.impacts[i];
     const auto& b = exact_run.impacts[i];
-    BOOST_TEST(a.floor == b.floor);
+    BOOST_TEST(a.level == b.level);
     const double dt = std::abs(a.t_s - b.t_s);
     if (!held) BOOST_TEST(dt < 1e-8);
     if (a.approach_velocity_mps > 0.01) BOOST_TEST(dt < 1e-5);

@@ -42,7 +42,7 @@ inline model::BuildingDefinition square_building(int storeys, double side_m, dou
   model::BuildingDefinition b;
   b.name = "test";
   b.storeys = storeys;
-  b.storey_height_m = 3.0;
+  b.storey_height_m.assign(storeys, 3.0);
   const double h = side_m / 2;
   b.slab = model::Polygon({{-h, -h}, {h, -h}, {h, h}, {-h, h}});
   b.centre_of_mass = cm;

@@ -25,7 +25,7 @@ inline model::Building slab_building(const char* name, const model::Polygon& sla
   model::BuildingDefinition b;
   b.name = name;
   b.storeys = 1;
-  b.storey_height_m = 3.0;
+  b.storey_height_m = {3.0};
   b.slab = slab;
   b.centre_of_mass = slab.centroid();
   b.mass_t = {spec.mass_t};
@@ -54,8 +54,9 @@ inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Poly
   const model::Polygon left_slab = box(-10, 0, 0, 10);
   std::array<model::Building, 2> buildings{slab_building("A", left_slab, left), slab_building("B", right_slab, right)};
   contact::PairGeometry geometry{{left_slab, right_slab}, {left_slab.centroid(), right_slab.centroid()}};
-  auto candidates = contact::find_candidates(geometry, 1, {.margin_m = 1.0, .gap_m = gap_m});
-  return dynamics::CoupledSystem(std::move(buildings), std::move(motion), std::move(candidates));
+  const std::vector<contact::Level> levels{{.index = 1, .floors = {1, 1}, .elevation_m = 3.0}};
+  auto candidates = contact::find_candidates(geometry, levels, {.margin_m = 1.0, .gap_m = gap_m});
+  return dynamics::CoupledSystem(std::move(buildings), std::move(motion), levels, std::move(candidates));
 }
 
 inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab,

@@ -64,11 +64,12 @@ def describe(summary):
     impacts = summary["impacts"]
     if not impacts:
         return f"no impact; {len(summary['touches'])} touches"
-    by_floor = ", ".join(f"{n} on floor {f}" for f, n in sorted(summary["impacts_by_floor"].items(), reverse=True))
+    # The paper's buildings have equal storeys: level j is floor j of both.
+    by_floor = ", ".join(f"{n} on floor {f}" for f, n in sorted(summary["impacts_by_level"].items(), reverse=True))
     times = ", ".join(f"{i['t_s']:.3f} s" for i in impacts[:3])
     noun = "impact" if len(impacts) == 1 else "impacts"
     return (f"{len(impacts)} {noun} ({by_floor}), the first at {impacts[0]['t_s']:.4f} s on floor "
-            f"{impacts[0]['floor']} (first ones at {times}); {len(summary['sustained_contacts'])} sustained "
+            f"{impacts[0]['floors'][0]} (first ones at {times}); {len(summary['sustained_contacts'])} sustained "
             f"contacts; {len(summary['touches'])} touches")
 
 

@@ -13,7 +13,7 @@
 
 namespace pounding::analysis {
 
-/// The candidates the scene's geometry allows (DESIGN.md §2), floors 1 … min(N₁, N₂).
+/// The candidates the scene's geometry allows (DESIGN.md §2), on every level (Scene::levels()).
 std::vector<contact::Candidate> scene_candidates(const Scene& scene);
 
 /// The coupled system of a scene (assembles both buildings, loads the record).
@@ -33,6 +33,7 @@ struct RunReport {
   double restitution = 0.0;
   SolverSettings solver;
   double hold_velocity_mps = 0.0;
+  std::vector<contact::Level> levels;
   std::vector<contact::Candidate> candidates;
   solvers::RunResult result;
 };

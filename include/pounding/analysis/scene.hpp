@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/contact/candidates.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/model/building.hpp"
 
@@ -18,6 +19,10 @@ struct ContactSettings {
   double restitution = 0.5;        // Newton coefficient k ∈ [0, 1]
   double candidate_margin_m = 1.0; // reach of the candidate search beyond gap and edge ends (m)
   double hold_velocity_mps = 1e-3; // sticking threshold: slower separations of pressed pairs are held
+  // Floors of the two buildings whose elevations differ by at most this stand at one level and
+  // can touch (m). 1 mm: far above the round-off of summed storey heights, far below any
+  // storey height or slab thickness, so only floors the file puts at one height match.
+  double level_tolerance_m = 1e-3;
 };
 
 /// Time integration of `pounding run`.
@@ -40,7 +45,7 @@ struct SolverSettings {
 
 /// What `pounding run` writes to history.csv.
 struct OutputSettings {
-  std::vector<int> history_floors;   // empty: every floor both buildings have
+  std::vector<int> history_floors;   // levels (1-based, as `check` lists them); empty: every level
   double history_interval_s = 0.01;
 };
 
@@ -53,16 +58,18 @@ struct Scene {
   SolverSettings solver;
   OutputSettings output;
 
-  /// Floors that both buildings have: 1 … min(N₁, N₂).
-  int common_floors() const { return std::min(buildings[0].storeys, buildings[1].storeys); }
+  /// The floor pairs at a common elevation (within contact.level_tolerance_m), lowest first.
+  /// @pre buildings valid.
+  std::vector<contact::Level> levels() const;
 
   /// Moves building 2 along x so that the clear distance becomes `gap_m`.
   /// @throws InputError (key `contact.gap_m`) if the gap is negative or not finite.
   void set_gap(double gap_m);
 
-  /// Checks each building, the contact and solver settings, and the pair: building 2 on the +x
-  /// side of building 1 facing it, the slabs not overlapping at rest, and contact.gap_m equal to
-  /// the clear distance the slab outlines show. @throws InputError naming the key and value.
+  /// Checks each building, the contact and solver settings, and the pair: at least one level
+  /// (slab-to-column impacts are outside the model), building 2 on the +x side of building 1
+  /// facing it, the slabs not overlapping at rest, and contact.gap_m equal to the clear distance
+  /// the slab outlines show. @throws InputError naming the key and value.
   void validate() const;
 };
 

@@ -32,7 +32,7 @@ struct RunErrors {
   double peak_u_m = 0.0, peak_v_m = 0.0, peak_phi_rad = 0.0;           // max over all floors
 };
 
-/// Impacts matched in time order by contact (same candidate: floor, vertex and edge), each to the
+/// Impacts matched in time order by contact (same candidate: level, vertex and edge), each to the
 /// nearest unused one within `window_s`;
 /// histories compared at the samples both runs share (the regular grid).
 RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunResult& run, double window_s);

@@ -1,6 +1,8 @@
 #pragma once
-// Contact candidates: (vertex of one slab, edge of the other slab on the same floor) pairs that
+// Contact candidates: (vertex of one slab, edge of the other slab at the same level) pairs that
 // the scene can actually bring together. Everything else stays out of the root functions.
+// Slabs meet only where floors of the two buildings stand at a common elevation (a level); a
+// slab striking the other building's columns between floors is outside this model.
 
 #include <array>
 #include <string>
@@ -10,9 +12,24 @@
 
 namespace pounding::contact {
 
-/// One vertex–edge pair on one floor, in rest geometry (global plan coordinates, m).
+/// Two floors, one of each building, at a common elevation.
+struct Level {
+  int index = 1;                    // 1-based among the common levels, lowest first
+  std::array<int, 2> floors{1, 1};  // 1-based floor of building 1 and of building 2
+  double elevation_m = 0.0;         // of building 1's floor above the ground (m)
+};
+
+/// The levels of two buildings whose floors stand at `elevations` (m above the ground, floor 1
+/// first, ascending): each floor of building 1 paired with the floor of building 2 within
+/// `tolerance_m` of it, lowest first. Empty when no floors coincide.
+/// @pre 0 < tolerance_m < half of every storey height, so a floor meets at most one floor.
+std::vector<Level> common_levels(const std::array<std::vector<double>, 2>& elevations, double tolerance_m);
+
+/// One vertex–edge pair at one level, in rest geometry (global plan coordinates, m).
 struct Candidate {
-  int floor = 1;                  // 1-based, the same for both slabs
+  int level = 1;                    // 1-based level index: the contacts solved together
+  std::array<int, 2> floors{1, 1};  // the level's floor of building 1 and of building 2
+  double elevation_m = 0.0;         // the level's elevation (m)
   int striking_building = 0;      // 0 or 1: owns the vertex P
   int struck_building = 1;        // the other one: owns the edge Q1→Q2
   std::size_t vertex_index = 0;   // index of P in the striking slab's outline
@@ -38,10 +55,10 @@ struct CandidateOptions {
   double gap_m = 0.0;  // the scene's clear gap
 };
 
-/// All candidates on floors 1 … `common_floors`, floor by floor, building 1's vertices first.
-/// Each floor repeats the same vertex–edge pairs because all floors share the outlines.
+/// All candidates on `levels`, level by level, building 1's vertices first. Each level repeats
+/// the same vertex–edge pairs because all floors of a building share its outline.
 /// @pre both slabs simple and counter-clockwise.
-std::vector<Candidate> find_candidates(const PairGeometry& geometry, int common_floors,
+std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::vector<Level>& levels,
                                        const CandidateOptions& options);
 
 /// "B1 vertex 3 (0, 20) -> B2 edge 4 (0.2, 33)-(0.2, 8)" style label (1-based indices).

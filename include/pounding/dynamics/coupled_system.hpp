@@ -21,9 +21,10 @@ using ConstVectorRef = const Eigen::Ref<const VectorXd>&;
 
 class CoupledSystem {
  public:
-  /// @pre candidate floors within both buildings.
+  /// `levels`: the floor pairs at a common elevation (contact::common_levels); every candidate
+  /// lies on one of them. @pre level floors within both buildings.
   CoupledSystem(std::array<model::Building, 2> buildings, excitation::GroundMotion ground_motion,
-                std::vector<contact::Candidate> candidates);
+                std::vector<contact::Level> levels, std::vector<contact::Candidate> candidates);
 
   int dof() const { return dof_; }
   int state_size() const { return 2 * dof_; }
@@ -32,6 +33,7 @@ class CoupledSystem {
 
   const model::Building& building(int b) const { return buildings_[b]; }
   const excitation::GroundMotion& ground_motion() const { return ground_motion_; }
+  const std::vector<contact::Level>& levels() const { return levels_; }
   const std::vector<contact::Candidate>& candidates() const { return candidates_; }
   const VectorXd& mass_diagonal() const { return mass_; }
   const MatrixXd& stiffness() const { return stiffness_; }  // block-diagonal K (kN/m, kN, kN·m)
@@ -51,10 +53,12 @@ class CoupledSystem {
   double gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const;
   /// ġ = G q̇ as a row over the floor pair's six velocities (building 1's slab first).
   contact::RowVector6d pair_row(const contact::GapState& state, const contact::Candidate& c) const;
-  /// Velocities of the floor pair of `floor` in state y, and their inverse masses.
-  contact::Vector6d pair_velocities(ConstVectorRef y, int floor) const;
-  void add_pair_velocities(Eigen::Ref<VectorXd> y, int floor, const contact::Vector6d& change) const;
-  contact::Vector6d pair_inverse_mass(int floor) const;
+  /// Velocities of the slab pair `floors` (1-based floor of building 1, of building 2) in state
+  /// y, and their inverse masses.
+  contact::Vector6d pair_velocities(ConstVectorRef y, const std::array<int, 2>& floors) const;
+  void add_pair_velocities(Eigen::Ref<VectorXd> y, const std::array<int, 2>& floors,
+                           const contact::Vector6d& change) const;
+  contact::Vector6d pair_inverse_mass(const std::array<int, 2>& floors) const;
 
   /// Motion with the contacts `held` kept closed (g̈ = −3ġ/τ − 2g/τ², a Baumgarte correction with
   /// τ = `hold_time_constant_s` that stops drift) by normal forces λ (kN, ≥ 0 pushes the slabs
@@ -88,6 +92,7 @@ class CoupledSystem {
 
   std::array<model::Building, 2> buildings_;
   excitation::GroundMotion ground_motion_;
+  std::vector<contact::Level> levels_;
   std::vector<contact::Candidate> candidates_;
   int dof_ = 0;
   std::array<int, 2> offset_{0, 0};

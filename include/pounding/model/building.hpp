@@ -30,7 +30,7 @@ struct RayleighSpec {
 struct BuildingDefinition {
   std::string name;
   int storeys = 0;
-  double storey_height_m = 0.0;
+  std::vector<double> storey_height_m;         // one per storey, storey 1 (ground to floor 1) first
   Polygon slab;                                // global plan coordinates at rest, CCW
   Point2 centre_of_mass = Point2::Zero();      // global plan coordinates at rest (m)
   std::vector<double> mass_t;                  // one per floor, floor 1 first
@@ -62,7 +62,8 @@ double uniform_polar_moment(const Polygon& slab, double mass_t);
 Eigen::Vector2d column_stiffness(const Column& column, double elastic_modulus_kPa,
                                  double storey_height_m, double frame_factor);
 
-/// Storey stiffness about `centre_of_mass`: Σ Tᵀ diag(k_x, k_y) T, T = [[1,0,−Δy],[0,1,Δx]].
+/// Storey stiffness about `centre_of_mass`: Σ Tᵀ diag(k_x, k_y) T, T = [[1,0,−Δy],[0,1,Δx]],
+/// for a storey of height `storey_height_m`.
 Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns,
                                               const Point2& centre_of_mass,
                                               double elastic_modulus_kPa, double storey_height_m,
@@ -70,6 +71,14 @@ Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns
 
 /// Block-tridiagonal stiffness (3N×3N) from the storey matrices, storey 1 (to the ground) first.
 Eigen::MatrixXd assemble_stiffness(const std::vector<Eigen::Matrix3d>& storeys);
+
+/// The storey matrices of a column building, each storey with its own height H_j
+/// (k = f · 12 E I / H_j³), so K stays linear in the frame factor f.
+/// @pre definition valid and uses_columns().
+std::vector<Eigen::Matrix3d> column_storey_matrices(const BuildingDefinition& definition, double frame_factor);
+
+/// Elevation of each floor above the ground, z_j = H_1 + … + H_j (m), floor 1 first.
+std::vector<double> floor_elevations(const BuildingDefinition& definition);
 
 struct RayleighCoefficients {
   double a0_per_s = 0.0;  // mass-proportional

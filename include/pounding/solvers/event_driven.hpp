@@ -44,7 +44,7 @@ struct EventOptions {
   /// examined (see the interpolant check in the loop).
   double max_step_s = 0.0;
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
-  std::vector<int> history_floors;     // empty: all floors both buildings have
+  std::vector<int> history_floors;     // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
 
   /// @throws InputError naming the field.

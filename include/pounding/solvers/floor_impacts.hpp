@@ -1,5 +1,6 @@
 #pragma once
-// The impact step every solution path shares: gather the contacts of one floor pair, solve their
+// The impact step every solution path shares: gather the contacts of one level (the slab pair at a
+// common elevation), solve their
 // impulses together (the LCP of contact/impact.hpp), apply them, and record what happened.
 
 #include <functional>
@@ -13,14 +14,15 @@
 namespace pounding::solvers {
 
 struct FloorContacts {
-  int floor = 0;
+  int level = 0;                     // 1-based level index
+  std::array<int, 2> floors{0, 0};   // the level's floor of building 1 and of building 2
   std::vector<std::size_t> members;          // candidate indices
   std::vector<contact::GapState> states;     // at the impact instant
   std::vector<contact::ContactRow> rows;     // impact-law rows (restitution per contact)
 };
 
-/// The candidates of `floor` for which take(index, state) holds, with restitution k each.
-FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int floor,
+/// The candidates of `level` (1-based) for which take(index, state) holds, with restitution k each.
+FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int level,
                                     double restitution,
                                     const std::function<bool(std::size_t, const contact::GapState&)>& take);
 

@@ -62,7 +62,7 @@ struct HhtOptions {
   HhtEventLocation location = HhtEventLocation::halving;
   double restitution = 0.5;
   Eigen::VectorXd initial_state;      // (q, q̇) at the record's start; empty: at rest
-  std::vector<int> history_floors;    // empty: every floor both buildings have
+  std::vector<int> history_floors;    // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
   /// @throws InputError naming the field (dt_s, alpha, contact_tolerance_m, max_halvings, ...).
   void validate() const;

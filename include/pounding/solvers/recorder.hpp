@@ -12,8 +12,9 @@ namespace pounding::solvers {
 
 class Recorder {
  public:
-  /// `history_floors` empty: every floor both buildings have. @pre floors valid.
-  Recorder(const dynamics::CoupledSystem& system, std::vector<int> history_floors, double history_interval_s);
+  /// History of the levels `history_levels` (1-based indices into system.levels(); empty: every
+  /// level), each as building 1's floor then building 2's. @pre indices valid.
+  Recorder(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels, double history_interval_s);
 
   /// A state the run passes through (step ends, samples, events): updates the peaks.
   void observe(double t, const dynamics::VectorXd& y);
@@ -35,7 +36,7 @@ class Recorder {
   void append_row(double t, const dynamics::VectorXd& y);
 
   const dynamics::CoupledSystem& system_;
-  std::vector<int> history_floors_;
+  std::vector<contact::Level> history_levels_;
   double interval_s_;
   double next_sample_s_;
   std::array<std::vector<model::Point2>, 2> vertices_;  // contact vertices per building

@@ -3,6 +3,7 @@
 // status with a named reason. Units in the member names.
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,9 @@ std::string_view to_string(RunStatus status);
 
 struct ImpactRecord {
   double t_s = 0.0;
-  int floor = 0;
+  int level = 0;                      // 1-based level (floors at a common elevation)
+  std::array<int, 2> floors{0, 0};    // the level's floor of building 1 and of building 2
+  double elevation_m = 0.0;           // the level's elevation (m)
   int striking_building = 0;          // 1 or 2
   std::size_t vertex = 0;             // 1-based index in the striking slab's outline
   std::size_t struck_edge = 0;        // 1-based edge of the struck slab
@@ -30,13 +33,15 @@ struct ImpactRecord {
   double approach_velocity_mps = 0.0;    // −ġ⁻ > 0
   double separation_velocity_mps = 0.0;  // ġ⁺ (= k·approach for a lone contact)
   double impulse_kNs = 0.0;
-  double energy_lost_kJ = 0.0;        // of the whole floor pair, shared by its simultaneous contacts
+  double energy_lost_kJ = 0.0;        // of the whole slab pair, shared by its simultaneous contacts
   bool starts_hold = false;           // the pair was then held in sustained contact
 };
 
 struct TouchRecord {  // contact with ġ ≥ 0: no impulse
   double t_s = 0.0;
-  int floor = 0;
+  int level = 0;                      // as in ImpactRecord
+  std::array<int, 2> floors{0, 0};
+  double elevation_m = 0.0;
   int striking_building = 0;
   std::size_t vertex = 0;
   std::size_t candidate = 0;
@@ -46,7 +51,9 @@ struct TouchRecord {  // contact with ġ ≥ 0: no impulse
 };
 
 struct SustainedContactRecord {
-  int floor = 0;
+  int level = 0;                      // as in ImpactRecord
+  std::array<int, 2> floors{0, 0};
+  double elevation_m = 0.0;
   int striking_building = 0;
   std::size_t vertex = 0;
   std::size_t candidate = 0;
@@ -124,6 +131,7 @@ struct SolverStatistics {
 /// Sampled time history: one row per sample, columns named in `columns` (units in the name).
 struct History {
   double interval_s = 0.0;  // regular sampling interval; event rows fall between
+  std::vector<int> levels;  // the levels written, in column order (each: building 1's floor, then 2's)
   std::vector<std::string> columns;
   std::vector<double> time_s;
   std::vector<Eigen::VectorXd> rows;
