@@ -133,9 +133,18 @@ void print_run_summary(const analysis::RunReport& report, const std::string& fol
                building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
                top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
   }
+  const auto& st = r.statistics;
+  if (st.max_interpenetration_candidate >= 0) {
+    fmt::print("Largest overlap: {:.3e} m at {:.6f} s, {}\n", st.max_interpenetration_m, st.max_interpenetration_t_s,
+               contact::describe(report.candidates[static_cast<std::size_t>(st.max_interpenetration_candidate)]));
+  } else {
+    fmt::print("Largest overlap: none\n");
+  }
   const auto& e = r.energy;
-  fmt::print("Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ, residual {:.3e} kJ ({:.2e} of input)\n",
-             e.input_kJ, e.damping_kJ, e.impact_loss_kJ, e.residual_kJ(),
+  const std::string algorithmic =
+      r.method == "hht" ? fmt::format(", algorithmic dissipation {:.3f} kJ", e.algorithmic_dissipation_kJ) : "";
+  fmt::print("Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ{}, residual {:.3e} kJ ({:.2e} of input)\n",
+             e.input_kJ, e.damping_kJ, e.impact_loss_kJ, algorithmic, e.residual_kJ(),
              e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
   const auto& s = r.statistics;
   if (r.method == "hht") {

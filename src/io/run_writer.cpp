@@ -86,6 +86,7 @@ json energy_json(const solvers::EnergyAudit& e) {
           {"damping_kJ", e.damping_kJ},
           {"impact_loss_kJ", e.impact_loss_kJ},
           {"constraint_work_kJ", e.constraint_work_kJ},
+          {"algorithmic_dissipation_kJ", e.algorithmic_dissipation_kJ},
           {"residual_kJ", e.residual_kJ()},
           {"relative_residual", e.input_kJ != 0.0 ? e.residual_kJ() / e.input_kJ : 0.0}};
 }

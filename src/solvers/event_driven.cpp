@@ -23,6 +23,7 @@ std::string_view to_string(RunStatus status) {
     case RunStatus::solver_failure: return "solver_failure";
     case RunStatus::event_limit: return "event_limit";
     case RunStatus::step_limit: return "step_limit";
+    case RunStatus::unresolved_overlap: return "unresolved_overlap";
   }
   return "?";
 }

@@ -57,6 +57,30 @@ HhtStepper::State HhtStepper::step(const State& from, double h) {
   return to;
 }
 
+Eigen::VectorXd HhtStepper::defect(const State& s) const {
+  Eigen::VectorXd f(mass_.size());
+  force_(s.t_s, f);
+  return mass_.cwiseProduct(s.a) - f + damping_ * s.v + stiffness_ * s.d;
+}
+
+double HhtStepper::algorithmic_dissipation(const State& from, const State& to) const {
+  // With Δx = x₁ − x₀ and ⟨x⟩ = (x₀ + x₁)/2, the Newmark updates read Δd = h⟨v⟩ + h²(β − γ/2)Δa
+  // and Δv = h⟨a⟩ + h(γ − ½)Δa; multiplying M⟨a⟩ by Δd gives, from the kinematics alone,
+  //   Δdᵀ M⟨a⟩ = ΔT − h(γ − ½)⟨v⟩ᵀ M Δa + h²(β − γ/2) Δ(½ aᵀ M a),   T = ½ vᵀ M v.
+  // The scheme's accelerations satisfy M a = f − C v − K d + r (r = α(Δf − CΔv − KΔd) after an
+  // HHT step, 0 where a is computed from the equation of motion), and Δdᵀ K⟨d⟩ = ΔV exactly, so
+  //   ΔT + ΔV = Δdᵀ⟨f⟩ − Δdᵀ C⟨v⟩ − D,
+  //   D = −Δdᵀ⟨r⟩ − h(γ − ½)⟨v⟩ᵀ M Δa + h²(β − γ/2) Δ(½ aᵀ M a).
+  // With α = 0 (γ = ½, β = ¼, r = 0) every term vanishes.
+  const double h = to.t_s - from.t_s;
+  const Eigen::VectorXd mean_r = 0.5 * (defect(from) + defect(to));
+  const Eigen::VectorXd mean_v = 0.5 * (from.v + to.v);
+  const Eigen::VectorXd m_delta_a = mass_.cwiseProduct(to.a - from.a);
+  const double delta_acceleration_energy = 0.5 * (to.a.cwiseAbs2() - from.a.cwiseAbs2()).dot(mass_);
+  return -(to.d - from.d).dot(mean_r) - h * (gamma_ - 0.5) * mean_v.dot(m_delta_a) +
+         h * h * (beta_ - 0.5 * gamma_) * delta_acceleration_energy;
+}
+
 void HhtOptions::validate() const {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw InputError("dt_s", format_value(dt_s), "the time step must be positive (s)");
   if (!(alpha >= -1.0 / 3.0 && alpha <= 0.0)) throw InputError("alpha", format_value(alpha), "must lie in [-1/3, 0]");
@@ -99,7 +123,9 @@ class HhtRun {
         stepper_(system.mass_diagonal(), system.damping(), system.stiffness(),
                  [&system](double t, Eigen::Ref<VectorXd> f) { system.external_force(t, f); }, options.alpha),
         recorder_(system, options.history_floors, options.history_interval_s),
-        touching_(system.candidates().size(), false) {}
+        touching_(system.candidates().size(), false),
+        sunk_(system.candidates().size(), false),
+        no_approach_mps_(1e-6 * options.contact_tolerance_m / options.dt_s) {}
 
   RunResult run(const std::string& method);
 
@@ -109,11 +135,32 @@ class HhtRun {
     y << s.d, s.v;
     return y;
   }
-  /// Candidates that overlap at `to` beyond the tolerance while approaching, and did not at `from`.
-  std::vector<std::size_t> new_overlaps(const State& from, const State& to) const;
-  bool closing_contact(const State& s) const;
+  /// On its edge and deeper than the contact tolerance.
+  bool sunk(const contact::GapState& g) const { return g.on_segment() && g.gap_m < -options_.contact_tolerance_m; }
+  /// Per candidate, the gap below which a step from `s` overlaps: −tolerance, or for a pair
+  /// already sunk at `s` (an overlap halving did not resolve) a further tolerance below where it
+  /// is, so that it cannot sink on unnoticed.
+  std::vector<double> overlap_limits(const State& s) const;
+  /// Candidates below their limit at `to`, on their edge there or where they crossed it: a
+  /// contact the step passed over, whatever the gap's rate at `to` (the vertex may already be on
+  /// its way out, or have slid past the edge's end).
+  std::vector<std::size_t> new_overlaps(const std::vector<double>& limits, const State& from, const State& to) const;
+  /// Candidate i's gap fell below `limit` inside the step (on the Hermite interpolant) while on its edge.
+  bool crossed_on_edge(std::size_t i, double limit, const State& from, const State& to) const;
+  /// Some candidate approaches within the tolerance band above its limit.
+  bool closing_contact(const std::vector<double>& limits, const State& s) const;
   void accept(const State& from, const State& to);
-  State settle(const State& s, bool include_overlaps);
+  /// Counts every pair that sinks deeper than the tolerance at an accepted step end.
+  void track_overlaps(const State& s);
+  /// A contact in the band is an impact only if it closes: already touching or overlapping
+  /// (g ≤ 0), or approaching fast enough to touch within a step. A pair resting in the band at a
+  /// positive gap (e.g. two identical buildings closer than the tolerance) drifting together
+  /// slower than that has not touched; if it goes on, the step that overlaps is halved.
+  bool approaching(const contact::GapState& g) const {
+    return g.gap_rate_mps < -no_approach_mps_ && g.gap_m + g.gap_rate_mps * options_.dt_s <= 0.0;
+  }
+  State settle(const State& s);
+  void report_overlaps();
   State halve(State s, double h);
   State interpolate(const State& s, const State& trial, const std::vector<std::size_t>& overlaps);
 
@@ -122,28 +169,54 @@ class HhtRun {
   HhtStepper stepper_;
   Recorder recorder_;
   RunResult result_;
-  std::vector<bool> touching_;  // in contact (|g| ≤ tolerance) at the last step end
+  std::vector<bool> touching_;  // on the edge with g ≤ 0 at the last step end
+  std::vector<bool> sunk_;      // deeper than the tolerance at the last accepted step end
+  // An approach this slow would close the gap by a millionth of the tolerance in a step:
+  // round-off, not motion.
+  double no_approach_mps_;
   long trial_steps_ = 0;
 };
 
-std::vector<std::size_t> HhtRun::new_overlaps(const State& from, const State& to) const {
-  const VectorXd y_from = first_order(from), y_to = first_order(to);
+std::vector<double> HhtRun::overlap_limits(const State& s) const {
+  const VectorXd y = first_order(s);
+  const double tol = options_.contact_tolerance_m;
+  std::vector<double> limits(system_.candidates().size());
+  for (std::size_t i = 0; i < limits.size(); ++i) {
+    const contact::GapState g = system_.gap(y, i);
+    limits[i] = sunk(g) ? g.gap_m - tol : -tol;
+  }
+  return limits;
+}
+
+std::vector<std::size_t> HhtRun::new_overlaps(const std::vector<double>& limits, const State& from,
+                                              const State& to) const {
+  const VectorXd y = first_order(to);
   std::vector<std::size_t> overlapping;
-  for (std::size_t i = 0; i < system_.candidates().size(); ++i) {
-    const contact::GapState s = system_.gap(y_to, i);
-    if (s.on_segment() && s.gap_m < -options_.contact_tolerance_m && s.gap_rate_mps < 0.0 &&
-        system_.gap(y_from, i).gap_m >= -options_.contact_tolerance_m) {
-      overlapping.push_back(i);
-    }
+  for (std::size_t i = 0; i < limits.size(); ++i) {
+    const contact::GapState g = system_.gap(y, i);
+    if (g.gap_m < limits[i] && (g.on_segment() || crossed_on_edge(i, limits[i], from, to))) overlapping.push_back(i);
   }
   return overlapping;
 }
 
-bool HhtRun::closing_contact(const State& s) const {
+bool HhtRun::crossed_on_edge(std::size_t i, double limit, const State& from, const State& to) const {
+  // Slabs that overlap over a short stretch of y pass corner by corner: at the step end the
+  // vertex is beyond the edge's line but also beyond its end, so only the crossing shows it.
+  auto below_limit = [&](double t) { return system_.gap(hermite(from, to, t), i).gap_m - limit; };
+  const double start = below_limit(from.t_s), end = below_limit(to.t_s);
+  if (!(start > 0.0 && end < 0.0)) return false;
+  const double t = find_root(below_limit, from.t_s, to.t_s, start, end);
+  return system_.gap(hermite(from, to, t), i).on_segment();
+}
+
+bool HhtRun::closing_contact(const std::vector<double>& limits, const State& s) const {
   const VectorXd y = first_order(s);
-  for (std::size_t i = 0; i < system_.candidates().size(); ++i) {
+  for (std::size_t i = 0; i < limits.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
-    if (g.on_segment() && std::abs(g.gap_m) <= options_.contact_tolerance_m && g.gap_rate_mps < 0.0) return true;
+    if (g.on_segment() && g.gap_m >= limits[i] && g.gap_m <= limits[i] + 2.0 * options_.contact_tolerance_m &&
+        g.gap_rate_mps < 0.0) {
+      return true;
+    }
   }
   return false;
 }
@@ -156,22 +229,37 @@ void HhtRun::accept(const State& from, const State& to) {
   }
   recorder_.advance(from.t_s, to.t_s, first_order(to), [&](double t) { return hermite(from, to, t); },
                     [](double, const VectorXd&) { return 0.0; });
+  recorder_.add_algorithmic_dissipation(stepper_.algorithmic_dissipation(from, to));
+  track_overlaps(to);
 }
 
-State HhtRun::settle(const State& s, bool include_overlaps) {
-  // Impacts at this step end: per level, every contact within the tolerance (and, when asked,
-  // every overlap) solved together; a touch is a contact that appears without approaching.
+void HhtRun::track_overlaps(const State& s) {
+  const VectorXd y = first_order(s);
+  for (std::size_t i = 0; i < sunk_.size(); ++i) {
+    const contact::GapState g = system_.gap(y, i);
+    if (g.on_segment()) result_.statistics.note_overlap(g.gap_m, s.t_s, i);
+    const bool now = sunk(g);
+    if (now && !sunk_[i]) ++result_.statistics.unresolved_contacts;
+    sunk_[i] = now;
+  }
+}
+
+State HhtRun::settle(const State& s) {
+  // Impacts at this step end: per level, every contact within the tolerance or deeper solved
+  // together (an overlap that halving could not resolve still takes its impulse, so it does not
+  // sink on); a touch is a pair that reaches g ≤ 0 (within the tolerance) without approaching.
   VectorXd y = first_order(s);
   const double tol = options_.contact_tolerance_m;
-  std::vector<bool> in_contact(touching_.size(), false);
+  std::vector<bool> in_contact(touching_.size(), false), touching(touching_.size(), false);
   std::set<int> levels;
   std::set<std::size_t> new_touches;
   for (std::size_t i = 0; i < touching_.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
-    in_contact[i] = g.on_segment() && g.gap_m <= tol && (include_overlaps || g.gap_m >= -tol);
+    in_contact[i] = g.on_segment() && g.gap_m <= tol;
+    touching[i] = in_contact[i] && g.gap_m <= 0.0;
     if (!in_contact[i]) continue;
-    if (g.gap_rate_mps < 0.0) levels.insert(system_.candidates()[i].level);
-    else if (!touching_[i]) new_touches.insert(i);
+    if (approaching(g)) levels.insert(system_.candidates()[i].level);
+    else if (touching[i] && !touching_[i] && g.gap_m >= -tol) new_touches.insert(i);
   }
   bool changed = false;
   for (int level : levels) {
@@ -189,7 +277,7 @@ State HhtRun::settle(const State& s, bool include_overlaps) {
     result_.touches.push_back(touch_record(system_, s.t_s, i, system_.gap(y, i)));
     ++result_.statistics.events;
   }
-  touching_ = in_contact;
+  touching_ = touching;
   if (!changed) return s;
   recorder_.sample(s.t_s, y);
   // The impact changes velocities only; the accelerations follow from the equation of motion.
@@ -201,26 +289,26 @@ State HhtRun::halve(State s, double h) {
   // bracket from its start. A trial that overlaps becomes the new bracket end; one that does not
   // is accepted and becomes the new start. Stops when the accepted end state is in contact
   // within the tolerance, so the number of halvings is about log2(Δt·|ġ| / tolerance).
+  const std::vector<double> limits = overlap_limits(s);
   double bracket_end = s.t_s + h;
   for (int depth = 1; depth <= options_.max_halvings; ++depth) {
     ++result_.statistics.halvings;
     const State trial = stepper_.step(s, (bracket_end - s.t_s) / 2.0);
     ++trial_steps_;
-    if (!new_overlaps(s, trial).empty()) {
+    if (!new_overlaps(limits, s, trial).empty()) {
       bracket_end = trial.t_s;
       continue;
     }
     accept(s, trial);
     s = trial;
-    if (closing_contact(s)) return settle(s, false);  // found the contact: on with the full Δt
+    if (closing_contact(limits, s)) return settle(s);  // found the contact: on with the full Δt
   }
   // Deepest level reached without a state within the tolerance: step to the bracket end and
-  // apply the impact there, overlapping as it is.
+  // apply the impact there, overlapping as it is (accept counts it).
   const State trial = stepper_.step(s, bracket_end - s.t_s);
   ++trial_steps_;
-  if (!new_overlaps(s, trial).empty()) ++result_.statistics.unresolved_contacts;
   accept(s, trial);
-  return settle(trial, true);
+  return settle(trial);
 }
 
 State HhtRun::interpolate(const State& s, const State& trial, const std::vector<std::size_t>& overlaps) {
@@ -238,7 +326,18 @@ State HhtRun::interpolate(const State& s, const State& trial, const std::vector<
   const State redone = stepper_.step(s, t_contact - s.t_s);
   ++trial_steps_;
   accept(s, redone);
-  return settle(redone, true);
+  return settle(redone);
+}
+
+void HhtRun::report_overlaps() {
+  const SolverStatistics& stats = result_.statistics;
+  if (stats.unresolved_contacts == 0 || result_.status != RunStatus::completed) return;
+  const contact::Candidate& c = system_.candidates()[static_cast<std::size_t>(stats.max_interpenetration_candidate)];
+  result_.status = RunStatus::unresolved_overlap;
+  result_.status_detail = fmt::format(
+      "{} overlap{} deeper than the contact tolerance {} m not resolved; deepest {:.3g} m at {:.4f} s, level {}: {}",
+      stats.unresolved_contacts, stats.unresolved_contacts == 1 ? "" : "s", options_.contact_tolerance_m,
+      stats.max_interpenetration_m, stats.max_interpenetration_t_s, c.level, contact::describe(c));
 }
 
 RunResult HhtRun::run(const std::string& method) {
@@ -254,16 +353,16 @@ RunResult HhtRun::run(const std::string& method) {
     const double h = std::min(options_.dt_s, t_end - s.t_s);
     const State trial = stepper_.step(s, h);
     ++trial_steps_;
-    const std::vector<std::size_t> overlaps = new_overlaps(s, trial);
+    const std::vector<std::size_t> overlaps = new_overlaps(overlap_limits(s), s, trial);
     if (overlaps.empty()) {
       accept(s, trial);
-      s = settle(trial, false);
+      s = settle(trial);
       continue;
     }
     switch (options_.location) {
       case HhtEventLocation::end_of_step:
         accept(s, trial);
-        s = settle(trial, true);
+        s = settle(trial);
         break;
       case HhtEventLocation::halving:
         s = halve(s, h);
@@ -277,6 +376,7 @@ RunResult HhtRun::run(const std::string& method) {
   result_.statistics.rhs_evaluations = trial_steps_;  // one effective-stiffness solve per trial step
   result_.statistics.jacobian_evaluations = stepper_.factorizations();
   recorder_.finish(first_order(s), result_);
+  report_overlaps();
   result_.statistics.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return std::move(result_);
 }

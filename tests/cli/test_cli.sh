@@ -49,11 +49,30 @@ PY
 [ "$(stat -c %s "$work/plot.png" 2>/dev/null || echo 0)" -gt 20000 ] || fail "plot.png missing or empty"
 
 for method in cvode-adams arkode-erk arkode-dirk hht; do
-  "$pounding" run "$scene" --method "$method" --out "$work/$method" > "$work/$method.txt" || fail "--method $method exited $?"
+  "$pounding" run "$scene" --method "$method" --out "$work/$method" > "$work/$method.txt"
+  code=$?
+  # The published scheme lets floor 7's slabs sink a few tenths of a millimetre past its contact
+  # tolerance in the bounce sequences it cannot resolve: status unresolved_overlap, exit 3.
+  expected=0; [ "$method" = hht ] && expected=3
+  [ "$code" -eq "$expected" ] || fail "--method $method exited $code, expected $expected"
   /usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['method']==sys.argv[2] and s['impact_count']>0, s['method']" \
     "$work/$method/summary.json" "$method" || fail "--method $method summary"
 done
-"$pounding" run "$scene" --method hht --dt 0.01 --halving off --out "$work/naive" > /dev/null || fail "--halving off exited $?"
+/usr/bin/python3 - "$work/hht/summary.json" "$work/hht.txt" <<'PY' || fail "hht overlap and energy report"
+import json, sys
+s = json.load(open(sys.argv[1]))
+tol = s["settings"]["contact_tolerance_m"]
+assert s["status"] == "unresolved_overlap", s["status"]
+assert s["statistics"]["unresolved_contacts"] > 0
+stats = s["statistics"]
+assert stats["max_interpenetration_m"] > tol and "B2 vertex 1" in stats["max_interpenetration_pair"], stats
+assert "deepest" in s["status_detail"] and str(s["statistics"]["unresolved_contacts"]) in s["status_detail"]
+assert s["energy"]["algorithmic_dissipation_kJ"] > 0
+printout = open(sys.argv[2]).read()
+assert "unresolved_overlap" in printout and "Largest overlap:" in printout and "algorithmic dissipation" in printout
+PY
+"$pounding" run "$scene" --method hht --dt 0.01 --halving off --out "$work/naive" > /dev/null
+[ $? -eq 3 ] || fail "--halving off: impacts at step ends always overlap, expected exit 3"
 /usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['settings']['event_location']=='end-of-step' and s['settings']['dt_s']==0.01 and s['statistics']['halvings']==0" \
   "$work/naive/summary.json" || fail "--halving off settings"
 

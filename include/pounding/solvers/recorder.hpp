@@ -28,6 +28,8 @@ class Recorder {
                const std::function<dynamics::VectorXd(double)>& at,
                const std::function<double(double, const dynamics::VectorXd&)>& constraint_power);
   void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
+  /// HHT: energy a step's update removed (kJ), see HhtStepper::algorithmic_dissipation.
+  void add_algorithmic_dissipation(double energy_kJ) { energy_.algorithmic_dissipation_kJ += energy_kJ; }
 
   /// Moves the collected peaks, history and energy (with the final state's energies) into `result`.
   void finish(const dynamics::VectorXd& final_state, RunResult& result);

@@ -16,6 +16,7 @@ enum class RunStatus {
   solver_failure,  // the integrator gave up; detail names its flag
   event_limit,     // more events per simulated second than allowed: an unresolved accumulation
   step_limit,      // more internal steps than allowed
+  unresolved_overlap,  // HHT: slabs sank into each other deeper than the contact tolerance; not trustworthy
 };
 std::string_view to_string(RunStatus status);
 
@@ -95,8 +96,10 @@ struct EnergyAudit {  // relative motion, kJ, integrated along the run
   double damping_kJ = 0.0;        // ∫ q̇ᵀ C q̇ dt
   double impact_loss_kJ = 0.0;    // Σ over impacts
   double constraint_work_kJ = 0.0;  // ∫ λ ġ dt during holds (ideally 0)
+  double algorithmic_dissipation_kJ = 0.0;  // HHT: energy its update removes (numerical damping); 0 elsewhere
   double residual_kJ() const {
-    return input_kJ + constraint_work_kJ - kinetic_kJ - strain_kJ - damping_kJ - impact_loss_kJ;
+    return input_kJ + constraint_work_kJ - kinetic_kJ - strain_kJ - damping_kJ - impact_loss_kJ -
+           algorithmic_dissipation_kJ;
   }
 };
 
@@ -112,7 +115,7 @@ struct SolverStatistics {
   long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
   long halvings = 0;               // HHT: step halvings on overlap
   double smallest_step_s = 0.0;    // HHT: the smallest step taken
-  long unresolved_contacts = 0;    // HHT: overlaps still beyond the tolerance at max_halvings
+  long unresolved_contacts = 0;    // HHT: times a pair sank deeper than the tolerance at an accepted step end
   /// The deepest overlap −g (m, ≥ 0) of a pair not held in sustained contact, seen at a step end,
   /// an event or a located minimum; when, and which candidate (−1: none overlapped).
   double max_interpenetration_m = 0.0;
