@@ -141,12 +141,16 @@ class HhtRun {
   /// already sunk at `s` (an overlap halving did not resolve) a further tolerance below where it
   /// is, so that it cannot sink on unnoticed.
   std::vector<double> overlap_limits(const State& s) const;
-  /// Candidates below their limit at `to`, on their edge there or where they crossed it: a
-  /// contact the step passed over, whatever the gap's rate at `to` (the vertex may already be on
-  /// its way out, or have slid past the edge's end).
+  /// Candidates below their limit at `to`, on their edge there or where they crossed it, or
+  /// that dipped below it inside the step and came out again: a contact the step passed over,
+  /// whatever the gap's rate at `to` (the vertex may already be on its way out, or have slid
+  /// past the edge's end).
   std::vector<std::size_t> new_overlaps(const std::vector<double>& limits, const State& from, const State& to) const;
   /// Candidate i's gap fell below `limit` inside the step (on the Hermite interpolant) while on its edge.
   bool crossed_on_edge(std::size_t i, double limit, const State& from, const State& to) const;
+  /// Candidate i's gap has a minimum inside the step (on the Hermite interpolant) below
+  /// `limit`, on its edge.
+  bool dipped_on_edge(std::size_t i, double limit, const State& from, const State& to) const;
   /// Some candidate approaches within the tolerance band above its limit.
   bool closing_contact(const std::vector<double>& limits, const State& s) const;
   void accept(const State& from, const State& to);
@@ -194,7 +198,8 @@ std::vector<std::size_t> HhtRun::new_overlaps(const std::vector<double>& limits,
   std::vector<std::size_t> overlapping;
   for (std::size_t i = 0; i < limits.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
-    if (g.gap_m < limits[i] && (g.on_segment() || crossed_on_edge(i, limits[i], from, to))) overlapping.push_back(i);
+    const bool below = g.gap_m < limits[i] && (g.on_segment() || crossed_on_edge(i, limits[i], from, to));
+    if (below || (g.gap_m >= limits[i] && dipped_on_edge(i, limits[i], from, to))) overlapping.push_back(i);
   }
   return overlapping;
 }
@@ -207,6 +212,31 @@ bool HhtRun::crossed_on_edge(std::size_t i, double limit, const State& from, con
   if (!(start > 0.0 && end < 0.0)) return false;
   const double t = find_root(below_limit, from.t_s, to.t_s, start, end);
   return system_.gap(hermite(from, to, t), i).on_segment();
+}
+
+bool HhtRun::dipped_on_edge(std::size_t i, double limit, const State& from, const State& to) const {
+  // Along the step the gap is close to the cubic Hermite polynomial of its values and rates at
+  // both ends; its minima inside the step are where that cubic's derivative, a quadratic in
+  // s = (t − t₀)/h, vanishes. The true gap is then checked there on the state's interpolant.
+  const double h = to.t_s - from.t_s;
+  const contact::GapState g0 = system_.gap(first_order(from), i), g1 = system_.gap(first_order(to), i);
+  const double r0 = h * g0.gap_rate_mps, r1 = h * g1.gap_rate_mps;
+  const double a = 6 * g0.gap_m + 3 * r0 - 6 * g1.gap_m + 3 * r1, b = -6 * g0.gap_m - 4 * r0 + 6 * g1.gap_m - 2 * r1;
+  const double c = r0;
+  std::vector<double> roots;
+  if (std::abs(a) < 1e-14 * (std::abs(b) + std::abs(c))) {
+    if (b != 0.0) roots.push_back(-c / b);
+  } else if (const double disc = b * b - 4 * a * c; disc >= 0.0) {
+    const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));  // no cancellation
+    if (q != 0.0) roots.push_back(c / q);
+    roots.push_back(q / a);
+  }
+  for (double s : roots) {
+    if (!(s > 0.0 && s < 1.0)) continue;
+    const contact::GapState inside = system_.gap(hermite(from, to, from.t_s + s * h), i);
+    if (inside.on_segment() && inside.gap_m < limit) return true;
+  }
+  return false;
 }
 
 bool HhtRun::closing_contact(const std::vector<double>& limits, const State& s) const {

@@ -336,3 +336,23 @@ BOOST_AUTO_TEST_CASE(TwoSlabsInsideTheToleranceThatNeverTouchTakeNoImpacts) {
   BOOST_TEST(result.statistics.restarts == 0);
   BOOST_TEST(result.statistics.max_interpenetration_m == 0.0);
 }
+
+BOOST_AUTO_TEST_CASE(AnOverlapThatOpensAgainWithinTheStepIsStillFound) {
+  // A slab on a T = 0.2 s spring pushed at 1 m/s reaches A = v/ω = 31.8 mm, 1.8 mm past a block
+  // 30 mm away, for only ~22 ms around t = 0.05 s. With Δt = 0.09 s (Ω = 2.8) neither end of the
+  // first step overlaps; only the step's interpolant dips 3 mm into the block (the old test of
+  // step ends passed over it: no impact). It must be found and halved to the contact.
+  const double gap = 0.030, dt = 0.09;
+  const auto system = testing::two_slabs({1.0, 0.2, 0.0}, testing::diamond(gap), {1e9, 0.01, 0.9}, gap, 0.3);
+  solvers::HhtOptions options;
+  options.dt_s = dt;
+  options.initial_state = testing::pushed(system, 1.0);
+  const auto result = solvers::run_hht(system, options, "hht");
+  BOOST_TEST_REQUIRE(result.impacts.size() == 1u);
+  const double omega = 2 * std::numbers::pi / 0.2, t_contact = std::asin(gap * omega / 1.0) / omega;
+  BOOST_TEST_MESSAGE("impact at " << result.impacts[0].t_s << " s, exact contact " << t_contact << " s, deepest "
+                                  << result.statistics.max_interpenetration_m << " m");
+  BOOST_TEST(std::abs(result.impacts[0].t_s - t_contact) < 0.01);  // HHT's own phase error at Ω = 2.8
+  BOOST_TEST(result.statistics.max_interpenetration_m <= options.contact_tolerance_m);
+  BOOST_TEST(solvers::to_string(result.status) == "completed");
+}
