@@ -146,11 +146,17 @@ class HhtRun {
   /// whatever the gap's rate at `to` (the vertex may already be on its way out, or have slid
   /// past the edge's end).
   std::vector<std::size_t> new_overlaps(const std::vector<double>& limits, const State& from, const State& to) const;
-  /// Candidate i's gap fell below `limit` inside the step (on the Hermite interpolant) while on its edge.
-  bool crossed_on_edge(std::size_t i, double limit, const State& from, const State& to) const;
-  /// Candidate i's gap has a minimum inside the step (on the Hermite interpolant) below
-  /// `limit`, on its edge.
-  bool dipped_on_edge(std::size_t i, double limit, const State& from, const State& to) const;
+  /// One candidate over one step: the step's ends and the candidate's gap at each.
+  struct StepGap {
+    const State& from;
+    const State& to;
+    std::size_t candidate;
+    contact::GapState start, end;
+  };
+  /// The gap fell below `limit` inside the step (on the Hermite interpolant) while on its edge.
+  bool crossed_on_edge(const StepGap& step, double limit) const;
+  /// The gap has a minimum inside the step (on the Hermite interpolant) below `limit`, on its edge.
+  bool dipped_on_edge(const StepGap& step, double limit) const;
   /// Some candidate approaches within the tolerance band above its limit.
   bool closing_contact(const std::vector<double>& limits, const State& s) const;
   void accept(const State& from, const State& to);
@@ -194,34 +200,34 @@ std::vector<double> HhtRun::overlap_limits(const State& s) const {
 
 std::vector<std::size_t> HhtRun::new_overlaps(const std::vector<double>& limits, const State& from,
                                               const State& to) const {
-  const VectorXd y = first_order(to);
+  const VectorXd y_from = first_order(from), y_to = first_order(to);
   std::vector<std::size_t> overlapping;
   for (std::size_t i = 0; i < limits.size(); ++i) {
-    const contact::GapState g = system_.gap(y, i);
-    const bool below = g.gap_m < limits[i] && (g.on_segment() || crossed_on_edge(i, limits[i], from, to));
-    if (below || (g.gap_m >= limits[i] && dipped_on_edge(i, limits[i], from, to))) overlapping.push_back(i);
+    const StepGap step{from, to, i, system_.gap(y_from, i), system_.gap(y_to, i)};
+    const bool below = step.end.gap_m < limits[i] && (step.end.on_segment() || crossed_on_edge(step, limits[i]));
+    if (below || (step.end.gap_m >= limits[i] && dipped_on_edge(step, limits[i]))) overlapping.push_back(i);
   }
   return overlapping;
 }
 
-bool HhtRun::crossed_on_edge(std::size_t i, double limit, const State& from, const State& to) const {
+bool HhtRun::crossed_on_edge(const StepGap& step, double limit) const {
   // Slabs that overlap over a short stretch of y pass corner by corner: at the step end the
   // vertex is beyond the edge's line but also beyond its end, so only the crossing shows it.
-  auto below_limit = [&](double t) { return system_.gap(hermite(from, to, t), i).gap_m - limit; };
-  const double start = below_limit(from.t_s), end = below_limit(to.t_s);
+  const double start = step.start.gap_m - limit, end = step.end.gap_m - limit;
   if (!(start > 0.0 && end < 0.0)) return false;
-  const double t = find_root(below_limit, from.t_s, to.t_s, start, end);
-  return system_.gap(hermite(from, to, t), i).on_segment();
+  auto gap_at = [&](double t) { return system_.gap(hermite(step.from, step.to, t), step.candidate); };
+  const double t = find_root([&](double t) { return gap_at(t).gap_m - limit; }, step.from.t_s, step.to.t_s, start, end);
+  return gap_at(t).on_segment();
 }
 
-bool HhtRun::dipped_on_edge(std::size_t i, double limit, const State& from, const State& to) const {
+bool HhtRun::dipped_on_edge(const StepGap& step, double limit) const {
   // Along the step the gap is close to the cubic Hermite polynomial of its values and rates at
   // both ends; its minima inside the step are where that cubic's derivative, a quadratic in
   // s = (t − t₀)/h, vanishes. The true gap is then checked there on the state's interpolant.
-  const double h = to.t_s - from.t_s;
-  const contact::GapState g0 = system_.gap(first_order(from), i), g1 = system_.gap(first_order(to), i);
-  const double r0 = h * g0.gap_rate_mps, r1 = h * g1.gap_rate_mps;
-  const double a = 6 * g0.gap_m + 3 * r0 - 6 * g1.gap_m + 3 * r1, b = -6 * g0.gap_m - 4 * r0 + 6 * g1.gap_m - 2 * r1;
+  const double h = step.to.t_s - step.from.t_s;
+  const double g0 = step.start.gap_m, g1 = step.end.gap_m;
+  const double r0 = h * step.start.gap_rate_mps, r1 = h * step.end.gap_rate_mps;
+  const double a = 6 * g0 + 3 * r0 - 6 * g1 + 3 * r1, b = -6 * g0 - 4 * r0 + 6 * g1 - 2 * r1;
   const double c = r0;
   std::vector<double> roots;
   if (std::abs(a) < 1e-14 * (std::abs(b) + std::abs(c))) {
@@ -233,7 +239,7 @@ bool HhtRun::dipped_on_edge(std::size_t i, double limit, const State& from, cons
   }
   for (double s : roots) {
     if (!(s > 0.0 && s < 1.0)) continue;
-    const contact::GapState inside = system_.gap(hermite(from, to, from.t_s + s * h), i);
+    const contact::GapState inside = system_.gap(hermite(step.from, step.to, step.from.t_s + s * h), step.candidate);
     if (inside.on_segment() && inside.gap_m < limit) return true;
   }
   return false;
