@@ -59,7 +59,6 @@ namespace {
 
 using dynamics::VectorXd;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr double kSegmentTolerance = contact::kOnSegmentTolerance;
 
 enum class Mode { armed, masked, held };
 
@@ -105,7 +104,7 @@ class EventDrivenRun final : public OdeFunctions {
       const std::size_t i = held_[r];
       const double s = system_.gap(y, i).segment_param;
       g[count_ + i] = forces[r];
-      g[2 * count_ + i] = std::min(s, 1.0 - s) + kSegmentTolerance;
+      g[2 * count_ + i] = std::min(s, 1.0 - s) + contact::kOnSegmentTolerance;
     }
   }
 
@@ -332,8 +331,9 @@ FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int level, const
 std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorContacts& contacts,
                                                contact::ImpulseSolution& solution) const {
   // First the impact law with restitution k. A contact that then separates slower than the hold
-  // velocity is held if the force holding it is compressive; held contacts are solved again
-  // with k = 0 so they stay exactly closed. Repeats until the held set no longer changes.
+  // velocity, or would fly lower than the hold height, is held if the force holding it is
+  // compressive; held contacts are solved again with k = 0. Repeats until the held set no longer
+  // changes; stick() then brings the held ones to ġ = 0 exactly.
   const std::size_t n = contacts.members.size();
   std::vector<bool> holding(n, false);
   VectorXd y_after = y;
@@ -501,8 +501,9 @@ std::optional<double> EventDrivenRun::reclosure(std::size_t i, double t, const c
         find_root([&](double time) { return state_at(time).gap_m; }, t_open, times[after], g_open, gaps[after]);
     return state_at(t_hit).on_segment() ? t_hit : t;  // closed beside the edge, then slid onto it
   }
-  if (end.gap_m <= mask_floor_m_[i] * (1.0 - 1e-9)) return t;
-  return std::nullopt;
+  // The root stops the integrator with g at the floor to within its own tolerance.
+  const bool at_floor = end.gap_m <= mask_floor_m_[i] + 1e-9 * std::abs(mask_floor_m_[i]);
+  return at_floor ? std::optional<double>(t) : std::nullopt;
 }
 
 void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
