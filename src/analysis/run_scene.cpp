@@ -57,15 +57,15 @@ solvers::NewtonSolver newton_solver(const SolverSettings& solver) {
   return solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
 }
 
-solvers::EventOptions event_options(const Scene& scene, const dynamics::CoupledSystem& system) {
+solvers::EventOptions event_options(const Scene& scene) {
   solvers::EventOptions options;
   options.restitution = scene.contact.restitution;
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
   if (scene.solver.method == "exact") {
-    // Bracket roots on a subdivision fine against the shortest natural period.
-    options.max_step_s = solvers::shortest_period_s(system) / kExactSubdivisionsPerPeriod;
+    // Bracket roots on a subdivision fine against the shortest period that moves a gap.
+    options.steps_per_period = kExactSubdivisionsPerPeriod;
   }
   return options;
 }
@@ -78,7 +78,7 @@ RunReport run_scene(const Scene& scene) {
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.result = scene.solver.method == "hht"
                       ? solvers::run_hht(system, hht_options(scene), "hht")
-                      : solvers::run_event_driven(system, event_options(scene, system),
+                      : solvers::run_event_driven(system, event_options(scene),
                                                   integrator_factory(scene.solver), scene.solver.method);
   return report;
 }

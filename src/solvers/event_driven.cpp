@@ -10,8 +10,8 @@
 #include <set>
 
 #include "pounding/input_error.hpp"
-#include "pounding/model/modal.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
+#include "pounding/solvers/gap_mode_bound.hpp"
 #include "pounding/solvers/recorder.hpp"
 #include "pounding/solvers/root_finding.hpp"
 
@@ -43,16 +43,13 @@ void EventOptions::validate() const {
   positive(max_events_per_s, "max_events_per_s");
   positive(history_interval_s, "history_interval_s");
   if (max_step_s < 0.0) throw InputError("max_step_s", format_value(max_step_s), "must be zero (automatic) or positive");
+  if (!(steps_per_period >= 1.0) || !std::isfinite(steps_per_period)) {
+    throw InputError("steps_per_period", format_value(steps_per_period), "must be at least 1");
+  }
   if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
   if (initial_state.size() != 0 && !initial_state.allFinite()) {
     throw InputError("initial_state", "", "must be finite");
   }
-}
-
-double shortest_period_s(const dynamics::CoupledSystem& system) {
-  double shortest = std::numeric_limits<double>::infinity();
-  for (int b = 0; b < 2; ++b) shortest = std::min(shortest, model::modal_analysis(system.building(b)).back().period_s);
-  return shortest;
 }
 
 namespace {
@@ -187,7 +184,8 @@ class EventDrivenRun final : public OdeFunctions {
   Recorder recorder_;
   RunResult result_;
   std::unique_ptr<Integrator> integrator_;
-  double default_max_step_s_ = 0.0, current_max_step_s_ = 0.0;
+  std::optional<GapModeBound> mode_bound_;  // when options_.max_step_s is automatic
+  double current_max_step_s_ = 0.0;
   double prev_t_ = 0.0;
   VectorXd prev_y_;
   std::deque<double> recent_events_;
@@ -212,8 +210,7 @@ void EventDrivenRun::accumulate_counters() {
 }
 
 void EventDrivenRun::begin_phase(double t, const VectorXd& y) {
-  current_max_step_s_ = default_max_step_s_;
-  integrator_->set_max_step(current_max_step_s_);
+  current_max_step_s_ = -1.0;  // force update_step_bound to hand the integrator its bound
   set_next_stop(t);
   update_step_bound(t, y);
   prev_t_ = t;
@@ -511,7 +508,7 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
   // is masked, bound the step by a quarter of the predicted time until its gap reaches its mask
   // floor (where its root fires), from (g − floor) + ġτ + ½g̈τ² = 0, so that the interpolant
   // that locates the re-closure spans a short stretch of a smooth flight.
-  double bound = default_max_step_s_;
+  double bound = options_.max_step_s > 0.0 ? options_.max_step_s : mode_bound_->max_step_s(y);
   VectorXd y_dot(system_.state_size());
   bool have_accel = false;
   for (std::size_t i = 0; i < count_; ++i) {
@@ -621,7 +618,7 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   const double t0 = system_.ground_motion().start_s();
   result_.start_s = t0;
   VectorXd y = options_.initial_state.size() ? options_.initial_state : VectorXd::Zero(system_.state_size());
-  default_max_step_s_ = options_.max_step_s > 0.0 ? options_.max_step_s : shortest_period_s(system_) / 4.0;
+  if (options_.max_step_s == 0.0) mode_bound_.emplace(system_, options_.overlap_allowance_m, options_.steps_per_period);
 
   recorder_.sample(t0, y);
   start(t0, y);

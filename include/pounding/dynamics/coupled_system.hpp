@@ -38,6 +38,8 @@ class CoupledSystem {
   const VectorXd& mass_diagonal() const { return mass_; }
   const MatrixXd& stiffness() const { return stiffness_; }  // block-diagonal K (kN/m, kN, kN·m)
   const MatrixXd& damping() const { return damping_; }      // block-diagonal C
+  /// r: the ground motion's direction (cos β, sin β, 0) repeated per floor, size n.
+  const VectorXd& influence() const { return influence_; }
 
   /// The ground motion's effective force f(t) = −M r a_g(t) (kN, kN·m).
   void external_force(double t, Eigen::Ref<VectorXd> force) const;

@@ -39,10 +39,14 @@ struct EventOptions {
   /// A run with more events than this within one simulated second stops with event_limit.
   double max_events_per_s = 2000;
   long max_steps = 10'000'000;
-  /// Largest step (s). 0: a quarter of the shortest natural period of either building, so no
-  /// gap rate can change sign twice inside a step and every minimum of a gap inside a step is
-  /// examined (see the interpolant check in the loop).
+  /// Largest step (s). 0: automatic, the shortest damped period among the modes that move some
+  /// candidate's gap by more than overlap_allowance_m with their present amplitude, divided by
+  /// steps_per_period (GapModeBound), re-evaluated after every step and event. So no gap rate
+  /// can change sign twice inside a step and every minimum of a gap inside a step is examined
+  /// (see the interpolant check in the loop), while a stiff storey whose mode is overdamped or
+  /// barely moves sets no bound.
   double max_step_s = 0.0;
+  double steps_per_period = 4.0;
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
   std::vector<int> history_floors;     // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
@@ -58,8 +62,5 @@ using IntegratorFactory =
 /// failure: the result's status says what happened. @throws InputError for invalid options.
 RunResult run_event_driven(const dynamics::CoupledSystem& system, const EventOptions& options,
                            const IntegratorFactory& make_integrator, const std::string& method);
-
-/// The shortest natural period (s) of the two buildings.
-double shortest_period_s(const dynamics::CoupledSystem& system);
 
 }  // namespace pounding::solvers

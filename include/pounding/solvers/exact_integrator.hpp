@@ -10,7 +10,7 @@
 //   η(τ) = e^{λτ} η₀ + β₀ (e^{λτ} − 1)/λ + β₁ (e^{λτ} − 1 − λτ)/λ².
 // So the state is exact at any instant (round-off and the conditioning of V aside), and roots
 // are located on the exact trajectory: each step of at most the maximum step (the loop sets a
-// fraction of the shortest period) is checked for sign changes, the crossing is polished to
+// fraction of the shortest period that moves a gap) is checked for sign changes, the crossing is polished to
 // round-off, and the loop examines every interior minimum through interpolate().
 //
 // A held contact is not linear: the contact geometry rotates with the slabs, and linearising it

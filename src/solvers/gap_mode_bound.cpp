@@ -1,0 +1,75 @@
+#include "pounding/solvers/gap_mode_bound.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "pounding/model/modal.hpp"
+
+namespace pounding::solvers {
+
+namespace {
+
+/// The largest |∂g/∂η| of mode `shape` of building b over the candidates, at rest (m per unit η):
+/// the gap rows at rest are those of every small motion.
+double gap_per_unit(const dynamics::CoupledSystem& system, int b, const Eigen::VectorXd& shape) {
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(system.state_size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < system.candidates().size(); ++i) {
+    const contact::Candidate& c = system.candidates()[i];
+    const contact::GapState s = system.gap(rest, i);
+    const Eigen::RowVector3d& row = c.striking_building == b ? s.striking_row : s.struck_row;
+    largest = std::max(largest, std::abs(row.dot(shape.segment<3>(3 * (c.floors[b] - 1)))));
+  }
+  return largest;
+}
+
+}  // namespace
+
+GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period)
+    : resolution_m_(resolution_m), steps_per_period_(steps_per_period) {
+  const double peak_accel_mps2 = system.ground_motion().peak_mps2();
+  double longest_period_s = 0.0;
+  for (int b = 0; b < 2; ++b) {
+    const model::Building& building = system.building(b);
+    const int offset = system.floor_index(b, 1);
+    const Eigen::VectorXd mass = building.mass_diagonal;
+    const Eigen::VectorXd influence = system.influence().segment(offset, building.dof());
+    for (const model::Mode& mode : model::modal_analysis(building)) {
+      longest_period_s = std::max(longest_period_s, mode.period_s);
+      const double omega = mode.omega_rad_s;
+      const double zeta = mode.shape.dot(building.damping * mode.shape) / (2.0 * omega);
+      if (zeta >= 1.0) continue;  // overdamped: its free response has at most one extremum
+      OscillatingMode m;
+      m.offset = offset;
+      m.omega_rad_s = omega;
+      m.damped_period_s = 2.0 * std::numbers::pi / (omega * std::sqrt(1.0 - zeta * zeta));
+      longest_period_s = std::max(longest_period_s, m.damped_period_s);
+      m.mass_shape = mass.cwiseProduct(mode.shape);
+      m.gap_per_unit_m = gap_per_unit(system, b, mode.shape);
+      m.forced_amplitude = 2.0 * std::abs(m.mass_shape.dot(influence)) * peak_accel_mps2 / (omega * omega);
+      if (m.gap_per_unit_m > 0.0) modes_.push_back(std::move(m));
+    }
+  }
+  longest_period_s_ = longest_period_s;
+  std::sort(modes_.begin(), modes_.end(),
+            [](const OscillatingMode& a, const OscillatingMode& b) { return a.damped_period_s < b.damped_period_s; });
+}
+
+double GapModeBound::max_step_s(const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  const Eigen::Index dof = y.size() / 2;
+  for (const OscillatingMode& m : modes_) {
+    const Eigen::Index n = m.mass_shape.size();
+    const double eta = m.mass_shape.dot(y.segment(m.offset, n));
+    const double eta_rate = m.mass_shape.dot(y.segment(dof + m.offset, n));
+    const double amplitude = std::hypot(eta, eta_rate / m.omega_rad_s) + m.forced_amplitude;
+    if (m.gap_per_unit_m * amplitude > resolution_m_) {
+      governing_period_s_ = m.damped_period_s;
+      return std::min(m.damped_period_s, longest_period_s_) / steps_per_period_;
+    }
+  }
+  governing_period_s_ = 0.0;
+  return longest_period_s_ / steps_per_period_;
+}
+
+}  // namespace pounding::solvers
