@@ -12,6 +12,10 @@
 
 namespace pounding::model {
 
+/// The most storeys a building may have: the tallest buildings have 163; 200 storeys are 600
+/// DOF, whose dense modal analysis still takes well under a second.
+inline constexpr int kMaxStoreys = 200;
+
 /// A column between two floors, fixed at both ends. b is its size along x, h along y (m).
 struct Column {
   Point2 position_m = Point2::Zero();
@@ -47,8 +51,8 @@ struct BuildingDefinition {
   RayleighSpec damping;
 
   bool uses_columns() const { return storey_stiffness.empty(); }
-  /// @throws InputError naming the offending field (as the scene key, relative to the building)
-  /// and its value.
+  /// @throws InputError naming the offending field (as the scene key, relative to the building),
+  /// its value and, for a number outside its physical range, the range (docs/scene-format.md).
   void validate() const;
 };
 
