@@ -72,6 +72,8 @@ void HhtOptions::validate() const {
   if (!(history_interval_s > 0.0)) {
     throw InputError("history_interval_s", format_value(history_interval_s), "must be positive (s)");
   }
+  if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
+  budget.validate();
 }
 
 namespace {
@@ -112,6 +114,12 @@ class HhtRun {
   /// Candidates that overlap at `to` beyond the tolerance while approaching, and did not at `from`.
   std::vector<std::size_t> new_overlaps(const State& from, const State& to) const;
   bool closing_contact(const State& s) const;
+  bool out_of_steps(double t_s) {
+    if (trial_steps_ <= options_.max_steps) return false;
+    result_.status = RunStatus::step_limit;
+    result_.status_detail = fmt::format("more than {} trial steps by t = {} s", options_.max_steps, t_s);
+    return true;
+  }
   void accept(const State& from, const State& to);
   State settle(const State& s, bool include_overlaps);
   State halve(State s, double h);
@@ -250,10 +258,13 @@ RunResult HhtRun::run(const std::string& method) {
   State s = stepper_.at(motion.start_s(), y0.head(system_.dof()), y0.tail(system_.dof()));
   result_.start_s = s.t_s;
   recorder_.sample(s.t_s, first_order(s));
+  BudgetClock budget(options_.budget);
   while (s.t_s < t_end - 1e-9 * options_.dt_s) {
+    if (budget.exhausted(s.t_s, result_) || out_of_steps(s.t_s)) break;
     const double h = std::min(options_.dt_s, t_end - s.t_s);
     const State trial = stepper_.step(s, h);
     ++trial_steps_;
+    if (diverged(trial.t_s, first_order(trial), result_)) break;
     const std::vector<std::size_t> overlaps = new_overlaps(s, trial);
     if (overlaps.empty()) {
       accept(s, trial);
