@@ -5,11 +5,32 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
+
+namespace pounding::io::detail {
+/// A failed internal check of toml++. @throws TomlCheckFailed always.
+[[noreturn]] void toml_check_failed(const char* expression);
+struct TomlCheckFailed : std::logic_error {
+  using std::logic_error::logic_error;
+};
+}  // namespace pounding::io::detail
+
+// toml++ 3.3's internal checks fail on some malformed scenes (fuzzing found "[+a]":
+// parser.inl:3037, parse_key). Built with NDEBUG they become optimiser assumptions, so such a
+// file is undefined behaviour wherever toml++ is compiled from its headers (as in the
+// sanitizer build) by clang. Here they stay on and throw instead, and the scene is refused.
+#define TOML_ASSERT(expr) ((expr) ? static_cast<void>(0) : ::pounding::io::detail::toml_check_failed(#expr))
+#pragma push_macro("NDEBUG")
+#undef NDEBUG
 #include <toml++/toml.h>
+#pragma pop_macro("NDEBUG")
 
 #include "pounding/input_error.hpp"
 
 namespace pounding::io {
+
+void detail::toml_check_failed(const char* expression) { throw TomlCheckFailed(expression); }
+
 namespace {
 
 using model::Point2;
@@ -458,6 +479,8 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   } catch (const toml::parse_error& error) {
     throw InputError("", "", std::string(error.description()),
                      fmt::format("{}:{}:{}", file, error.source().begin.line, error.source().begin.column));
+  } catch (const detail::TomlCheckFailed& error) {
+    throw InputError("", "", fmt::format("is not valid TOML (the parser's check '{}' failed)", error.what()), file);
   }
 }
 

@@ -24,6 +24,7 @@ constexpr Range kColumnSize{0.0, 5.0, "m", true};
 constexpr Range kYoungsModulus{1e6, 1e9, "kPa"};
 constexpr Range kFrameFactor{1e-4, 10.0, "", true};
 constexpr Range kTargetPeriod{0.02, 20.0, "s"};
+constexpr double kMaxStoreyStiffness = 1e16;  // torsional entries reach k·r², 1e12 kN/m · (100 m)²
 constexpr double kMinCentreOfMassInset_m = 1e-3;  // a CM on the slab's edge is a typo
 constexpr double kColumnOutsideTolerance_m = 1e-6;  // columns on the slab's edge are usual
 
@@ -105,7 +106,10 @@ void validate_storey_matrices(const BuildingDefinition& b) {
   for (std::size_t i = 0; i < b.storey_stiffness.size(); ++i) {
     const Eigen::Matrix3d& k = b.storey_stiffness[i];
     const std::string key = indexed("storey_stiffness", i);
-    if (!k.allFinite()) throw InputError(key, "", "entries must be finite");
+    if (!(k.cwiseAbs().maxCoeff() <= kMaxStoreyStiffness)) {  // NaN fails too
+      throw InputError(key, format_value(k.cwiseAbs().maxCoeff()),
+                       fmt::format("entries must lie in [-{0}, {0}] (kN/m, kN, kN·m/rad)", kMaxStoreyStiffness));
+    }
     if (!k.isApprox(k.transpose(), 1e-12)) throw InputError(key, "", "must be symmetric");
     if (Eigen::LLT<Eigen::Matrix3d>(k).info() != Eigen::Success) {
       throw InputError(key, "", "must be positive definite");

@@ -305,3 +305,15 @@ BOOST_AUTO_TEST_CASE(OversizedSceneFileIsRefusedUnread) {
   BOOST_TEST(mentions(error_of(kScene + "# " + std::string(pounding::io::kMaxSceneBytes, 'x') + "\n"),
                       {"scene.toml", "bytes", "at most 1048576 bytes"}));
 }
+
+BOOST_AUTO_TEST_CASE(AbsurdStoreyStiffnessIsRefusedBeforeTheEigensolver) {
+  BOOST_TEST(mentions(error_of(edited("[[50000.0, 0.0, 0.0]", "[[1e300, 0.0, 0.0]")),
+                      {"building[2].storey_stiffness[1] = 1e+300", "[-1e+16, 1e+16]"}));
+}
+
+BOOST_AUTO_TEST_CASE(TableHeaderStartingWithoutAKeyIsRefused) {
+  // Found by fuzzing: toml++ 3.3's internal check in parse_key fails on "[+a]" (undefined
+  // behaviour when that check is compiled as an assumption).
+  BOOST_TEST(mentions(error_of("[+a]\n" + kScene), {"scene.toml"}));
+  BOOST_TEST(mentions(error_of(kScene + "[[+building]]\n"), {"scene.toml"}));
+}
