@@ -96,6 +96,8 @@ expect_refusal "--atol = 1e+300: must lie in \[1e-16, 0.001\]" run "$scene" --at
 expect_refusal "--contact-tol = 10: must lie in (0, 0.01\] m" run "$scene" --method hht --contact-tol 10 --out "$work/bad"
 # Work beyond the limits is refused before the run, with the estimate; the option lifts it.
 expect_refusal "--max-steps = 100: the run needs at least 24[0-9] steps" run "$scene" --method hht --max-steps 100 --out "$work/bad"
+expect_refusal "--max-steps = 10000000: the run needs at least 1.22e+10 steps" run "$scene" --method hht --dt 1e-9 --out "$work/bad"
+expect_refusal "--max-steps = 10000000: the run needs at least 2.44e+07 steps" run "$scene" --method hht --dt 5e-7 --out "$work/bad"
 expect_refusal "--max-history-values = 1000: history.csv would hold" run "$scene" --max-history-values 1000 --out "$work/bad"
 expect_refusal "--max-wall-time = 0: must be positive" run "$scene" --max-wall-time 0 --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
