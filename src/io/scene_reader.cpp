@@ -447,7 +447,7 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   }
   const detail::AsciiToml ascii = detail::ascii_toml(text);
   if (const auto& at = ascii.stray_non_ascii) {
-    throw InputError("", "", "a non-ASCII character outside a string or comment is not TOML",
+    throw InputError("", "", "a non-ASCII character outside a string or comment (or escaped by a backslash) is not TOML",
                      fmt::format("{}:{}:{}", file, at->line, at->column));
   }
   try {
