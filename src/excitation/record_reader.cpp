@@ -109,6 +109,12 @@ At2Header parse_at2_header(const Line& line, const Parser& parser) {
   static const std::regex older(R"(NPTS\s*=\s*([^,\s]+)\s*,?\s*DT\s*=\s*([^,\s]+))",
                                 std::regex::icase);
   static const std::regex west2(R"(^\s*(\S+)[\s,]+(\S+)\s+NPTS\s*,\s*DT)", std::regex::icase);
+  // std::regex backtracks: bound the text it sees (a real header line is under 80 characters).
+  constexpr std::size_t kMaxHeaderLength = 200;
+  if (line.text.size() > kMaxHeaderLength) {
+    throw parser.error(line, 0, line.text.substr(0, 40) + "...",
+                       fmt::format("a PEER header line has at most {} characters", kMaxHeaderLength));
+  }
   std::smatch match;
   if (!std::regex_search(line.text, match, older) && !std::regex_search(line.text, match, west2)) {
     throw parser.error(line, 0, line.text,

@@ -346,7 +346,8 @@ excitation::ExcitationSpec read_excitation(TableReader table, const std::filesys
   const toml::node& file_node = table.require("file");
   const std::filesystem::path file = table.string_of(file_node, table.key_path("file"));
   spec.file = (file.is_absolute() ? file : scene_dir / file).lexically_normal();
-  if (!std::filesystem::is_regular_file(spec.file)) {
+  std::error_code unreadable;  // e.g. a name too long for the system: refused like a missing file
+  if (!std::filesystem::is_regular_file(spec.file, unreadable)) {
     throw table.error(file_node, table.key_path("file"),
                       fmt::format("no such record file (looked for {})", spec.file.string()));
   }

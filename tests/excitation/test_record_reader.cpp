@@ -155,3 +155,11 @@ BOOST_AUTO_TEST_CASE(HugeNptsIsRefusedBeforeAnyConversion) {
   BOOST_TEST(mentions(error_of(dir.write("huge.AT2", header + "1 2 3 4 5\n"), at2()),
                       {"huge.AT2", "line 4", "'1e30'", "limit of 10000000 samples"}));
 }
+
+BOOST_AUTO_TEST_CASE(OverlongHeaderLineIsRefusedBeforeTheRegex) {
+  // Found by fuzzing: a 10 kB header line kept std::regex backtracking for over 10 s.
+  TempDir dir;
+  const std::string header = "PEER\nev\nG\nNPTS= 5, DT= .01 SEC" + std::string(5000, ' ') + "x\n";
+  BOOST_TEST(mentions(error_of(dir.write("long.AT2", header + "1 2 3 4 5\n"), at2()),
+                      {"long.AT2", "line 4", "at most 200 characters"}));
+}

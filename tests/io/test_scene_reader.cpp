@@ -331,3 +331,9 @@ BOOST_AUTO_TEST_CASE(NonAsciiTextReachesTomlOnlyAsEscapes) {
   BOOST_TEST(read_scene(multi.file).name == "xö");
   BOOST_TEST(mentions(error_of(edited("name = \"small\"", "\"ñame\" = \"small\"")), {"unknown key"}));
 }
+
+BOOST_AUTO_TEST_CASE(RecordPathTooLongForTheSystemIsRefusedAsMissing) {
+  // Found by fuzzing: is_regular_file threw filesystem_error (name too long) past InputError.
+  BOOST_TEST(mentions(error_of(edited("file = \"record.txt\"", "file = \"" + std::string(5000, 'x') + "\"")),
+                      {"excitation.file", "no such record file"}));
+}
