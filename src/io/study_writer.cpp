@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_files.hpp"
 
 namespace pounding::io {
 namespace {
@@ -50,8 +51,7 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
 void write_study(const analysis::StudyResult& study, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
   write_json(study_json(study), folder / "study.json");
-  std::ofstream out(folder / "study.csv");
-  if (!out) throw std::runtime_error("cannot write " + (folder / "study.csv").string());
+  write_atomically(folder / "study.csv", [&](std::ostream& out) {
   out << kCsvHeader;
   for (const auto& row : study.rows) {
     const analysis::RunErrors& e = row.errors;
@@ -62,6 +62,7 @@ void write_study(const analysis::StudyResult& study, const std::filesystem::path
                        e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad,
                        row.impact_time_at_reference, row.history_u_at_reference);
   }
+  });
 }
 
 }  // namespace pounding::io

@@ -9,6 +9,7 @@
 
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/run_budget.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::solvers {
@@ -39,6 +40,7 @@ struct EventOptions {
   /// A run with more events than this within one simulated second stops with event_limit.
   double max_events_per_s = 2000;
   long max_steps = 10'000'000;
+  RunBudget budget;                    // wall time; a run also stops when interrupted
   /// Largest step (s). 0: a quarter of the shortest natural period of either building, so no
   /// gap rate can change sign twice inside a step and every minimum of a gap inside a step is
   /// examined (see the interpolant check in the loop).
