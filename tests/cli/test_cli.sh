@@ -155,6 +155,7 @@ expect_refusal "--dt = 100: must lie in (0, 0.1\] s" run "$scene" --method hht -
 expect_refusal "--rtol = 1e-300: must lie in \[1e-14, 0.1\]" run "$scene" --rtol 1e-300 --out "$work/bad"
 expect_refusal "--atol = 1e+300: must lie in \[1e-16, 0.001\]" run "$scene" --atol 1e300 --out "$work/bad"
 expect_refusal "--contact-tol = 10: must lie in (0, 0.01\] m" run "$scene" --method hht --contact-tol 10 --out "$work/bad"
+expect_refusal "--hold-rtol = 0.001: must lie in \[1e-14, 1e-06\]" run "$scene" --method exact --hold-rtol 1e-3 --out "$work/bad"
 # Work beyond the limits is refused before the run, with the estimate; the option lifts it.
 expect_refusal "--max-steps = 100: the run needs at least 24[0-9] steps" run "$scene" --method hht --max-steps 100 --out "$work/bad"
 expect_refusal "--max-steps = 10000000: the run needs at least 1.22e+10 steps" run "$scene" --method hht --dt 1e-9 --out "$work/bad"
