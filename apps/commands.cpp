@@ -4,7 +4,10 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <csignal>
+#include <filesystem>
 #include <map>
+#include <optional>
 
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/analysis/run_scene.hpp"
@@ -13,9 +16,11 @@
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_files.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "pounding/io/scene_reader.hpp"
 #include "pounding/io/study_writer.hpp"
+#include "pounding/solvers/run_budget.hpp"
 
 namespace pounding::cli {
 namespace {
@@ -180,9 +185,12 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
   }
 }
 
-/// The option that sets a [solver] key, for error messages about a value given on the command line.
+/// The option that sets a [solver] key or a run limit, for error messages about a value given on
+/// the command line.
 std::string option_for(const std::string& key) {
   static const std::map<std::string, std::string> kOptions = {
+      {"limits.max_steps", "--max-steps"}, {"limits.max_wall_time_s", "--max-wall-time"},
+      {"limits.max_history_values", "--max-history-values"},
       {"solver.method", "--method"}, {"solver.order", "--order"}, {"solver.rtol", "--rtol"},
       {"solver.atol", "--atol"}, {"solver.dt_s", "--dt"}, {"solver.alpha", "--alpha"},
       {"solver.contact_tolerance_m", "--contact-tol"}, {"solver.max_halvings", "--max-halvings"},
@@ -191,19 +199,61 @@ std::string option_for(const std::string& key) {
   return found != kOptions.end() ? found->second : key;
 }
 
+analysis::RunLimits run_limits(const RunCommand& command) {
+  analysis::RunLimits limits;
+  if (command.max_steps) limits.max_steps = *command.max_steps;
+  if (command.max_wall_time_s) limits.max_wall_time_s = *command.max_wall_time_s;
+  if (command.max_history_values) limits.max_history_values = *command.max_history_values;
+  return limits;
+}
+
+/// While it lives, SIGINT and SIGTERM ask the run to stop (it then writes what it has, with
+/// status interrupted); a second signal has the default effect, so a stuck program still dies.
+class InterruptRequests {
+ public:
+  InterruptRequests() {
+    struct sigaction action {};
+    action.sa_handler = [](int) { solvers::request_interrupt(); };
+    action.sa_flags = SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~InterruptRequests() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  InterruptRequests(const InterruptRequests&) = delete;
+  InterruptRequests& operator=(const InterruptRequests&) = delete;
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
 int run_run(const RunCommand& command) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
   apply_run_options(command, scene.solver);
+  const analysis::RunLimits limits = run_limits(command);
+  const std::filesystem::path folder =
+      command.out_dir.empty() ? std::filesystem::path("out") / io::folder_name(scene.name) : std::filesystem::path(command.out_dir);
+  std::optional<analysis::RunReport> report;
+  std::filesystem::path created;
   try {
     scene.validate();
+    limits.validate();
+    created = io::require_writable_folder(folder, "--out");  // before the run, not after an hour of it
+    const InterruptRequests interrupts;
+    report = analysis::run_scene(scene, limits);
   } catch (const InputError& error) {
-    throw InputError(option_for(error.key()), error.value(), error.reason(), command.scene);
+    if (!created.empty()) std::filesystem::remove_all(created);  // a refused run leaves nothing
+    const std::string option = option_for(error.key());
+    if (option == error.key()) throw;
+    throw InputError(option, error.value(), error.reason(), command.scene);
   }
-  const analysis::RunReport report = analysis::run_scene(scene);
-  const std::string folder = command.out_dir.empty() ? "out/" + scene.name : command.out_dir;
-  io::write_run(report, folder);
-  print_run_summary(report, folder);
-  return report.result.status == solvers::RunStatus::completed ? 0 : 3;
+  io::write_run(*report, folder);
+  print_run_summary(*report, folder.string());
+  return report->result.status == solvers::RunStatus::completed ? 0 : 3;
 }
 
 int run_study(const StudyCommand& command) {
@@ -215,6 +265,8 @@ int run_study(const StudyCommand& command) {
     options.dts_s = {0.05, 0.01};
   }
   options.validate();
+  const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
+  io::require_writable_folder(folder, "--out");
   fmt::print("Work-precision study of '{}' at gap {} m; every run against the exact path; run time = median of {}\n",
              scene.name, scene.contact.gap_m, options.repeat);
   fmt::print("Impact-time errors: before the first sustained contact (exact reference), and over impacts faster "
@@ -234,7 +286,6 @@ int run_study(const StudyCommand& command) {
                r.status == "completed" ? "" : "  " + r.status);
   };
   const analysis::StudyResult study = analysis::run_study(scene, options, print_row);
-  const std::string folder = command.out_dir.empty() ? "out/" + scene.name + "-study" : command.out_dir;
   io::write_study(study, folder);
   fmt::print("Reference: exact path, {} impacts, {:.3f} s; its own error estimate (against held stretches at "
              "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv and study.json; "
@@ -246,6 +297,7 @@ int run_study(const StudyCommand& command) {
 
 int run_modes(const ModesCommand& command) {
   const analysis::Scene scene = io::read_scene(command.scene);
+  if (!command.json_file.empty()) io::require_writable_file(command.json_file, "--json");
   const auto buildings = analysis::summarise_buildings(scene);
   for (const auto& building : buildings) print_modes_table(building, command.count);
   if (!command.json_file.empty()) {

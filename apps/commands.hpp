@@ -34,7 +34,11 @@ struct RunCommand {
   std::optional<std::string> halving;         // on | off
   std::optional<std::string> event_location;  // halving | interpolate
   std::optional<double> hold_rtol;
-  std::string out_dir;  // empty: out/<scene name>
+  std::string out_dir;  // empty: out/<scene name, made safe as a folder name>
+  // Limits of the run (analysis::RunLimits); unset: its defaults.
+  std::optional<long> max_steps;
+  std::optional<double> max_wall_time_s;
+  std::optional<double> max_history_values;
 };
 
 struct StudyCommand {

@@ -50,6 +50,10 @@ int main(int argc, char** argv) {
   run_app->add_option("--hold-rtol", run.hold_rtol,
                       "exact: relative tolerance of held stretches, integrated by CVODE Adams (default 1e-12)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
+  run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
+  run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
+  run_app->add_option("--max-history-values", run.max_history_values,
+                      "Refuse a run whose history.csv would hold more values (default 2e7)");
 
   pounding::cli::StudyCommand study;
   CLI::App* study_app =

@@ -1,6 +1,11 @@
 #!/usr/bin/env bash
-# Sets up (bootstrap.sh) and runs the whole test suite with CTest.
+# Sets up (bootstrap.sh) and runs the whole test suite with CTest; then, unless --quick, the same
+# suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and a short smoke run
+# of each fuzz target (FUZZ_SECONDS, default 20; scripts/fuzz.sh runs them for an hour).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/bootstrap.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
+[ "${1:-}" = "--quick" ] && exit 0
+./scripts/run-sanitized-tests.sh
+./scripts/fuzz.sh "${FUZZ_SECONDS:-20}"

@@ -31,4 +31,12 @@ InputError InputError::in_context(const std::string& file, const std::string& ke
 
 std::string format_value(double value) { return fmt::format("{}", value); }
 
+void require_range(const std::string& key, double value, const Range& range) {
+  const bool above_min = range.min_open ? value > range.min : value >= range.min;
+  if (above_min && value <= range.max) return;  // false for NaN
+  throw InputError(key, format_value(value),
+                   fmt::format("must lie in {}{}, {}]{}{}", range.min_open ? "(" : "[", format_value(range.min),
+                               format_value(range.max), range.unit.empty() ? "" : " ", range.unit));
+}
+
 }  // namespace pounding

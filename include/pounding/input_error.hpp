@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace pounding {
 
@@ -29,5 +30,17 @@ class InputError : public std::runtime_error {
 
 /// Formats a number for an error message the way a user would type it (shortest round trip).
 std::string format_value(double value);
+
+/// The physical range a value must lie in, stated in the message when it does not.
+struct Range {
+  double min;
+  double max;
+  std::string_view unit = {};  // as printed after the bounds, e.g. "m" or "s"
+  bool min_open = false;       // (min, …]: the bound itself is refused (e.g. a mass of 0)
+};
+
+/// @throws InputError(key, value, "must lie in [min, max] unit") unless value lies in `range`
+///   (NaN and infinities never do).
+void require_range(const std::string& key, double value, const Range& range);
 
 }  // namespace pounding

@@ -1,5 +1,6 @@
 #include "pounding/analysis/run_scene.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
 
 #include "pounding/input_error.hpp"
@@ -7,7 +8,9 @@
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/exact_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/gap_mode_bound.hpp"
 #include "pounding/solvers/hht.hpp"
+#include "pounding/solvers/recorder.hpp"
 
 namespace pounding::analysis {
 
@@ -72,14 +75,70 @@ solvers::EventOptions event_options(const Scene& scene) {
 
 }  // namespace
 
-RunReport run_scene(const Scene& scene) {
+void RunLimits::validate() const {
+  if (max_steps < 1) throw InputError("limits.max_steps", std::to_string(max_steps), "must be positive");
+  if (!(max_wall_time_s > 0.0) || !std::isfinite(max_wall_time_s)) {
+    throw InputError("limits.max_wall_time_s", format_value(max_wall_time_s), "must be positive (s)");
+  }
+  if (!(max_history_values >= 1.0) || !std::isfinite(max_history_values)) {
+    throw InputError("limits.max_history_values", format_value(max_history_values), "must be at least 1");
+  }
+}
+
+WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& system) {
+  WorkEstimate estimate;
+  estimate.dof = system.dof();
+  estimate.duration_s = system.ground_motion().end_s() - system.ground_motion().start_s();
+  estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
+  const double levels = scene.output.history_floors.empty() ? static_cast<double>(system.levels().size())
+                                                            : static_cast<double>(scene.output.history_floors.size());
+  double per_level = 0.0;  // u, v, φ and the contact vertices' dx of both buildings' slabs
+  for (int b = 0; b < 2; ++b) per_level += 3.0 + static_cast<double>(solvers::contact_vertices(system.candidates(), b).size());
+  estimate.history_columns = 1.0 + levels * per_level;
+  if (scene.solver.method == "hht") {
+    estimate.min_steps = std::ceil(estimate.duration_s / scene.solver.dt_s);
+  } else {
+    // The automatic step bound is longest at rest (motion only adds modal amplitude).
+    const solvers::EventOptions options = event_options(scene);
+    const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period);
+    estimate.min_steps =
+        std::ceil(estimate.duration_s / bound.max_step_s(Eigen::VectorXd::Zero(system.state_size())));
+  }
+  return estimate;
+}
+
+void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
+  if (estimate.min_steps > static_cast<double>(limits.max_steps)) {
+    throw InputError("limits.max_steps", std::to_string(limits.max_steps),
+                     fmt::format("the run needs at least {:.3g} steps ({} s of record, {} DOF), above this limit",
+                                 estimate.min_steps, estimate.duration_s, estimate.dof));
+  }
+  if (estimate.history_values() > limits.max_history_values) {
+    throw InputError("limits.max_history_values", format_value(limits.max_history_values),
+                     fmt::format("history.csv would hold {:.3g} values ({:.3g} rows of {} columns), above this "
+                                 "limit; raise output.history_interval_s or list fewer output.history_floors",
+                                 estimate.history_values(), estimate.history_rows, estimate.history_columns));
+  }
+}
+
+RunReport run_scene(const Scene& scene, const RunLimits& limits) {
+  limits.validate();
   const dynamics::CoupledSystem system = build_system(scene);
+  check_work(estimate_work(scene, system), limits);
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
-  report.result = scene.solver.method == "hht"
-                      ? solvers::run_hht(system, hht_options(scene), "hht")
-                      : solvers::run_event_driven(system, event_options(scene),
-                                                  integrator_factory(scene.solver), scene.solver.method);
+  const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
+  if (scene.solver.method == "hht") {
+    solvers::HhtOptions options = hht_options(scene);
+    options.max_steps = limits.max_steps;
+    options.budget = budget;
+    report.result = solvers::run_hht(system, options, "hht");
+  } else {
+    solvers::EventOptions options = event_options(scene);
+    options.max_steps = limits.max_steps;
+    options.budget = budget;
+    report.result = solvers::run_event_driven(system, options, integrator_factory(scene.solver), scene.solver.method);
+  }
   return report;
 }
 

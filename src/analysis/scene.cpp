@@ -12,24 +12,34 @@ namespace {
 
 constexpr double kGapTolerance_m = 1e-6;
 
+// Physical ranges (docs/scene-format.md lists each next to its key).
+constexpr Range kGap{0.0, 10.0, "m"};                      // seismic joints are centimetres to a metre
+constexpr Range kCandidateMargin{0.0, 10.0, "m", true};
+constexpr Range kHoldVelocity{0.0, 0.1, "m/s", true};      // pounding approaches at 0.1 to 1 m/s
+// Floors this far apart still meet face on: up to a slab's thickness. validate_levels() also
+// keeps it below half of every storey, so a floor meets at most one floor of the other building.
+constexpr Range kLevelTolerance{0.0, 0.5, "m", true};
+constexpr Range kRtol{1e-14, 0.1};                         // below 1e-14 is under round-off
+constexpr Range kAtol{1e-16, 1e-3, "m, rad"};
+// Held stretches of the exact path: tighter than 1e-14 is under round-off; looser than 1e-6
+// would make the ground truth less accurate than the paths it judges.
+constexpr Range kHoldRtol{1e-14, 1e-6};
+constexpr Range kHhtStep{0.0, 0.1, "s", true};             // published 0.05 s
+constexpr Range kHhtContactTolerance{0.0, 0.01, "m", true};
+constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
+
+void validate_gap(const std::string& key, double gap_m) { require_range(key, gap_m, kGap); }
+
 std::string building_key(std::size_t index) { return fmt::format("building[{}]", index + 1); }
 
 void validate_contact(const ContactSettings& contact) {
-  if (!(contact.gap_m >= 0.0) || !std::isfinite(contact.gap_m)) {
-    throw InputError("contact.gap_m", format_value(contact.gap_m), "must be zero or positive (m)");
-  }
+  validate_gap("contact.gap_m", contact.gap_m);
   if (!(contact.restitution >= 0.0 && contact.restitution <= 1.0)) {
     throw InputError("contact.restitution", format_value(contact.restitution), "must lie in [0, 1]");
   }
-  if (!(contact.candidate_margin_m > 0.0) || !std::isfinite(contact.candidate_margin_m)) {
-    throw InputError("contact.candidate_margin_m", format_value(contact.candidate_margin_m), "must be positive (m)");
-  }
-  if (!(contact.hold_velocity_mps > 0.0) || !std::isfinite(contact.hold_velocity_mps)) {
-    throw InputError("contact.hold_velocity_mps", format_value(contact.hold_velocity_mps), "must be positive (m/s)");
-  }
-  if (!(contact.level_tolerance_m > 0.0) || !std::isfinite(contact.level_tolerance_m)) {
-    throw InputError("contact.level_tolerance_m", format_value(contact.level_tolerance_m), "must be positive (m)");
-  }
+  require_range("contact.candidate_margin_m", contact.candidate_margin_m, kCandidateMargin);
+  require_range("contact.hold_velocity_mps", contact.hold_velocity_mps, kHoldVelocity);
+  require_range("contact.level_tolerance_m", contact.level_tolerance_m, kLevelTolerance);
 }
 
 void validate_levels(const Scene& scene) {
@@ -68,21 +78,13 @@ void validate_solver(const SolverSettings& solver) {
                      "arkode-erk offers order 5 (the 8th-order Fehlberg table was dropped: its error estimate "
                      "cannot see the forcing), arkode-dirk 3 and 4; other methods take none");
   }
-  if (!(solver.rtol > 0.0 && solver.rtol < 1.0)) {
-    throw InputError("solver.rtol", format_value(solver.rtol), "must lie in (0, 1)");
-  }
-  if (!(solver.atol > 0.0) || !std::isfinite(solver.atol)) {
-    throw InputError("solver.atol", format_value(solver.atol), "must be positive");
-  }
-  if (!(solver.dt_s > 0.0) || !std::isfinite(solver.dt_s)) {
-    throw InputError("solver.dt_s", format_value(solver.dt_s), "the time step must be positive (s)");
-  }
+  require_range("solver.rtol", solver.rtol, kRtol);
+  require_range("solver.atol", solver.atol, kAtol);
+  require_range("solver.dt_s", solver.dt_s, kHhtStep);
   if (!(solver.alpha >= -1.0 / 3.0 && solver.alpha <= 0.0)) {
     throw InputError("solver.alpha", format_value(solver.alpha), "must lie in [-1/3, 0]");
   }
-  if (!(solver.contact_tolerance_m > 0.0) || !std::isfinite(solver.contact_tolerance_m)) {
-    throw InputError("solver.contact_tolerance_m", format_value(solver.contact_tolerance_m), "must be positive (m)");
-  }
+  require_range("solver.contact_tolerance_m", solver.contact_tolerance_m, kHhtContactTolerance);
   if (solver.max_halvings < 0 || solver.max_halvings > 60) {
     throw InputError("solver.max_halvings", std::to_string(solver.max_halvings), "must lie in 0..60");
   }
@@ -91,27 +93,25 @@ void validate_solver(const SolverSettings& solver) {
     throw InputError("solver.event_location", "\"" + solver.event_location + "\"",
                      "expected halving, end-of-step or interpolate");
   }
-  if (!(solver.hold_rtol >= 1e-14 && solver.hold_rtol <= 1e-6)) {
-    throw InputError("solver.hold_rtol", format_value(solver.hold_rtol), "must lie in [1e-14, 1e-6]");
-  }
+  require_range("solver.hold_rtol", solver.hold_rtol, kHoldRtol);
   if (solver.newton != "reduced" && solver.newton != "dense") {
     throw InputError("solver.newton", "\"" + solver.newton + "\"", "expected reduced or dense");
   }
 }
 
 void validate_output(const OutputSettings& output, std::size_t levels) {
+  std::set<int> seen;
   for (std::size_t i = 0; i < output.history_floors.size(); ++i) {
     const int level = output.history_floors[i];
+    const std::string key = fmt::format("output.history_floors[{}]", i + 1);
     if (level < 1 || static_cast<std::size_t>(level) > levels) {
-      throw InputError(fmt::format("output.history_floors[{}]", i + 1), std::to_string(level),
+      throw InputError(key, std::to_string(level),
                        fmt::format("lists levels (floor pairs at a common elevation, as `pounding check` "
                                    "prints them), numbered 1..{}", levels));
     }
+    if (!seen.insert(level).second) throw InputError(key, std::to_string(level), "is listed twice");
   }
-  if (!(output.history_interval_s > 0.0) || !std::isfinite(output.history_interval_s)) {
-    throw InputError("output.history_interval_s", format_value(output.history_interval_s),
-                     "must be positive (s)");
-  }
+  require_range("output.history_interval_s", output.history_interval_s, kHistoryInterval);
 }
 
 void validate_pair(const Scene& scene) {
@@ -136,9 +136,7 @@ void validate_pair(const Scene& scene) {
 }  // namespace
 
 void Scene::set_gap(double gap_m) {
-  if (!(gap_m >= 0.0) || !std::isfinite(gap_m)) {
-    throw InputError("contact.gap_m", format_value(gap_m), "must be zero or positive (m)");
-  }
+  validate_gap("contact.gap_m", gap_m);
   const model::Point2 shift(gap_m - contact.gap_m, 0.0);
   model::BuildingDefinition& right = buildings[1];
   right.slab = right.slab.translated(shift);
@@ -153,6 +151,7 @@ std::vector<contact::Level> Scene::levels() const {
 }
 
 void Scene::validate() const {
+  if (name.empty()) throw InputError("name", "\"\"", "must not be empty", file.string());
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     try {
       buildings[i].validate();

@@ -19,11 +19,12 @@ double unit_to_mps2(AccelUnits units, double g_mps2) {
   return 1.0;
 }
 
-/// Linear interpolation of (t, a) at `at`. @pre t.front() <= at <= t.back().
+/// Linear interpolation of (t, a) at `at`. @pre t.front() <= at <= t.back(), at finite.
 double interpolate(const std::vector<double>& t, const std::vector<double>& a, double at) {
   if (at >= t.back()) return a.back();
   const auto upper = std::upper_bound(t.begin(), t.end(), at);
-  const std::size_t i = static_cast<std::size_t>(upper - t.begin());
+  // Clamped so that no time, even one breaking the precondition, reads outside the samples.
+  const std::size_t i = std::clamp<std::size_t>(static_cast<std::size_t>(upper - t.begin()), 1, t.size() - 1);
   const double s = (at - t[i - 1]) / (t[i] - t[i - 1]);
   return a[i - 1] + s * (a[i] - a[i - 1]);
 }
@@ -47,7 +48,37 @@ RecordSamples cut(const RecordSamples& in, double start_s, double end_s) {
   return out;
 }
 
+/// Record times must lie in [0, kMaxRecordDuration_s]; the key blamed is the one that set them.
+void check_record_times(const RecordSamples& samples, const ExcitationSpec& spec) {
+  const std::string key = spec.dt_override_s || spec.read.dt_s ? "excitation.dt_s" : "excitation.file";
+  const double first = samples.time_s.front(), last = samples.time_s.back();
+  if (first < 0.0 || last > kMaxRecordDuration_s) {
+    throw InputError(key, format_value(first < 0.0 ? first : last),
+                     fmt::format("record times must lie in [0, {}] s (this record spans {} s to {} s)",
+                                 kMaxRecordDuration_s, first, last),
+                     spec.file.string());
+  }
+}
+
+/// The processed peak must stay physical: records never exceed a few g, so more is a unit or
+/// scaling mistake (and 1e308 overflows the solver).
+void check_peak(const std::vector<double>& accel_mps2, const ExcitationSpec& spec) {
+  double peak = 0.0;
+  for (double a : accel_mps2) peak = std::max(peak, std::abs(a));
+  if (peak <= kMaxPeakAccel_g * spec.g_mps2) return;  // false for NaN/inf
+  const std::string key = spec.scale_factor != 1.0 ? "excitation.scale_factor" : "excitation.units";
+  const std::string value = spec.scale_factor != 1.0 ? format_value(spec.scale_factor) : "";
+  throw InputError(key, value,
+                   fmt::format("the processed record peaks at |a_g| = {} m/s2 ({} g), above the limit of {} g",
+                               peak, peak / spec.g_mps2, kMaxPeakAccel_g),
+                   spec.file.string());
+}
+
 }  // namespace
+
+NonFiniteTime::NonFiniteTime(double t_s)
+    : std::domain_error(fmt::format("the ground motion was asked for at t = {} s: the solution is no longer finite",
+                                    t_s)) {}
 
 std::optional<AccelUnits> parse_accel_units(std::string_view name) {
   if (name == "g") return AccelUnits::g;
@@ -57,18 +88,14 @@ std::optional<AccelUnits> parse_accel_units(std::string_view name) {
 }
 
 void ExcitationSpec::validate() const {
-  auto positive = [](std::optional<double> value, const char* key) {
-    if (value && !(*value > 0.0 && std::isfinite(*value))) {
-      throw InputError(key, format_value(*value), "must be a positive finite number");
-    }
-  };
-  positive(dt_override_s, "excitation.dt_s");
-  positive(duration_s, "excitation.duration_s");
-  positive(scale_to_pga_g, "excitation.scale_to_pga_g");
-  positive(g_mps2, "excitation.g_mps2");
-  if (!(start_s >= 0.0 && std::isfinite(start_s))) {
-    throw InputError("excitation.start_s", format_value(start_s), "must be zero or positive");
-  }
+  // Physical ranges (docs/scene-format.md): beyond them a value is a typo or a unit mistake.
+  const Range sample_spacing{0.0, kMaxSampleSpacing_s, "s", true};
+  if (dt_override_s) require_range("excitation.dt_s", *dt_override_s, sample_spacing);
+  if (read.dt_s) require_range("excitation.dt_s", *read.dt_s, sample_spacing);
+  if (duration_s) require_range("excitation.duration_s", *duration_s, {0.0, kMaxRecordDuration_s, "s", true});
+  require_range("excitation.start_s", start_s, {0.0, kMaxRecordDuration_s, "s"});
+  if (scale_to_pga_g) require_range("excitation.scale_to_pga_g", *scale_to_pga_g, {0.0, kMaxPeakAccel_g, "g", true});
+  require_range("excitation.g_mps2", g_mps2, {kGravityRange_mps2[0], kGravityRange_mps2[1], "m/s2"});
   if (!std::isfinite(scale_factor) || scale_factor == 0.0) {
     throw InputError("excitation.scale_factor", format_value(scale_factor), "must be finite and non-zero");
   }
@@ -76,9 +103,7 @@ void ExcitationSpec::validate() const {
     throw InputError("excitation.scale_factor", format_value(scale_factor),
                      "give either scale_factor or scale_to_pga_g, not both");
   }
-  if (!std::isfinite(direction_deg)) {
-    throw InputError("excitation.direction_deg", format_value(direction_deg), "must be finite");
-  }
+  require_range("excitation.direction_deg", direction_deg, {-360.0, 360.0, "deg"});
   if (read.format == RecordFormat::single && !read.dt_s) {
     throw InputError("excitation.dt_s", "missing", "format 'single' needs the time step");
   }
@@ -99,6 +124,8 @@ GroundMotion::GroundMotion(std::vector<double> time_s, std::vector<double> accel
 }
 
 double GroundMotion::accel_at(double t_s) const {
+  // A NaN passes every range test below; it means the solution has already diverged.
+  if (!std::isfinite(t_s)) throw NonFiniteTime(t_s);
   if (t_s < time_s_.front() || t_s > time_s_.back()) return 0.0;
   if (t_s == time_s_.back()) return accel_mps2_.back();
   return interpolate(time_s_, accel_mps2_, t_s);
@@ -115,10 +142,18 @@ GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec) {
       samples.time_s[i] = static_cast<double>(i) * *spec.dt_override_s;
     }
   }
+  check_record_times(samples, spec);
   const double record_end_s = samples.time_s.back();
   if (spec.start_s >= record_end_s) {
     throw InputError("excitation.start_s", format_value(spec.start_s),
                      fmt::format("starts after the record ends at {} s", record_end_s), file);
+  }
+  const double slack_s = 1e-6 * (samples.time_s[1] - samples.time_s[0]);
+  if (spec.duration_s && spec.start_s + *spec.duration_s > record_end_s + slack_s) {
+    // Outside the record a_g is 0: a longer run would only be free vibration nobody asked for.
+    throw InputError("excitation.duration_s", format_value(*spec.duration_s),
+                     fmt::format("the record ends {} s after start_s; give at most that", record_end_s - spec.start_s),
+                     file);
   }
   const double end_s = spec.duration_s ? std::min(spec.start_s + *spec.duration_s, record_end_s)
                                        : record_end_s;
@@ -137,6 +172,7 @@ GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec) {
     const double scale = *spec.scale_to_pga_g * spec.g_mps2 / peak;
     for (double& a : accel) a *= scale;
   }
+  check_peak(accel, spec);
   return GroundMotion(std::move(samples.time_s), std::move(accel),
                       spec.direction_deg * std::numbers::pi / 180.0);
 }

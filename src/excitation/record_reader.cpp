@@ -55,6 +55,14 @@ std::vector<std::string> split_fields(const std::string& text) {
 
 class Parser {
  public:
+  /// @throws InputError once a record grows past kMaxRecordSamples (a wrong file, not a record).
+  void check_count(std::size_t count, const Line& line) const {
+    if (count > kMaxRecordSamples) {
+      throw error(line, 0, fmt::format("sample {}", count),
+                  fmt::format("the record exceeds the limit of {} samples", kMaxRecordSamples));
+    }
+  }
+
   explicit Parser(const std::filesystem::path& file) : file_(file.string()) {}
 
   double number(const std::string& text, const Line& line, std::size_t field) const {
@@ -101,6 +109,12 @@ At2Header parse_at2_header(const Line& line, const Parser& parser) {
   static const std::regex older(R"(NPTS\s*=\s*([^,\s]+)\s*,?\s*DT\s*=\s*([^,\s]+))",
                                 std::regex::icase);
   static const std::regex west2(R"(^\s*(\S+)[\s,]+(\S+)\s+NPTS\s*,\s*DT)", std::regex::icase);
+  // std::regex backtracks: bound the text it sees (a real header line is under 80 characters).
+  constexpr std::size_t kMaxHeaderLength = 200;
+  if (line.text.size() > kMaxHeaderLength) {
+    throw parser.error(line, 0, line.text.substr(0, 40) + "...",
+                       fmt::format("a PEER header line has at most {} characters", kMaxHeaderLength));
+  }
   std::smatch match;
   if (!std::regex_search(line.text, match, older) && !std::regex_search(line.text, match, west2)) {
     throw parser.error(line, 0, line.text,
@@ -110,6 +124,9 @@ At2Header parse_at2_header(const Line& line, const Parser& parser) {
   const double npts = parser.number(match[1].str(), line, 0);
   if (npts < 1 || npts != std::floor(npts)) {
     throw parser.error(line, 0, match[1].str(), "NPTS must be a positive whole number");
+  }
+  if (npts > static_cast<double>(kMaxRecordSamples)) {  // also keeps the conversion below defined
+    throw parser.error(line, 0, match[1].str(), fmt::format("NPTS exceeds the limit of {} samples", kMaxRecordSamples));
   }
   header.npts = static_cast<long>(npts);
   header.dt_s = parser.number(match[2].str(), line, 0);
@@ -130,6 +147,7 @@ RecordSamples read_peer_at2(const std::vector<Line>& lines, const Parser& parser
     for (std::size_t f = 0; f < fields.size(); ++f) {
       samples.accel.push_back(parser.number(fields[f], lines[i], f + 1));
     }
+    parser.check_count(samples.accel.size(), lines[i]);
   }
   if (static_cast<long>(samples.accel.size()) != header.npts) {
     throw parser.error(lines[3], 0, fmt::format("NPTS={}", header.npts),
@@ -166,6 +184,7 @@ RecordSamples read_columns(const std::vector<Line>& lines, const RecordReadOptio
     }
     samples.time_s.push_back(t);
     samples.accel.push_back(a);
+    parser.check_count(samples.accel.size(), line);
   }
   return samples;
 }
@@ -179,11 +198,10 @@ RecordSamples read_single(const std::vector<Line>& lines, const RecordReadOption
     if (options.accel_column) {
       const int column = *options.accel_column;
       samples.accel.push_back(parser.number(field_at(fields, column, line, parser), line, column));
-      continue;
+    } else {
+      for (std::size_t f = 0; f < fields.size(); ++f) samples.accel.push_back(parser.number(fields[f], line, f + 1));
     }
-    for (std::size_t f = 0; f < fields.size(); ++f) {
-      samples.accel.push_back(parser.number(fields[f], line, f + 1));
-    }
+    parser.check_count(samples.accel.size(), line);
   }
   samples.time_s = times_from_spacing(samples.accel.size(), *options.dt_s);
   return samples;

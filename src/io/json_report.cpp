@@ -1,6 +1,6 @@
 #include "pounding/io/json_report.hpp"
 
-#include <fstream>
+#include "pounding/io/output_files.hpp"
 #include <stdexcept>
 
 namespace pounding::io {
@@ -37,9 +37,7 @@ nlohmann::json modes_json(const std::vector<analysis::BuildingSummary>& building
 
 void write_json(const nlohmann::json& document, const std::filesystem::path& file) {
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  std::ofstream out(file);
-  out << document.dump(2) << '\n';
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  write_atomically(file, [&](std::ostream& out) { out << document.dump(2) << '\n'; });
 }
 
 }  // namespace pounding::io

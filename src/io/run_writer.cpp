@@ -1,10 +1,10 @@
 #include "pounding/io/run_writer.hpp"
 
 #include <fmt/format.h>
-#include <fstream>
 #include <map>
 
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_files.hpp"
 
 namespace pounding::io {
 namespace {
@@ -113,15 +113,7 @@ json statistics_json(const solvers::SolverStatistics& s, const std::vector<conta
           {"wall_time_s", s.wall_time_s}};
 }
 
-std::ofstream open_for_writing(const std::filesystem::path& file) {
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-  out.precision(17);
-  return out;
-}
-
-void write_impacts_csv(const std::vector<solvers::ImpactRecord>& impacts, const std::filesystem::path& file) {
-  std::ofstream out = open_for_writing(file);
+void write_impacts_csv(const std::vector<solvers::ImpactRecord>& impacts, std::ostream& out) {
   out << "t_s,level,floor_b1,floor_b2,elevation_m,striking_building,vertex,struck_edge,point_x_m,point_y_m,"
          "approach_velocity_mps,separation_velocity_mps,impulse_kNs,energy_lost_kJ,starts_sustained_contact\n";
   for (const auto& i : impacts) {
@@ -132,8 +124,7 @@ void write_impacts_csv(const std::vector<solvers::ImpactRecord>& impacts, const 
   }
 }
 
-void write_history_csv(const solvers::History& history, const std::filesystem::path& file) {
-  std::ofstream out = open_for_writing(file);
+void write_history_csv(const solvers::History& history, std::ostream& out) {
   for (std::size_t c = 0; c < history.columns.size(); ++c) out << (c ? "," : "") << history.columns[c];
   out << '\n';
   for (std::size_t r = 0; r < history.time_s.size(); ++r) {
@@ -194,9 +185,12 @@ json run_json(const analysis::RunReport& report) {
 
 void write_run(const analysis::RunReport& report, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
+  // summary.json goes last and an earlier run's goes first: whatever happens in between, a
+  // summary never stands beside files from another run.
+  std::filesystem::remove(folder / "summary.json");
+  write_atomically(folder / "history.csv", [&](std::ostream& out) { write_history_csv(report.result.history, out); });
+  write_atomically(folder / "impacts.csv", [&](std::ostream& out) { write_impacts_csv(report.result.impacts, out); });
   write_json(run_json(report), folder / "summary.json");
-  write_impacts_csv(report.result.impacts, folder / "impacts.csv");
-  write_history_csv(report.result.history, folder / "history.csv");
 }
 
 }  // namespace pounding::io

@@ -2,21 +2,73 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
+
+namespace pounding::io::detail {
+/// A failed internal check of toml++. @throws TomlCheckFailed always.
+[[noreturn]] void toml_check_failed(const char* expression);
+struct TomlCheckFailed : std::logic_error {
+  using std::logic_error::logic_error;
+};
+}  // namespace pounding::io::detail
+
+// toml++ 3.3's internal checks fail on some malformed scenes (fuzzing found "[+a]":
+// parser.inl:3037, parse_key). Built with NDEBUG they become optimiser assumptions, so such a
+// file is undefined behaviour wherever toml++ is compiled from its headers (as in the
+// sanitizer build) by clang. Here they stay on and throw instead, and the scene is refused.
+#define TOML_ASSERT(expr) ((expr) ? static_cast<void>(0) : ::pounding::io::detail::toml_check_failed(#expr))
+#pragma push_macro("NDEBUG")
+#undef NDEBUG
 #include <toml++/toml.h>
+#pragma pop_macro("NDEBUG")
 
 #include "pounding/input_error.hpp"
+#include "toml_text.hpp"
 
 namespace pounding::io {
+
+void detail::toml_check_failed(const char* expression) { throw TomlCheckFailed(expression); }
+
 namespace {
 
 using model::Point2;
 
+constexpr std::size_t kMaxShownChars = 80;  // longer values are cut in messages
+
+/// A value as the user typed it, for error messages. Formatted here with fmt, never by toml++'s
+/// own formatter: that one reaches undefined behaviour for some doubles (toml++ 3.3,
+/// toml_formatter.inl:94, a negative log10 converted to unsigned long).
 std::string node_text(const toml::node& node) {
-  std::ostringstream out;
-  node.visit([&](const auto& value) { out << value; });
-  return out.str();
+  std::string text;
+  if (const auto* v = node.as_floating_point()) {
+    text = format_value(v->get());
+  } else if (const auto* v = node.as_integer()) {
+    text = fmt::format("{}", v->get());
+  } else if (const auto* v = node.as_boolean()) {
+    text = v->get() ? "true" : "false";
+  } else if (const auto* v = node.as_string()) {
+    text = fmt::format("\"{}\"", v->get());
+  } else if (const auto* v = node.as_array()) {
+    text = "[";
+    for (std::size_t i = 0; i < v->size() && text.size() < kMaxShownChars; ++i) {
+      text += (i ? ", " : "") + node_text(*v->get(i));
+    }
+    text += "]";
+  } else if (node.is_table()) {
+    text = "{...}";
+  } else if (const auto* v = node.as_date()) {
+    text = fmt::format("{:04}-{:02}-{:02}", v->get().year, v->get().month, v->get().day);
+  } else if (const auto* v = node.as_time()) {
+    text = fmt::format("{:02}:{:02}:{:02}", v->get().hour, v->get().minute, v->get().second);
+  } else if (node.is_date_time()) {
+    text = "a date-time";
+  }
+  if (text.size() > kMaxShownChars) text = text.substr(0, kMaxShownChars) + "...";
+  return text;
 }
 
 std::string located(const std::string& file, const toml::node& node) {
@@ -148,13 +200,24 @@ double positive(TableReader& table, const toml::node& node, const std::string& k
   return value;
 }
 
+/// A number within its physical range, checked where it is read (see positive()).
+double in_range(TableReader& table, const toml::node& node, const std::string& key, const Range& range) {
+  const double value = table.number_of(node, key);
+  try {
+    require_range(key, value, range);
+  } catch (const InputError& error) {
+    throw table.error(node, key, error.reason());
+  }
+  return value;
+}
+
 /// `storey_height_m`: one number for every storey, or one a storey, storey 1 (the ground storey)
 /// first. A list is checked entry by entry by BuildingDefinition::validate().
 std::vector<double> storey_heights(TableReader& table, int storeys) {
   const toml::node& node = table.require("storey_height_m");
   const std::string key = table.key_path("storey_height_m");
   if (node.is_array()) return table.numbers_of(node, key);
-  return std::vector<double>(std::max(storeys, 0), positive(table, node, key));
+  return std::vector<double>(std::max(storeys, 0), in_range(table, node, key, model::kStoreyHeightRange));
 }
 
 std::vector<double> per_floor_masses(TableReader& table, int storeys) {
@@ -305,7 +368,8 @@ excitation::ExcitationSpec read_excitation(TableReader table, const std::filesys
   const toml::node& file_node = table.require("file");
   const std::filesystem::path file = table.string_of(file_node, table.key_path("file"));
   spec.file = (file.is_absolute() ? file : scene_dir / file).lexically_normal();
-  if (!std::filesystem::is_regular_file(spec.file)) {
+  std::error_code unreadable;  // e.g. a name too long for the system: refused like a missing file
+  if (!std::filesystem::is_regular_file(spec.file, unreadable)) {
     throw table.error(file_node, table.key_path("file"),
                       fmt::format("no such record file (looked for {})", spec.file.string()));
   }
@@ -399,20 +463,32 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
   return scene;
 }
 
-}  // namespace
-
-analysis::Scene read_scene(const std::filesystem::path& file, const SceneOverrides& overrides) {
-  if (!std::filesystem::is_regular_file(file)) {
-    throw InputError("", "", "no such scene file", file.string());
+/// Parses TOML text after checking its encoding and making it ASCII (toml_text.hpp says why).
+/// @throws InputError naming file, line, column.
+toml::table parse_toml(std::string_view text, const std::string& file) {
+  if (const auto bad = detail::find_invalid_utf8(text)) {
+    throw InputError("", "", "is not valid UTF-8 text", fmt::format("{}:{}:{}", file, bad->line, bad->column));
   }
-  toml::table document;
+  const detail::AsciiToml ascii = detail::ascii_toml(text);
+  if (const auto& at = ascii.stray_non_ascii) {
+    throw InputError("", "", "a non-ASCII character outside a string or comment (or escaped by a backslash) is not TOML",
+                     fmt::format("{}:{}:{}", file, at->line, at->column));
+  }
   try {
-    document = toml::parse_file(file.string());
+    return toml::parse(ascii.text, file);
   } catch (const toml::parse_error& error) {
     throw InputError("", "", std::string(error.description()),
-                     fmt::format("{}:{}:{}", file.string(), error.source().begin.line,
-                                 error.source().begin.column));
+                     fmt::format("{}:{}:{}", file, error.source().begin.line, error.source().begin.column));
+  } catch (const detail::TomlCheckFailed& error) {
+    throw InputError("", "", fmt::format("is not valid TOML (the parser's check '{}' failed)", error.what()), file);
   }
+}
+
+}  // namespace
+
+analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& file,
+                            const SceneOverrides& overrides) {
+  const toml::table document = parse_toml(text, file.string());
   analysis::Scene scene = read_document(document, file);
   // The file's own data is checked first so that an override is never blamed for it, and an
   // override's error names the option rather than the key it replaces.
@@ -430,6 +506,22 @@ analysis::Scene read_scene(const std::filesystem::path& file, const SceneOverrid
     apply_option("--restitution", [&] { scene.contact.restitution = *overrides.restitution; });
   }
   return scene;
+}
+
+analysis::Scene read_scene(const std::filesystem::path& file, const SceneOverrides& overrides) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error)) {
+    throw InputError("", "", "no such scene file", file.string());
+  }
+  const auto size = std::filesystem::file_size(file, error);
+  if (error || size > kMaxSceneBytes) {
+    throw InputError("", fmt::format("{} bytes", size),
+                     fmt::format("a scene file may hold at most {} bytes", kMaxSceneBytes), file.string());
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError("", "", "cannot open the scene file", file.string());
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return parse_scene(text, file, overrides);
 }
 
 }  // namespace pounding::io

@@ -1,9 +1,10 @@
 #include "pounding/io/study_writer.hpp"
 
 #include <fmt/format.h>
-#include <fstream>
+#include <ostream>
 
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_files.hpp"
 
 namespace pounding::io {
 namespace {
@@ -28,6 +29,19 @@ nlohmann::json row_json(const analysis::StudyRow& row) {
           {"history_u_at_reference", row.history_u_at_reference}};
 }
 
+void write_study_csv(const analysis::StudyResult& study, std::ostream& out) {
+  out << kCsvHeader;
+  for (const auto& row : study.rows) {
+    const analysis::RunErrors& e = row.errors;
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", row.method, row.setting,
+                       row.value, row.status, row.run_time_s, row.steps, row.rhs_evaluations, row.restarts,
+                       row.impacts, e.matched, e.missing, e.extra, e.impact_time_s, e.impact_time_all_s,
+                       e.impact_time_before_hold_s, e.impulse_relative,
+                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad,
+                       row.impact_time_at_reference, row.history_u_at_reference);
+  }
+}
+
 }  // namespace
 
 nlohmann::json study_json(const analysis::StudyResult& study) {
@@ -50,18 +64,7 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
 void write_study(const analysis::StudyResult& study, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
   write_json(study_json(study), folder / "study.json");
-  std::ofstream out(folder / "study.csv");
-  if (!out) throw std::runtime_error("cannot write " + (folder / "study.csv").string());
-  out << kCsvHeader;
-  for (const auto& row : study.rows) {
-    const analysis::RunErrors& e = row.errors;
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", row.method, row.setting,
-                       row.value, row.status, row.run_time_s, row.steps, row.rhs_evaluations, row.restarts,
-                       row.impacts, e.matched, e.missing, e.extra, e.impact_time_s, e.impact_time_all_s,
-                       e.impact_time_before_hold_s, e.impulse_relative,
-                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad,
-                       row.impact_time_at_reference, row.history_u_at_reference);
-  }
+  write_atomically(folder / "study.csv", [&](std::ostream& out) { write_study_csv(study, out); });
 }
 
 }  // namespace pounding::io

@@ -1,7 +1,9 @@
 #include "pounding/model/building.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 #include "pounding/input_error.hpp"
@@ -12,10 +14,27 @@ namespace {
 
 std::string indexed(const char* key, std::size_t index) { return fmt::format("{}[{}]", key, index + 1); }
 
-void require_positive(double value, const std::string& key) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InputError(key, format_value(value), "must be a positive finite number");
+// Physical ranges (docs/scene-format.md lists each next to its key). Beyond them a value is a
+// typo or a unit mistake, and the modal analysis or the time step it implies is meaningless.
+constexpr double kMaxPlanCoordinate_m = 10'000.0;
+constexpr Range kFloorMass{1.0, 1e10, "t"};     // above 1e6 t only to model a rigid wall
+constexpr Range kPolarMoment{0.1, 1e14, "t·m²"};
+constexpr Range kColumnSize{0.0, 5.0, "m", true};
+constexpr Range kYoungsModulus{1e6, 1e9, "kPa"};
+constexpr Range kFrameFactor{1e-4, 10.0, "", true};
+constexpr Range kTargetPeriod{0.02, 20.0, "s"};
+constexpr double kMaxStoreyStiffness = 1e16;  // torsional entries reach k·r², 1e12 kN/m · (100 m)²
+constexpr double kMinCentreOfMassInset_m = 1e-3;  // a CM on the slab's edge is a typo
+constexpr double kColumnOutsideTolerance_m = 1e-6;  // columns on the slab's edge are usual
+
+double distance_to_boundary(const Polygon& slab, const Point2& p) {
+  double distance = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < slab.size(); ++i) {
+    const Point2 a = slab.vertex(i), edge = slab.edge_end(i) - a;
+    const double s = std::clamp((p - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    distance = std::min(distance, (a + s * edge - p).norm());
   }
+  return distance;
 }
 
 std::string point_text(const Point2& p) { return fmt::format("[{}, {}]", p.x(), p.y()); }
@@ -26,8 +45,9 @@ void validate_slab(const BuildingDefinition& b) {
                      "a slab needs at least 3 vertices");
   }
   for (std::size_t i = 0; i < b.slab.size(); ++i) {
-    if (!b.slab.vertex(i).allFinite()) {
-      throw InputError(indexed("slab", i), point_text(b.slab.vertex(i)), "must be finite");
+    if (!(b.slab.vertex(i).cwiseAbs().maxCoeff() <= kMaxPlanCoordinate_m)) {  // NaN fails too
+      throw InputError(indexed("slab", i), point_text(b.slab.vertex(i)),
+                       fmt::format("coordinates must lie in [-{0}, {0}] m", kMaxPlanCoordinate_m));
     }
   }
   if (!b.slab.is_simple()) {
@@ -39,15 +59,20 @@ void validate_slab(const BuildingDefinition& b) {
   if (!b.slab.contains(b.centre_of_mass)) {
     throw InputError("centre_of_mass", point_text(b.centre_of_mass), "lies outside the slab");
   }
+  if (!b.slab.contains_strictly(b.centre_of_mass) ||
+      distance_to_boundary(b.slab, b.centre_of_mass) < kMinCentreOfMassInset_m) {
+    throw InputError("centre_of_mass", point_text(b.centre_of_mass),
+                     fmt::format("lies on the slab's edge; it must be at least {} m inside", kMinCentreOfMassInset_m));
+  }
 }
 
-void validate_per_floor(const std::vector<double>& values, const char* key, int storeys,
+void validate_per_floor(const std::vector<double>& values, const char* key, int storeys, const Range& range,
                         const char* unit = "floor") {
   if (values.size() != static_cast<std::size_t>(storeys)) {
     throw InputError(key, fmt::format("{} values", values.size()),
                      fmt::format("needs one value per {} ({})", unit, storeys));
   }
-  for (std::size_t i = 0; i < values.size(); ++i) require_positive(values[i], indexed(key, i));
+  for (std::size_t i = 0; i < values.size(); ++i) require_range(indexed(key, i), values[i], range);
 }
 
 void validate_columns(const BuildingDefinition& b) {
@@ -59,14 +84,17 @@ void validate_columns(const BuildingDefinition& b) {
     if (!c.position_m.allFinite()) {
       throw InputError(indexed("columns", i), point_text(c.position_m), "position must be finite");
     }
-    require_positive(c.b_m, indexed("columns", i) + ".b");
-    require_positive(c.h_m, indexed("columns", i) + ".h");
+    if (!b.slab.contains(c.position_m, kColumnOutsideTolerance_m)) {
+      throw InputError(indexed("columns", i), point_text(c.position_m), "the column stands outside its slab");
+    }
+    require_range(indexed("columns", i) + ".b", c.b_m, kColumnSize);
+    require_range(indexed("columns", i) + ".h", c.h_m, kColumnSize);
   }
-  require_positive(b.E_kPa, "E_kPa");
+  require_range("E_kPa", b.E_kPa, kYoungsModulus);
   if (b.target_period_s) {
-    require_positive(*b.target_period_s, "target_period_s");
+    require_range("target_period_s", *b.target_period_s, kTargetPeriod);
   } else {
-    require_positive(b.frame_factor, "frame_factor");
+    require_range("frame_factor", b.frame_factor, kFrameFactor);
   }
 }
 
@@ -78,7 +106,10 @@ void validate_storey_matrices(const BuildingDefinition& b) {
   for (std::size_t i = 0; i < b.storey_stiffness.size(); ++i) {
     const Eigen::Matrix3d& k = b.storey_stiffness[i];
     const std::string key = indexed("storey_stiffness", i);
-    if (!k.allFinite()) throw InputError(key, "", "entries must be finite");
+    if (!(k.cwiseAbs().maxCoeff() <= kMaxStoreyStiffness)) {  // NaN fails too
+      throw InputError(key, format_value(k.cwiseAbs().maxCoeff()),
+                       fmt::format("entries must lie in [-{0}, {0}] (kN/m, kN, kN·m/rad)", kMaxStoreyStiffness));
+    }
     if (!k.isApprox(k.transpose(), 1e-12)) throw InputError(key, "", "must be symmetric");
     if (Eigen::LLT<Eigen::Matrix3d>(k).info() != Eigen::Success) {
       throw InputError(key, "", "must be positive definite");
@@ -130,13 +161,15 @@ void require_positive_definite(const Eigen::MatrixXd& stiffness, const BuildingD
 
 void BuildingDefinition::validate() const {
   if (name.empty()) throw InputError("name", "\"\"", "must not be empty");
-  if (storeys < 1) throw InputError("storeys", std::to_string(storeys), "must be at least 1");
+  if (storeys < 1 || storeys > kMaxStoreys) {
+    throw InputError("storeys", std::to_string(storeys), fmt::format("must lie in [1, {}]", kMaxStoreys));
+  }
   // Heights are needed even with storey matrices given directly: they place the floors, and
   // only floors at a common elevation can touch.
-  validate_per_floor(storey_height_m, "storey_height_m", storeys, "storey");
+  validate_per_floor(storey_height_m, "storey_height_m", storeys, kStoreyHeightRange, "storey");
   validate_slab(*this);
-  validate_per_floor(mass_t, "mass_t", storeys);
-  validate_per_floor(polar_moment_tm2, "polar_moment_tm2", storeys);
+  validate_per_floor(mass_t, "mass_t", storeys, kFloorMass);
+  validate_per_floor(polar_moment_tm2, "polar_moment_tm2", storeys, kPolarMoment);
   if (uses_columns()) {
     validate_columns(*this);
   } else {

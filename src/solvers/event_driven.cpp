@@ -24,6 +24,9 @@ std::string_view to_string(RunStatus status) {
     case RunStatus::event_limit: return "event_limit";
     case RunStatus::step_limit: return "step_limit";
     case RunStatus::unresolved_overlap: return "unresolved_overlap";
+    case RunStatus::time_limit: return "time_limit";
+    case RunStatus::interrupted: return "interrupted";
+    case RunStatus::non_finite: return "non_finite";
   }
   return "?";
 }
@@ -47,6 +50,7 @@ void EventOptions::validate() const {
     throw InputError("steps_per_period", format_value(steps_per_period), "must be at least 1");
   }
   if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
+  budget.validate();
   if (initial_state.size() != 0 && !initial_state.allFinite()) {
     throw InputError("initial_state", "", "must be finite");
   }
@@ -174,6 +178,7 @@ class EventDrivenRun final : public OdeFunctions {
 
   const dynamics::CoupledSystem& system_;
   const EventOptions& options_;
+  BudgetClock budget_{options_.budget};
   std::size_t count_;
   std::vector<Mode> modes_;
   std::vector<double> reopen_at_m_;  // gap beyond which a masked candidate is re-armed
@@ -560,6 +565,7 @@ void EventDrivenRun::update_hold_records(double t, const VectorXd& y) {
 }
 
 bool EventDrivenRun::step_once() {
+  if (budget_.exhausted(prev_t_, result_)) return false;
   const double t_end = system_.ground_motion().end_s();
   if (prev_t_ >= t_end) return false;  // an event exactly at the end: no stop time is left to obey
   const StepOutcome outcome = integrator_->step(t_end);
@@ -570,6 +576,7 @@ bool EventDrivenRun::step_once() {
   }
   const double t = outcome.t_s;
   VectorXd y = integrator_->state();
+  if (diverged(t, y, result_)) return false;
   auto interpolated = [&](double time) {
     VectorXd state(system_.state_size());
     integrator_->interpolate(time, state);

@@ -96,6 +96,8 @@ void HhtOptions::validate() const {
   if (!(history_interval_s > 0.0)) {
     throw InputError("history_interval_s", format_value(history_interval_s), "must be positive (s)");
   }
+  if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
+  budget.validate();
 }
 
 namespace {
@@ -159,6 +161,12 @@ class HhtRun {
   bool dipped_on_edge(const StepGap& step, double limit) const;
   /// Some candidate approaches within the tolerance band above its limit.
   bool closing_contact(const std::vector<double>& limits, const State& s) const;
+  bool out_of_steps(double t_s) {
+    if (trial_steps_ <= options_.max_steps) return false;
+    result_.status = RunStatus::step_limit;
+    result_.status_detail = fmt::format("more than {} trial steps by t = {} s", options_.max_steps, t_s);
+    return true;
+  }
   void accept(const State& from, const State& to);
   /// Counts every pair that sinks deeper than the tolerance at an accepted step end.
   void track_overlaps(const State& s);
@@ -385,10 +393,13 @@ RunResult HhtRun::run(const std::string& method) {
   State s = stepper_.at(motion.start_s(), y0.head(system_.dof()), y0.tail(system_.dof()));
   result_.start_s = s.t_s;
   recorder_.sample(s.t_s, first_order(s));
+  BudgetClock budget(options_.budget);
   while (s.t_s < t_end - 1e-9 * options_.dt_s) {
+    if (budget.exhausted(s.t_s, result_) || out_of_steps(s.t_s)) break;
     const double h = std::min(options_.dt_s, t_end - s.t_s);
     const State trial = stepper_.step(s, h);
     ++trial_steps_;
+    if (diverged(trial.t_s, first_order(trial), result_)) break;
     const std::vector<std::size_t> overlaps = new_overlaps(overlap_limits(s), s, trial);
     if (overlaps.empty()) {
       accept(s, trial);

@@ -141,13 +141,52 @@ expect_refusal "--restitution = 1.5" run "$scene" --restitution 1.5 --out "$work
 expect_refusal "--method" run "$scene" --method euler --out "$work/bad"
 expect_refusal "--rtol = 0" run "$scene" --rtol 0 --out "$work/bad"
 expect_refusal "no such scene file" run "$work/none.toml"
-expect_refusal "--dt = 0: the time step must be positive" run "$scene" --method hht --dt 0 --out "$work/bad"
+expect_refusal "--dt = 0: must lie in (0, 0.1\] s" run "$scene" --method hht --dt 0 --out "$work/bad"
 expect_refusal "--alpha = -0.5" run "$scene" --method hht --alpha -0.5 --out "$work/bad"
 expect_refusal "--halving" run "$scene" --method hht --halving sometimes --out "$work/bad"
 expect_refusal "--repeat" study "$scene" --repeat 0 --out "$work/bad"
 expect_refusal "building\[2\].storey_height_m = \[4.5, 3, 3" check "$work/no-levels.toml"
 expect_refusal "slab-to-column impacts are outside this model" run "$work/no-levels.toml" --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
+
+# Issue 15: absurd options are refused naming the option, the value and the range.
+expect_refusal "--gap = 1e+17: must lie in \[0, 10\] m" run "$scene" --gap 1e17 --out "$work/bad"
+expect_refusal "--dt = 100: must lie in (0, 0.1\] s" run "$scene" --method hht --dt 100 --out "$work/bad"
+expect_refusal "--rtol = 1e-300: must lie in \[1e-14, 0.1\]" run "$scene" --rtol 1e-300 --out "$work/bad"
+expect_refusal "--atol = 1e+300: must lie in \[1e-16, 0.001\]" run "$scene" --atol 1e300 --out "$work/bad"
+expect_refusal "--contact-tol = 10: must lie in (0, 0.01\] m" run "$scene" --method hht --contact-tol 10 --out "$work/bad"
+expect_refusal "--hold-rtol = 0.001: must lie in \[1e-14, 1e-06\]" run "$scene" --method exact --hold-rtol 1e-3 --out "$work/bad"
+# Work beyond the limits is refused before the run, with the estimate; the option lifts it.
+expect_refusal "--max-steps = 100: the run needs at least 24[0-9] steps" run "$scene" --method hht --max-steps 100 --out "$work/bad"
+expect_refusal "--max-steps = 10000000: the run needs at least 1.22e+10 steps" run "$scene" --method hht --dt 1e-9 --out "$work/bad"
+expect_refusal "--max-steps = 10000000: the run needs at least 2.44e+07 steps" run "$scene" --method hht --dt 5e-7 --out "$work/bad"
+expect_refusal "--max-history-values = 1000: history.csv would hold" run "$scene" --max-history-values 1000 --out "$work/bad"
+expect_refusal "--max-wall-time = 0: must be positive" run "$scene" --max-wall-time 0 --out "$work/bad"
+[ ! -e "$work/bad" ] || fail "a refused run left an output folder"
+
+# Output folders are checked before the run (exit 2, naming the option), never found unwritable after it.
+touch "$work/a-file"
+expect_refusal "--out = $work/a-file/sub: cannot create this folder" run "$scene" --out "$work/a-file/sub"
+expect_refusal "--out = /proc/pounding-out: cannot create this folder" run "$scene" --out /proc/pounding-out
+expect_refusal "--json = $work/a-file/modes.json: its folder" modes "$scene" --json "$work/a-file/modes.json"
+expect_refusal "--json = $work: is a folder" modes "$scene" --json "$work"
+expect_refusal "--out = $work/a-file/study" study "$scene" --quick --out "$work/a-file/study"
+
+# A scene's name is text, not a path: the default folder stays under out/.
+mkdir -p "$work/cwd"
+sed 's|^name = "paper"|name = "../../../../'"${work#/}"'/escaped"|; s|file = "../records/|file = "'"$source_dir"'/examples/records/|' \
+  "$scene" > "$work/escape.toml"
+(cd "$work/cwd" && "$pounding" run "$work/escape.toml" > /dev/null) || fail "run of the escaping name exited $?"
+[ ! -e "$work/escaped" ] || fail "a scene name wrote outside out/"
+ls "$work"/cwd/out/*escaped/summary.json > /dev/null 2>&1 || fail "no sanitised folder under out/: $(ls -R "$work/cwd")"
+
+# A run that ends early (here: its wall-time budget) still writes everything, with its status; exit 3.
+"$pounding" run "$scene" --max-wall-time 1e-9 --out "$work/budget" > /dev/null
+code=$?
+[ "$code" -eq 3 ] || fail "a run over its wall-time budget exited $code, expected 3"
+/usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['status']=='time_limit', s['status']" \
+  "$work/budget/summary.json" || fail "status time_limit not in summary.json"
+ls "$work"/budget/*.partial > /dev/null 2>&1 && fail "temporary .partial files left behind"
 
 echo "$((failures == 0 ? 1 : 0)) passed, $failures failed"
 [ "$failures" -eq 0 ]

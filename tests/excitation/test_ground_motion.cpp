@@ -109,3 +109,68 @@ BOOST_AUTO_TEST_CASE(BadProcessingOptionsNameTheirKey) {
   BOOST_CHECK_EXCEPTION(process_record(ramp(3, 0.01), spec), pounding::InputError,
                         [](const auto& e) { return e.key() == "excitation.start_s"; });
 }
+
+BOOST_AUTO_TEST_CASE(NonFiniteTimeIsRefusedWithoutReadingOutsideTheSamples) {
+  // A diverged solver asked for a_g(NaN): NaN passed every range test and read past the end.
+  const GroundMotion motion({0.0, 0.1, 0.3}, {0.0, 2.0, -2.0}, 0.0);
+  BOOST_CHECK_THROW(motion.accel_at(std::nan("")), NonFiniteTime);
+  BOOST_CHECK_THROW(motion.accel_at(INFINITY), NonFiniteTime);
+  BOOST_CHECK_THROW(motion.accel_at(-INFINITY), NonFiniteTime);
+}
+
+namespace {
+
+/// The InputError that processing `samples` with `spec` throws; fails the test if none is.
+pounding::InputError refusal(const RecordSamples& samples, const ExcitationSpec& spec) {
+  try {
+    process_record(samples, spec);
+  } catch (const pounding::InputError& error) {
+    return error;
+  }
+  BOOST_FAIL("no error");
+  return pounding::InputError("", "", "");
+}
+
+bool names(const pounding::InputError& e, const std::string& key, const std::string& value, const std::string& limit) {
+  const std::string text = e.what();
+  const bool ok = e.key() == key && text.find(value) != std::string::npos && text.find(limit) != std::string::npos;
+  if (!ok) BOOST_TEST_MESSAGE("unexpected message: " << text);
+  return ok;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(RecordTimesOutsideThePhysicalRangeAreRefused) {
+  RecordSamples negative{{-1.0, 0.0, 1.0}, {0, 1, 0}};
+  BOOST_TEST(names(refusal(negative, spec_in(AccelUnits::g)), "excitation.file", "-1", "[0, 3600] s"));
+  RecordSamples epoch{{0.0, 1e20}, {0, 1}};
+  BOOST_TEST(names(refusal(epoch, spec_in(AccelUnits::g)), "excitation.file", "1e+20", "[0, 3600] s"));
+  ExcitationSpec huge_dt = spec_in(AccelUnits::g);
+  huge_dt.dt_override_s = 1e306;
+  BOOST_TEST(names(refusal(ramp(3, 0.01), huge_dt), "excitation.dt_s", "1e+306", "(0, 1] s"));
+}
+
+BOOST_AUTO_TEST_CASE(DurationBeyondTheRecordIsRefused) {
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.duration_s = 1.0;  // the ramp ends at 0.1 s
+  BOOST_TEST(names(refusal(ramp(11, 0.01), spec), "excitation.duration_s", "1", "give at most that"));
+  spec.duration_s = 0.1;  // exactly the record: accepted
+  BOOST_TEST(process_record(ramp(11, 0.01), spec).end_s() == 0.1, tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(AbsurdScalingAndGravityAreRefused) {
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.scale_factor = 1e308;
+  BOOST_TEST(names(refusal(ramp(3, 0.01), spec), "excitation.scale_factor", "1e+308", "limit of 10 g"));
+  spec = spec_in(AccelUnits::g);
+  spec.g_mps2 = 1e308;
+  BOOST_TEST(names(refusal(ramp(3, 0.01), spec), "excitation.g_mps2", "1e+308", "[9, 10.5] m/s2"));
+  spec = spec_in(AccelUnits::g);
+  spec.direction_deg = 1e300;
+  BOOST_TEST(names(refusal(ramp(3, 0.01), spec), "excitation.direction_deg", "1e+300", "[-360, 360] deg"));
+  spec = spec_in(AccelUnits::g);
+  spec.scale_to_pga_g = 50.0;
+  BOOST_TEST(names(refusal(ramp(3, 0.01), spec), "excitation.scale_to_pga_g", "50", "(0, 10] g"));
+  spec = spec_in(AccelUnits::g);  // a record in cm/s² read as g peaks far above 10 g
+  BOOST_TEST(names(refusal(RecordSamples{{0, 1}, {0, 300}}, spec), "excitation.units", "300", "limit of 10 g"));
+}

@@ -146,3 +146,20 @@ BOOST_AUTO_TEST_CASE(ReadsTheShippedElCentroRecord) {
   BOOST_TEST(samples.accel[101] == -0.31882);  // the peak, at 2.02 s (PROVENANCE.md)
   BOOST_TEST(samples.time_s.back() == 31.16, tt::tolerance(1e-12));
 }
+
+BOOST_AUTO_TEST_CASE(HugeNptsIsRefusedBeforeAnyConversion) {
+  // NPTS = 1e30 once overflowed the conversion to an integer (undefined behaviour).
+  TempDir dir;
+  std::string header = kOlderHeader;
+  header.replace(header.find("5,"), 1, "1e30");
+  BOOST_TEST(mentions(error_of(dir.write("huge.AT2", header + "1 2 3 4 5\n"), at2()),
+                      {"huge.AT2", "line 4", "'1e30'", "limit of 10000000 samples"}));
+}
+
+BOOST_AUTO_TEST_CASE(OverlongHeaderLineIsRefusedBeforeTheRegex) {
+  // Found by fuzzing: a 10 kB header line kept std::regex backtracking for over 10 s.
+  TempDir dir;
+  const std::string header = "PEER\nev\nG\nNPTS= 5, DT= .01 SEC" + std::string(5000, ' ') + "x\n";
+  BOOST_TEST(mentions(error_of(dir.write("long.AT2", header + "1 2 3 4 5\n"), at2()),
+                      {"long.AT2", "line 4", "at most 200 characters"}));
+}

@@ -358,13 +358,15 @@ BOOST_AUTO_TEST_CASE(AnOverlapThatOpensAgainWithinTheStepIsStillFound) {
 }
 
 BOOST_AUTO_TEST_CASE(SlabsThatOverlapBrieflyInYCannotPassCornerByCorner) {
-  // A's slab [−10, 0] × [0, 10] flies at 1 m/s along x and −0.12 m/s along y towards a 10⁹ t
+  // A's slab [−10, 0] × [0, 10] flies at 1 m/s along x and −0.12 m/s along y towards a 10⁸ t
   // block [d, d + 10] × [9.99, 19.99], d = 0.0737 m: 1 cm of common y. The block's corner
   // (d, 9.99) meets A's face at t = d/1 = 0.0737 s, when A has slid 8.8 mm (the corner is still
   // on the face); by the step end (0.1 s) A has slid 12 mm and both corners are past each
-  // other's edge ends. Only the crossing on the interpolant shows the impact.
+  // other's edge ends. Only the crossing on the interpolant shows the impact. (Recoil ~10⁻⁸ of the
+  // impact velocity. Not 10⁹ t as elsewhere: this square slab's torsional storey stiffness,
+  // 2·10¹⁶ kN·m/rad, would exceed the range scenes are held to, docs/scene-format.md.)
   const double gap = 0.0737;
-  const auto system = testing::two_slabs({1.0, 1e4, 0.0}, testing::box(gap, 9.99, 10 + gap, 19.99), {1e9, 0.01, 0.9},
+  const auto system = testing::two_slabs({1.0, 1e4, 0.0}, testing::box(gap, 9.99, 10 + gap, 19.99), {1e8, 0.01, 0.9},
                                          gap, 0.2);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(system.state_size());
   y[system.dof() + system.floor_index(0, 1)] = 1.0;

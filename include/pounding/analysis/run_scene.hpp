@@ -26,6 +26,32 @@ solvers::IntegratorFactory integrator_factory(const SolverSettings& solver);
 /// The HHT-α options that scene.solver and scene.output describe.
 solvers::HhtOptions hht_options(const Scene& scene);
 
+/// What one run may cost (README, "Limits"): checked against an estimate before the run starts,
+/// and enforced while it runs (the run then ends with status step_limit or time_limit).
+struct RunLimits {
+  long max_steps = 10'000'000;           // integrator steps (hht: trial steps, halvings included)
+  double max_wall_time_s = 3600.0;       // wall-clock time of the run (s)
+  double max_history_values = 2e7;       // history.csv values (rows × columns): 2e7 ≈ 160 MB in memory
+  /// @throws InputError naming the field (limits.max_steps, ...) unless each is positive.
+  void validate() const;
+};
+
+/// What a run of the scene needs at least, from the scene alone (no integration).
+struct WorkEstimate {
+  int dof = 0;                   // both buildings
+  double duration_s = 0.0;       // simulated time
+  double history_rows = 0.0;     // regular samples (event rows come on top)
+  double history_columns = 0.0;
+  double min_steps = 0.0;        // hht: duration/Δt; event-driven: duration over the largest step allowed
+  double history_values() const { return history_rows * history_columns; }
+};
+
+WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& system);
+
+/// @throws InputError naming the limit (limits.max_steps, limits.max_history_values), the
+///   estimate and the limit, when the estimate exceeds it.
+void check_work(const WorkEstimate& estimate, const RunLimits& limits);
+
 /// A run together with what it was run on, for writers and printers.
 struct RunReport {
   std::string scene;
@@ -38,8 +64,9 @@ struct RunReport {
   solvers::RunResult result;
 };
 
-/// Integrates the scene with scene.solver (method, rtol, atol) and scene.output.
-/// @throws InputError for invalid settings; numerical trouble comes back in the status.
-RunReport run_scene(const Scene& scene);
+/// Integrates the scene with scene.solver (method, rtol, atol) and scene.output, within `limits`.
+/// @throws InputError for invalid settings or a run whose estimate exceeds the limits; numerical
+///   trouble, an exhausted budget or an interrupt come back in the status.
+RunReport run_scene(const Scene& scene, const RunLimits& limits = {});
 
 }  // namespace pounding::analysis

@@ -63,7 +63,7 @@ struct Scene {
   std::vector<contact::Level> levels() const;
 
   /// Moves building 2 along x so that the clear distance becomes `gap_m`.
-  /// @throws InputError (key `contact.gap_m`) if the gap is negative or not finite.
+  /// @throws InputError (key `contact.gap_m`) if the gap lies outside [0, 10] m.
   void set_gap(double gap_m);
 
   /// Checks each building, the contact and solver settings, and the pair: at least one level

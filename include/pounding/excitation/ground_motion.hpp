@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "pounding/excitation/record_reader.hpp"
@@ -13,6 +14,12 @@ namespace pounding::excitation {
 enum class AccelUnits { g, m_per_s2, cm_per_s2 };
 /// Parses "g", "m/s2", "cm/s2"; empty when the name is unknown.
 std::optional<AccelUnits> parse_accel_units(std::string_view name);
+
+// Physical ranges of the excitation (docs/scene-format.md lists them next to their keys).
+inline constexpr double kMaxRecordDuration_s = 3600.0;  // record times lie in [0, this]
+inline constexpr double kMaxSampleSpacing_s = 1.0;      // dt_s in (0, this]
+inline constexpr double kMaxPeakAccel_g = 10.0;         // processed peak |a_g|; recorded peaks stay below 5 g
+inline constexpr double kGravityRange_mps2[2] = {9.0, 10.5};  // g_mps2: Earth's 9.78…9.83, or 10 for hand checks
 
 /// How a record file becomes the excitation. Processing order: read, override the time step,
 /// cut [start, start + duration], convert to m/s², scale.
@@ -28,8 +35,15 @@ struct ExcitationSpec {
   double scale_factor = 1.0;             // plain multiplier (excludes scale_to_pga_g)
   double direction_deg = 0.0;            // β: angle of the shaking direction from +x towards +y
 
-  /// @throws InputError naming the `excitation.*` key and value.
+  /// @throws InputError naming the `excitation.*` key, its value and the range it must lie in.
   void validate() const;
+};
+
+/// Thrown by GroundMotion::accel_at for a NaN or infinite time: a solver that diverged, never
+/// bad input. Solvers end the run with a named status when they meet it.
+class NonFiniteTime : public std::domain_error {
+ public:
+  explicit NonFiniteTime(double t_s);
 };
 
 class GroundMotion {
@@ -38,6 +52,7 @@ class GroundMotion {
   GroundMotion(std::vector<double> time_s, std::vector<double> accel_mps2, double direction_rad);
 
   /// a_g(t) in m/s², linear between samples, 0 outside the record.
+  /// @throws NonFiniteTime if t_s is NaN or infinite (never reads outside the samples).
   double accel_at(double t_s) const;
 
   const std::vector<double>& time_s() const { return time_s_; }
@@ -57,7 +72,9 @@ class GroundMotion {
 };
 
 /// Reads, cuts, converts and scales the record of `spec` (spec.file must already be resolved).
-/// @throws InputError for an invalid spec, a bad record file, or a cut that leaves < 2 samples.
+/// @throws InputError for an invalid spec, a bad record file, times outside
+///   [0, kMaxRecordDuration_s], a duration_s beyond the record's end, or a processed peak above
+///   kMaxPeakAccel_g.
 GroundMotion load_ground_motion(const ExcitationSpec& spec);
 
 /// The same processing applied to samples already in memory (`spec.file` names them in errors).

@@ -15,6 +15,10 @@ enum class RecordFormat {
   single,    // acceleration values only, any number a line, equally spaced by a given dt
 };
 
+/// The most samples a record may hold (10 million: a 3-hour record at 1 kHz, 160 MB in memory).
+/// A larger count is a corrupt header or the wrong file, not an accelerogram.
+inline constexpr std::size_t kMaxRecordSamples = 10'000'000;
+
 /// Parses "peer-at2", "columns", "single"; empty when the name is unknown.
 std::optional<RecordFormat> parse_record_format(std::string_view name);
 
@@ -39,7 +43,7 @@ struct RecordSamples {
 /// CRLF line ends and a missing final newline are accepted.
 /// @throws InputError naming the file, the line (and field) and the offending text for: a missing
 ///   or empty file, text in a number field, NaN/inf, NPTS disagreeing with the values,
-///   non-positive dt, non-increasing times, a missing column.
+///   non-positive dt, non-increasing times, a missing column, more than kMaxRecordSamples values.
 RecordSamples read_record(const std::filesystem::path& file, const RecordReadOptions& options);
 
 }  // namespace pounding::excitation

@@ -13,7 +13,7 @@ namespace pounding::io {
 /// "frequency_hz", "dominant", "effective_mass_ratio": {"x", "y", "rz"}}]}]}
 nlohmann::json modes_json(const std::vector<analysis::BuildingSummary>& buildings);
 
-/// Writes `document` (indented) to `file`, creating its folder.
+/// Writes `document` (indented) to `file`, creating its folder; atomically (write_atomically).
 /// @throws std::runtime_error naming the file if it cannot be written.
 void write_json(const nlohmann::json& document, const std::filesystem::path& file);
 

@@ -11,7 +11,8 @@ namespace pounding::io {
 /// The whole report as JSON (keys carry units). See README.md, "Outputs of pounding run".
 nlohmann::json run_json(const analysis::RunReport& report);
 
-/// Writes the three files into `folder` (created if missing).
+/// Writes the three files into `folder` (created if missing), each atomically, summary.json
+/// last: a folder holding a summary.json holds the complete outputs of that run.
 /// @throws std::runtime_error naming a file that cannot be written.
 void write_run(const analysis::RunReport& report, const std::filesystem::path& folder);
 

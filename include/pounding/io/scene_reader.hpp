@@ -3,7 +3,9 @@
 // docs/scene-format.md.
 
 #include <filesystem>
+#include <cstdint>
 #include <optional>
+#include <string_view>
 
 #include "pounding/analysis/scene.hpp"
 
@@ -15,11 +17,20 @@ struct SceneOverrides {
   std::optional<double> restitution{};
 };
 
+/// The largest scene file read (1 MiB): a scene is a page of text; more is the wrong file.
+inline constexpr std::uintmax_t kMaxSceneBytes = 1 << 20;
+
 /// Reads, applies overrides and validates a scene. Relative record paths resolve against the
 /// scene file's folder, and the record file must exist (it is read later, by
 /// excitation::load_ground_motion).
 /// @throws InputError naming the file (with line where known), the key and the value for a
 ///   syntax error, an unknown, missing or mistyped key, or any rule of Scene::validate().
+///   A file over kMaxSceneBytes or not valid UTF-8 is refused before it is parsed.
 analysis::Scene read_scene(const std::filesystem::path& file, const SceneOverrides& overrides = {});
+
+/// read_scene() on text already in memory; `file` names it in errors and anchors relative
+/// record paths (the fuzz target's entry point).
+analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& file,
+                            const SceneOverrides& overrides = {});
 
 }  // namespace pounding::io

@@ -8,9 +8,19 @@
 #include <string>
 #include <vector>
 
+#include "pounding/input_error.hpp"
 #include "pounding/model/polygon.hpp"
 
 namespace pounding::model {
+
+/// The most storeys a building may have: the tallest buildings have 163; 200 storeys are 600
+/// DOF, whose dense modal analysis still takes well under a second.
+inline constexpr int kMaxStoreys = 200;
+
+/// The storey heights a scene may give (m), each storey's alone or one for all: beyond them a
+/// value is a typo or a unit mistake. Public so that the scene reader can refuse a single value
+/// under the key the user typed.
+inline constexpr Range kStoreyHeightRange{1.0, 20.0, "m"};
 
 /// A column between two floors, fixed at both ends. b is its size along x, h along y (m).
 struct Column {
@@ -47,8 +57,8 @@ struct BuildingDefinition {
   RayleighSpec damping;
 
   bool uses_columns() const { return storey_stiffness.empty(); }
-  /// @throws InputError naming the offending field (as the scene key, relative to the building)
-  /// and its value.
+  /// @throws InputError naming the offending field (as the scene key, relative to the building),
+  /// its value and, for a number outside its physical range, the range (docs/scene-format.md).
   void validate() const;
 };
 

@@ -9,6 +9,7 @@
 
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/run_budget.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::solvers {
@@ -39,6 +40,7 @@ struct EventOptions {
   /// A run with more events than this within one simulated second stops with event_limit.
   double max_events_per_s = 2000;
   long max_steps = 10'000'000;
+  RunBudget budget;                    // wall time; a run also stops when interrupted
   /// Largest step (s). 0: automatic, the shortest damped period among the modes that move some
   /// candidate's gap by more than overlap_allowance_m with their present amplitude, divided by
   /// steps_per_period (GapModeBound), re-evaluated after every step and event. So no gap rate

@@ -10,6 +10,7 @@
 #include <map>
 
 #include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/run_budget.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::solvers {
@@ -70,6 +71,8 @@ struct HhtOptions {
   Eigen::VectorXd initial_state;      // (q, q̇) at the record's start; empty: at rest
   std::vector<int> history_floors;    // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
+  long max_steps = 10'000'000;        // trial steps (halvings included) before step_limit
+  RunBudget budget;                   // wall time; a run also stops when interrupted
   /// @throws InputError naming the field (dt_s, alpha, contact_tolerance_m, max_halvings, ...).
   void validate() const;
 };

@@ -17,6 +17,9 @@ enum class RunStatus {
   event_limit,     // more events per simulated second than allowed: an unresolved accumulation
   step_limit,      // more internal steps than allowed
   unresolved_overlap,  // HHT: slabs sank into each other deeper than the contact tolerance; not trustworthy
+  time_limit,      // the run's wall-time budget was used up
+  interrupted,     // stopped by SIGINT/SIGTERM; the outputs hold everything up to end_s
+  non_finite,      // the state or time became NaN or infinite: the solution diverged
 };
 std::string_view to_string(RunStatus status);
 

@@ -1,0 +1,69 @@
+#include "pounding/io/output_files.hpp"
+
+#include <fmt/format.h>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+#include <unistd.h>
+
+#include "pounding/input_error.hpp"
+
+namespace pounding::io {
+
+void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write) {
+  std::filesystem::path partial = file;
+  partial += ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write " + file.string());
+    out.precision(17);
+    write(out);
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + file.string() + " (disk full?)");
+  }
+  std::error_code error;
+  std::filesystem::rename(partial, file, error);
+  if (error) throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(), error.message()));
+}
+
+std::filesystem::path require_writable_folder(const std::filesystem::path& folder, const std::string& option) {
+  const std::string value = folder.string();
+  std::error_code error;
+  std::filesystem::path created;  // the outermost missing ancestor, which create_directories makes
+  for (std::filesystem::path p = std::filesystem::absolute(folder, error).lexically_normal();
+       !p.empty() && !std::filesystem::exists(p, error) && p != p.parent_path(); p = p.parent_path()) {
+    created = p;
+  }
+  std::filesystem::create_directories(folder, error);
+  if (error) throw InputError(option, value, fmt::format("cannot create this folder: {}", error.message()));
+  if (!std::filesystem::is_directory(folder)) throw InputError(option, value, "is not a folder");
+  const std::filesystem::path probe = folder / fmt::format(".pounding-write-test-{}", ::getpid());
+  const bool writable = static_cast<bool>(std::ofstream(probe));
+  std::filesystem::remove(probe, error);
+  if (!writable) throw InputError(option, value, "cannot write files into this folder");
+  return created;
+}
+
+void require_writable_file(const std::filesystem::path& file, const std::string& option) {
+  if (std::filesystem::is_directory(file)) throw InputError(option, file.string(), "is a folder, not a file");
+  try {
+    require_writable_folder(file.has_parent_path() ? file.parent_path() : ".", option);
+  } catch (const InputError& error) {
+    throw InputError(option, file.string(), fmt::format("its folder {}: {}", error.value(), error.reason()));
+  }
+}
+
+std::string folder_name(std::string_view scene_name) {
+  constexpr std::size_t kMaxLength = 100;
+  std::string name;
+  for (char c : scene_name.substr(0, kMaxLength)) {
+    const bool safe = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+                      c == '_' || c == '.';
+    name += safe ? c : '_';
+  }
+  if (name.empty()) name.assign(1, '_');  // assign: GCC 12 warns (-Wrestrict, a false positive) on = "_"
+  if (name.front() == '.') name.front() = '_';  // neither "." nor ".." nor a hidden folder
+  return name;
+}
+
+}  // namespace pounding::io
