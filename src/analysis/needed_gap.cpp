@@ -196,12 +196,13 @@ void note_maxima(const FreeRun& run, double t, const VectorXd& y, const std::vec
 
 /// Integrates the free motion over the record, noting every maximum; samples the states every
 /// `interval_s` for the history.
-void integrate(const CoupledSystem& system, const Scene& scene, FreeRun& run, const std::vector<bool>& counted,
-               double interval_s, NeededGap& result, std::vector<VectorXd>& samples) {
+void integrate(const CoupledSystem& system, const NeededGapOptions& options, FreeRun& run,
+               const std::vector<bool>& counted, NeededGap& result, std::vector<VectorXd>& samples) {
+  const double interval_s = options.history_interval_s;
   solvers::CvodeSettings settings;
-  settings.method = scene.solver.method == "cvode-adams" ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
-  settings.rtol = scene.solver.rtol;
-  settings.atol = scene.solver.atol;
+  settings.method = options.adams ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
+  settings.rtol = options.rtol;
+  settings.atol = options.atol;
   const double t0 = system.ground_motion().start_s(), t_end = system.ground_motion().end_s();
   VectorXd y = VectorXd::Zero(system.state_size());
   solvers::CvodeIntegrator integrator(run, settings, t0, y);
@@ -256,14 +257,31 @@ void fill_history(const FreeRun& run, const std::vector<VectorXd>& samples, Need
 
 }  // namespace
 
-NeededGap needed_gap(const Scene& scene, const NeededGapOptions& options) {
-  if (!(options.history_interval_s > 0.0) || !std::isfinite(options.history_interval_s)) {
-    throw InputError("history_interval_s", format_value(options.history_interval_s), "must be positive (s)");
-  }
+void NeededGapOptions::validate() const {
+  auto positive = [](double value, const char* field) {
+    if (!(value > 0.0) || !std::isfinite(value)) throw InputError(field, format_value(value), "must be positive");
+  };
+  positive(rtol, "rtol");
+  positive(atol, "atol");
+  positive(history_interval_s, "history_interval_s");
+}
+
+NeededGap needed_gap(const Scene& scene) {
   const auto clock_start = std::chrono::steady_clock::now();
   const CoupledSystem system = build_system(scene);
+  NeededGap result = needed_gap(system, scene.contact.gap_m,
+                                {.adams = scene.solver.method == "cvode-adams",
+                                 .rtol = scene.solver.rtol,
+                                 .atol = scene.solver.atol});
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options) {
+  options.validate();
+  const auto clock_start = std::chrono::steady_clock::now();
   NeededGap result;
-  result.scene_gap_m = scene.contact.gap_m;
+  result.scene_gap_m = scene_gap_m;
   result.candidates = system.candidates();
   result.counted = counted_pairs(system);
   for (const contact::Level& level : system.levels()) {
@@ -276,9 +294,9 @@ NeededGap needed_gap(const Scene& scene, const NeededGapOptions& options) {
   result.rho = cqc_correlation(result.modes[0].period_s, result.modes[0].damping_ratio, result.modes[1].period_s,
                                result.modes[1].damping_ratio);
 
-  FreeRun run(system, scene.contact.gap_m, result.counted, facing_points(system, result.counted));
+  FreeRun run(system, scene_gap_m, result.counted, facing_points(system, result.counted));
   std::vector<VectorXd> samples;
-  integrate(system, scene, run, result.counted, options.history_interval_s, result, samples);
+  integrate(system, options, run, result.counted, result, samples);
   fill_history(run, samples, result);
 
   result.needed_gap_m = -std::numeric_limits<double>::infinity();

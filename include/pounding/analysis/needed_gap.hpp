@@ -16,6 +16,7 @@
 
 #include "pounding/analysis/scene.hpp"
 #include "pounding/contact/candidates.hpp"
+#include "pounding/dynamics/coupled_system.hpp"
 
 namespace pounding::analysis {
 
@@ -74,16 +75,24 @@ struct NeededGap {
 };
 
 struct NeededGapOptions {
+  bool adams = false;   // CVODE Adams instead of BDF
+  double rtol = 1e-8;
+  double atol = 1e-10;  // m, rad and their rates
   double history_interval_s = 0.01;
+  /// @throws InputError naming the field.
+  void validate() const;
 };
 
-/// One contact-free run of `scene` with CVODE (Adams if scene.solver.method is cvode-adams,
-/// else BDF) at scene.solver.rtol/atol, stopping at every maximum of every pair's touch gap and
-/// of every facing vertex's displacement towards the other building (root functions, located on
-/// CVODE's dense output to its root tolerance). The needed gap is as accurate as that run.
-/// @throws InputError for a bad scene or record (through build_system) or bad options;
-///   std::runtime_error if the integrator fails.
-NeededGap needed_gap(const Scene& scene, const NeededGapOptions& options = {});
+/// One contact-free run of `system` with CVODE from rest over its ground motion, stopping at
+/// every maximum of every pair's touch gap and of every facing vertex's displacement towards the
+/// other building (root functions, located on CVODE's dense output to its root tolerance). The
+/// needed gap is as accurate as that run. `scene_gap_m`: the clear gap the candidates' rest
+/// geometry has. @throws InputError for bad options; std::runtime_error if CVODE fails.
+NeededGap needed_gap(const dynamics::CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options);
+
+/// The same for a scene, with its solver's rtol/atol (Adams when its method is cvode-adams).
+/// @throws InputError for a bad scene or record (as build_system does).
+NeededGap needed_gap(const Scene& scene);
 
 /// A code rule against the needed gap: unconservative when it asks for less.
 struct RuleVerdict {
