@@ -49,6 +49,17 @@ struct StudyCommand {
   std::string out_dir;  // empty: out/<scene name>-study
 };
 
+struct GapCommand {
+  std::string scene;
+  std::optional<double> gap_m;
+  std::optional<double> rtol;
+  std::optional<double> atol;
+  int curve = 0;         // gaps of the severity curve; 0: none
+  unsigned threads = 0;  // for the curve; 0: every core
+  std::string out_dir;   // empty: out/<scene name>-gap
+};
+
+int run_gap(const GapCommand& command);  // in gap_command.cpp
 int run_modes(const ModesCommand& command);
 int run_study(const StudyCommand& command);
 int run_run(const RunCommand& command);

@@ -65,6 +65,18 @@ int main(int argc, char** argv) {
   study_app->add_flag("--quick", study.quick, "A short ladder: rtol 1e-6 and 1e-8, dt 0.05 and 0.01 s");
   study_app->add_option("--out", study.out_dir, "Output folder (default out/<scene name>-study)");
 
+  pounding::cli::GapCommand gap;
+  CLI::App* gap_app =
+      app.add_subcommand("gap", "The clear gap that prevents pounding, from one contact-free run, and the code rules");
+  add_scene_argument(*gap_app, gap.scene);
+  gap_app->add_option("--gap", gap.gap_m, "Clear gap of the scene (m); moves building 2 along x");
+  gap_app->add_option("--rtol", gap.rtol, "Relative tolerance of the run (default: the scene's)");
+  gap_app->add_option("--atol", gap.atol, "Absolute tolerance of the run, m and rad (default: the scene's)");
+  gap_app->add_option("--curve", gap.curve, "Also run N gaps from 0 towards the needed gap: the severity table")
+      ->check(CLI::Range(2, 1000));
+  gap_app->add_option("--threads", gap.threads, "Runs of --curve at a time (default: every core)");
+  gap_app->add_option("--out", gap.out_dir, "Output folder (default out/<scene name>-gap)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -76,6 +88,7 @@ int main(int argc, char** argv) {
     if (*check_app) return pounding::cli::run_check(check);
     if (*run_app) return pounding::cli::run_run(run);
     if (*study_app) return pounding::cli::run_study(study);
+    if (*gap_app) return pounding::cli::run_gap(gap);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

@@ -1,0 +1,123 @@
+#pragma once
+// The clear gap that prevents every contact, from one contact-free run. While no pair touches,
+// the motion does not depend on the gap, so each vertex–edge pair's gap is g(t; G) =
+// g(t; G₀) + (G − G₀) b(t), with b = ∂g/∂G (the struck edge's normal along x, signed so that
+// widening the gap opens it). The pair touches at t for the "touch gap" G(t) = G₀ − g(t; G₀)/b(t);
+// the needed gap is the largest touch gap over time and over every pair whose vertex lies on the
+// edge in the geometry of that touch gap (GapState::on_segment there, not at the scene's gap).
+// Beside it: the code rules ABS, SRSS and DDC from each building's peak displacement towards
+// the other. Units: m, s, rad.
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "pounding/analysis/scene.hpp"
+#include "pounding/contact/candidates.hpp"
+#include "pounding/dynamics/coupled_system.hpp"
+
+namespace pounding::analysis {
+
+/// The three code rules for one level (m): ABS δ₁ + δ₂, SRSS √(δ₁² + δ₂²), DDC √(δ₁² + δ₂² − 2ρδ₁δ₂).
+struct GapRules {
+  double abs_m = 0.0;
+  double srss_m = 0.0;
+  double ddc_m = 0.0;
+};
+
+/// @pre δ ≥ 0, ρ ∈ [−1, 1].
+GapRules gap_rules(double delta1_m, double delta2_m, double rho);
+
+/// CQC correlation coefficient of two modes (Der Kiureghian 1981), in (0, 1], 1 for equal modes.
+/// @pre periods and damping ratios positive.
+double cqc_correlation(double period1_s, double damping1, double period2_s, double damping2);
+
+struct LevelGap {
+  contact::Level level;
+  double needed_gap_m = 0.0;  // largest touch gap of the level's pairs; ≤ 0 if they never close
+  double t_s = 0.0;           // when
+  long candidate = -1;        // index into NeededGap::candidates of the governing pair (−1: none)
+  /// δ of building 1 and 2: the peak displacement (m, ≥ 0) of the facing edge's vertices towards
+  /// the other building (+x for building 1, −x for building 2), rotation included, and when.
+  std::array<double, 2> peak_towards_m{0.0, 0.0};
+  std::array<double, 2> peak_t_s{0.0, 0.0};
+  GapRules rules;
+};
+
+/// The first translational mode along x (the direction of the gap) of one building.
+struct GapMode {
+  int mode = 1;              // 1-based, longest period first
+  double period_s = 0.0;
+  double damping_ratio = 0.0;  // Rayleigh ratio at that mode
+};
+
+struct NeededGap {
+  double scene_gap_m = 0.0;
+  double needed_gap_m = 0.0;  // the largest over the levels
+  double t_s = 0.0;
+  int level = 0;             // 1-based level of the governing pair (0: no pair ever closes)
+  long candidate = -1;       // index into `candidates`
+  std::vector<contact::Candidate> candidates;  // the scene's (its gap and candidate margin)
+  std::vector<bool> counted;  // per candidate: false if widening the gap does not open it (b ≤ 0.1)
+  std::vector<LevelGap> levels;
+  std::array<GapMode, 2> modes;
+  double rho = 0.0;          // CQC coefficient of the two modes
+  GapRules rules;            // each rule's largest value over the levels
+  long extrema = 0;          // touch-gap maxima located (root returns on the pairs' rates)
+  long steps = 0;
+  double wall_time_s = 0.0;
+  /// Touch gap (m) of each level's governing pair, sampled every history_interval_s; one column
+  /// per level (NaN where the vertex is off the edge), times in history_t_s.
+  std::vector<double> history_t_s;
+  std::vector<std::vector<double>> history_touch_gap_m;
+};
+
+struct NeededGapOptions {
+  bool adams = false;   // CVODE Adams instead of BDF
+  double rtol = 1e-8;
+  double atol = 1e-10;  // m, rad and their rates
+  double history_interval_s = 0.01;
+  /// @throws InputError naming the field.
+  void validate() const;
+};
+
+/// One contact-free run of `system` with CVODE from rest over its ground motion, stopping at
+/// every maximum of every pair's touch gap and of every facing vertex's displacement towards the
+/// other building (root functions, located on CVODE's dense output to its root tolerance). The
+/// needed gap is as accurate as that run. `scene_gap_m`: the clear gap the candidates' rest
+/// geometry has. @throws InputError for bad options; std::runtime_error if CVODE fails.
+NeededGap needed_gap(const dynamics::CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options);
+
+/// The same for a scene, with its solver's rtol/atol (Adams when its method is cvode-adams).
+/// @throws InputError for a bad scene or record (as build_system does).
+NeededGap needed_gap(const Scene& scene);
+
+/// A code rule against the needed gap: unconservative when it asks for less.
+struct RuleVerdict {
+  const char* rule = "";       // "ABS", "SRSS", "DDC"
+  double value_m = 0.0;        // the rule's largest value over the levels
+  double margin_m = 0.0;       // value − needed gap: negative = unconservative by that much
+  bool unconservative() const { return margin_m < 0.0; }
+};
+std::vector<RuleVerdict> rule_verdicts(const NeededGap& gap);
+
+/// What a gap short of the needed one costs: one full event-driven run at that gap.
+struct SeverityPoint {
+  double gap_m = 0.0;
+  std::string status;              // the run's status ("completed", ...)
+  long impacts = 0;
+  double max_impulse_kNs = 0.0;
+  double max_approach_mps = 0.0;
+  double energy_lost_kJ = 0.0;     // Σ over impacts
+  double wall_time_s = 0.0;
+};
+
+/// Runs `scene` (its own solver settings) at the gaps k·needed_gap_m/count, k = 0 … count − 1,
+/// `threads` at a time (0: every core); `progress` is called after each run (from any thread,
+/// one call at a time). @throws InputError if count < 2 or needed_gap_m is not positive.
+std::vector<SeverityPoint> severity_curve(const Scene& scene, double needed_gap_m, int count, unsigned threads = 0,
+                                          const std::function<void(const SeverityPoint&)>& progress = {});
+
+}  // namespace pounding::analysis

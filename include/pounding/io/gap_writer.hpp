@@ -1,0 +1,25 @@
+#pragma once
+// Writes what `pounding gap` finds: gap.json (the needed gap, its pair and instant, the levels,
+// the modes and the code rules), gap.csv (one row a level), gap_history.csv (the touch gap of each
+// level's governing pair over time) and, with a severity curve, gap_curve.csv (one row a gap).
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "pounding/analysis/needed_gap.hpp"
+
+namespace pounding::io {
+
+/// Top-level keys: scene, scene_gap_m, needed_gap_m, level, floor (the level's floors of
+/// building 1 and 2), t_s, pair, levels, modes, rho, rules {abs_m, srss_m, ddc_m},
+/// unconservative, extrema, steps, wall_time_s, and curve when `curve` is not empty.
+nlohmann::json gap_json(const std::string& scene, const analysis::NeededGap& gap,
+                        const std::vector<analysis::SeverityPoint>& curve = {});
+
+/// Writes the files into `folder` (created if missing).
+/// @throws std::runtime_error naming a file that cannot be written.
+void write_gap(const std::string& scene, const analysis::NeededGap& gap,
+               const std::vector<analysis::SeverityPoint>& curve, const std::filesystem::path& folder);
+
+}  // namespace pounding::io

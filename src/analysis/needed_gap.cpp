@@ -1,0 +1,386 @@
+#include "pounding/analysis/needed_gap.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <atomic>
+
+#include "pounding/analysis/run_scene.hpp"
+#include "pounding/input_error.hpp"
+#include "pounding/model/modal.hpp"
+#include "pounding/solvers/cvode_integrator.hpp"
+#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/gap_mode_bound.hpp"
+
+namespace pounding::analysis {
+
+GapRules gap_rules(double delta1_m, double delta2_m, double rho) {
+  const double sum_of_squares = delta1_m * delta1_m + delta2_m * delta2_m;
+  return {delta1_m + delta2_m, std::sqrt(sum_of_squares),
+          std::sqrt(std::max(0.0, sum_of_squares - 2.0 * rho * delta1_m * delta2_m))};
+}
+
+double cqc_correlation(double period1_s, double damping1, double period2_s, double damping2) {
+  const double r = period1_s / period2_s;  // ω₂/ω₁
+  const double numerator = 8.0 * std::sqrt(damping1 * damping2) * (damping1 + r * damping2) * std::pow(r, 1.5);
+  const double denominator = (1.0 - r * r) * (1.0 - r * r) + 4.0 * damping1 * damping2 * r * (1.0 + r * r) +
+                             4.0 * (damping1 * damping1 + damping2 * damping2) * r * r;
+  return numerator / denominator;
+}
+
+namespace {
+
+using dynamics::CoupledSystem;
+using Eigen::VectorXd;
+/// A mode moving no gap by more than this (m) sets no step bound (as overlap_allowance_m does in
+/// the event-driven loop): it could shift the needed gap by about this much at most.
+constexpr double kGapResolution_m = 1e-9;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A pair counts when widening the gap opens it at rest at least this fast (b = ∂g/∂G): edges
+// within 84° of facing the other building. Edges along x (b = 0) do not move apart with the gap.
+constexpr double kMinimumOpeningRate = 0.1;
+
+Eigen::Matrix2d rotation(double phi) {
+  const double c = std::cos(phi), s = std::sin(phi);
+  return (Eigen::Matrix2d() << c, -s, s, c).finished();
+}
+
+/// +1 when building 2 owns the vertex (moving it along +x moves the vertex), −1 when it owns the edge.
+double shift_sign(const contact::Candidate& c) { return c.striking_building == 1 ? 1.0 : -1.0; }
+
+/// One pair seen at the gap where it just touches.
+struct Touch {
+  double gap_m = 0.0;     // the touch gap G(t)
+  double rate = 0.0;      // −b dG/dt: the pair's ġ in that geometry (negative while G rises)
+  bool on_segment = false;
+};
+
+/// A facing vertex of one building at one level: its displacement towards the other building.
+struct FacingPoint {
+  int building = 0;
+  int floor = 1;
+  std::size_t level_slot = 0;  // index into the level list
+  model::Point2 arm_rest;      // from the CM at rest (m)
+};
+
+class FreeRun final : public solvers::OdeFunctions {
+ public:
+  FreeRun(const CoupledSystem& system, double scene_gap_m, std::vector<bool> counted,
+          std::vector<FacingPoint> points)
+      : system_(system), scene_gap_m_(scene_gap_m), counted_(std::move(counted)), points_(std::move(points)) {}
+
+  int state_size() const override { return system_.state_size(); }
+  int root_count() const override { return static_cast<int>(counted_.size() + points_.size()); }
+  bool is_linear() const override { return true; }
+  void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override { system_.rhs(t, y, y_dot); }
+  void jacobian(double, const Eigen::Ref<const VectorXd>&, Eigen::Ref<Eigen::MatrixXd> jac) override {
+    jac = system_.jacobian();
+  }
+  // Every root falls through zero at a maximum: a pair's touch gap (−ġ at its touch geometry),
+  // a facing vertex's displacement towards the other building (its velocity that way).
+  void roots(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
+    for (std::size_t i = 0; i < counted_.size(); ++i) g[static_cast<Eigen::Index>(i)] = counted_[i] ? touch(y, i).rate : 1.0;
+    for (std::size_t k = 0; k < points_.size(); ++k) {
+      g[static_cast<Eigen::Index>(counted_.size() + k)] = towards(y, points_[k]).second;
+    }
+  }
+
+  Touch touch(const Eigen::Ref<const VectorXd>& y, std::size_t i) const {
+    const contact::Candidate& c = system_.candidates()[i];
+    const contact::GapState s = system_.gap(y, i);
+    const double sigma = shift_sign(c);
+    const int struck = c.struck_building;
+    const int q = system_.floor_index(struck, c.floors[struck]) + 2;
+    const double spin = y[system_.dof() + q];
+    const double b = sigma * s.normal.x();
+    const double b_dot = -sigma * spin * s.normal.y();
+    const double shift = -s.gap_m / b;  // G − G₀
+    const model::Point2 edge = rotation(y[q]) * (c.edge_end_rest - c.edge_start_rest);
+    const double param = s.segment_param + sigma * shift * edge.x() / edge.squaredNorm();
+    return {scene_gap_m_ + shift, -(s.gap_rate_mps + shift * b_dot),
+            param >= -contact::kOnSegmentTolerance && param <= 1.0 + contact::kOnSegmentTolerance};
+  }
+
+  /// Displacement (m) of the point towards the other building, and its rate (m/s).
+  std::pair<double, double> towards(const Eigen::Ref<const VectorXd>& y, const FacingPoint& p) const {
+    const int i = system_.floor_index(p.building, p.floor);
+    const double direction = p.building == 0 ? 1.0 : -1.0;
+    const model::Point2 arm = rotation(y[i + 2]) * p.arm_rest;
+    const double dx = y[i] + arm.x() - p.arm_rest.x();
+    const double dx_dot = y[system_.dof() + i] - y[system_.dof() + i + 2] * arm.y();
+    return {direction * dx, direction * dx_dot};
+  }
+
+  const std::vector<FacingPoint>& points() const { return points_; }
+
+ private:
+  const CoupledSystem& system_;
+  double scene_gap_m_;
+  std::vector<bool> counted_;
+  std::vector<FacingPoint> points_;
+};
+
+std::vector<bool> counted_pairs(const CoupledSystem& system) {
+  std::vector<bool> counted;
+  for (const contact::Candidate& c : system.candidates()) counted.push_back(shift_sign(c) * c.normal_rest.x() > kMinimumOpeningRate);
+  return counted;
+}
+
+/// The vertices of each building that take part in a counted pair at each level (the facing edge).
+std::vector<FacingPoint> facing_points(const CoupledSystem& system, const std::vector<bool>& counted) {
+  std::vector<FacingPoint> points;
+  auto add = [&](int building, int floor, std::size_t slot, const model::Point2& rest) {
+    const model::Point2 arm = rest - system.building(building).definition.centre_of_mass;
+    for (const FacingPoint& p : points) {
+      if (p.building == building && p.level_slot == slot && (p.arm_rest - arm).norm() < 1e-12) return;
+    }
+    points.push_back({building, floor, slot, arm});
+  };
+  for (std::size_t i = 0; i < counted.size(); ++i) {
+    if (!counted[i]) continue;
+    const contact::Candidate& c = system.candidates()[i];
+    const std::size_t slot = static_cast<std::size_t>(std::find_if(system.levels().begin(), system.levels().end(),
+                                                                    [&](const contact::Level& l) { return l.index == c.level; }) -
+                                                       system.levels().begin());
+    add(c.striking_building, c.floors[c.striking_building], slot, c.vertex_rest);
+    add(c.struck_building, c.floors[c.struck_building], slot, c.edge_start_rest);
+    add(c.struck_building, c.floors[c.struck_building], slot, c.edge_end_rest);
+  }
+  return points;
+}
+
+GapMode gap_mode(const model::Building& building) {
+  const std::vector<model::Mode> modes = model::modal_analysis(building);
+  std::size_t k = 0;
+  while (k < modes.size() && modes[k].dominant != model::ModeComponent::x) ++k;
+  if (k == modes.size()) k = 0;  // no mode dominated by x: the fundamental one
+  const double omega = modes[k].omega_rad_s;
+  const double ratio = building.rayleigh.a0_per_s / (2.0 * omega) + building.rayleigh.a1_s * omega / 2.0;
+  return {static_cast<int>(k) + 1, modes[k].period_s, ratio};
+}
+
+std::size_t level_slot(const std::vector<LevelGap>& levels, int level) {
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    if (levels[k].level.index == level) return k;
+  }
+  throw std::logic_error(fmt::format("candidate on unknown level {}", level));
+}
+
+/// Takes the pairs' touch gaps and the facing points' displacements at (t, y) into the result
+/// where they exceed what it holds: only the components in `found` (a root return), or all.
+void note_maxima(const FreeRun& run, double t, const VectorXd& y, const std::vector<bool>& counted,
+                 const std::vector<int>* found, NeededGap& result) {
+  const std::size_t n = counted.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!counted[i] || (found && (*found)[i] == 0)) continue;
+    if (found) ++result.extrema;
+    const Touch touch = run.touch(y, i);
+    LevelGap& level = result.levels[level_slot(result.levels, result.candidates[i].level)];
+    if (touch.on_segment && touch.gap_m > level.needed_gap_m) {
+      level.needed_gap_m = touch.gap_m;
+      level.t_s = t;
+      level.candidate = static_cast<long>(i);
+    }
+  }
+  for (std::size_t k = 0; k < run.points().size(); ++k) {
+    if (found && (*found)[n + k] == 0) continue;
+    const FacingPoint& p = run.points()[k];
+    const double towards = run.towards(y, p).first;
+    LevelGap& level = result.levels[p.level_slot];
+    if (towards > level.peak_towards_m[p.building]) {
+      level.peak_towards_m[p.building] = towards;
+      level.peak_t_s[p.building] = t;
+    }
+  }
+}
+
+/// Integrates the free motion over the record, noting every maximum; samples the states every
+/// `interval_s` for the history.
+void integrate(const CoupledSystem& system, const NeededGapOptions& options, FreeRun& run,
+               const std::vector<bool>& counted, NeededGap& result, std::vector<VectorXd>& samples) {
+  const double interval_s = options.history_interval_s;
+  solvers::CvodeSettings settings;
+  settings.method = options.adams ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
+  settings.rtol = options.rtol;
+  settings.atol = options.atol;
+  const double t0 = system.ground_motion().start_s(), t_end = system.ground_motion().end_s();
+  VectorXd y = VectorXd::Zero(system.state_size());
+  solvers::CvodeIntegrator integrator(run, settings, t0, y);
+  // As in the event-driven loop: a quarter of the shortest damped period among the modes that
+  // move a gap (so no rate changes sign twice in a step unseen), and never a step across a
+  // record sample (the forcing's slope changes there).
+  const solvers::GapModeBound bound(system, kGapResolution_m, 4.0);
+  integrator.set_max_step(bound.max_step_s(y));
+  const auto& knots = system.ground_motion().time_s();
+  auto set_next_stop = [&](double t) {
+    const auto next = std::upper_bound(knots.begin(), knots.end(), t + 1e-12 * std::max(1.0, std::abs(t)));
+    if (next != knots.end()) integrator.set_stop_time(*next);
+  };
+  set_next_stop(t0);
+  note_maxima(run, t0, y, counted, nullptr, result);
+  double next_sample = t0;
+  VectorXd state(system.state_size());
+  double t = t0;
+  while (t < t_end) {
+    const solvers::StepOutcome outcome = integrator.step(t_end);
+    if (outcome.kind == solvers::StepKind::failure) {
+      throw std::runtime_error(fmt::format("contact-free run failed after t = {} s: {}", t, outcome.failure));
+    }
+    t = outcome.t_s;
+    for (; next_sample <= t; next_sample = t0 + static_cast<double>(samples.size()) * interval_s) {
+      integrator.interpolate(next_sample, state);
+      samples.push_back(state);
+      result.history_t_s.push_back(next_sample);
+    }
+    if (outcome.kind == solvers::StepKind::root) {
+      const std::vector<int> found = integrator.roots_found();
+      note_maxima(run, t, integrator.state(), counted, &found, result);
+    }
+    if (outcome.kind == solvers::StepKind::stop_time) set_next_stop(t);
+    integrator.set_max_step(bound.max_step_s(integrator.state()));
+  }
+  note_maxima(run, t, integrator.state(), counted, nullptr, result);  // maxima still rising at the end
+  result.steps = integrator.counters().steps;
+}
+
+void fill_history(const FreeRun& run, const std::vector<VectorXd>& samples, NeededGap& result) {
+  for (const LevelGap& level : result.levels) {
+    std::vector<double> column;
+    for (const VectorXd& y : samples) {
+      if (level.candidate < 0) {
+        column.push_back(kNaN);
+        continue;
+      }
+      const Touch touch = run.touch(y, static_cast<std::size_t>(level.candidate));
+      column.push_back(touch.on_segment ? touch.gap_m : kNaN);
+    }
+    result.history_touch_gap_m.push_back(std::move(column));
+  }
+}
+
+}  // namespace
+
+void NeededGapOptions::validate() const {
+  auto positive = [](double value, const char* field) {
+    if (!(value > 0.0) || !std::isfinite(value)) throw InputError(field, format_value(value), "must be positive");
+  };
+  positive(rtol, "rtol");
+  positive(atol, "atol");
+  positive(history_interval_s, "history_interval_s");
+}
+
+NeededGap needed_gap(const Scene& scene) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const CoupledSystem system = build_system(scene);
+  NeededGap result = needed_gap(system, scene.contact.gap_m,
+                                {.adams = scene.solver.method == "cvode-adams",
+                                 .rtol = scene.solver.rtol,
+                                 .atol = scene.solver.atol});
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options) {
+  options.validate();
+  const auto clock_start = std::chrono::steady_clock::now();
+  NeededGap result;
+  result.scene_gap_m = scene_gap_m;
+  result.candidates = system.candidates();
+  result.counted = counted_pairs(system);
+  for (const contact::Level& level : system.levels()) {
+    LevelGap entry;
+    entry.level = level;
+    entry.needed_gap_m = -std::numeric_limits<double>::infinity();
+    result.levels.push_back(entry);
+  }
+  for (int b = 0; b < 2; ++b) result.modes[b] = gap_mode(system.building(b));
+  result.rho = cqc_correlation(result.modes[0].period_s, result.modes[0].damping_ratio, result.modes[1].period_s,
+                               result.modes[1].damping_ratio);
+
+  FreeRun run(system, scene_gap_m, result.counted, facing_points(system, result.counted));
+  std::vector<VectorXd> samples;
+  integrate(system, options, run, result.counted, result, samples);
+  fill_history(run, samples, result);
+
+  result.needed_gap_m = -std::numeric_limits<double>::infinity();
+  for (LevelGap& level : result.levels) {
+    level.rules = gap_rules(level.peak_towards_m[0], level.peak_towards_m[1], result.rho);
+    result.rules.abs_m = std::max(result.rules.abs_m, level.rules.abs_m);
+    result.rules.srss_m = std::max(result.rules.srss_m, level.rules.srss_m);
+    result.rules.ddc_m = std::max(result.rules.ddc_m, level.rules.ddc_m);
+    if (level.needed_gap_m > result.needed_gap_m) {
+      result.needed_gap_m = level.needed_gap_m;
+      result.t_s = level.t_s;
+      result.level = level.candidate >= 0 ? level.level.index : 0;
+      result.candidate = level.candidate;
+    }
+  }
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+std::vector<RuleVerdict> rule_verdicts(const NeededGap& gap) {
+  return {{"ABS", gap.rules.abs_m, gap.rules.abs_m - gap.needed_gap_m},
+          {"SRSS", gap.rules.srss_m, gap.rules.srss_m - gap.needed_gap_m},
+          {"DDC", gap.rules.ddc_m, gap.rules.ddc_m - gap.needed_gap_m}};
+}
+
+namespace {
+
+SeverityPoint severity_at(Scene scene, double gap_m) {
+  scene.set_gap(gap_m);
+  const RunReport report = run_scene(scene);
+  SeverityPoint point;
+  point.gap_m = gap_m;
+  point.status = std::string(solvers::to_string(report.result.status));
+  point.impacts = static_cast<long>(report.result.impacts.size());
+  for (const solvers::ImpactRecord& impact : report.result.impacts) {
+    point.max_impulse_kNs = std::max(point.max_impulse_kNs, impact.impulse_kNs);
+    point.max_approach_mps = std::max(point.max_approach_mps, impact.approach_velocity_mps);
+  }
+  point.energy_lost_kJ = report.result.energy.impact_loss_kJ;
+  point.wall_time_s = report.result.statistics.wall_time_s;
+  return point;
+}
+
+}  // namespace
+
+std::vector<SeverityPoint> severity_curve(const Scene& scene, double needed_gap_m, int count, unsigned threads,
+                                          const std::function<void(const SeverityPoint&)>& progress) {
+  if (count < 2) throw InputError("--curve", std::to_string(count), "needs at least 2 gaps");
+  if (!(needed_gap_m > 0.0) || !std::isfinite(needed_gap_m)) {
+    throw InputError("needed_gap_m", format_value(needed_gap_m), "must be positive: no gap short of it to try");
+  }
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<SeverityPoint> points(static_cast<std::size_t>(count));
+  std::vector<std::exception_ptr> errors(points.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  // Each worker takes the next gap; the runs share nothing but the (copied) scene.
+  auto worker = [&] {
+    for (std::size_t k = next++; k < points.size(); k = next++) {
+      try {
+        points[k] = severity_at(scene, needed_gap_m * static_cast<double>(k) / count);
+        if (progress) {
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          progress(points[k]);
+        }
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned w = 0; w < std::min<unsigned>(threads, static_cast<unsigned>(count)); ++w) pool.emplace_back(worker);
+  for (std::thread& thread : pool) thread.join();
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  return points;
+}
+
+}  // namespace pounding::analysis

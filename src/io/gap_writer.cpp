@@ -1,0 +1,126 @@
+#include "pounding/io/gap_writer.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+
+#include "pounding/io/json_report.hpp"
+
+namespace pounding::io {
+namespace {
+
+using nlohmann::json;
+
+json pair_json(const analysis::NeededGap& gap, long candidate) {
+  return candidate < 0 ? json(nullptr) : json(contact::describe(gap.candidates[static_cast<std::size_t>(candidate)]));
+}
+
+/// A level whose pairs never close has no finite needed gap: null, not −inf.
+json finite_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+json level_json(const analysis::NeededGap& gap, const analysis::LevelGap& l) {
+  return {{"level", l.level.index},
+          {"floors", {l.level.floors[0], l.level.floors[1]}},
+          {"elevation_m", l.level.elevation_m},
+          {"needed_gap_m", finite_or_null(l.needed_gap_m)},
+          {"t_s", l.candidate >= 0 ? json(l.t_s) : json(nullptr)},
+          {"pair", pair_json(gap, l.candidate)},
+          {"peak_towards_m", {l.peak_towards_m[0], l.peak_towards_m[1]}},
+          {"peak_towards_t_s", {l.peak_t_s[0], l.peak_t_s[1]}},
+          {"rules", {{"abs_m", l.rules.abs_m}, {"srss_m", l.rules.srss_m}, {"ddc_m", l.rules.ddc_m}}}};
+}
+
+std::ofstream open_for_writing(const std::filesystem::path& file) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  return out;
+}
+
+void write_levels_csv(const analysis::NeededGap& gap, const std::filesystem::path& file) {
+  std::ofstream out = open_for_writing(file);
+  out << "level,floor_b1,floor_b2,elevation_m,needed_gap_m,t_s,delta_b1_m,delta_b2_m,abs_m,srss_m,ddc_m,pair\n";
+  for (const analysis::LevelGap& l : gap.levels) {
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", l.level.index, l.level.floors[0],
+                       l.level.floors[1], l.level.elevation_m, l.needed_gap_m, l.t_s, l.peak_towards_m[0],
+                       l.peak_towards_m[1], l.rules.abs_m, l.rules.srss_m, l.rules.ddc_m,
+                       l.candidate >= 0 ? contact::describe(gap.candidates[static_cast<std::size_t>(l.candidate)]) : "");
+  }
+}
+
+void write_history_csv(const analysis::NeededGap& gap, const std::filesystem::path& file) {
+  std::ofstream out = open_for_writing(file);
+  out << "t_s";
+  for (const analysis::LevelGap& l : gap.levels) out << fmt::format(",touch_gap_level_{}_m", l.level.index);
+  out << '\n';
+  for (std::size_t k = 0; k < gap.history_t_s.size(); ++k) {
+    out << fmt::format("{}", gap.history_t_s[k]);
+    for (const auto& column : gap.history_touch_gap_m) out << fmt::format(",{}", column[k]);
+    out << '\n';
+  }
+}
+
+void write_curve_csv(const std::vector<analysis::SeverityPoint>& curve, const std::filesystem::path& file) {
+  std::ofstream out = open_for_writing(file);
+  out << "gap_m,status,impacts,max_impulse_kNs,max_approach_mps,energy_lost_kJ,wall_time_s\n";
+  for (const analysis::SeverityPoint& p : curve) {
+    out << fmt::format("{},{},{},{},{},{},{}\n", p.gap_m, p.status, p.impacts, p.max_impulse_kNs, p.max_approach_mps,
+                       p.energy_lost_kJ, p.wall_time_s);
+  }
+}
+
+}  // namespace
+
+json gap_json(const std::string& scene, const analysis::NeededGap& gap,
+              const std::vector<analysis::SeverityPoint>& curve) {
+  json levels = json::array();
+  for (const analysis::LevelGap& l : gap.levels) levels.push_back(level_json(gap, l));
+  json modes = json::array();
+  for (const analysis::GapMode& m : gap.modes) {
+    modes.push_back({{"mode", m.mode}, {"period_s", m.period_s}, {"damping_ratio", m.damping_ratio}});
+  }
+  json unconservative = json::array();
+  for (const analysis::RuleVerdict& v : analysis::rule_verdicts(gap)) {
+    if (v.unconservative()) unconservative.push_back({{"rule", v.rule}, {"short_by_m", -v.margin_m}});
+  }
+  const analysis::LevelGap* governing = nullptr;
+  for (const analysis::LevelGap& l : gap.levels) {
+    if (l.level.index == gap.level) governing = &l;
+  }
+  json document = {
+      {"scene", scene},
+      {"scene_gap_m", gap.scene_gap_m},
+      {"needed_gap_m", finite_or_null(gap.needed_gap_m)},
+      {"level", gap.level},
+      {"floor", governing ? json({governing->level.floors[0], governing->level.floors[1]}) : json(nullptr)},
+      {"t_s", governing ? json(gap.t_s) : json(nullptr)},
+      {"pair", pair_json(gap, gap.candidate)},
+      {"levels", levels},
+      {"modes", modes},
+      {"rho", gap.rho},
+      {"rules", {{"abs_m", gap.rules.abs_m}, {"srss_m", gap.rules.srss_m}, {"ddc_m", gap.rules.ddc_m}}},
+      {"unconservative", unconservative},
+      {"extrema", gap.extrema},
+      {"steps", gap.steps},
+      {"wall_time_s", gap.wall_time_s}};
+  if (!curve.empty()) {
+    json points = json::array();
+    for (const analysis::SeverityPoint& p : curve) {
+      points.push_back({{"gap_m", p.gap_m}, {"status", p.status}, {"impacts", p.impacts},
+                        {"max_impulse_kNs", p.max_impulse_kNs}, {"max_approach_mps", p.max_approach_mps},
+                        {"energy_lost_kJ", p.energy_lost_kJ}});
+    }
+    document["curve"] = points;
+  }
+  return document;
+}
+
+void write_gap(const std::string& scene, const analysis::NeededGap& gap,
+               const std::vector<analysis::SeverityPoint>& curve, const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  write_json(gap_json(scene, gap, curve), folder / "gap.json");
+  write_levels_csv(gap, folder / "gap.csv");
+  write_history_csv(gap, folder / "gap_history.csv");
+  if (!curve.empty()) write_curve_csv(curve, folder / "gap_curve.csv");
+}
+
+}  // namespace pounding::io

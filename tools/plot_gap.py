@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""Draws a `pounding gap` folder.
+
+Left: the needed gap of every common level over height, with the ABS, SRSS and DDC rules beside
+it. Middle: the touch gap of the governing pair over time (the clear gap at which that pair
+would just touch at each instant; its largest value is the needed gap, marked). Right, when the
+folder holds gap_curve.csv (`--curve N`): impacts and energy lost against the gap.
+
+    tools/plot_gap.py out/paper-gap [--out gap.png]
+"""
+import argparse
+import csv
+import json
+import math
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def number(text):
+    value = float(text)
+    return value if math.isfinite(value) else float("nan")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("folder", type=Path)
+    parser.add_argument("--out", type=Path, help="image file (default: FOLDER/gap.png)")
+    args = parser.parse_args()
+    summary_file = args.folder / "gap.json"
+    if not summary_file.is_file():
+        sys.exit(f"error: {summary_file} not found (is {args.folder} the output folder of `pounding gap`?)")
+    summary = json.load(summary_file.open())
+    levels = list(csv.DictReader((args.folder / "gap.csv").open()))
+    history = list(csv.DictReader((args.folder / "gap_history.csv").open()))
+    curve_file = args.folder / "gap_curve.csv"
+    curve = list(csv.DictReader(curve_file.open())) if curve_file.is_file() else []
+
+    fig, axes = plt.subplots(1, 3 if curve else 2, figsize=(17 if curve else 12, 5.5))
+    profile, closure = axes[0], axes[1]
+    z = [float(r["elevation_m"]) for r in levels]
+    profile.plot([number(r["needed_gap_m"]) for r in levels], z, "k-o", lw=2, label="needed (exact)")
+    for key, label, style in (("abs_m", "ABS", "r--s"), ("srss_m", "SRSS", "b--^"), ("ddc_m", "DDC", "g--v")):
+        profile.plot([float(r[key]) for r in levels], z, style, label=label)
+    profile.set_xlabel("gap [m]")
+    profile.set_ylabel("level elevation [m]")
+    profile.set_title(f"{summary['scene']}: needed gap {summary['needed_gap_m']:.4f} m")
+    profile.grid(alpha=0.3)
+    profile.legend()
+
+    level = summary["level"]
+    if level:
+        column = f"touch_gap_level_{level}_m"
+        t = [float(r["t_s"]) for r in history]
+        closure.plot(t, [number(r[column]) for r in history], "k-", lw=1)
+        closure.axhline(summary["needed_gap_m"], color="r", ls="--", label=f"needed gap {summary['needed_gap_m']:.4f} m")
+        closure.plot([summary["t_s"]], [summary["needed_gap_m"]], "ro")
+        closure.set_title(f"level {level}: {summary['pair']}", fontsize=9)
+        closure.legend()
+    closure.set_xlabel("t [s]")
+    closure.set_ylabel("touch gap of the governing pair [m]")
+    closure.grid(alpha=0.3)
+
+    if curve:
+        severity = axes[2]
+        gaps = [float(r["gap_m"]) for r in curve]
+        severity.plot(gaps, [int(r["impacts"]) for r in curve], "k-o", label="impacts")
+        severity.set_xlabel("gap [m]")
+        severity.set_ylabel("impacts")
+        energy = severity.twinx()
+        energy.plot(gaps, [float(r["energy_lost_kJ"]) for r in curve], "r-s", label="energy lost")
+        energy.set_ylabel("energy lost in impacts [kJ]", color="r")
+        severity.axvline(summary["needed_gap_m"], color="g", ls="--")
+        severity.set_title("severity below the needed gap")
+        severity.grid(alpha=0.3)
+
+    fig.tight_layout()
+    out = args.out or args.folder / "gap.png"
+    fig.savefig(out, dpi=120)
+    print(f"Wrote {out}")
+
+
+if __name__ == "__main__":
+    main()
