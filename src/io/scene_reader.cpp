@@ -1,5 +1,6 @@
 #include "pounding/io/scene_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
@@ -7,6 +8,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace pounding::io::detail {
 /// A failed internal check of toml++. @throws TomlCheckFailed always.
@@ -71,6 +73,34 @@ std::string node_text(const toml::node& node) {
   return text;
 }
 
+/// Levenshtein distance (insertions, deletions, substitutions), for "did you mean" hints.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+      diagonal = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitution});
+    }
+  }
+  return row[b.size()];
+}
+
+/// The name among `names` closest to `key`, if it is a plausible typo of it: at most two edits,
+/// and fewer than half the key's length (so "x" does not suggest "y").
+std::optional<std::string> closest_name(std::string_view key, const std::vector<std::string>& names) {
+  std::optional<std::string> best;
+  std::size_t best_distance = std::min<std::size_t>(3, (key.size() + 1) / 2);
+  for (const std::string& name : names) {
+    const std::size_t distance = edit_distance(key, name);
+    if (distance > 0 && distance < best_distance) best = name, best_distance = distance;
+  }
+  return best;
+}
+
 std::string located(const std::string& file, const toml::node& node) {
   const auto line = node.source().begin.line;
   return line > 0 ? fmt::format("{}:{}", file, line) : file;
@@ -93,10 +123,25 @@ class TableReader {
     return table_.get(key);
   }
   bool has(std::string_view key) const { return table_.contains(key); }
+  /// Keys of this table that no lookup has asked for yet (unknown so far).
+  std::vector<std::string> unasked_keys() const {
+    std::vector<std::string> keys;
+    for (const auto& [key, node] : table_) {
+      if (!used_.count(std::string(key.str()))) keys.emplace_back(key.str());
+    }
+    return keys;
+  }
 
   const toml::node& require(std::string_view key) {
     const toml::node* node = find(key);
-    if (!node) throw InputError(key_path(key), "missing", "this key is required", located(file_, table_));
+    if (!node) {
+      // A required key is looked up before unknown keys are reported: name the typo here.
+      const std::optional<std::string> typo = closest_name(key, unasked_keys());
+      throw InputError(key_path(key), "missing",
+                       typo ? fmt::format("this key is required (is \"{}\" a typo of it?)", *typo)
+                            : std::string("this key is required"),
+                       located(file_, table_));
+    }
     return *node;
   }
 
@@ -180,7 +225,11 @@ class TableReader {
   void finish() const {
     for (const auto& [key, node] : table_) {
       if (!used_.count(std::string(key.str()))) {
-        throw InputError(key_path(key.str()), node_text(node), "unknown key", located(file_, node));
+        const std::optional<std::string> known =
+            closest_name(key.str(), std::vector<std::string>(used_.begin(), used_.end()));
+        throw InputError(key_path(key.str()), node_text(node),
+                         known ? fmt::format("unknown key (did you mean \"{}\"?)", *known) : std::string("unknown key"),
+                         located(file_, node));
       }
     }
   }

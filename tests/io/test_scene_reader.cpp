@@ -127,6 +127,18 @@ BOOST_AUTO_TEST_CASE(UnknownKeyIsRefused) {
   BOOST_TEST(mentions(error_of(kScene + "\n[solvr]\nrtol = 1\n"), {"solvr", "unknown key"}));
 }
 
+BOOST_AUTO_TEST_CASE(ATypoNamesTheKeyItProbablyMeant) {
+  // A required key typed wrong is reported as missing, naming the typo; an optional one as
+  // unknown, naming the known key.
+  BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitutoin = 0.5")),
+                      {"contact.restitution", "missing", "\"restitutoin\" a typo"}));
+  BOOST_TEST(mentions(error_of(edited("frame_factor = 1.0", "frame_factor = 1.0\nframe_facter = 2")),
+                      {"building[1].frame_facter", "unknown key", "did you mean \"frame_factor\""}));
+  const std::string far_off = error_of(edited("frame_factor = 1.0", "frame_factor = 1.0\nbanana = 2"));
+  BOOST_TEST(mentions(far_off, {"building[1].banana", "unknown key"}));
+  BOOST_TEST(far_off.find("did you mean") == std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(MissingKeyIsRefused) {
   BOOST_TEST(mentions(error_of(edited("storey_height_m = 3.0\nslab = [[-10", "slab = [[-10")),
                       {"scene.toml", "building[1].storey_height_m", "missing", "required"}));
