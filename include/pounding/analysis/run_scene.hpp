@@ -65,8 +65,10 @@ struct RunReport {
 };
 
 /// Integrates the scene with scene.solver (method, rtol, atol) and scene.output, within `limits`.
+/// With a `sink` (must outlive the call) the history rows and impacts go to it as they come and
+/// the report's history keeps its columns only; without, the whole history is in the report.
 /// @throws InputError for invalid settings or a run whose estimate exceeds the limits; numerical
 ///   trouble, an exhausted budget or an interrupt come back in the status.
-RunReport run_scene(const Scene& scene, const RunLimits& limits = {});
+RunReport run_scene(const Scene& scene, const RunLimits& limits = {}, solvers::RunSink* sink = nullptr);
 
 }  // namespace pounding::analysis
