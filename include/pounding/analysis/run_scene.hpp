@@ -31,7 +31,8 @@ solvers::HhtOptions hht_options(const Scene& scene);
 struct RunLimits {
   long max_steps = 10'000'000;           // integrator steps (hht: trial steps, halvings included)
   double max_wall_time_s = 3600.0;       // wall-clock time of the run (s)
-  double max_history_values = 2e7;       // history.csv values (rows × columns): 2e7 ≈ 160 MB in memory
+  double max_history_values = 2e7;       // history.csv values (rows × columns): 2e7 ≈ 450 MB on disk (≈ 23 B a
+                                         // value), 160 MB in memory when the caller keeps the history (no sink)
   /// @throws InputError naming the field (limits.max_steps, ...) unless each is positive.
   void validate() const;
 };
