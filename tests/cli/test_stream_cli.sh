@@ -20,14 +20,15 @@ start_and_wait_for_lines() {
   "$pounding" run "$scene" --method cvode-bdf --out "$work/$1" > "$work/$1.txt" 2>&1 &
   pid=$!
   local waited=0
-  while [ "$(cat "$work/$1/$2" 2> /dev/null | wc -l)" -lt "$3" ] && [ $waited -lt 1200 ]; do
+  while [ "$(cat "$work/$1/$2" 2> /dev/null | wc -l)" -lt "$3" ] && [ $waited -lt 4000 ]; do
     kill -0 $pid 2> /dev/null || break
     sleep 0.05
     waited=$((waited + 1))
   done
 }
 
-# Killed once two impacts (at 36.3 s of the record, about 3 s into the run) are on disk.
+# Killed once two impacts (at 36.3 s of the record, about 3 s into a Release run; waiting at most
+# 200 s leaves room for the sanitizer build) are on disk.
 start_and_wait_for_lines killed impacts.csv.partial 3
 if kill -KILL "$pid" 2> /dev/null; then
   wait "$pid" 2> /dev/null
