@@ -7,6 +7,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/io/run_stream.hpp"
@@ -24,9 +25,10 @@ std::string contents(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// A fresh, empty folder for one check.
+/// A fresh, empty folder for one check (the pid keeps concurrent test runs apart).
 fs::path scratch(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / ("pounding-test-run-stream-" + name);
+  const fs::path folder =
+      fs::temp_directory_path() / ("pounding-test-run-stream-" + std::to_string(::getpid()) + "-" + name);
   fs::remove_all(folder);
   fs::create_directories(folder);
   return folder;
