@@ -73,6 +73,8 @@ BOOST_AUTO_TEST_CASE(streamed_files_equal_the_in_memory_writers) {
       for (const auto& entry : fs::directory_iterator(streamed)) {
         BOOST_TEST(entry.path().extension() != ".partial", "left behind: " << entry.path());
       }
+      fs::remove_all(in_memory);
+      fs::remove_all(streamed);
     }
   }
 }
@@ -100,4 +102,5 @@ BOOST_AUTO_TEST_CASE(an_unfinished_stream_leaves_partial_files_and_no_summary) {
 
   files.abandon();  // a refused run: the streamed files go
   BOOST_TEST(fs::is_empty(folder));
+  fs::remove(folder);
 }
