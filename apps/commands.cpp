@@ -17,6 +17,7 @@
 #include "pounding/input_error.hpp"
 #include "pounding/io/json_report.hpp"
 #include "pounding/io/output_files.hpp"
+#include "pounding/io/run_stream.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "pounding/io/scene_reader.hpp"
 #include "pounding/io/study_writer.hpp"
@@ -239,19 +240,23 @@ int run_run(const RunCommand& command) {
       command.out_dir.empty() ? std::filesystem::path("out") / io::folder_name(scene.name) : std::filesystem::path(command.out_dir);
   std::optional<analysis::RunReport> report;
   std::filesystem::path created;
+  // History and impacts reach the folder as they are computed: a run killed outright leaves them
+  // as .partial files (and no summary.json); an orderly end renames them and adds the summary.
+  io::StreamedRunFiles files(folder);
   try {
     scene.validate();
     limits.validate();
     created = io::require_writable_folder(folder, "--out");  // before the run, not after an hour of it
     const InterruptRequests interrupts;
-    report = analysis::run_scene(scene, limits);
+    report = analysis::run_scene(scene, limits, &files);
   } catch (const InputError& error) {
+    files.abandon();
     if (!created.empty()) std::filesystem::remove_all(created);  // a refused run leaves nothing
     const std::string option = option_for(error.key());
     if (option == error.key()) throw;
     throw InputError(option, error.value(), error.reason(), command.scene);
   }
-  io::write_run(*report, folder);
+  files.finish(*report);
   print_run_summary(*report, folder.string());
   return report->result.status == solvers::RunStatus::completed ? 0 : 3;
 }

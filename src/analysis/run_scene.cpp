@@ -121,7 +121,7 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
   }
 }
 
-RunReport run_scene(const Scene& scene, const RunLimits& limits) {
+RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSink* sink) {
   limits.validate();
   const dynamics::CoupledSystem system = build_system(scene);
   check_work(estimate_work(scene, system), limits);
@@ -132,11 +132,13 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits) {
     solvers::HhtOptions options = hht_options(scene);
     options.max_steps = limits.max_steps;
     options.budget = budget;
+    options.sink = sink;
     report.result = solvers::run_hht(system, options, "hht");
   } else {
     solvers::EventOptions options = event_options(scene);
     options.max_steps = limits.max_steps;
     options.budget = budget;
+    options.sink = sink;
     report.result = solvers::run_event_driven(system, options, integrator_factory(scene.solver), scene.solver.method);
   }
   return report;

@@ -5,6 +5,7 @@
 
 #include "pounding/io/json_report.hpp"
 #include "pounding/io/output_files.hpp"
+#include "run_csv.hpp"
 
 namespace pounding::io {
 namespace {
@@ -113,27 +114,6 @@ json statistics_json(const solvers::SolverStatistics& s, const std::vector<conta
           {"wall_time_s", s.wall_time_s}};
 }
 
-void write_impacts_csv(const std::vector<solvers::ImpactRecord>& impacts, std::ostream& out) {
-  out << "t_s,level,floor_b1,floor_b2,elevation_m,striking_building,vertex,struck_edge,point_x_m,point_y_m,"
-         "approach_velocity_mps,separation_velocity_mps,impulse_kNs,energy_lost_kJ,starts_sustained_contact\n";
-  for (const auto& i : impacts) {
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", i.t_s, i.level, i.floors[0], i.floors[1],
-                       i.elevation_m, i.striking_building, i.vertex,
-                       i.struck_edge, i.point.x(), i.point.y(), i.approach_velocity_mps,
-                       i.separation_velocity_mps, i.impulse_kNs, i.energy_lost_kJ, i.starts_hold ? 1 : 0);
-  }
-}
-
-void write_history_csv(const solvers::History& history, std::ostream& out) {
-  for (std::size_t c = 0; c < history.columns.size(); ++c) out << (c ? "," : "") << history.columns[c];
-  out << '\n';
-  for (std::size_t r = 0; r < history.time_s.size(); ++r) {
-    out << fmt::format("{}", history.time_s[r]);
-    for (double value : history.rows[r]) out << fmt::format(",{}", value);
-    out << '\n';
-  }
-}
-
 }  // namespace
 
 json run_json(const analysis::RunReport& report) {
@@ -183,13 +163,43 @@ json run_json(const analysis::RunReport& report) {
           {"statistics", statistics_json(r.statistics, report.candidates)}};
 }
 
+void write_impacts_header(std::ostream& out) {
+  out << "t_s,level,floor_b1,floor_b2,elevation_m,striking_building,vertex,struck_edge,point_x_m,point_y_m,"
+         "approach_velocity_mps,separation_velocity_mps,impulse_kNs,energy_lost_kJ,starts_sustained_contact\n";
+}
+
+void write_impact_row(const solvers::ImpactRecord& i, std::ostream& out) {
+  out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", i.t_s, i.level, i.floors[0], i.floors[1],
+                     i.elevation_m, i.striking_building, i.vertex, i.struck_edge, i.point.x(), i.point.y(),
+                     i.approach_velocity_mps, i.separation_velocity_mps, i.impulse_kNs, i.energy_lost_kJ,
+                     i.starts_hold ? 1 : 0);
+}
+
+void write_history_header(const std::vector<std::string>& columns, std::ostream& out) {
+  for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
+  out << '\n';
+}
+
+void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& out) {
+  out << fmt::format("{}", t_s);
+  for (double value : values) out << fmt::format(",{}", value);
+  out << '\n';
+}
+
 void write_run(const analysis::RunReport& report, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
   // summary.json goes last and an earlier run's goes first: whatever happens in between, a
   // summary never stands beside files from another run.
   std::filesystem::remove(folder / "summary.json");
-  write_atomically(folder / "history.csv", [&](std::ostream& out) { write_history_csv(report.result.history, out); });
-  write_atomically(folder / "impacts.csv", [&](std::ostream& out) { write_impacts_csv(report.result.impacts, out); });
+  const solvers::RunResult& r = report.result;
+  write_atomically(folder / "history.csv", [&](std::ostream& out) {
+    write_history_header(r.history.columns, out);
+    for (std::size_t k = 0; k < r.history.time_s.size(); ++k) write_history_row(r.history.time_s[k], r.history.rows[k], out);
+  });
+  write_atomically(folder / "impacts.csv", [&](std::ostream& out) {
+    write_impacts_header(out);
+    for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out);
+  });
   write_json(run_json(report), folder / "summary.json");
 }
 

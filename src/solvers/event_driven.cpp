@@ -73,7 +73,7 @@ class EventDrivenRun final : public OdeFunctions {
         reopen_at_m_(count_, options.reopen_gap_m),
         mask_floor_m_(count_, -options.overlap_allowance_m),
         hold_record_(count_, -1),
-        recorder_(system, options.history_floors, options.history_interval_s) {}
+        recorder_(system, options.history_floors, options.history_interval_s, options.sink) {}
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(3 * count_); }
@@ -407,6 +407,7 @@ void EventDrivenRun::resolve_floor(double t, VectorXd& y, int level, const std::
   const std::vector<bool> holding = settle_floor(t, y, contacts, solution);
   recorder_.add_impact_loss(
       record_floor_outcome(system_, t, contacts, solution, y_before, y, fired, holding, were_held, result_));
+  recorder_.stream_new_impacts(result_.impacts);
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
     if (were_held[k]) result_.sustained_contacts[hold_record_[i]].impulse_kNs += solution.impulses_kNs[k];

@@ -124,7 +124,7 @@ class HhtRun {
         options_(options),
         stepper_(system.mass_diagonal(), system.damping(), system.stiffness(),
                  [&system](double t, Eigen::Ref<VectorXd> f) { system.external_force(t, f); }, options.alpha),
-        recorder_(system, options.history_floors, options.history_interval_s),
+        recorder_(system, options.history_floors, options.history_interval_s, options.sink),
         touching_(system.candidates().size(), false),
         sunk_(system.candidates().size(), false),
         no_approach_mps_(1e-6 * options.contact_tolerance_m / options.dt_s) {}
@@ -312,6 +312,7 @@ State HhtRun::settle(const State& s) {
     const VectorXd before = y;
     const contact::ImpulseSolution solution = apply_impulses(system_, y, contacts);
     recorder_.add_impact_loss(record_floor_outcome(system_, s.t_s, contacts, solution, before, y, new_touches, {}, {}, result_));
+    recorder_.stream_new_impacts(result_.impacts);
     ++result_.statistics.restarts;
     ++result_.statistics.events;
     changed = true;

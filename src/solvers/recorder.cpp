@@ -32,8 +32,8 @@ std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate
 }
 
 Recorder::Recorder(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels,
-                   double history_interval_s)
-    : system_(system), interval_s_(history_interval_s) {
+                   double history_interval_s, RunSink* sink)
+    : system_(system), interval_s_(history_interval_s), sink_(sink) {
   for (int level : history_levels) history_levels_.push_back(system.levels().at(static_cast<std::size_t>(level - 1)));
   if (history_levels.empty()) history_levels_ = system.levels();
   for (const contact::Level& level : history_levels_) history_.levels.push_back(level.index);
@@ -94,13 +94,20 @@ void Recorder::append_row(double t, const dynamics::VectorXd& y) {
       for (const model::Point2& vertex : vertices_[b]) row[c++] = vertex_dx(vertex, centre, y[i], y[i + 2]);
     }
   }
-  history_.time_s.push_back(t);
-  history_.rows.push_back(std::move(row));
+  if (sink_ != nullptr) {
+    // Columns at the first row, not at construction: by then the run has passed its checks.
+    if (!last_row_t_s_) sink_->history_columns(history_.columns);
+    sink_->history_row(t, row);
+  } else {
+    history_.time_s.push_back(t);
+    history_.rows.push_back(std::move(row));
+  }
+  last_row_t_s_ = t;
 }
 
 void Recorder::sample(double t, const dynamics::VectorXd& y) {
   observe(t, y);
-  if (!history_.time_s.empty() && history_.time_s.back() == t) return;
+  if (last_row_t_s_ == t) return;
   append_row(t, y);
 }
 
@@ -128,7 +135,13 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
   observe(t_b, y_b);
 }
 
+void Recorder::stream_new_impacts(const std::vector<ImpactRecord>& impacts) {
+  if (sink_ == nullptr) return;
+  for (; impacts_streamed_ < impacts.size(); ++impacts_streamed_) sink_->impact(impacts[impacts_streamed_]);
+}
+
 void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result) {
+  stream_new_impacts(result.impacts);
   energy_.kinetic_kJ = system_.kinetic_energy(final_state);
   energy_.strain_kJ = system_.strain_energy(final_state);
   result.energy = energy_;

@@ -31,7 +31,8 @@ solvers::HhtOptions hht_options(const Scene& scene);
 struct RunLimits {
   long max_steps = 10'000'000;           // integrator steps (hht: trial steps, halvings included)
   double max_wall_time_s = 3600.0;       // wall-clock time of the run (s)
-  double max_history_values = 2e7;       // history.csv values (rows × columns): 2e7 ≈ 160 MB in memory
+  double max_history_values = 2e7;       // history.csv values (rows × columns): 2e7 ≈ 450 MB on disk (≈ 23 B a
+                                         // value), 160 MB in memory when the caller keeps the history (no sink)
   /// @throws InputError naming the field (limits.max_steps, ...) unless each is positive.
   void validate() const;
 };
@@ -65,8 +66,10 @@ struct RunReport {
 };
 
 /// Integrates the scene with scene.solver (method, rtol, atol) and scene.output, within `limits`.
+/// With a `sink` (must outlive the call) the history rows and impacts go to it as they come and
+/// the report's history keeps its columns only; without, the whole history is in the report.
 /// @throws InputError for invalid settings or a run whose estimate exceeds the limits; numerical
 ///   trouble, an exhausted budget or an interrupt come back in the status.
-RunReport run_scene(const Scene& scene, const RunLimits& limits = {});
+RunReport run_scene(const Scene& scene, const RunLimits& limits = {}, solvers::RunSink* sink = nullptr);
 
 }  // namespace pounding::analysis

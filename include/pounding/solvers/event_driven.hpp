@@ -11,6 +11,7 @@
 #include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/run_budget.hpp"
 #include "pounding/solvers/run_result.hpp"
+#include "pounding/solvers/run_sink.hpp"
 
 namespace pounding::solvers {
 
@@ -52,6 +53,9 @@ struct EventOptions {
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
   std::vector<int> history_floors;     // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
+  /// Receives the history rows and impacts as they come (the history then holds no rows); null:
+  /// the whole history is kept in the result. Must outlive the run.
+  RunSink* sink = nullptr;
 
   /// @throws InputError naming the field.
   void validate() const;

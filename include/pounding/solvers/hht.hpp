@@ -12,6 +12,7 @@
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/run_budget.hpp"
 #include "pounding/solvers/run_result.hpp"
+#include "pounding/solvers/run_sink.hpp"
 
 namespace pounding::solvers {
 
@@ -71,6 +72,9 @@ struct HhtOptions {
   Eigen::VectorXd initial_state;      // (q, q̇) at the record's start; empty: at rest
   std::vector<int> history_floors;    // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
+  /// Receives the history rows and impacts as they come (the history then holds no rows); null:
+  /// the whole history is kept in the result. Must outlive the run.
+  RunSink* sink = nullptr;
   long max_steps = 10'000'000;        // trial steps (halvings included) before step_limit
   RunBudget budget;                   // wall time; a run also stops when interrupted
   /// @throws InputError naming the field (dt_s, alpha, contact_tolerance_m, max_halvings, ...).

@@ -1,20 +1,26 @@
 #pragma once
 // Collects what a run reports from its states: peaks, the sampled history and the energy
-// integrals. Shared by every solution path so their outputs compare column for column.
+// integrals. Shared by every solution path so their outputs compare column for column. With a
+// RunSink the history rows and impacts go to the sink as they come and the history is not kept.
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/run_result.hpp"
+#include "pounding/solvers/run_sink.hpp"
 
 namespace pounding::solvers {
 
 class Recorder {
  public:
   /// History of the levels `history_levels` (1-based indices into system.levels(); empty: every
-  /// level), each as building 1's floor then building 2's. @pre indices valid.
-  Recorder(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels, double history_interval_s);
+  /// level), each as building 1's floor then building 2's. `sink` (may be null; must outlive the
+  /// recorder) receives the columns at the first row, then every row and impact; the history in
+  /// the result then has its columns and no rows. @pre indices valid.
+  Recorder(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels, double history_interval_s,
+           RunSink* sink = nullptr);
 
   /// A state the run passes through (step ends, samples, events): updates the peaks.
   void observe(double t, const dynamics::VectorXd& y);
@@ -28,10 +34,14 @@ class Recorder {
                const std::function<dynamics::VectorXd(double)>& at,
                const std::function<double(double, const dynamics::VectorXd&)>& constraint_power);
   void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
+  /// Passes the impacts appended to `impacts` since the last call to the sink (if any). Call it
+  /// once an event's records are final.
+  void stream_new_impacts(const std::vector<ImpactRecord>& impacts);
   /// HHT: energy a step's update removed (kJ), see HhtStepper::algorithmic_dissipation.
   void add_algorithmic_dissipation(double energy_kJ) { energy_.algorithmic_dissipation_kJ += energy_kJ; }
 
-  /// Moves the collected peaks, history and energy (with the final state's energies) into `result`.
+  /// Moves the collected peaks, history and energy (with the final state's energies) into
+  /// `result`, and streams any impact of `result` not streamed yet.
   void finish(const dynamics::VectorXd& final_state, RunResult& result);
 
  private:
@@ -45,6 +55,9 @@ class Recorder {
   std::vector<BuildingPeaks> peaks_;
   History history_;
   EnergyAudit energy_;
+  RunSink* sink_;
+  std::optional<double> last_row_t_s_;  // a row is written once per instant
+  std::size_t impacts_streamed_ = 0;
 };
 
 /// Vertices of `building`'s slab that take part in some candidate (as vertex or edge end).

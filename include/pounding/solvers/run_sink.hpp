@@ -1,0 +1,25 @@
+#pragma once
+// Where a run sends its history rows and impacts the moment they are final, so a caller can keep
+// them outside memory (the io layer streams them to files) and a killed run loses nothing it had
+// computed. The solver layer knows nothing about files; it only calls this interface.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::solvers {
+
+class RunSink {
+ public:
+  virtual ~RunSink() = default;
+  /// Once, before any row: the history's column names (`t_s` first, as History::columns).
+  virtual void history_columns(const std::vector<std::string>& columns) = 0;
+  /// One history row, in time order: t (s) and the values of columns[1..].
+  virtual void history_row(double t_s, const Eigen::VectorXd& values) = 0;
+  /// One impact, in the order RunResult::impacts lists them, once nothing will change it.
+  virtual void impact(const ImpactRecord& impact) = 0;
+};
+
+}  // namespace pounding::solvers
