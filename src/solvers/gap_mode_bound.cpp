@@ -1,6 +1,7 @@
 #include "pounding/solvers/gap_mode_bound.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -10,16 +11,33 @@ namespace pounding::solvers {
 
 namespace {
 
-/// The largest |∂g/∂η| of mode `shape` of building b over the candidates, at rest (m per unit η):
-/// the gap rows at rest are those of every small motion.
-double gap_per_unit(const dynamics::CoupledSystem& system, int b, const Eigen::VectorXd& shape) {
+/// The gap rows of every candidate at rest (those of every small motion): for each, the
+/// building-b row over its floor's (u, v, φ) is rows[i][b], the floor's index in q_b is floors[i][b].
+struct RestRows {
+  std::vector<std::array<Eigen::RowVector3d, 2>> rows;
+  std::vector<std::array<int, 2>> floors;
+};
+
+RestRows rest_rows(const dynamics::CoupledSystem& system) {
   const Eigen::VectorXd rest = Eigen::VectorXd::Zero(system.state_size());
-  double largest = 0.0;
+  RestRows result;
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     const contact::Candidate& c = system.candidates()[i];
     const contact::GapState s = system.gap(rest, i);
-    const Eigen::RowVector3d& row = c.striking_building == b ? s.striking_row : s.struck_row;
-    largest = std::max(largest, std::abs(row.dot(shape.segment<3>(3 * (c.floors[b] - 1)))));
+    std::array<Eigen::RowVector3d, 2> rows;
+    rows[c.striking_building] = s.striking_row;
+    rows[c.struck_building] = s.struck_row;
+    result.rows.push_back(rows);
+    result.floors.push_back(c.floors);
+  }
+  return result;
+}
+
+/// The largest |∂g/∂η| of mode `shape` of building b over the candidates (m per unit η).
+double gap_per_unit(const RestRows& rest, int b, const Eigen::VectorXd& shape) {
+  double largest = 0.0;
+  for (std::size_t i = 0; i < rest.rows.size(); ++i) {
+    largest = std::max(largest, std::abs(rest.rows[i][b].dot(shape.segment<3>(3 * (rest.floors[i][b] - 1)))));
   }
   return largest;
 }
@@ -29,11 +47,12 @@ double gap_per_unit(const dynamics::CoupledSystem& system, int b, const Eigen::V
 GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period)
     : resolution_m_(resolution_m), steps_per_period_(steps_per_period) {
   const double peak_accel_mps2 = system.ground_motion().peak_mps2();
+  const RestRows rest = rest_rows(system);
   double longest_period_s = 0.0;
   for (int b = 0; b < 2; ++b) {
     const model::Building& building = system.building(b);
     const int offset = system.floor_index(b, 1);
-    const Eigen::VectorXd mass = building.mass_diagonal;
+    const Eigen::VectorXd& mass = building.mass_diagonal;
     const Eigen::VectorXd influence = system.influence().segment(offset, building.dof());
     for (const model::Mode& mode : model::modal_analysis(building)) {
       longest_period_s = std::max(longest_period_s, mode.period_s);
@@ -46,7 +65,7 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
       m.damped_period_s = 2.0 * std::numbers::pi / (omega * std::sqrt(1.0 - zeta * zeta));
       longest_period_s = std::max(longest_period_s, m.damped_period_s);
       m.mass_shape = mass.cwiseProduct(mode.shape);
-      m.gap_per_unit_m = gap_per_unit(system, b, mode.shape);
+      m.gap_per_unit_m = gap_per_unit(rest, b, mode.shape);
       m.forced_amplitude = 2.0 * std::abs(m.mass_shape.dot(influence)) * peak_accel_mps2 / (omega * omega);
       if (m.gap_per_unit_m > 0.0) modes_.push_back(std::move(m));
     }
