@@ -102,12 +102,7 @@ std::string where(const Located& r) {
 
 void print_run_summary(const analysis::RunReport& report, const std::string& folder) {
   const solvers::RunResult& r = report.result;
-  const auto& solver = report.solver;
-  const std::string settings =
-      r.method == "hht"     ? fmt::format("dt {} s, alpha {}, contact tolerance {} m, event location {}", solver.dt_s,
-                                          solver.alpha, solver.contact_tolerance_m, solver.event_location)
-      : r.method == "exact" ? fmt::format("held stretches at rtol {}", solver.hold_rtol)
-                            : fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
+  const std::string settings = analysis::describe_used_settings(report.used);
   fmt::print("Run '{}' with {} ({}), gap {} m, k = {}: {}{}\n", report.scene, r.method, settings, report.gap_m,
              report.restitution, solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
   std::map<int, int> by_level;
@@ -166,12 +161,15 @@ void print_run_summary(const analysis::RunReport& report, const std::string& fol
 
 }  // namespace
 
-/// The command-line options of `run` replace their scene keys.
+/// The command-line options of `run` replace their scene keys. `--method` keeps the file's keys
+/// its method uses and lists the others as not used (the file's keys were checked against the
+/// file's method); the options themselves are checked against the method run (Scene::validate).
 void apply_run_options(const RunCommand& command, analysis::SolverSettings& solver) {
-  if (command.method) solver.method = *command.method;
+  if (command.method) solver = analysis::with_method(solver, *command.method);
   if (command.order) solver.order = *command.order;
   if (command.rtol) solver.rtol = *command.rtol;
   if (command.atol) solver.atol = *command.atol;
+  if (command.newton) solver.newton = *command.newton;
   if (command.dt_s) solver.dt_s = *command.dt_s;
   if (command.alpha) solver.alpha = *command.alpha;
   if (command.contact_tolerance_m) solver.contact_tolerance_m = *command.contact_tolerance_m;
@@ -179,6 +177,9 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
   if (command.event_location) solver.event_location = *command.event_location;
   if (command.hold_rtol) solver.hold_rtol = *command.hold_rtol;
   if (command.halving) {
+    if (!analysis::applies(analysis::method_info(solver.method), analysis::Setting::event_location)) {
+      throw InputError("--halving", *command.halving, fmt::format("does not apply to method {}", solver.method));
+    }
     if (*command.halving != "on" && *command.halving != "off") {
       throw InputError("--halving", *command.halving, "expected on or off");
     }
@@ -189,13 +190,16 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
 /// The option that sets a [solver] key or a run limit, for error messages about a value given on
 /// the command line.
 std::string option_for(const std::string& key) {
-  static const std::map<std::string, std::string> kOptions = {
-      {"limits.max_steps", "--max-steps"}, {"limits.max_wall_time_s", "--max-wall-time"},
-      {"limits.max_history_values", "--max-history-values"},
-      {"solver.method", "--method"}, {"solver.order", "--order"}, {"solver.rtol", "--rtol"},
-      {"solver.atol", "--atol"}, {"solver.dt_s", "--dt"}, {"solver.alpha", "--alpha"},
-      {"solver.contact_tolerance_m", "--contact-tol"}, {"solver.max_halvings", "--max-halvings"},
-      {"solver.event_location", "--event-location"}, {"solver.hold_rtol", "--hold-rtol"}};
+  static const std::map<std::string, std::string> kOptions = [] {
+    std::map<std::string, std::string> options = {{"limits.max_steps", "--max-steps"},
+                                                  {"limits.max_wall_time_s", "--max-wall-time"},
+                                                  {"limits.max_history_values", "--max-history-values"},
+                                                  {"solver.method", "--method"}};
+    for (const analysis::SettingSpec& s : analysis::setting_specs()) {
+      options["solver." + std::string(s.key)] = std::string(s.option);
+    }
+    return options;
+  }();
   const auto found = kOptions.find(key);
   return found != kOptions.end() ? found->second : key;
 }
@@ -234,7 +238,11 @@ class InterruptRequests {
 
 int run_run(const RunCommand& command) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
-  apply_run_options(command, scene.solver);
+  try {
+    apply_run_options(command, scene.solver);
+  } catch (const InputError& error) {
+    throw InputError(option_for(error.key()), error.value(), error.reason(), command.scene);
+  }
   const analysis::RunLimits limits = run_limits(command);
   const std::filesystem::path folder =
       command.out_dir.empty() ? std::filesystem::path("out") / io::folder_name(scene.name) : std::filesystem::path(command.out_dir);
@@ -265,10 +273,7 @@ int run_study(const StudyCommand& command) {
   const analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m});
   analysis::StudyOptions options;
   options.repeat = command.repeat;
-  if (command.quick) {
-    options.rtols = {1e-6, 1e-8};
-    options.dts_s = {0.05, 0.01};
-  }
+  options.quick = command.quick;
   options.validate();
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");
@@ -316,7 +321,8 @@ int run_check(const CheckCommand& command) {
   const analysis::Scene scene =
       io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
   const auto buildings = analysis::summarise_buildings(scene);
-  const excitation::GroundMotion motion = excitation::load_ground_motion(scene.excitation);
+  const dynamics::CoupledSystem system = analysis::build_system(scene);
+  const excitation::GroundMotion& motion = system.ground_motion();
 
   fmt::print("Scene '{}' ({}) is valid.\n", scene.name, scene.file.string());
   int total_dof = 0;
@@ -344,7 +350,8 @@ int run_check(const CheckCommand& command) {
   fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
              candidates.size());
   for (const auto& c : candidates) fmt::print("  level {}: {}\n", c.level, contact::describe(c));
-  fmt::print("Solver: {}, rtol {}, atol {} (m, rad)\n", scene.solver.method, scene.solver.rtol, scene.solver.atol);
+  const analysis::UsedSettings used = analysis::resolve(scene.solver, &system);
+  fmt::print("Solver: {} ({}): {}\n", scene.solver.method, used.method->description, analysis::describe_used_settings(used));
   return 0;
 }
 

@@ -64,7 +64,7 @@ int run_gap(const GapCommand& command) {
   }
   const analysis::NeededGap gap = analysis::needed_gap(scene);
   fmt::print("Needed gap of '{}' (contact-free run, CVODE rtol {:g}; {} maxima located, {} steps, {:.3f} s):\n",
-             scene.name, scene.solver.rtol, gap.extrema, gap.steps, gap.wall_time_s);
+             scene.name, analysis::resolve(scene.solver).rtol, gap.extrema, gap.steps, gap.wall_time_s);
   if (gap.candidate < 0) {
     fmt::print("  no vertex-edge pair ever approaches: any gap prevents contact\n");
   } else {
