@@ -106,7 +106,7 @@ BOOST_AUTO_TEST_CASE(ValidSceneIsReadCompletely) {
   BOOST_TEST(scene.excitation.file == c.dir.path() / "record.txt");  // relative to the scene
   BOOST_TEST(scene.levels().size() == 2u);
   BOOST_TEST(!scene.solver.rtol.has_value());  // not given: the method's default is used
-  BOOST_TEST(analysis::resolve(scene.solver).rtol == 1e-8);
+  BOOST_TEST(pounding::analysis::resolve(scene.solver).rtol == 1e-8);
 }
 
 BOOST_AUTO_TEST_CASE(GapOverrideMovesBuildingTwoAlongX) {
