@@ -13,6 +13,10 @@ struct ModesCommand {
   int count = 6;          // modes printed per building
 };
 
+struct MethodsCommand {
+  bool json = false;  // the registry as JSON on stdout (for scripts)
+};
+
 struct CheckCommand {
   std::string scene;
   std::optional<double> gap_m;
@@ -65,5 +69,6 @@ int run_modes(const ModesCommand& command);
 int run_study(const StudyCommand& command);
 int run_run(const RunCommand& command);
 int run_check(const CheckCommand& command);
+int run_methods(const MethodsCommand& command);
 
 }  // namespace pounding::cli

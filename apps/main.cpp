@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
   modes_app->add_option("--count", modes.count, "Modes printed per building")
       ->capture_default_str()->check(CLI::PositiveNumber);
 
+  pounding::cli::MethodsCommand methods;
+  CLI::App* methods_app = app.add_subcommand("methods", "The solution paths and the settings each uses");
+  methods_app->add_flag("--json", methods.json, "As JSON (name, description, settings, study ladder and plot styles)");
+
   pounding::cli::CheckCommand check;
   CLI::App* check_app = app.add_subcommand("check", "Validate a scene and print what it describes");
   add_scene_argument(*check_app, check.scene);
@@ -89,6 +93,7 @@ int main(int argc, char** argv) {
   try {
     if (*modes_app) return pounding::cli::run_modes(modes);
     if (*check_app) return pounding::cli::run_check(check);
+    if (*methods_app) return pounding::cli::run_methods(methods);
     if (*run_app) return pounding::cli::run_run(run);
     if (*study_app) return pounding::cli::run_study(study);
     if (*gap_app) return pounding::cli::run_gap(gap);

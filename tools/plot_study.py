@@ -10,6 +10,7 @@ which includes the exact path's linearised holds (its floor is marked).
 """
 import argparse
 import csv
+import json
 import sys
 from pathlib import Path
 
@@ -18,11 +19,15 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-STYLES = {
-    "cvode-bdf": ("tab:blue", "o"), "cvode-adams": ("tab:cyan", "s"), "arkode-erk": ("tab:green", "^"),
-    "arkode-dirk": ("tab:olive", "v"), "hht-halving": ("tab:red", "D"), "hht-end-of-step": ("tab:orange", "x"),
-    "hht-interpolate": ("tab:purple", "P"),
-}
+
+
+def styles(folder):
+    """Colour and marker of each study line, as the method registry (src/analysis/methods.cpp)
+    wrote them into study.json."""
+    study_json = folder / "study.json"
+    if not study_json.is_file():
+        return {}
+    return {label: (s["colour"], s["marker"]) for label, s in json.loads(study_json.read_text()).get("styles", {}).items()}
 
 
 def main():
@@ -34,11 +39,12 @@ def main():
     if not study_file.is_file():
         sys.exit(f"error: {study_file} not found (is {args.folder} the output folder of `pounding study`?)")
     rows = list(csv.DictReader(study_file.open()))
+    style_of = styles(args.folder)
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5.5))
     for method in dict.fromkeys(r["method"] for r in rows):
         mine = sorted((r for r in rows if r["method"] == method), key=lambda r: float(r["run_time_s"]))
-        colour, marker = STYLES.get(method, ("black", "."))
+        colour, marker = style_of.get(method, ("black", "."))
         times = [float(r["run_time_s"]) for r in mine]
         for axis, key in ((left, "impact_time_error_before_hold_s"), (right, "history_u_error_m")):
             errors = [max(float(r[key]), 1e-16) for r in mine]

@@ -363,9 +363,8 @@ std::string option_help(Setting setting) {
 }
 
 std::string methods_help() {
-  std::vector<std::string> lines;
-  for (const MethodInfo& info : kMethods) lines.push_back(fmt::format("{}: {}", info.name, info.description));
-  return fmt::format("Solution path, default {}. {}", kMethods.front().name, fmt::join(lines, "; "));
+  return fmt::format("Solution path: {} (default {}; `pounding methods` describes each)", method_names(),
+                     kMethods.front().name);
 }
 
 ComponentAtol component_atol(const dynamics::CoupledSystem& system, double atol_m) {

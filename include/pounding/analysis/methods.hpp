@@ -167,7 +167,7 @@ std::vector<SettingEntry> used_entries(const UsedSettings& used);
 std::string describe_used_settings(const UsedSettings& used);
 /// Text for `--help`: the option's meaning, its default and the methods it applies to.
 std::string option_help(Setting setting);
-/// Text for `--help` of --method: each name with its description.
+/// Text for `--help` of --method: the names and the default.
 std::string methods_help();
 
 }  // namespace pounding::analysis

@@ -21,7 +21,7 @@ struct ArkodeSettings {
   int order = 0;  // 0: the default of the method
   NewtonSolver newton_solver = NewtonSolver::second_order;  // DIRK only
   /// Per state component (ARKStepSVtolerances); empty: atol for every one. @pre size 0 or the state's.
-  Eigen::VectorXd atol_vector;
+  Eigen::VectorXd atol_vector{};
 };
 
 /// @pre order 0 or one the method offers (analysis::SolverSettings::validate() checks user input).

@@ -23,7 +23,7 @@ struct CvodeSettings {
   double atol = 1e-10;   // every component (m, rad and their rates) unless atol_vector is set
   NewtonSolver newton_solver = NewtonSolver::second_order;
   /// Per state component (CVodeSVtolerances); empty: atol for every one. @pre size 0 or the state's.
-  Eigen::VectorXd atol_vector;
+  Eigen::VectorXd atol_vector{};
 };
 
 class CvodeIntegrator final : public SundialsIntegrator {
