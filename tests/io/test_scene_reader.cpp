@@ -378,6 +378,16 @@ BOOST_AUTO_TEST_CASE(AbsurdContactSolverAndOutputValuesNameTheirRange) {
                       {"output.history_floors[3] = 1", "listed twice"}));
 }
 
+BOOST_AUTO_TEST_CASE(ASolverKeyTheFilesMethodDoesNotUseIsRefused) {
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\nmethod = \"hht\"\nrtol = 1e-10\n"),
+                      {"scene.toml", "solver.rtol = 1e-10", "does not apply to method hht"}));
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\ndt_s = 0.01\n"), {"solver.dt_s = 0.01", "method cvode-bdf"}));
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\nmethod = \"arkode-erk\"\nnewton = \"dense\"\n"),
+                      {"solver.newton = \"dense\"", "does not apply to method arkode-erk"}));
+  Case ok(kScene + "[solver]\nmethod = \"hht\"\ndt_s = 0.01\n");
+  BOOST_TEST(read_scene(ok.file).solver.dt_s.value_or(0.0) == 0.01);
+}
+
 BOOST_AUTO_TEST_CASE(HoldRtolOfTheExactPathNamesItsRange) {
   Case ok(kScene + "[solver]\nmethod = \"exact\"\nhold_rtol = 1e-10\n");
   BOOST_TEST(read_scene(ok.file).solver.hold_rtol.value_or(0.0) == 1e-10);
