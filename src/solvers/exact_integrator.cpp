@@ -56,6 +56,7 @@ void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   state_ = y;
   t_s_ = t;
   segment_ = segment_from(t, inverse_rows_ * y.cast<Complex>(), t + max_step_s_);
+  forcing_fitted_to_s_ = std::numeric_limits<double>::quiet_NaN();  // fitted past the stop time: refit
   roots_start_ = roots_at(t, y);
 }
 
@@ -161,7 +162,15 @@ Eigen::VectorXd ExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
 StepOutcome ExactIntegrator::step(double t_final) {
   if (held_phase_) return held_->step(t_final);
   const double t_end = std::min({t_s_ + max_step_s_, stop_time_s_, t_final});
-  segment_ = segment_from(t_s_, modal(segment_, t_s_), t_end);
+  if (forcing_fitted_to_s_ == stop_time_s_) {
+    // Still before the same stop time (the next record sample), so the forcing is the same
+    // linear function: shift it instead of evaluating and projecting it again.
+    const double tau = t_s_ - segment_.t_start_s;
+    segment_ = {t_s_, modal(segment_, t_s_), segment_.beta0 + tau * segment_.beta1, segment_.beta1};
+  } else {
+    segment_ = segment_from(t_s_, modal(segment_, t_s_), t_end);
+    forcing_fitted_to_s_ = std::isfinite(stop_time_s_) ? stop_time_s_ : std::numeric_limits<double>::quiet_NaN();
+  }
   ++counters_.steps;
 
   Eigen::VectorXd y_end = physical(modal(segment_, t_end));

@@ -82,6 +82,7 @@ class ExactIntegrator final : public Integrator {
   Eigen::MatrixXcd vectors_;       // columns v_k scaled by their weight (2 for a pair), n × m
   Eigen::MatrixXcd inverse_rows_;  // the matching rows of V⁻¹, m × n
   Segment segment_;                   // the last step's forcing, for interpolation inside it
+  double forcing_fitted_to_s_ = 0.0;  // segment_'s forcing holds up to this stop time (NaN: refit)
   Eigen::VectorXd state_;
   Eigen::VectorXd roots_start_;       // root functions at the current time
   std::vector<int> roots_found_;
