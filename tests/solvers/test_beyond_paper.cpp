@@ -3,6 +3,7 @@
 // the other methods.
 #define BOOST_TEST_MODULE beyond_paper
 #include <Eigen/Dense>
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 
 #include "pounding/analysis/run_scene.hpp"
