@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "pounding/solvers/root_finding.hpp"
+
 namespace pounding::solvers {
 namespace {
 
@@ -15,6 +17,13 @@ void add_unique(std::vector<model::Point2>& points, const model::Point2& p) {
 double vertex_dx(const model::Point2& vertex, const model::Point2& centre, double u, double phi) {
   const model::Point2 arm = vertex - centre;
   return u + (std::cos(phi) - 1.0) * arm.x() - std::sin(phi) * arm.y();
+}
+
+/// Its rate (m/s).
+double vertex_dx_rate(const model::Point2& vertex, const model::Point2& centre, double phi, double u_rate,
+                      double phi_rate) {
+  const model::Point2 arm = vertex - centre;
+  return u_rate - phi_rate * (std::sin(phi) * arm.x() + std::cos(phi) * arm.y());
 }
 
 }  // namespace
@@ -81,6 +90,48 @@ void Recorder::observe(double t, const dynamics::VectorXd& y) {
   }
 }
 
+template <class Value, class Rate>
+void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const dynamics::VectorXd& y_a,
+                           const dynamics::VectorXd& y_b, const std::function<dynamics::VectorXd(double)>& at,
+                           const Value& value, const Rate& rate) {
+  const double rate_a = rate(y_a), rate_b = rate(y_b);
+  if (!(rate_a * rate_b < 0.0)) return;  // no turning point inside (an even number is missed)
+  // Skip turning points that cannot beat the peak: |x(t*)| ≤ max |x| at the ends + ∫|ẋ|, and the
+  // factor 2 covers a rate that is not monotonic within the step (steps are short against the
+  // periods that matter).
+  const double bound = std::max(std::abs(value(y_a)), std::abs(value(y_b))) +
+                       2.0 * (t_b - t_a) * std::max(std::abs(rate_a), std::abs(rate_b));
+  if (bound <= std::abs(peak.value)) return;
+  const double t = find_root([&](double t_s) { return rate(at(t_s)); }, t_a, t_b, rate_a, rate_b);
+  peak.update(value(at(t)), t);
+}
+
+void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_b,
+                            const std::function<dynamics::VectorXd(double)>& at) {
+  const dynamics::VectorXd y_a = at(t_a);  // the stretch's own start (after an impact there)
+  const int n = system_.dof();
+  for (int b = 0; b < 2; ++b) {
+    const model::Point2 centre = system_.building(b).definition.centre_of_mass;
+    for (FloorPeaks& floor : peaks_[b].floors) {
+      const int i = system_.floor_index(b, floor.floor);
+      auto coordinate = [&](Peak& peak, int k) {
+        locate_peak(peak, t_a, t_b, y_a, y_b, at, [&](const dynamics::VectorXd& y) { return y[i + k]; },
+                    [&](const dynamics::VectorXd& y) { return y[n + i + k]; });
+      };
+      coordinate(floor.u_m, 0);
+      coordinate(floor.v_m, 1);
+      coordinate(floor.phi_rad, 2);
+      for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
+        const model::Point2& vertex = vertices_[b][k];
+        locate_peak(
+            floor.vertex_dx_m[k], t_a, t_b, y_a, y_b, at,
+            [&](const dynamics::VectorXd& y) { return vertex_dx(vertex, centre, y[i], y[i + 2]); },
+            [&](const dynamics::VectorXd& y) { return vertex_dx_rate(vertex, centre, y[i + 2], y[n + i], y[n + i + 2]); });
+      }
+    }
+  }
+}
+
 void Recorder::append_row(double t, const dynamics::VectorXd& y) {
   Eigen::VectorXd row(static_cast<Eigen::Index>(history_.columns.size()) - 1);
   Eigen::Index c = 0;
@@ -132,6 +183,7 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     next_sample_s_ = system_.ground_motion().start_s() +
                      interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
   }
+  locate_peaks(t_a, t_b, y_b, at);
   observe(t_b, y_b);
 }
 
