@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
   run_app->add_option("--event-location", run.event_location, "hht: halving (default) or interpolate (Hermite root)");
   run_app->add_option("--hold-rtol", run.hold_rtol,
-                      "exact: relative tolerance of held stretches, integrated by CVODE Adams (default 1e-12)");
+                      "exact: relative tolerance of held stretches, integrated by CVODE BDF (default 1e-12)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
   run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");

@@ -44,7 +44,7 @@ void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
       held_->restart(t, y);
     } else {
       CvodeSettings tight;
-      tight.method = CvodeMethod::adams;
+      tight.method = CvodeMethod::bdf;
       tight.rtol = settings_.hold_rtol;
       tight.atol = settings_.hold_atol;
       held_ = std::make_unique<CvodeIntegrator>(functions_, tight, t, y);

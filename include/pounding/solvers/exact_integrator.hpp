@@ -16,9 +16,9 @@
 //
 // A held contact is not linear: the contact geometry rotates with the slabs, and linearising it
 // (once, or at every step) leaves errors of 1e−4 … 1e−6 s in the impact times after a hold. Held
-// stretches are therefore integrated by CVODE (Adams) at a tight tolerance (ExactSettings), the
-// only part of the path that is not exact; its error is what the study's reference error
-// estimate measures.
+// stretches are therefore integrated by CVODE (BDF: a stiff storey makes Adams crawl) at a tight
+// tolerance (ExactSettings), the only part of the path that is not exact; its error is what the
+// study's reference error estimate measures.
 
 #include <Eigen/Dense>
 #include <complex>
