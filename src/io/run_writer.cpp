@@ -75,7 +75,8 @@ json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks) {
       floors.push_back({{"floor", f.floor}, {"u_m", peak(f.u_m)}, {"v_m", peak(f.v_m)},
                         {"phi_rad", peak(f.phi_rad)}, {"vertex_dx_m", dx}});
     }
-    list.push_back({{"building", building.name}, {"contact_vertices_rest", vertices}, {"floors", floors}});
+    list.push_back({{"building", building.name}, {"contact_vertices", building.contact_vertices},
+                    {"contact_vertices_rest", vertices}, {"floors", floors}});
   }
   return list;
 }
