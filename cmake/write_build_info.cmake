@@ -11,7 +11,8 @@ if(GIT_FOUND)
     set(commit "")
   else()
     # Tracked files that differ from the commit: the binary is not exactly that commit.
-    execute_process(COMMAND "${GIT_EXECUTABLE}" status --porcelain --untracked-files=no
+    # --no-optional-locks: a build must not hold the index lock a concurrent git command needs.
+    execute_process(COMMAND "${GIT_EXECUTABLE}" --no-optional-locks status --porcelain --untracked-files=no
                     WORKING_DIRECTORY "${SOURCE_DIR}" OUTPUT_VARIABLE changes RESULT_VARIABLE failed ERROR_QUIET)
     if(NOT failed AND NOT changes STREQUAL "")
       string(APPEND commit "-dirty")
