@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <stdexcept>
 
 #include "pounding/solvers/root_finding.hpp"
 
@@ -24,6 +25,20 @@ double vertex_dx_rate(const model::Point2& vertex, const model::Point2& centre, 
                       double phi_rate) {
   const model::Point2 arm = vertex - centre;
   return u_rate - phi_rate * (std::sin(phi) * arm.x() + std::cos(phi) * arm.y());
+}
+
+/// The 1-based numbers in `slab`'s outline of `points` (each one of its vertices, as candidates
+/// copy them), and the points reordered by number.
+std::vector<int> outline_numbers(const model::Polygon& slab, std::vector<model::Point2>& points) {
+  std::vector<int> numbers;
+  for (const model::Point2& p : points) {
+    const auto found = std::find(slab.vertices().begin(), slab.vertices().end(), p);
+    if (found == slab.vertices().end()) throw std::logic_error("a contact vertex is not a vertex of its slab");
+    numbers.push_back(static_cast<int>(found - slab.vertices().begin()) + 1);
+  }
+  std::sort(numbers.begin(), numbers.end());
+  for (std::size_t k = 0; k < numbers.size(); ++k) points[k] = slab.vertex(static_cast<std::size_t>(numbers[k] - 1));
+  return numbers;
 }
 
 }  // namespace
@@ -53,6 +68,8 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, const std::vector<int>
     vertices_[b] = contact_vertices(system.candidates(), b);
     BuildingPeaks peaks;
     peaks.name = system.building(b).definition.name;
+    // Outputs name a vertex by its number in the slab outline, as impacts and candidates do.
+    peaks.contact_vertices = outline_numbers(system.building(b).definition.slab, vertices_[b]);
     peaks.contact_vertices_rest = vertices_[b];
     for (int f = 1; f <= system.building(b).storeys(); ++f) {
       FloorPeaks floor;
@@ -68,9 +85,7 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, const std::vector<int>
       history_.columns.push_back(prefix + "u_m");
       history_.columns.push_back(prefix + "v_m");
       history_.columns.push_back(prefix + "phi_rad");
-      for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
-        history_.columns.push_back(fmt::format("{}vtx{}_dx_m", prefix, k + 1));
-      }
+      for (const int number : peaks_[b].contact_vertices) history_.columns.push_back(fmt::format("{}vtx{}_dx_m", prefix, number));
     }
   }
 }

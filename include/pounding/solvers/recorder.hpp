@@ -59,7 +59,7 @@ class Recorder {
   std::vector<contact::Level> history_levels_;
   double interval_s_;
   double next_sample_s_;
-  std::array<std::vector<model::Point2>, 2> vertices_;  // contact vertices per building
+  std::array<std::vector<model::Point2>, 2> vertices_;  // contact vertices per building, by outline number
   std::vector<BuildingPeaks> peaks_;
   History history_;
   EnergyAudit energy_;
