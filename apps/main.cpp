@@ -4,9 +4,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <string>
+#include <vector>
+
 #include "commands.hpp"
 #include "pounding/analysis/methods.hpp"
 #include "pounding/input_error.hpp"
+#include "pounding/io/provenance.hpp"
+#include "pounding/version.hpp"
 
 namespace {
 
@@ -14,11 +19,19 @@ void add_scene_argument(CLI::App& command, std::string& scene) {
   command.add_option("scene", scene, "Scene file (TOML)")->required();
 }
 
+/// "pounding 0.1.0 (git 0123abc...)", or without the commit when the build did not know it.
+std::string version_text() {
+  const std::string_view commit = pounding::git_commit();
+  return fmt::format("pounding {}{}", pounding::program_version(),
+                     commit.empty() ? std::string() : fmt::format(" (git {})", commit));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"pounding: seismic pounding of two adjacent multistorey buildings"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", version_text(), "Print the program version and the git commit it was built from");
 
   pounding::cli::ModesCommand modes;
   CLI::App* modes_app = app.add_subcommand("modes", "Modal analysis of both buildings");
@@ -90,13 +103,14 @@ int main(int argc, char** argv) {
     return app.exit(error) == 0 ? 0 : 2;  // --help exits 0; every usage error is bad input
   }
 
+  const std::string command_line = pounding::io::command_line_text(std::vector<std::string>(argv, argv + argc));
   try {
     if (*modes_app) return pounding::cli::run_modes(modes);
     if (*check_app) return pounding::cli::run_check(check);
     if (*methods_app) return pounding::cli::run_methods(methods);
-    if (*run_app) return pounding::cli::run_run(run);
-    if (*study_app) return pounding::cli::run_study(study);
-    if (*gap_app) return pounding::cli::run_gap(gap);
+    if (*run_app) return pounding::cli::run_run(run, command_line);
+    if (*study_app) return pounding::cli::run_study(study, command_line);
+    if (*gap_app) return pounding::cli::run_gap(gap, command_line);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;
