@@ -66,6 +66,10 @@ def gap_frame_x(summary, building, x):
     return x - summary["gap_m"] if building == 2 else x
 
 
+def plural(count, noun):
+    return f"{count} {noun}" + ("" if count == 1 else "s")
+
+
 def vertex_label(summary, building, point):
     x, y = gap_frame_x(summary, building, point[0]), point[1]
     if building == 1:
@@ -75,18 +79,21 @@ def vertex_label(summary, building, point):
 
 def centre_of_mass(slab):
     """The slab's centre of mass at rest, recovered from its vertex columns (see the module doc):
-    dx − u = (cos φ − 1)·a − sin φ·b with (a, b) = vertex − centre, least squares over the run."""
+    dx − u = (cos φ − 1)·a − sin φ·b with (a, b) = vertex − centre, least squares over the run.
+    A slab that never rotates has no such information, and needs none: any centre gives its gaps."""
+    if not slab["vertices"]:
+        sys.exit("error: a slab of this level has no vertex columns in history.csv")
+    if not np.any(slab["phi"]):
+        return np.asarray(slab["vertices"][0][0], dtype=float)
     matrix = np.column_stack([np.cos(slab["phi"]) - 1.0, -np.sin(slab["phi"])])
     centres = []
     for point, dx in slab["vertices"]:
         arm, *_ = np.linalg.lstsq(matrix, dx - slab["u"], rcond=None)
         residual = np.max(np.abs(matrix @ arm - (dx - slab["u"])))
-        if residual > FIT_RESIDUAL_LIMIT_M or np.max(np.abs(slab["phi"])) == 0.0:
-            sys.exit(f"error: cannot recover the centre of mass from vertex {point} (fit residual {residual:.1e} m, "
-                     f"largest |φ| {np.max(np.abs(slab['phi'])):.1e} rad)")
+        if residual > FIT_RESIDUAL_LIMIT_M:
+            sys.exit(f"error: history.csv's column of vertex {point} is not u + (cos φ − 1)·a − sin φ·b "
+                     f"(fit residual {residual:.1e} m): cannot recover the centre of mass")
         centres.append(np.asarray(point) - arm)
-    if not centres:
-        sys.exit("error: a slab of this level has no vertex columns in history.csv")
     return np.mean(centres, axis=0)
 
 
@@ -136,6 +143,15 @@ def bounce_sequence(summary, level):
     return None
 
 
+def resolves_flights(t, impact_times):
+    """True when the history has at least 20 rows in the longest flight between the impacts."""
+    flights = np.diff(impact_times)
+    if not len(flights):
+        return True
+    k = int(np.argmax(flights))
+    return np.count_nonzero((t > impact_times[k]) & (t < impact_times[k + 1])) >= 20
+
+
 def draw_inset(axis, t, gaps, sequence, window):
     t0, t1 = window
     inset = axis.inset_axes([0.03, 0.5, 0.36, 0.45])
@@ -150,9 +166,7 @@ def draw_inset(axis, t, gaps, sequence, window):
         inset.axvspan(hold_start, min(hold_end, t1), color="0.85", lw=0)
         inset.set_title(f"g [mm]: {len(times)} impacts in {1000 * (hold_start - times[0]):.0f} ms, then held "
                         f"(shaded) from {hold_start:.4f} s", fontsize=7)
-        flights = np.diff(times)
-        longest = int(np.argmax(flights)) if len(flights) else None
-        if longest is not None and np.count_nonzero((t > times[longest]) & (t < times[longest + 1])) < 20:
+        if not resolves_flights(t, times):
             print("note: fewer than 20 history rows in the longest flight of the inset; the flights are drawn "
                   "as chords (set [output] history_interval_s = 1e-4 to draw the arcs)", file=sys.stderr)
     near = [np.max(1000 * p["g"][inside]) for p in gaps if np.any(inside)]
@@ -217,8 +231,6 @@ def plot(folder: Path, level, compare, inset_window, out):
         gap_axis.plot(t, 100 * pair["g"], color=COLOURS[pair["striking"]], lw=1.0, ls=["-", "--"][k % 2],
                       label=pair["label"])
     gap_axis.axhline(0.0, color="k", lw=0.8)
-    top = max(np.max(100 * p["g"]) for p in gaps + (other_gaps if other else []))
-    gap_axis.set_ylim(-0.05 * top, 1.85 * top)  # the upper part holds the inset
     gap_axis.set_ylabel("signed gap g [cm]")
     gap_axis.set_xlabel("t [s]")
     gap_axis.legend(loc="lower left", fontsize=8)
@@ -227,11 +239,17 @@ def plot(folder: Path, level, compare, inset_window, out):
     if at_impacts:
         print(f"check: largest |g| of the nearest pair at the {len(impacts)} impact rows: {max(at_impacts):.1e} m")
     sequence = bounce_sequence(summary, level)
+    if sequence and not inset_window and not resolves_flights(t, sequence[3]):
+        print("note: no inset: the history is too sparse to draw the flights of the bounce sequence "
+              "(set [output] history_interval_s = 1e-4, or give --inset to draw chords)", file=sys.stderr)
+        sequence = None
     if inset_window or sequence:
         if not inset_window:
             first, hold_start, _, _ = sequence
             span = hold_start - first
             inset_window = (first - 0.1 * span, hold_start + 0.25 * span)
+        top = max(np.max(100 * p["g"]) for p in gaps + other_gaps)
+        gap_axis.set_ylim(-0.05 * top, 1.85 * top)  # the upper part holds the inset
         draw_inset(gap_axis, t, gaps, sequence, inset_window)
 
     for axis in axes:
@@ -243,12 +261,12 @@ def plot(folder: Path, level, compare, inset_window, out):
     labels.append(f"impacts at this level ({len(impacts)})")
     if other:
         handles.append(Line2D([], [], color=GREY, lw=1.0))
-        labels.append(f"gap {other[0]['gap_m']:g} m, {other[0]['method']} ({other[0]['impact_count']} impacts)")
+        labels.append(f"gap {other[0]['gap_m']:g} m, {other[0]['method']} ({plural(other[0]['impact_count'], 'impact')})")
     axes[0].legend(handles, labels, loc="upper left", fontsize=8, ncol=2)
 
     fig.suptitle(f"{summary['scene']}: level {level} (B1 floor {floors[1]}, B2 floor {floors[2]}, "
                  f"{where['elevation_m']:g} m), gap {summary['gap_m']:g} m, k = {summary['restitution']:g}, "
-                 f"{summary['method']}: {len(impacts)} impacts at this level, {summary['impact_count']} in all",
+                 f"{summary['method']}: {plural(len(impacts), 'impact')} at this level, {summary['impact_count']} in all",
                  fontsize=10)
     fig.tight_layout()
     out = out or folder / f"level{level}.png"
