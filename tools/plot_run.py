@@ -54,8 +54,10 @@ def slab_history(summary, columns, building, floor):
     """The one place that knows history.csv's column names and summary.json's vertex list.
     Returns u, v, φ of one slab and its tracked vertices as (rest point, x-displacement)."""
     prefix = f"B{building}_f{floor}_"
-    rest_points = summary["peaks"][building - 1]["contact_vertices_rest"]
-    vertices = [(tuple(p), columns[f"{prefix}vtx{k}_dx_m"]) for k, p in enumerate(rest_points, start=1)]
+    peaks = summary["peaks"][building - 1]
+    # history.csv names a vertex by its slab-outline number (summary.json's contact_vertices).
+    vertices = [(tuple(p), columns[f"{prefix}vtx{number}_dx_m"])
+                for number, p in zip(peaks["contact_vertices"], peaks["contact_vertices_rest"])]
     return {"u": columns[prefix + "u_m"], "v": columns[prefix + "v_m"], "phi": columns[prefix + "phi_rad"],
             "vertices": vertices}
 
