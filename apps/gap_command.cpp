@@ -3,9 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <thread>
+#include <utility>
 
 #include "commands.hpp"
 #include "pounding/analysis/needed_gap.hpp"
@@ -62,16 +64,16 @@ std::string cell(double value, int decimals = 6) {
 }
 
 void print_record_rows(const analysis::RecordSetResult& set) {
-  fmt::print("{:<44} {:>7} {:>8} {:>15} {:>7} {:>9} {:>10} {:>10} {:>10}\n", "record", "PGA [g]", "length",
+  fmt::print("{:<46} {:>7} {:>10} {:>15} {:>7} {:>8} {:>10} {:>10} {:>10}\n", "record", "PGA [g]", "length [s]",
              "needed gap [m]", "floors", "t [s]", "ABS [m]", "SRSS [m]", "DDC [m]");
   for (const analysis::RecordGap& r : set.records) {
     if (!r.completed()) {
-      fmt::print("{:<44} FAILED: {}\n", r.record, r.message);
+      fmt::print("{:<46} FAILED: {}\n", r.record, r.message);
       continue;
     }
     const bool closes = r.level > 0;
-    fmt::print("{:<44} {:>7} {:>7}s {:>15} {:>7} {:>9} {:>10} {:>10} {:>10}\n", r.record, cell(r.pga_g, 3),
-               cell(r.duration_s, 1), closes ? cell(r.needed_gap_m) : "never", 
+    fmt::print("{:<46} {:>7} {:>10} {:>15} {:>7} {:>8} {:>10} {:>10} {:>10}\n", r.record, cell(r.pga_g, 3),
+               cell(r.duration_s, 2), closes ? cell(r.needed_gap_m) : "never",
                closes ? fmt::format("{}/{}", r.floors[0], r.floors[1]) : "-", closes ? cell(r.t_s, 3) : "-",
                cell(r.rules.abs_m), cell(r.rules.srss_m), cell(r.rules.ddc_m));
   }
