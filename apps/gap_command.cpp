@@ -16,6 +16,7 @@
 #include "pounding/input_error.hpp"
 #include "pounding/io/gap_writer.hpp"
 #include "pounding/io/output_files.hpp"
+#include "pounding/io/provenance.hpp"
 #include "pounding/io/record_list.hpp"
 #include "pounding/io/scene_reader.hpp"
 
@@ -114,11 +115,15 @@ void print_set_statistics(const analysis::RecordSetResult& set) {
 
 /// `gap --records`: the needed gap under every record of the set, then the set's statistics.
 /// Returns 3 when a record failed (its row says why; the others are still written).
-int run_record_set(const GapCommand& command, const analysis::Scene& scene) {
+int run_record_set(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
   const std::vector<analysis::RecordEntry> records = io::read_record_list(command.records, scene.excitation);
   const std::string folder =
       command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-records") : command.out_dir;
   io::require_writable_folder(folder, "--out");
+  // The scene's own record is not run: the rows name theirs.
+  analysis::Scene without_record = scene;
+  without_record.excitation.file.clear();
+  const io::Provenance provenance = io::make_provenance(without_record, command_line);
   const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
   fmt::print("Needed gap of '{}' under {} records ({}; contact-free runs, CVODE rtol {:g}, {} at a time):\n",
              scene.name, records.size(), command.records, scene.solver.rtol, threads);
@@ -133,14 +138,14 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene) {
   fmt::print(stderr, "\n");
   print_record_rows(set);
   print_set_statistics(set);
-  io::write_record_set(scene.name, set, folder);
+  io::write_record_set(scene.name, set, provenance, folder);
   fmt::print("Wrote {0}/records.csv and records.json ({1:.1f} s for the set)\n", folder, set.wall_time_s);
   return set.failed == 0 ? 0 : 3;
 }
 
 }  // namespace
 
-int run_gap(const GapCommand& command) {
+int run_gap(const GapCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .record = command.record});
   if (command.rtol) scene.solver.rtol = *command.rtol;
   if (command.atol) scene.solver.atol = *command.atol;
@@ -150,7 +155,11 @@ int run_gap(const GapCommand& command) {
     throw InputError(error.key() == "solver.rtol" ? "--rtol" : error.key() == "solver.atol" ? "--atol" : error.key(),
                      error.value(), error.reason(), command.scene);
   }
-  if (!command.records.empty()) return run_record_set(command, scene);
+  if (!command.records.empty()) return run_record_set(command, scene, command_line);
+  // A scene name is text, not a path; the folder must take files before the runs, not after them.
+  const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-gap") : command.out_dir;
+  io::require_writable_folder(folder, "--out");
+  const io::Provenance provenance = io::make_provenance(scene, command_line);
   const analysis::NeededGap gap = analysis::needed_gap(scene);
   fmt::print("Needed gap of '{}' (contact-free run, CVODE rtol {:g}; {} maxima located, {} steps, {:.3f} s):\n",
              scene.name, scene.solver.rtol, gap.extrema, gap.steps, gap.wall_time_s);
@@ -181,8 +190,7 @@ int run_gap(const GapCommand& command) {
     fmt::print(stderr, "\n");
     print_curve(curve);
   }
-  const std::string folder = command.out_dir.empty() ? "out/" + scene.name + "-gap" : command.out_dir;
-  io::write_gap(scene.name, gap, curve, folder);
+  io::write_gap(scene.name, gap, curve, provenance, folder);
   fmt::print("Wrote {0}/gap.json, gap.csv, gap_history.csv{1}; draw them with tools/plot_gap.py {0}\n", folder,
              curve.empty() ? "" : ", gap_curve.csv");
   return 0;

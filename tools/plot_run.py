@@ -67,9 +67,10 @@ def plot(folder: Path, level, compare, out):
     vertex_axis = axes[3]
     for b in (1, 2):
         vertices = summary["peaks"][b - 1]["contact_vertices_rest"]
+        numbers = summary["peaks"][b - 1]["contact_vertices"]  # slab-outline numbers, as history.csv names them
         values = floor_columns(columns, b, floors[b])
-        for k, vertex in enumerate(vertices, start=1):
-            key = f"vtx{k}_dx_m"
+        for k, (number, vertex) in enumerate(zip(numbers, vertices), start=1):
+            key = f"vtx{number}_dx_m"
             if other:
                 vertex_axis.plot(other[1]["t_s"], [100 * x for x in floor_columns(other[1], b, floors[b])[key]],
                                  color="0.7", lw=1.0)

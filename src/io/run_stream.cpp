@@ -24,7 +24,7 @@ void StreamedRunFiles::history_columns(const std::vector<std::string>& columns) 
   history_.open(partial("history.csv"), std::ios::binary | std::ios::trunc);
   impacts_.open(partial("impacts.csv"), std::ios::binary | std::ios::trunc);
   opened_ = true;
-  write_history_header(columns, history_);
+  write_csv_header(columns, history_);
   write_impacts_header(impacts_);
   history_.flush();
   impacts_.flush();
@@ -60,11 +60,11 @@ void StreamedRunFiles::close_checked(std::ofstream& out, const char* name) {
   if (error) throw std::runtime_error(fmt::format("cannot write {}: {}", (folder_ / name).string(), error.message()));
 }
 
-void StreamedRunFiles::finish(const analysis::RunReport& report) {
+void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenance& provenance) {
   if (!opened_) throw std::logic_error("StreamedRunFiles::finish before the run named its history columns");
   close_checked(history_, "history.csv");
   close_checked(impacts_, "impacts.csv");
-  write_json(run_json(report), folder_ / "summary.json");
+  write_json(run_json(report, provenance), folder_ / "summary.json");
 }
 
 void StreamedRunFiles::abandon() {

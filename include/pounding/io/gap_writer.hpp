@@ -10,6 +10,7 @@
 
 #include "pounding/analysis/needed_gap.hpp"
 #include "pounding/analysis/record_set.hpp"
+#include "pounding/io/provenance.hpp"
 
 namespace pounding::io {
 
@@ -19,10 +20,11 @@ namespace pounding::io {
 nlohmann::json gap_json(const std::string& scene, const analysis::NeededGap& gap,
                         const std::vector<analysis::SeverityPoint>& curve = {});
 
-/// Writes the files into `folder` (created if missing).
+/// Writes the files into `folder` (created if missing); gap.json is gap_json() plus "provenance".
 /// @throws std::runtime_error naming a file that cannot be written.
 void write_gap(const std::string& scene, const analysis::NeededGap& gap,
-               const std::vector<analysis::SeverityPoint>& curve, const std::filesystem::path& folder);
+               const std::vector<analysis::SeverityPoint>& curve, const Provenance& provenance,
+               const std::filesystem::path& folder);
 
 /// Top-level keys: scene, records (one object a record: record, source, status, message,
 /// pga_g, duration_s, needed_gap_m, level, floor, t_s, rules {abs_m, srss_m, ddc_m}, steps,
@@ -31,9 +33,9 @@ void write_gap(const std::string& scene, const analysis::NeededGap& gap,
 /// failed, wall_time_s. Numbers that do not exist (a failed record's) are null.
 nlohmann::json record_set_json(const std::string& scene, const analysis::RecordSetResult& set);
 
-/// Writes records.csv and records.json into `folder` (created if missing).
-/// @throws std::runtime_error naming a file that cannot be written.
-void write_record_set(const std::string& scene, const analysis::RecordSetResult& set,
+/// Writes records.csv and records.json (record_set_json() plus "provenance") into `folder`
+/// (created if missing). @throws std::runtime_error naming a file that cannot be written.
+void write_record_set(const std::string& scene, const analysis::RecordSetResult& set, const Provenance& provenance,
                       const std::filesystem::path& folder);
 
 }  // namespace pounding::io
