@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -126,7 +127,8 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
   const io::Provenance provenance = io::make_provenance(without_record, command_line);
   const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
   fmt::print("Needed gap of '{}' under {} records ({}; contact-free runs, CVODE rtol {:g}, {} at a time):\n",
-             scene.name, records.size(), command.records, scene.solver.rtol, threads);
+             scene.name, records.size(), command.records, scene.solver.rtol,
+             std::min<std::size_t>(threads, records.size()));
   const auto start = std::chrono::steady_clock::now();
   int done = 0, failed = 0;
   const analysis::RecordSetResult set =
