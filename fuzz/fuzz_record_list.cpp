@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include "fixtures.hpp"
-#include "pounding/excitation/record_choice.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/record_list.hpp"
 
