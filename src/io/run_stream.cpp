@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_files.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "run_csv.hpp"
 
@@ -55,9 +56,7 @@ void StreamedRunFiles::close_checked(std::ofstream& out, const char* name) {
   const bool written = static_cast<bool>(out);
   out.close();
   if (!written) throw std::runtime_error(fmt::format("cannot write {} (disk full?)", (folder_ / name).string()));
-  std::error_code error;
-  std::filesystem::rename(partial(name), folder_ / name, error);
-  if (error) throw std::runtime_error(fmt::format("cannot write {}: {}", (folder_ / name).string(), error.message()));
+  commit_partial(partial(name), folder_ / name);
 }
 
 void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenance& provenance) {
