@@ -171,7 +171,8 @@ class InterruptRequests {
 };
 
 int run_run(const RunCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
+  analysis::Scene scene = io::read_scene(
+      command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
   try {
     apply_run_options(command, scene.solver);
   } catch (const InputError& error) {
@@ -256,8 +257,8 @@ int run_modes(const ModesCommand& command) {
 }
 
 int run_check(const CheckCommand& command) {
-  const analysis::Scene scene =
-      io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
+  const analysis::Scene scene = io::read_scene(
+      command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
   const auto buildings = analysis::summarise_buildings(scene);
   const dynamics::CoupledSystem system = analysis::build_system(scene);
   const excitation::GroundMotion& motion = system.ground_motion();
