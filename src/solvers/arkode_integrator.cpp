@@ -169,8 +169,9 @@ class ArkodeIntegrator final : public SundialsIntegrator {
     IntegratorCounters since{now.steps - baseline_.steps, now.rhs_evaluations - baseline_.rhs_evaluations, 0,
                              now.jacobian_evaluations - baseline_.jacobian_evaluations,
                              now.error_test_failures - baseline_.error_test_failures};
-    // The root-function counter, unlike the others, starts again at a reset.
-    check(Api::num_g_evals(memory_, &since.root_evaluations), "GetNumGEvals");
+    // The root-function counter, unlike the others, starts again after a reset, but only at
+    // the first step: until then it still holds the previous stretch's count.
+    if (!just_reset_) check(Api::num_g_evals(memory_, &since.root_evaluations), "GetNumGEvals");
     return since;
   }
 
@@ -182,7 +183,11 @@ class ArkodeIntegrator final : public SundialsIntegrator {
     check(Api::num_steps(memory_, &c.steps), "GetNumSteps");
     c.rhs_evaluations = Api::rhs_evaluations(memory_);
     check(Api::num_err_test_fails(memory_, &c.error_test_failures), "GetNumErrTestFails");
-    c.jacobian_evaluations = second_order_ ? second_order_->factorizations() : 0;
+    if (second_order_) {
+      c.jacobian_evaluations = second_order_->factorizations();
+    } else if (dense_) {
+      check(ARKStepGetNumJacEvals(memory_, &c.jacobian_evaluations), "ARKStepGetNumJacEvals");
+    }
     return c;
   }
 
