@@ -139,6 +139,8 @@ class Oscillators final : public OdeFunctions {
   int state_size() const override { return 2 * dof(); }
   int root_count() const override { return root_count_; }
   bool is_linear() const override { return linear_; }
+  /// The phase changes (free flight ↔ held contact) between restarts.
+  void set_linear(bool linear) { linear_ = linear; }
 
   void rhs(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
     const int n = dof();
@@ -447,10 +449,14 @@ BOOST_DATA_TEST_CASE(ReportsEachOfTwoRootsAtTheSameInstantOnce, bdata::make(meth
   BOOST_TEST_MESSAGE(method << ": the two closings came in " << returns << " root return(s)");
 }
 
-BOOST_DATA_TEST_CASE(RestartsAfterAnImpulseAndFindsTheNextBounces, bdata::make(methods()), method) {
-  // A ball under gravity with linear drag (ẍ = −9.81 − 0.5 ẋ) dropped from 1 m onto the floor
-  // g = x; each impact reverses the velocity with restitution 0.7. Closed-form impact instants:
-  // bisection of the closed-form flight x(τ) = 0 from each exact rebound.
+namespace {
+
+/// A ball under gravity with linear drag (ẍ = −9.81 − 0.5 ẋ) dropped from 1 m onto the floor
+/// g = x; each impact reverses the velocity with restitution 0.7; four bounces. With
+/// `alternate_phases` every restart flips OdeFunctions::is_linear(), so the exact path switches
+/// between its closed form and its held (CVODE) stretch. Closed-form impact instants:
+/// bisection of the closed-form flight x(τ) = 0 from each exact rebound.
+void check_bounces(const Method& method, bool alternate_phases) {
   const Dof ball{-9.81, 0.0, 0.5};
   const auto floor_gap = [](double, const VectorXd& y, Eigen::Ref<VectorXd> g) { g[0] = y[0]; };
   Oscillators f({ball}, 1, floor_gap, method.declares_linear);
@@ -462,7 +468,7 @@ BOOST_DATA_TEST_CASE(RestartsAfterAnImpulseAndFindsTheNextBounces, bdata::make(m
 
   double t_exact = 0.0, v_exact = 0.0, x_exact = 1.0;  // the exact start of each flight
   for (int bounce = 0; bounce < 4; ++bounce) {
-    // The flight's landing: first zero of x after the apex, by bisection on the closed form.
+    // The flight's landing: first zero of x after the apex.
     double lo = 1e-9, hi = 10.0;
     for (int i = 0; i < 200; ++i) {
       const double mid = 0.5 * (lo + hi);
@@ -483,10 +489,25 @@ BOOST_DATA_TEST_CASE(RestartsAfterAnImpulseAndFindsTheNextBounces, bdata::make(m
 
     y = integrator->state();
     y[1] = -restitution * y[1];
+    if (alternate_phases) f.set_linear(!f.is_linear());
     integrator->restart(out.t_s, y);
     begin(*integrator, kFar, 0.02);
+    BOOST_TEST(integrator->state() == y, tt::per_element());
+    BOOST_TEST(integrator->counters().steps == 0);
     t_exact = landing;
     x_exact = 0.0;
     v_exact = restitution * impact_speed;
   }
+}
+
+}  // namespace
+
+BOOST_DATA_TEST_CASE(RestartsAfterAnImpulseAndFindsTheNextBounces, bdata::make(methods()), method) {
+  check_bounces(method, false);
+}
+
+BOOST_AUTO_TEST_CASE(ExactPathSwitchesBetweenItsClosedFormAndItsHeldStretches) {
+  // Odd flights are integrated by the held stretch: its tolerances bound the whole run.
+  const ExactSettings held;
+  check_bounces({"exact/alternating", exact(), held.hold_rtol, held.hold_atol}, true);
 }
