@@ -17,6 +17,8 @@
 #include "pounding/input_error.hpp"
 #include "pounding/io/json_report.hpp"
 #include "pounding/io/output_files.hpp"
+#include "pounding/io/provenance.hpp"
+#include "pounding/io/run_report.hpp"
 #include "pounding/io/run_stream.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "pounding/io/scene_reader.hpp"
@@ -91,79 +93,6 @@ std::string storeys_text(const model::BuildingDefinition& b) {
                  : fmt::format("{} storeys of {} m", b.storeys, fmt::join(h, ", "));
 }
 
-/// "level 3 (B1 floor 3, B2 floor 2, 9 m)": where a contact is.
-std::string where(int level, const std::array<int, 2>& floors, double elevation_m) {
-  return fmt::format("level {} (B1 floor {}, B2 floor {}, {:.6g} m)", level, floors[0], floors[1], elevation_m);
-}
-template <class Located>
-std::string where(const Located& r) {
-  return where(r.level, r.floors, r.elevation_m);
-}
-
-void print_run_summary(const analysis::RunReport& report, const std::string& folder) {
-  const solvers::RunResult& r = report.result;
-  const auto& solver = report.solver;
-  const std::string settings =
-      r.method == "hht"     ? fmt::format("dt {} s, alpha {}, contact tolerance {} m, event location {}", solver.dt_s,
-                                          solver.alpha, solver.contact_tolerance_m, solver.event_location)
-      : r.method == "exact" ? fmt::format("held stretches at rtol {}", solver.hold_rtol)
-                            : fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
-  fmt::print("Run '{}' with {} ({}), gap {} m, k = {}: {}{}\n", report.scene, r.method, settings, report.gap_m,
-             report.restitution, solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
-  std::map<int, int> by_level;
-  for (const auto& i : r.impacts) ++by_level[i.level];
-  fmt::print("Impacts: {}", r.impacts.size());
-  for (const auto& [level, count] : by_level) {
-    const contact::Level& l = report.levels.at(static_cast<std::size_t>(level - 1));
-    fmt::print("; {}: {}", where(l.index, l.floors, l.elevation_m), count);
-  }
-  fmt::print("\n");
-  if (!r.impacts.empty()) {
-    const auto& first = r.impacts.front();
-    fmt::print("  first at t = {:.6f} s on {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
-               first.t_s, where(first), first.striking_building, first.vertex, first.approach_velocity_mps,
-               first.impulse_kNs);
-  }
-  fmt::print("Touches (contact without impact): {}\n", r.touches.size());
-  for (const auto& t : r.touches) fmt::print("  t = {:.6f} s, {}, B{} vertex {}\n", t.t_s, where(t), t.striking_building, t.vertex);
-  fmt::print("Sustained contacts: {}\n", r.sustained_contacts.size());
-  for (const auto& s : r.sustained_contacts) {
-    fmt::print("  {}, B{} vertex {}: {:.6f} s to {:.6f} s ({}), max force {:.1f} kN\n", where(s),
-               s.striking_building, s.vertex, s.start_s, s.release_s, s.release_reason, s.max_force_kN);
-  }
-  // The top level is where the buildings pound hardest; each building's own floor there.
-  for (std::size_t b = 0; b < r.peaks.size(); ++b) {
-    const auto& building = r.peaks[b];
-    const auto& top = building.floors.at(static_cast<std::size_t>(report.levels.back().floors[b] - 1));
-    fmt::print("Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",
-               building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
-               top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
-  }
-  const auto& st = r.statistics;
-  if (st.max_interpenetration_candidate >= 0) {
-    fmt::print("Largest overlap: {:.3e} m at {:.6f} s, {}\n", st.max_interpenetration_m, st.max_interpenetration_t_s,
-               contact::describe(report.candidates[static_cast<std::size_t>(st.max_interpenetration_candidate)]));
-  } else {
-    fmt::print("Largest overlap: none\n");
-  }
-  const auto& e = r.energy;
-  const std::string algorithmic =
-      r.method == "hht" ? fmt::format(", algorithmic dissipation {:.3f} kJ", e.algorithmic_dissipation_kJ) : "";
-  fmt::print("Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ{}, residual {:.3e} kJ ({:.2e} of input)\n",
-             e.input_kJ, e.damping_kJ, e.impact_loss_kJ, algorithmic, e.residual_kJ(),
-             e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
-  const auto& s = r.statistics;
-  if (r.method == "hht") {
-    fmt::print("Solver: {} steps ({} solves), {} factorisations, {} halvings, smallest step {:.3e} s, {} unresolved; "
-               "run time {:.3f} s\n", s.steps, s.rhs_evaluations, s.jacobian_evaluations, s.halvings,
-               s.smallest_step_s, s.unresolved_contacts, s.wall_time_s);
-  } else {
-    fmt::print("Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
-               s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
-  }
-  fmt::print("Wrote {}/summary.json, impacts.csv, history.csv\n", folder);
-}
-
 }  // namespace
 
 /// The command-line options of `run` replace their scene keys.
@@ -232,13 +161,14 @@ class InterruptRequests {
   struct sigaction old_term_ {};
 };
 
-int run_run(const RunCommand& command) {
+int run_run(const RunCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
   apply_run_options(command, scene.solver);
   const analysis::RunLimits limits = run_limits(command);
   const std::filesystem::path folder =
       command.out_dir.empty() ? std::filesystem::path("out") / io::folder_name(scene.name) : std::filesystem::path(command.out_dir);
   std::optional<analysis::RunReport> report;
+  io::Provenance provenance;
   std::filesystem::path created;
   // History and impacts reach the folder as they are computed: a run killed outright leaves them
   // as .partial files (and no summary.json); an orderly end renames them and adds the summary.
@@ -247,6 +177,7 @@ int run_run(const RunCommand& command) {
     scene.validate();
     limits.validate();
     created = io::require_writable_folder(folder, "--out");  // before the run, not after an hour of it
+    provenance = io::make_provenance(scene, command_line);
     const InterruptRequests interrupts;
     report = analysis::run_scene(scene, limits, &files);
   } catch (const InputError& error) {
@@ -256,12 +187,13 @@ int run_run(const RunCommand& command) {
     if (option == error.key()) throw;
     throw InputError(option, error.value(), error.reason(), command.scene);
   }
-  files.finish(*report);
-  print_run_summary(*report, folder.string());
+  files.finish(*report, provenance);
+  fmt::print("{}", io::full_report(*report));
+  fmt::print("Wrote {}/summary.json, impacts.csv, history.csv\n", folder.string());
   return report->result.status == solvers::RunStatus::completed ? 0 : 3;
 }
 
-int run_study(const StudyCommand& command) {
+int run_study(const StudyCommand& command, const std::string& command_line) {
   const analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m});
   analysis::StudyOptions options;
   options.repeat = command.repeat;
@@ -272,6 +204,7 @@ int run_study(const StudyCommand& command) {
   options.validate();
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");
+  const io::Provenance provenance = io::make_provenance(scene, command_line);
   fmt::print("Work-precision study of '{}' at gap {} m; every run against the exact path; run time = median of {}\n",
              scene.name, scene.contact.gap_m, options.repeat);
   fmt::print("Impact-time errors: before the first sustained contact (exact reference), and over impacts faster "
@@ -291,7 +224,7 @@ int run_study(const StudyCommand& command) {
                r.status == "completed" ? "" : "  " + r.status);
   };
   const analysis::StudyResult study = analysis::run_study(scene, options, print_row);
-  io::write_study(study, folder);
+  io::write_study(study, provenance, folder);
   fmt::print("Reference: exact path, {} impacts, {:.3f} s; its own error estimate (against held stretches at "
              "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv and study.json; "
              "draw them with tools/plot_study.py {}\n",

@@ -1,6 +1,7 @@
 #pragma once
 // The sub-commands of the `pounding` program. Each one reads its inputs through the library,
-// prints, and returns the process exit code; errors propagate as exceptions to main().
+// prints, and returns the process exit code; errors propagate as exceptions to main(). Those that
+// write results take the command line as typed, for the outputs' provenance.
 
 #include <optional>
 #include <string>
@@ -59,10 +60,10 @@ struct GapCommand {
   std::string out_dir;   // empty: out/<scene name>-gap
 };
 
-int run_gap(const GapCommand& command);  // in gap_command.cpp
+int run_gap(const GapCommand& command, const std::string& command_line);  // in gap_command.cpp
 int run_modes(const ModesCommand& command);
-int run_study(const StudyCommand& command);
-int run_run(const RunCommand& command);
+int run_study(const StudyCommand& command, const std::string& command_line);
+int run_run(const RunCommand& command, const std::string& command_line);
 int run_check(const CheckCommand& command);
 
 }  // namespace pounding::cli

@@ -9,6 +9,8 @@
 #include "pounding/contact/candidates.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/gap_writer.hpp"
+#include "pounding/io/output_files.hpp"
+#include "pounding/io/provenance.hpp"
 #include "pounding/io/scene_reader.hpp"
 
 namespace pounding::cli {
@@ -52,7 +54,7 @@ void print_curve(const std::vector<analysis::SeverityPoint>& curve) {
 
 }  // namespace
 
-int run_gap(const GapCommand& command) {
+int run_gap(const GapCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m});
   if (command.rtol) scene.solver.rtol = *command.rtol;
   if (command.atol) scene.solver.atol = *command.atol;
@@ -62,6 +64,10 @@ int run_gap(const GapCommand& command) {
     throw InputError(error.key() == "solver.rtol" ? "--rtol" : error.key() == "solver.atol" ? "--atol" : error.key(),
                      error.value(), error.reason(), command.scene);
   }
+  // A scene name is text, not a path; the folder must take files before the runs, not after them.
+  const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-gap") : command.out_dir;
+  io::require_writable_folder(folder, "--out");
+  const io::Provenance provenance = io::make_provenance(scene, command_line);
   const analysis::NeededGap gap = analysis::needed_gap(scene);
   fmt::print("Needed gap of '{}' (contact-free run, CVODE rtol {:g}; {} maxima located, {} steps, {:.3f} s):\n",
              scene.name, scene.solver.rtol, gap.extrema, gap.steps, gap.wall_time_s);
@@ -87,8 +93,7 @@ int run_gap(const GapCommand& command) {
     fmt::print(stderr, "\n");
     print_curve(curve);
   }
-  const std::string folder = command.out_dir.empty() ? "out/" + scene.name + "-gap" : command.out_dir;
-  io::write_gap(scene.name, gap, curve, folder);
+  io::write_gap(scene.name, gap, curve, provenance, folder);
   fmt::print("Wrote {0}/gap.json, gap.csv, gap_history.csv{1}; draw them with tools/plot_gap.py {0}\n", folder,
              curve.empty() ? "" : ", gap_curve.csv");
   return 0;

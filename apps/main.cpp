@@ -4,8 +4,13 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <string>
+#include <vector>
+
 #include "commands.hpp"
 #include "pounding/input_error.hpp"
+#include "pounding/io/provenance.hpp"
+#include "pounding/version.hpp"
 
 namespace {
 
@@ -13,11 +18,19 @@ void add_scene_argument(CLI::App& command, std::string& scene) {
   command.add_option("scene", scene, "Scene file (TOML)")->required();
 }
 
+/// "pounding 0.1.0 (git 0123abc...)", or without the commit when the build did not know it.
+std::string version_text() {
+  const std::string_view commit = pounding::git_commit();
+  return fmt::format("pounding {}{}", pounding::program_version(),
+                     commit.empty() ? std::string() : fmt::format(" (git {})", commit));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"pounding: seismic pounding of two adjacent multistorey buildings"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", version_text(), "Print the program version and the git commit it was built from");
 
   pounding::cli::ModesCommand modes;
   CLI::App* modes_app = app.add_subcommand("modes", "Modal analysis of both buildings");
@@ -48,7 +61,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
   run_app->add_option("--event-location", run.event_location, "hht: halving (default) or interpolate (Hermite root)");
   run_app->add_option("--hold-rtol", run.hold_rtol,
-                      "exact: relative tolerance of held stretches, integrated by CVODE Adams (default 1e-12)");
+                      "exact: relative tolerance of held stretches, integrated by CVODE BDF (default 1e-12)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
   run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
@@ -83,12 +96,13 @@ int main(int argc, char** argv) {
     return app.exit(error) == 0 ? 0 : 2;  // --help exits 0; every usage error is bad input
   }
 
+  const std::string command_line = pounding::io::command_line_text(std::vector<std::string>(argv, argv + argc));
   try {
     if (*modes_app) return pounding::cli::run_modes(modes);
     if (*check_app) return pounding::cli::run_check(check);
-    if (*run_app) return pounding::cli::run_run(run);
-    if (*study_app) return pounding::cli::run_study(study);
-    if (*gap_app) return pounding::cli::run_gap(gap);
+    if (*run_app) return pounding::cli::run_run(run, command_line);
+    if (*study_app) return pounding::cli::run_study(study, command_line);
+    if (*gap_app) return pounding::cli::run_gap(gap, command_line);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

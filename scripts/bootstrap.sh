@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ make cmake libsundials-dev libeigen3-dev libboost-test-dev libtomlplusplus-dev
-          libcli11-dev nlohmann-json3-dev libfmt-dev python3-matplotlib libbenchmark-dev)
+          libcli11-dev nlohmann-json3-dev libfmt-dev python3-matplotlib python3-numpy python3-scipy
+          libbenchmark-dev)
 ./scripts/install-packages.sh "${packages[@]}"
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release

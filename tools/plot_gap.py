@@ -74,7 +74,10 @@ def main():
         energy = severity.twinx()
         energy.plot(gaps, [float(r["energy_lost_kJ"]) for r in curve], "r-s", label="energy lost")
         energy.set_ylabel("energy lost in impacts [kJ]", color="r")
-        severity.axvline(summary["needed_gap_m"], color="g", ls="--")
+        severity.axvline(summary["needed_gap_m"], color="g", ls="--", label=f"needed gap {summary['needed_gap_m']:.4f} m")
+        lines = severity.get_legend_handles_labels()
+        more = energy.get_legend_handles_labels()
+        severity.legend(lines[0] + more[0], lines[1] + more[1], loc="upper right")
         severity.set_title("severity below the needed gap")
         severity.grid(alpha=0.3)
 

@@ -3,13 +3,19 @@
 one line per method (event-driven methods over rtol, HHT variants over Δt).
 
 Left: the largest impact-time error before the first sustained contact, where the exact path is
-exact to round-off. Right: the largest error of the floor displacements u over the whole run,
-which includes the exact path's linearised holds (its floor is marked).
+exact to round-off. Right: the largest error of the floor displacements u over the whole run;
+points at or below twice the reference's own error estimate (the study's "at ref") are drawn
+hollow, the estimate as a dotted line. Each point is labelled with its rtol or Δt where the label
+fits without overlapping another; the subtitle names the processor and core count the timings
+were taken on, from machine.txt (written at study time by scripts/run-study.sh) or, without it,
+from /proc/cpuinfo at plot time, and says which.
 
     tools/plot_study.py out/paper-study [--out study.png]
 """
 import argparse
 import csv
+import json
+import os
 import sys
 from pathlib import Path
 
@@ -23,6 +29,53 @@ STYLES = {
     "arkode-dirk": ("tab:olive", "v"), "hht-halving": ("tab:red", "D"), "hht-end-of-step": ("tab:orange", "x"),
     "hht-interpolate": ("tab:purple", "P"),
 }
+# Label positions tried around a point, in points: right-above, right-below, left-above, left-below, above, below.
+OFFSETS = [((4, 2), "left", "bottom"), ((4, -2), "left", "top"), ((-4, 2), "right", "bottom"),
+           ((-4, -2), "right", "top"), ((0, 6), "center", "bottom"), ((0, -6), "center", "top")]
+
+
+def machine(folder: Path):
+    """'processor, N cores (...)' and where it was read."""
+    record = folder / "machine.txt"
+    if record.is_file():
+        fields = dict(line.split(": ", 1) for line in record.read_text().splitlines() if ": " in line)
+        load = fields.get("load_before", "").split()
+        busy = f"; shared with other jobs, load average {load[0]} at its start" if load else ""
+        return f"{fields.get('cpu', '?')}, {fields.get('cores', '?')} cores{busy} (recorded at study time)"
+    model = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+                  if line.startswith("model name")), "unknown processor")
+    return f"{model}, {os.cpu_count()} cores (read at plot time: the study's machine was not recorded)"
+
+
+def overlaps(box, boxes):
+    return any(box.overlaps(other) for other in boxes)
+
+
+def label_points(fig, axis, points):
+    """Places each (x, y, text, colour) label at the first offset where it overlaps no other label
+    and no marker and stays inside the axes; a label that fits nowhere is left out (counted)."""
+    renderer = fig.canvas.get_renderer()
+    frame = axis.get_window_extent(renderer)
+    markers = []
+    for x, y, _, _ in points:
+        px, py = axis.transData.transform((x, y))
+        markers.append(matplotlib.transforms.Bbox.from_extents(px - 4, py - 4, px + 4, py + 4))
+    placed, dropped = [], 0
+    for (x, y, text, colour), own in zip(points, markers):
+        others = [m for m in markers if m is not own]
+        for offset, ha, va in OFFSETS:
+            note = axis.annotate(text, (x, y), xytext=offset, textcoords="offset points", fontsize=6.5,
+                                 color=colour, ha=ha, va=va)
+            box = note.get_window_extent(renderer).expanded(1.05, 1.1)
+            inside = frame.containsx(box.x0) and frame.containsx(box.x1) and frame.containsy(box.y0) \
+                and frame.containsy(box.y1)
+            if inside and not overlaps(box, placed) and not overlaps(box, others):
+                placed.append(box)
+                break
+            note.remove()
+        else:
+            dropped += 1
+    return dropped
 
 
 def main():
@@ -30,36 +83,52 @@ def main():
     parser.add_argument("folder", type=Path)
     parser.add_argument("--out", type=Path, help="image file (default: FOLDER/work-precision.png)")
     args = parser.parse_args()
-    study_file = args.folder / "study.csv"
-    if not study_file.is_file():
-        sys.exit(f"error: {study_file} not found (is {args.folder} the output folder of `pounding study`?)")
+    study_file, summary_file = args.folder / "study.csv", args.folder / "study.json"
+    for f in (study_file, summary_file):
+        if not f.is_file():
+            sys.exit(f"error: {f} not found (is {args.folder} the output folder of `pounding study`?)")
     rows = list(csv.DictReader(study_file.open()))
+    study = json.loads(summary_file.read_text())
+    reference = study["reference"]
 
-    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 5.5))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 6.2))
+    labels = {left: [], right: []}
     for method in dict.fromkeys(r["method"] for r in rows):
         mine = sorted((r for r in rows if r["method"] == method), key=lambda r: float(r["run_time_s"]))
         colour, marker = STYLES.get(method, ("black", "."))
         times = [float(r["run_time_s"]) for r in mine]
-        for axis, key in ((left, "impact_time_error_before_hold_s"), (right, "history_u_error_m")):
+        for axis, key, at_ref in ((left, "impact_time_error_before_hold_s", None),
+                                  (right, "history_u_error_m", "history_u_at_reference")):
             errors = [max(float(r[key]), 1e-16) for r in mine]
-            axis.loglog(times, errors, marker=marker, color=colour, label=method)
+            axis.loglog(times, errors, color=colour, lw=1.2, marker=marker, ms=6,
+                        label=method if axis is left else None)
             for t, e, r in zip(times, errors, mine):
-                axis.annotate(f"{float(r['value']):g}", (t, e), fontsize=6, color=colour,
-                              xytext=(3, 3), textcoords="offset points")
-    left.set_title("impact-time error before the first sustained contact")
+                hollow = at_ref and r[at_ref] == "true"
+                if hollow:
+                    axis.plot(t, e, marker=marker, ls="none", ms=6, color=colour, mfc="white")
+                else:  # the hollow ones crowd the reference's floor; the legend explains them
+                    labels[axis].append((t, e, f"{float(r['value']):g}", colour))
+    left.set_title("impact-time error before the first sustained contact", fontsize=11)
     left.set_ylabel("max |t − t_exact| [s]")
-    right.set_title("largest error of u on the contact floors, whole run")
+    right.set_title("largest error of u on the contact floors, whole run", fontsize=11)
     right.set_ylabel("max |u − u_exact| [m]")
-    floor = min(float(r["history_u_error_m"]) for r in rows if float(r["history_u_error_m"]) > 0)
-    right.axhline(floor, color="0.5", ls=":", lw=1)
-    right.annotate("reference's own error (linearised holds)", (right.get_xlim()[0], floor), fontsize=7,
-                   color="0.4", xytext=(5, 4), textcoords="offset points")
+    estimate = reference["error_estimate"]["history_u_m"]
+    right.axhline(estimate, color="0.4", ls=":", lw=1)
+    right.plot([], [], "o", mfc="white", color="0.4",
+               label=f"at or below 2× the reference's own error ({estimate:.1e} m, dotted)")
     for axis in (left, right):
-        axis.set_xlabel("run time [s] (median)")
-        axis.grid(True, which="both", alpha=0.3)
-    left.legend(fontsize=8)
-    fig.suptitle("Work–precision: every path against the exact path (labels: rtol or Δt in s)", fontsize=11)
-    fig.tight_layout()
+        axis.set_xlabel("run time [s] (median of the repeats)")
+        axis.grid(True, which="both", alpha=0.25)
+    fig.legend(*[sum(x, []) for x in zip(left.get_legend_handles_labels(), right.get_legend_handles_labels())],
+               loc="lower center", ncol=4, fontsize=8.5, frameon=False)
+    fig.suptitle(f"Work–precision of every path on '{study['scene']}' at gap {study['gap_m']:g} m, against the exact path "
+                 f"({reference['impacts']} impacts). Labels: rtol, or Δt in s.\n"
+                 f"Timed on {machine(args.folder)}", fontsize=10)
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    fig.canvas.draw()
+    dropped = sum(label_points(fig, axis, labels[axis]) for axis in (left, right))
+    if dropped:
+        print(f"note: {dropped} labels left out where they would overlap")
     out = args.out or args.folder / "work-precision.png"
     fig.savefig(out, dpi=110)
     print(f"Wrote {out}")

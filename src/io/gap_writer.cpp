@@ -115,9 +115,12 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
 }
 
 void write_gap(const std::string& scene, const analysis::NeededGap& gap,
-               const std::vector<analysis::SeverityPoint>& curve, const std::filesystem::path& folder) {
+               const std::vector<analysis::SeverityPoint>& curve, const Provenance& provenance,
+               const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
-  write_json(gap_json(scene, gap, curve), folder / "gap.json");
+  json document = gap_json(scene, gap, curve);
+  document["provenance"] = provenance_json(provenance);
+  write_json(document, folder / "gap.json");
   write_levels_csv(gap, folder / "gap.csv");
   write_history_csv(gap, folder / "gap_history.csv");
   if (!curve.empty()) write_curve_csv(curve, folder / "gap_curve.csv");

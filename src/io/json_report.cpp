@@ -35,9 +35,20 @@ nlohmann::json modes_json(const std::vector<analysis::BuildingSummary>& building
   return {{"buildings", list}};
 }
 
-void write_json(const nlohmann::json& document, const std::filesystem::path& file) {
+namespace {
+
+template <class Json>
+void write_indented(const Json& document, const std::filesystem::path& file) {
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   write_atomically(file, [&](std::ostream& out) { out << document.dump(2) << '\n'; });
+}
+
+}  // namespace
+
+void write_json(const nlohmann::json& document, const std::filesystem::path& file) { write_indented(document, file); }
+
+void write_json(const nlohmann::ordered_json& document, const std::filesystem::path& file) {
+  write_indented(document, file);
 }
 
 }  // namespace pounding::io

@@ -4,11 +4,41 @@
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include "pounding/input_error.hpp"
 
 namespace pounding::io {
+
+namespace {
+
+/// fsync of a file or folder by path; false (errno set) if it cannot be opened or synced.
+bool sync_path(const std::filesystem::path& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool synced = ::fsync(fd) == 0;
+  ::close(fd);
+  return synced;
+}
+
+}  // namespace
+
+void commit_partial(const std::filesystem::path& partial, const std::filesystem::path& file) {
+  // Data first, then the name, then the folder entry: after a crash of the machine (not only of
+  // the program) `file` is either the old one or the whole new one, never empty or torn.
+  if (!sync_path(partial, O_RDONLY)) {
+    throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(), std::strerror(errno)));
+  }
+  std::error_code error;
+  std::filesystem::rename(partial, file, error);
+  if (error) throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(), error.message()));
+  const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+  sync_path(folder, O_RDONLY | O_DIRECTORY);  // best effort: some file systems refuse a folder fsync
+}
 
 void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write) {
   std::filesystem::path partial = file;
@@ -21,9 +51,7 @@ void write_atomically(const std::filesystem::path& file, const std::function<voi
     out.flush();
     if (!out) throw std::runtime_error("cannot write " + file.string() + " (disk full?)");
   }
-  std::error_code error;
-  std::filesystem::rename(partial, file, error);
-  if (error) throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(), error.message()));
+  commit_partial(partial, file);
 }
 
 std::filesystem::path require_writable_folder(const std::filesystem::path& folder, const std::string& option) {

@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_files.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "run_csv.hpp"
 
@@ -24,7 +25,7 @@ void StreamedRunFiles::history_columns(const std::vector<std::string>& columns) 
   history_.open(partial("history.csv"), std::ios::binary | std::ios::trunc);
   impacts_.open(partial("impacts.csv"), std::ios::binary | std::ios::trunc);
   opened_ = true;
-  write_history_header(columns, history_);
+  write_csv_header(columns, history_);
   write_impacts_header(impacts_);
   history_.flush();
   impacts_.flush();
@@ -55,16 +56,14 @@ void StreamedRunFiles::close_checked(std::ofstream& out, const char* name) {
   const bool written = static_cast<bool>(out);
   out.close();
   if (!written) throw std::runtime_error(fmt::format("cannot write {} (disk full?)", (folder_ / name).string()));
-  std::error_code error;
-  std::filesystem::rename(partial(name), folder_ / name, error);
-  if (error) throw std::runtime_error(fmt::format("cannot write {}: {}", (folder_ / name).string(), error.message()));
+  commit_partial(partial(name), folder_ / name);
 }
 
-void StreamedRunFiles::finish(const analysis::RunReport& report) {
+void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenance& provenance) {
   if (!opened_) throw std::logic_error("StreamedRunFiles::finish before the run named its history columns");
   close_checked(history_, "history.csv");
   close_checked(impacts_, "impacts.csv");
-  write_json(run_json(report), folder_ / "summary.json");
+  write_json(run_json(report, provenance), folder_ / "summary.json");
 }
 
 void StreamedRunFiles::abandon() {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <map>
 
+#include "pounding/io/impact_schema.hpp"
 #include "pounding/io/json_report.hpp"
 #include "pounding/io/output_files.hpp"
 #include "run_csv.hpp"
@@ -10,19 +11,19 @@
 namespace pounding::io {
 namespace {
 
-using nlohmann::json;
+// Keys in the order written, so a reader finds scene, method and status first (README.md).
+using json = nlohmann::ordered_json;
 
 json point(const model::Point2& p) { return json::array({p.x(), p.y()}); }
 json peak(const solvers::Peak& p) { return {{"value", p.value}, {"t_s", p.t_s}}; }
 
-/// `fields` with where the contact is: its level, the floor of each building there (building 1's
-/// first) and the level's elevation. Candidates and every contact record carry these three.
+/// Where the contact is (its level, the floor of each building there, building 1's first, and
+/// the level's elevation), then `fields`. Candidates and every contact record carry these three.
 template <class Located>
-json at_level(const Located& where, json fields) {
-  fields["level"] = where.level;
-  fields["floors"] = where.floors;
-  fields["elevation_m"] = where.elevation_m;
-  return fields;
+json at_level(const Located& where, const json& fields) {
+  json located = {{"level", where.level}, {"floors", where.floors}, {"elevation_m", where.elevation_m}};
+  located.update(fields);
+  return located;
 }
 
 json levels_json(const std::vector<contact::Level>& levels) {
@@ -48,19 +49,7 @@ json candidates_json(const std::vector<contact::Candidate>& candidates) {
 
 json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
   json list = json::array();
-  for (const auto& i : impacts) {
-    list.push_back(at_level(i, {{"t_s", i.t_s},
-                    {"striking_building", i.striking_building},
-                    {"vertex", i.vertex},
-                    {"vertex_rest", point(i.vertex_rest)},
-                    {"struck_edge", i.struck_edge},
-                    {"point", point(i.point)},
-                    {"approach_velocity_mps", i.approach_velocity_mps},
-                    {"separation_velocity_mps", i.separation_velocity_mps},
-                    {"impulse_kNs", i.impulse_kNs},
-                    {"energy_lost_kJ", i.energy_lost_kJ},
-                    {"starts_sustained_contact", i.starts_hold}}));
-  }
+  for (const auto& i : impacts) list.push_back(impact_json(i));
   return list;
 }
 
@@ -75,7 +64,8 @@ json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks) {
       floors.push_back({{"floor", f.floor}, {"u_m", peak(f.u_m)}, {"v_m", peak(f.v_m)},
                         {"phi_rad", peak(f.phi_rad)}, {"vertex_dx_m", dx}});
     }
-    list.push_back({{"building", building.name}, {"contact_vertices_rest", vertices}, {"floors", floors}});
+    list.push_back({{"building", building.name}, {"contact_vertices", building.contact_vertices},
+                    {"contact_vertices_rest", vertices}, {"floors", floors}});
   }
   return list;
 }
@@ -116,10 +106,12 @@ json statistics_json(const solvers::SolverStatistics& s, const std::vector<conta
 
 }  // namespace
 
-json run_json(const analysis::RunReport& report) {
+json run_json(const analysis::RunReport& report, const Provenance& provenance) {
   const solvers::RunResult& r = report.result;
-  std::map<std::string, int> by_level;
-  for (const auto& i : r.impacts) ++by_level[std::to_string(i.level)];
+  std::map<int, int> counts;
+  for (const auto& i : r.impacts) ++counts[i.level];
+  json by_level = json::object();
+  for (const auto& [level, count] : counts) by_level[std::to_string(level)] = count;  // lowest level first
   json touches = json::array(), sustained = json::array();
   for (const auto& t : r.touches) {
     touches.push_back(at_level(t, {{"t_s", t.t_s}, {"striking_building", t.striking_building},
@@ -143,11 +135,11 @@ json run_json(const analysis::RunReport& report) {
   }
   return {{"scene", report.scene},
           {"method", r.method},
+          {"status", solvers::to_string(r.status)},
+          {"status_detail", r.status_detail},
           {"settings", settings},
           {"gap_m", report.gap_m},
           {"restitution", report.restitution},
-          {"status", solvers::to_string(r.status)},
-          {"status_detail", r.status_detail},
           {"start_s", r.start_s},
           {"end_s", r.end_s},
           {"levels", levels_json(report.levels)},
@@ -160,22 +152,15 @@ json run_json(const analysis::RunReport& report) {
           {"sustained_contacts", sustained},
           {"peaks", peaks_json(r.peaks)},
           {"energy", energy_json(r.energy)},
-          {"statistics", statistics_json(r.statistics, report.candidates)}};
+          {"statistics", statistics_json(r.statistics, report.candidates)},
+          {"provenance", provenance_json(provenance)}};
 }
 
-void write_impacts_header(std::ostream& out) {
-  out << "t_s,level,floor_b1,floor_b2,elevation_m,striking_building,vertex,struck_edge,point_x_m,point_y_m,"
-         "approach_velocity_mps,separation_velocity_mps,impulse_kNs,energy_lost_kJ,starts_sustained_contact\n";
-}
+void write_impacts_header(std::ostream& out) { write_csv_header(impact_csv_columns(), out); }
 
-void write_impact_row(const solvers::ImpactRecord& i, std::ostream& out) {
-  out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", i.t_s, i.level, i.floors[0], i.floors[1],
-                     i.elevation_m, i.striking_building, i.vertex, i.struck_edge, i.point.x(), i.point.y(),
-                     i.approach_velocity_mps, i.separation_velocity_mps, i.impulse_kNs, i.energy_lost_kJ,
-                     i.starts_hold ? 1 : 0);
-}
+void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out) { out << impact_csv_row(impact) << '\n'; }
 
-void write_history_header(const std::vector<std::string>& columns, std::ostream& out) {
+void write_csv_header(const std::vector<std::string>& columns, std::ostream& out) {
   for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
   out << '\n';
 }
@@ -186,21 +171,21 @@ void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& 
   out << '\n';
 }
 
-void write_run(const analysis::RunReport& report, const std::filesystem::path& folder) {
+void write_run(const analysis::RunReport& report, const Provenance& provenance, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
   // summary.json goes last and an earlier run's goes first: whatever happens in between, a
   // summary never stands beside files from another run.
   std::filesystem::remove(folder / "summary.json");
   const solvers::RunResult& r = report.result;
   write_atomically(folder / "history.csv", [&](std::ostream& out) {
-    write_history_header(r.history.columns, out);
+    write_csv_header(r.history.columns, out);
     for (std::size_t k = 0; k < r.history.time_s.size(); ++k) write_history_row(r.history.time_s[k], r.history.rows[k], out);
   });
   write_atomically(folder / "impacts.csv", [&](std::ostream& out) {
     write_impacts_header(out);
     for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out);
   });
-  write_json(run_json(report), folder / "summary.json");
+  write_json(run_json(report, provenance), folder / "summary.json");
 }
 
 }  // namespace pounding::io

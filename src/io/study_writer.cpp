@@ -61,9 +61,11 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
           {"rows", rows}};
 }
 
-void write_study(const analysis::StudyResult& study, const std::filesystem::path& folder) {
+void write_study(const analysis::StudyResult& study, const Provenance& provenance, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
-  write_json(study_json(study), folder / "study.json");
+  nlohmann::json document = study_json(study);
+  document["provenance"] = provenance_json(provenance);
+  write_json(document, folder / "study.json");
   write_atomically(folder / "study.csv", [&](std::ostream& out) { write_study_csv(study, out); });
 }
 

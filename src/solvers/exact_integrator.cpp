@@ -44,7 +44,7 @@ void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
       held_->restart(t, y);
     } else {
       CvodeSettings tight;
-      tight.method = CvodeMethod::adams;
+      tight.method = CvodeMethod::bdf;
       tight.rtol = settings_.hold_rtol;
       tight.atol = settings_.hold_atol;
       held_ = std::make_unique<CvodeIntegrator>(functions_, tight, t, y);
@@ -55,7 +55,8 @@ void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   freeze_phase(t, y);
   state_ = y;
   t_s_ = t;
-  segment_ = segment_from(t, inverse_.solve(y.cast<Complex>()), t + max_step_s_);
+  segment_ = segment_from(t, inverse_rows_ * y.cast<Complex>(), t + max_step_s_);
+  forcing_fitted_to_s_ = std::numeric_limits<double>::quiet_NaN();  // fitted past the stop time: refit
   roots_start_ = roots_at(t, y);
 }
 
@@ -71,19 +72,57 @@ void ExactIntegrator::set_stop_time(double t_s) {
 
 void ExactIntegrator::freeze_phase(double t, const Eigen::VectorXd& y) {
   functions_.jacobian(t, y, jacobian_);
+  ++counters_.jacobian_evaluations;
+  y_phase_ = y;
+  // Free flight has one constant J, so every restart after an impact or a release would repeat
+  // the same decomposition (a third of the path's run time on the paper scene): keep it while J
+  // is bit-for-bit the one decomposed.
+  if (decomposed_jacobian_.size() != 0 && jacobian_ == decomposed_jacobian_) return;
   const Eigen::EigenSolver<Eigen::MatrixXd> solver(jacobian_);
   if (solver.info() != Eigen::Success) throw std::runtime_error("exact path: eigendecomposition failed");
-  eigenvalues_ = solver.eigenvalues();
-  vectors_ = solver.eigenvectors();
-  inverse_.compute(vectors_);
-  ++counters_.jacobian_evaluations;
+  const Eigen::VectorXcd eigenvalues = solver.eigenvalues();
+  const Eigen::MatrixXcd vectors = solver.eigenvectors();
+  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(vectors);
   // A defective (non-diagonalisable) J would make V singular: refuse rather than be inexact.
-  const double residual = (jacobian_.cast<Complex>() * vectors_ - vectors_ * eigenvalues_.asDiagonal()).norm();
-  if (!(residual <= 1e-8 * jacobian_.norm() * vectors_.norm()) || !std::isfinite(inverse_.rcond()) ||
-      inverse_.rcond() < 1e-13) {
+  const double residual = (jacobian_.cast<Complex>() * vectors - vectors * eigenvalues.asDiagonal()).norm();
+  if (!(residual <= 1e-8 * jacobian_.norm() * vectors.norm()) || !std::isfinite(lu.rcond()) || lu.rcond() < 1e-13) {
     throw std::runtime_error("exact path: the phase Jacobian is not safely diagonalisable");
   }
-  y_phase_ = y;
+  keep_one_of_each_pair(eigenvalues, vectors, lu.inverse());
+  decomposed_jacobian_ = jacobian_;
+}
+
+void ExactIntegrator::keep_one_of_each_pair(const Eigen::VectorXcd& eigenvalues, const Eigen::MatrixXcd& vectors,
+                                            const Eigen::MatrixXcd& inverse) {
+  // J is real, so its complex eigenvalues come in conjugate pairs with conjugate eigenvectors
+  // (Eigen stores them side by side), and a real state has conjugate modal coordinates on them:
+  // y = Re(Σ w_k v_k η_k) over one member of each pair (w = 2) and the real eigenvalues (w = 1).
+  // Half the modes to advance and half the products, exactly. Should a pair not be exactly
+  // conjugate, every mode is kept (w = 1): the same formula.
+  const Eigen::Index n = eigenvalues.size();
+  std::vector<std::pair<Eigen::Index, double>> kept;  // (mode, weight)
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (eigenvalues[k].imag() == 0.0) {
+      kept.emplace_back(k, 1.0);
+    } else if (k + 1 < n && eigenvalues[k + 1] == std::conj(eigenvalues[k]) &&
+               vectors.col(k + 1) == vectors.col(k).conjugate()) {
+      kept.emplace_back(k++, 2.0);
+    } else {
+      kept.clear();
+      for (Eigen::Index j = 0; j < n; ++j) kept.emplace_back(j, 1.0);
+      break;
+    }
+  }
+  const auto m = static_cast<Eigen::Index>(kept.size());
+  eigenvalues_.resize(m);
+  vectors_.resize(n, m);
+  inverse_rows_.resize(m, n);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const auto [k, weight] = kept[static_cast<std::size_t>(j)];
+    eigenvalues_[j] = eigenvalues[k];
+    vectors_.col(j) = weight * vectors.col(k);
+    inverse_rows_.row(j) = inverse.row(k);
+  }
 }
 
 Eigen::VectorXd ExactIntegrator::forcing(double t) {
@@ -99,7 +138,7 @@ ExactIntegrator::Segment ExactIntegrator::segment_from(double t, const ComplexVe
   const Eigen::VectorXd b0 = forcing(t);
   const double h = std::max(t_end - t, 1e-12);
   const Eigen::VectorXd b1 = (forcing(t + h) - b0) / h;
-  return {t, eta, inverse_.solve(b0.cast<Complex>()), inverse_.solve(b1.cast<Complex>())};
+  return {t, eta, inverse_rows_ * b0.cast<Complex>(), inverse_rows_ * b1.cast<Complex>()};
 }
 
 ExactIntegrator::ComplexVector ExactIntegrator::modal(const Segment& segment, double t) const {
@@ -123,7 +162,15 @@ Eigen::VectorXd ExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
 StepOutcome ExactIntegrator::step(double t_final) {
   if (held_phase_) return held_->step(t_final);
   const double t_end = std::min({t_s_ + max_step_s_, stop_time_s_, t_final});
-  segment_ = segment_from(t_s_, modal(segment_, t_s_), t_end);
+  if (forcing_fitted_to_s_ == stop_time_s_) {
+    // Still before the same stop time (the next record sample), so the forcing is the same
+    // linear function: shift it instead of evaluating and projecting it again.
+    const double tau = t_s_ - segment_.t_start_s;
+    segment_ = {t_s_, modal(segment_, t_s_), segment_.beta0 + tau * segment_.beta1, segment_.beta1};
+  } else {
+    segment_ = segment_from(t_s_, modal(segment_, t_s_), t_end);
+    forcing_fitted_to_s_ = std::isfinite(stop_time_s_) ? stop_time_s_ : std::numeric_limits<double>::quiet_NaN();
+  }
   ++counters_.steps;
 
   Eigen::VectorXd y_end = physical(modal(segment_, t_end));

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <stdexcept>
+
+#include "pounding/solvers/root_finding.hpp"
 
 namespace pounding::solvers {
 namespace {
@@ -15,6 +18,27 @@ void add_unique(std::vector<model::Point2>& points, const model::Point2& p) {
 double vertex_dx(const model::Point2& vertex, const model::Point2& centre, double u, double phi) {
   const model::Point2 arm = vertex - centre;
   return u + (std::cos(phi) - 1.0) * arm.x() - std::sin(phi) * arm.y();
+}
+
+/// Its rate (m/s).
+double vertex_dx_rate(const model::Point2& vertex, const model::Point2& centre, double phi, double u_rate,
+                      double phi_rate) {
+  const model::Point2 arm = vertex - centre;
+  return u_rate - phi_rate * (std::sin(phi) * arm.x() + std::cos(phi) * arm.y());
+}
+
+/// The 1-based numbers in `slab`'s outline of `points` (each one of its vertices, as candidates
+/// copy them), and the points reordered by number.
+std::vector<int> outline_numbers(const model::Polygon& slab, std::vector<model::Point2>& points) {
+  std::vector<int> numbers;
+  for (const model::Point2& p : points) {
+    const auto found = std::find(slab.vertices().begin(), slab.vertices().end(), p);
+    if (found == slab.vertices().end()) throw std::logic_error("a contact vertex is not a vertex of its slab");
+    numbers.push_back(static_cast<int>(found - slab.vertices().begin()) + 1);
+  }
+  std::sort(numbers.begin(), numbers.end());
+  for (std::size_t k = 0; k < numbers.size(); ++k) points[k] = slab.vertex(static_cast<std::size_t>(numbers[k] - 1));
+  return numbers;
 }
 
 }  // namespace
@@ -44,6 +68,8 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, const std::vector<int>
     vertices_[b] = contact_vertices(system.candidates(), b);
     BuildingPeaks peaks;
     peaks.name = system.building(b).definition.name;
+    // Outputs name a vertex by its number in the slab outline, as impacts and candidates do.
+    peaks.contact_vertices = outline_numbers(system.building(b).definition.slab, vertices_[b]);
     peaks.contact_vertices_rest = vertices_[b];
     for (int f = 1; f <= system.building(b).storeys(); ++f) {
       FloorPeaks floor;
@@ -59,9 +85,7 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, const std::vector<int>
       history_.columns.push_back(prefix + "u_m");
       history_.columns.push_back(prefix + "v_m");
       history_.columns.push_back(prefix + "phi_rad");
-      for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
-        history_.columns.push_back(fmt::format("{}vtx{}_dx_m", prefix, k + 1));
-      }
+      for (const int number : peaks_[b].contact_vertices) history_.columns.push_back(fmt::format("{}vtx{}_dx_m", prefix, number));
     }
   }
 }
@@ -76,6 +100,48 @@ void Recorder::observe(double t, const dynamics::VectorXd& y) {
       floor.phi_rad.update(y[i + 2], t);
       for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
         floor.vertex_dx_m[k].update(vertex_dx(vertices_[b][k], centre, y[i], y[i + 2]), t);
+      }
+    }
+  }
+}
+
+template <class Value, class Rate>
+void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const dynamics::VectorXd& y_a,
+                           const dynamics::VectorXd& y_b, const std::function<dynamics::VectorXd(double)>& at,
+                           const Value& value, const Rate& rate) {
+  const double rate_a = rate(y_a), rate_b = rate(y_b);
+  if (!(rate_a * rate_b < 0.0)) return;  // no turning point inside (an even number is missed)
+  // Skip turning points that cannot beat the peak: |x(t*)| ≤ max |x| at the ends + ∫|ẋ|, and the
+  // factor 2 covers a rate that is not monotonic within the step (steps are short against the
+  // periods that matter).
+  const double bound = std::max(std::abs(value(y_a)), std::abs(value(y_b))) +
+                       2.0 * (t_b - t_a) * std::max(std::abs(rate_a), std::abs(rate_b));
+  if (bound <= std::abs(peak.value)) return;
+  const double t = find_root([&](double t_s) { return rate(at(t_s)); }, t_a, t_b, rate_a, rate_b);
+  peak.update(value(at(t)), t);
+}
+
+void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_b,
+                            const std::function<dynamics::VectorXd(double)>& at) {
+  const dynamics::VectorXd y_a = at(t_a);  // the stretch's own start (after an impact there)
+  const int n = system_.dof();
+  for (int b = 0; b < 2; ++b) {
+    const model::Point2 centre = system_.building(b).definition.centre_of_mass;
+    for (FloorPeaks& floor : peaks_[b].floors) {
+      const int i = system_.floor_index(b, floor.floor);
+      auto coordinate = [&](Peak& peak, int k) {
+        locate_peak(peak, t_a, t_b, y_a, y_b, at, [&](const dynamics::VectorXd& y) { return y[i + k]; },
+                    [&](const dynamics::VectorXd& y) { return y[n + i + k]; });
+      };
+      coordinate(floor.u_m, 0);
+      coordinate(floor.v_m, 1);
+      coordinate(floor.phi_rad, 2);
+      for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
+        const model::Point2& vertex = vertices_[b][k];
+        locate_peak(
+            floor.vertex_dx_m[k], t_a, t_b, y_a, y_b, at,
+            [&](const dynamics::VectorXd& y) { return vertex_dx(vertex, centre, y[i], y[i + 2]); },
+            [&](const dynamics::VectorXd& y) { return vertex_dx_rate(vertex, centre, y[i + 2], y[n + i], y[n + i + 2]); });
       }
     }
   }
@@ -132,6 +198,7 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     next_sample_s_ = system_.ground_motion().start_s() +
                      interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
   }
+  locate_peaks(t_a, t_b, y_b, at);
   observe(t_b, y_b);
 }
 

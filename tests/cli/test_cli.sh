@@ -30,7 +30,7 @@ assert len(s["candidates"]) == 14
 rows = list(csv.DictReader(open(f"{folder}/impacts.csv")))
 assert len(rows) == s["impact_count"]
 for row, i in zip(rows, s["impacts"]):  # the two impact lists say the same
-    assert (int(row["level"]), int(row["floor_b1"]), int(row["floor_b2"])) == (i["level"], *i["floors"]), row
+    assert (int(row["level"]), int(row["floors_b1"]), int(row["floors_b2"])) == (i["level"], *i["floors"]), row
     assert float(row["elevation_m"]) == i["elevation_m"] and float(row["t_s"]) == i["t_s"], row
 for key in ("t_s", "level", "floors", "elevation_m", "striking_building", "vertex", "point",
             "approach_velocity_mps", "separation_velocity_mps", "impulse_kNs", "energy_lost_kJ"):
@@ -39,6 +39,57 @@ for record in s["sustained_contacts"] + s["touches"]:
     assert {"level", "floors", "elevation_m"} <= record.keys(), record
 assert abs(s["energy"]["relative_residual"]) < 1e-6
 PY
+
+# One schema: impacts.csv's header is summary.json's impact keys, arrays flattened as documented
+# (floors -> floors_b1, floors_b2; a point p -> p_x_m, p_y_m); keys in a fixed order.
+/usr/bin/python3 - "$work/d20" <<'PY' || fail "impacts.csv header against summary.json's impact keys, key order"
+import csv, json, sys
+folder = sys.argv[1]
+s = json.load(open(f"{folder}/summary.json"))  # Python keeps the file's key order
+flat = []
+for key, value in s["impacts"][0].items():
+    if not isinstance(value, list):
+        flat.append(key)
+    else:
+        flat += [f"{key}_b1", f"{key}_b2"] if key == "floors" else [f"{key}_x_m", f"{key}_y_m"]
+header = next(csv.reader(open(f"{folder}/impacts.csv")))
+assert header == flat, (header, flat)
+assert "vertex_rest_x_m" in header
+assert list(s)[:3] == ["scene", "method", "status"] and list(s)[-1] == "provenance", list(s)
+PY
+# One numbering of vertices: an impact's (slab-outline) vertex names a history.csv column on its floor.
+/usr/bin/python3 - "$work/d20" <<'PY' || fail "impact vertices without their history.csv column"
+import csv, json, sys
+folder = sys.argv[1]
+s = json.load(open(f"{folder}/summary.json"))
+header = set(next(csv.reader(open(f"{folder}/history.csv"))))
+for i in s["impacts"] + s["sustained_contacts"]:
+    b = i["striking_building"]
+    column = f"B{b}_f{i['floors'][b - 1]}_vtx{i['vertex']}_dx_m"
+    assert column in header, (column, sorted(c for c in header if "vtx" in c))
+assert {i["vertex"] for i in s["impacts"] if i["striking_building"] == 1} <= set(s["peaks"][0]["contact_vertices"])
+PY
+# Provenance: the digests are sha256sum's, the paths those given, the command line as typed.
+scene_sha=$(sha256sum "$scene" | cut -d' ' -f1)
+record_sha=$(sha256sum "$source_dir/examples/records/elcentro1940_ns_0.02s.AT2" | cut -d' ' -f1)
+/usr/bin/python3 - "$work/d20/summary.json" "$scene_sha" "$record_sha" "$scene" "$pounding" "$work/d20" <<'PY' || fail "provenance in summary.json"
+import datetime, json, os, sys
+summary, scene_sha, record_sha, scene, binary, out = sys.argv[1:]
+p = json.load(open(summary))["provenance"]
+assert p["scene_sha256"] == scene_sha and p["record_sha256"] == record_sha, p
+assert os.path.samefile(p["scene_file"], scene) and p["record_file"].endswith("elcentro1940_ns_0.02s.AT2"), p
+assert p["command_line"] == f"{binary} run {scene} --out {out}", p["command_line"]
+assert p["program_version"] and p["program_version"] in open(os.path.join(os.path.dirname(scene), "../../CMakeLists.txt")).read()
+when = datetime.datetime.strptime(p["date_utc"], "%Y-%m-%dT%H:%M:%SZ").replace(tzinfo=datetime.timezone.utc)
+assert abs((datetime.datetime.now(datetime.timezone.utc) - when).total_seconds()) < 3600, p["date_utc"]
+PY
+# --version: the CMake project version, and the commit when the build knew it.
+version=$(sed -n 's/^project(pounding VERSION \([0-9.]*\).*/\1/p' "$source_dir/CMakeLists.txt")
+"$pounding" --version > "$work/version.txt" || fail "--version exited $?"
+grep -q "^pounding $version\( (git [0-9a-f]\{40\}\(-dirty\)\?)\)\?$" "$work/version.txt" \
+  || fail "--version printed '$(cat "$work/version.txt")', expected 'pounding $version (git <commit>)'"
+commit=$(git -C "$source_dir" rev-parse HEAD 2> /dev/null)
+[ -z "$commit" ] || grep -q "(git $commit" "$work/version.txt" || echo "note: --version names another commit than HEAD (built before the last commit?)"
 
 "$pounding" run "$scene" --gap 0.5 --out "$work/d50" > /dev/null || fail "run at 0.50 m exited $?"
 /usr/bin/python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['impact_count'] == 0" "$work/d50/summary.json" \
@@ -94,6 +145,8 @@ fine = [r for r in rows if r["method"] == "cvode-bdf"]
 assert float(fine[1]["impact_time_error_before_hold_s"]) < float(fine[0]["impact_time_error_before_hold_s"])
 assert all(float(r["run_time_s"]) > 0 for r in rows)
 PY
+/usr/bin/python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['provenance']; assert p['scene_sha256']==sys.argv[2] and 'study' in p['command_line'], p" \
+  "$work/study/study.json" "$scene_sha" || fail "provenance in study.json"
 /usr/bin/python3 "$source_dir/tools/plot_study.py" "$work/study" > /dev/null || fail "plot_study.py exited $?"
 [ -s "$work/study/work-precision.png" ] || fail "no work-precision.png"
 

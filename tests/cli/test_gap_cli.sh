@@ -14,7 +14,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 "$pounding" gap "$scene" --curve 3 --threads 2 --out "$work/gap" > "$work/gap.txt" 2> /dev/null || fail "gap exited $?"
 for f in gap.json gap.csv gap_history.csv gap_curve.csv; do [ -s "$work/gap/$f" ] || fail "missing $f"; done
 /usr/bin/python3 - "$work/gap" "$work/gap.txt" <<'PY' || fail "gap.json / gap.csv content"
-import csv, json, re, sys
+import csv, hashlib, json, re, sys
 folder, printed = sys.argv[1], open(sys.argv[2]).read()
 g = json.load(open(f"{folder}/gap.json"))
 for key in ("needed_gap_m", "floor", "t_s", "levels", "rules", "pair", "modes", "rho", "unconservative"):
@@ -27,6 +27,8 @@ assert g["floor"] == [g["level"], g["level"]]
 # The printed needed gap (m, 6 decimals) is the written one; every rule is printed with its verdict.
 m = re.search(r"^  ([0-9.]+) m at level (\d+)", printed, re.M)
 assert m and abs(float(m.group(1)) - g["needed_gap_m"]) < 5e-7 and int(m.group(2)) == g["level"], printed
+p = g["provenance"]
+assert p["scene_sha256"] == hashlib.sha256(open(p["scene_file"], "rb").read()).hexdigest() and " gap " in p["command_line"], p
 for rule in ("ABS", "SRSS", "DDC"):
     assert re.search(rf"^  {rule} +[0-9.]+ m +(UNCONSERVATIVE|conservative)", printed, re.M), rule
 short = {u["rule"] for u in g["unconservative"]}
@@ -44,6 +46,12 @@ PY
 "$pounding" gap "$scene" --rtol -1 --out "$work/bad" > /dev/null 2> "$work/bad.txt"
 [ $? -eq 2 ] || fail "bad --rtol should exit 2"
 grep -q -- "--rtol = -1" "$work/bad.txt" || fail "bad --rtol message: $(cat "$work/bad.txt")"
+# An unwritable --out is refused before the runs (exit 2, naming the option), with nothing printed.
+touch "$work/a-file"
+"$pounding" gap "$scene" --out "$work/a-file/gap" > "$work/bad-out.txt" 2> "$work/bad-err.txt"
+[ $? -eq 2 ] || fail "unwritable --out should exit 2"
+grep -q -- "--out = $work/a-file/gap: cannot create this folder" "$work/bad-err.txt" || fail "unwritable --out message: $(cat "$work/bad-err.txt")"
+[ ! -s "$work/bad-out.txt" ] || fail "gap ran before refusing its --out"
 "$pounding" gap "$work/missing.toml" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "missing scene should exit 2"
 

@@ -54,11 +54,12 @@ BOOST_AUTO_TEST_CASE(streamed_files_equal_the_in_memory_writers) {
       scene.solver.method = method;
       const fs::path in_memory = scratch(method + "-memory"), streamed = scratch(method + "-streamed");
 
+      const io::Provenance provenance = io::make_provenance(scene);
       const analysis::RunReport kept = analysis::run_scene(scene);
-      io::write_run(kept, in_memory);
+      io::write_run(kept, provenance, in_memory);
       io::StreamedRunFiles files(streamed);
       const analysis::RunReport sent = analysis::run_scene(scene, {}, &files);
-      files.finish(sent);
+      files.finish(sent, provenance);
 
       BOOST_TEST(kept.result.impacts.size() > 10u);
       BOOST_TEST(kept.result.history.rows.size() > 1000u);

@@ -3,6 +3,7 @@
 // the other methods.
 #define BOOST_TEST_MODULE beyond_paper
 #include <Eigen/Dense>
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 
 #include "pounding/analysis/run_scene.hpp"
@@ -153,7 +154,7 @@ BOOST_AUTO_TEST_CASE(HeldSharesAreNotImpactsAndTwoPointHoldsStayClosed) {
 BOOST_AUTO_TEST_CASE(CornerOnCornerContactsRunOnEveryMethod) {
   // Before: ARKODE stopped with "Root found at and very near t" (a held corner sits at its edge's
   // end), the exact path churned holds into event_limit, and closing twins were logged as touches.
-  std::vector<std::size_t> counts;
+  std::vector<std::size_t> counts, fast_counts;
   for (const char* method : {"cvode-bdf", "arkode-erk", "arkode-dirk", "exact"}) {
     BOOST_TEST_CONTEXT(method) {
       const auto result = run("corner-on-corner.toml", method);
@@ -161,11 +162,19 @@ BOOST_AUTO_TEST_CASE(CornerOnCornerContactsRunOnEveryMethod) {
       BOOST_TEST(result.statistics.max_interpenetration_m < 1e-9);
       for (const auto& touch : result.touches) BOOST_TEST(touch.gap_rate_mps >= 0.0);
       counts.push_back(result.impacts.size());
+      fast_counts.push_back(static_cast<std::size_t>(std::count_if(
+          result.impacts.begin(), result.impacts.end(), [](const auto& i) { return i.approach_velocity_mps > 3e-3; })));
     }
   }
-  // Hundreds of impacts in long bounce sequences; the methods agree on their number to 1 %.
+  // Hundreds of impacts in long bounce sequences. Those faster than three times the sticking
+  // threshold (1 mm/s) are the same on every method. The slower tail ends in a hold whose onset
+  // (separation below the threshold) flips with round-off: changing only the exact path's
+  // rounding (histories equal to 6e-14 m) moved its total from 555 to 559; so the totals agree
+  // to 2 %.
+  BOOST_TEST(*std::min_element(fast_counts.begin(), fast_counts.end()) ==
+             *std::max_element(fast_counts.begin(), fast_counts.end()));
   const auto [low, high] = std::minmax_element(counts.begin(), counts.end());
-  BOOST_TEST(static_cast<double>(*high - *low) <= 0.01 * static_cast<double>(*high));
+  BOOST_TEST(static_cast<double>(*high - *low) <= 0.02 * static_cast<double>(*high));
 }
 
 BOOST_AUTO_TEST_CASE(TinyStickingThresholdEndsLikeTheDefault) {

@@ -13,7 +13,7 @@
 
 namespace pounding::analysis {
 
-/// The candidates the scene's geometry allows (DESIGN.md §2), on every level (Scene::levels()).
+/// The candidates the scene's geometry allows (docs/model.md §4), on every level (Scene::levels()).
 std::vector<contact::Candidate> scene_candidates(const Scene& scene);
 
 /// The coupled system of a scene (assembles both buildings, loads the record).

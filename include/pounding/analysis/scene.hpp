@@ -32,7 +32,7 @@ struct SolverSettings {
   double rtol = 1e-8;
   double atol = 1e-10;               // m, rad (and their rates)
   std::string newton = "reduced";    // reduced (n×n structural system) | dense (2n×2n LU)
-  // exact: relative tolerance of the held stretches (CVODE Adams, atol = hold_rtol/100 in m, rad);
+  // exact: relative tolerance of the held stretches (CVODE BDF, atol = hold_rtol/100 in m, rad);
   // free flight is exact whatever it is.
   double hold_rtol = 1e-12;
   // HHT-α (method "hht"):

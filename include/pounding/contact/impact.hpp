@@ -1,5 +1,5 @@
 #pragma once
-// Impact law: instantaneous, frictionless, Newton restitution (DESIGN.md §2). Pure functions on
+// Impact law: instantaneous, frictionless, Newton restitution (docs/model.md §6). Pure functions on
 // one floor pair, whose six velocities are ordered (u̇, v̇, φ̇) of building 1's slab, then
 // building 2's.
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pounding/analysis/needed_gap.hpp"
+#include "pounding/io/provenance.hpp"
 
 namespace pounding::io {
 
@@ -17,9 +18,10 @@ namespace pounding::io {
 nlohmann::json gap_json(const std::string& scene, const analysis::NeededGap& gap,
                         const std::vector<analysis::SeverityPoint>& curve = {});
 
-/// Writes the files into `folder` (created if missing).
+/// Writes the files into `folder` (created if missing); gap.json is gap_json() plus "provenance".
 /// @throws std::runtime_error naming a file that cannot be written.
 void write_gap(const std::string& scene, const analysis::NeededGap& gap,
-               const std::vector<analysis::SeverityPoint>& curve, const std::filesystem::path& folder);
+               const std::vector<analysis::SeverityPoint>& curve, const Provenance& provenance,
+               const std::filesystem::path& folder);
 
 }  // namespace pounding::io

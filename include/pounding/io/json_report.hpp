@@ -16,5 +16,6 @@ nlohmann::json modes_json(const std::vector<analysis::BuildingSummary>& building
 /// Writes `document` (indented) to `file`, creating its folder; atomically (write_atomically).
 /// @throws std::runtime_error naming the file if it cannot be written.
 void write_json(const nlohmann::json& document, const std::filesystem::path& file);
+void write_json(const nlohmann::ordered_json& document, const std::filesystem::path& file);
 
 }  // namespace pounding::io

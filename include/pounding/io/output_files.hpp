@@ -10,9 +10,14 @@
 namespace pounding::io {
 
 /// Writes `file` into `file.partial` and renames it over `file` once complete, so a reader or a
-/// killed run never sees a truncated file (a leftover `.partial` marks a write that was cut off).
+/// killed run never sees a truncated file (a leftover `.partial` marks a write that was cut off),
+/// and a crash of the machine leaves the old file or the whole new one (commit_partial).
 /// @throws std::runtime_error naming the file if it cannot be written.
 void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write);
+
+/// Makes a finished `partial` file durable (fsync) and renames it over `file`, then syncs the
+/// folder. @throws std::runtime_error naming `file` if the data cannot be synced or renamed.
+void commit_partial(const std::filesystem::path& partial, const std::filesystem::path& file);
 
 /// Creates `folder` if missing and proves that files can be created in it (writes and removes
 /// a probe file), before any work is done. Returns the outermost folder it created (empty if

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "pounding/analysis/run_scene.hpp"
+#include "pounding/io/provenance.hpp"
 #include "pounding/solvers/run_sink.hpp"
 
 namespace pounding::io {
@@ -26,7 +27,7 @@ class StreamedRunFiles final : public solvers::RunSink {
 
   /// Renames the streamed files to history.csv and impacts.csv, then writes summary.json.
   /// @throws std::runtime_error naming a file that could not be written (disk full, ...).
-  void finish(const analysis::RunReport& report);
+  void finish(const analysis::RunReport& report, const Provenance& provenance);
   /// Closes and removes the streamed files: the run was refused after all and leaves nothing.
   void abandon();
 

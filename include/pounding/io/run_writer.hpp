@@ -5,15 +5,17 @@
 #include <nlohmann/json.hpp>
 
 #include "pounding/analysis/run_scene.hpp"
+#include "pounding/io/provenance.hpp"
 
 namespace pounding::io {
 
-/// The whole report as JSON (keys carry units). See README.md, "Outputs of pounding run".
-nlohmann::json run_json(const analysis::RunReport& report);
+/// The whole report as JSON (keys carry units), keys in a fixed order: scene, method, status,
+/// status_detail, settings, ..., provenance last. See README.md, "Outputs of pounding run".
+nlohmann::ordered_json run_json(const analysis::RunReport& report, const Provenance& provenance);
 
 /// Writes the three files into `folder` (created if missing), each atomically, summary.json
 /// last: a folder holding a summary.json holds the complete outputs of that run.
 /// @throws std::runtime_error naming a file that cannot be written.
-void write_run(const analysis::RunReport& report, const std::filesystem::path& folder);
+void write_run(const analysis::RunReport& report, const Provenance& provenance, const std::filesystem::path& folder);
 
 }  // namespace pounding::io

@@ -1,7 +1,7 @@
 #pragma once
 // The event-driven solution: an ODE integrator (behind the Integrator seam) advances the smooth
 // motion, its root finder stops at each contact, the impact module resets the velocities, and
-// the integrator restarts there. DESIGN.md §3 lists the pitfalls handled here.
+// the integrator restarts there. README.md, "Event handling", lists the pitfalls handled here.
 
 #include <functional>
 #include <memory>

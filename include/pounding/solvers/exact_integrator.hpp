@@ -5,7 +5,8 @@
 // (re)start the phase is frozen as ẏ = J y + b(t) with J = OdeFunctions::jacobian(t₀, y₀) and
 // b(t) = f(t, y₀) − J y₀, which *is* the model there.
 //
-// Method: the state-space eigendecomposition J = V Λ V⁻¹, done once per phase. Each modal
+// Method: the state-space eigendecomposition J = V Λ V⁻¹, done once per distinct J (free flight
+// has one). Each modal
 // coordinate has a closed form under forcing linear in time:
 //   η(τ) = e^{λτ} η₀ + β₀ (e^{λτ} − 1)/λ + β₁ (e^{λτ} − 1 − λτ)/λ².
 // So the state is exact at any instant (round-off and the conditioning of V aside), and roots
@@ -15,9 +16,9 @@
 //
 // A held contact is not linear: the contact geometry rotates with the slabs, and linearising it
 // (once, or at every step) leaves errors of 1e−4 … 1e−6 s in the impact times after a hold. Held
-// stretches are therefore integrated by CVODE (Adams) at a tight tolerance (ExactSettings), the
-// only part of the path that is not exact; its error is what the study's reference error
-// estimate measures.
+// stretches are therefore integrated by CVODE (BDF: a stiff storey makes Adams crawl) at a tight
+// tolerance (ExactSettings), the only part of the path that is not exact; its error is what the
+// study's reference error estimate measures.
 
 #include <Eigen/Dense>
 #include <complex>
@@ -61,6 +62,8 @@ class ExactIntegrator final : public Integrator {
   /// Freezes the free-flight phase at (t, y) and diagonalises. @throws std::runtime_error if J
   /// is not diagonalisable.
   void freeze_phase(double t, const Eigen::VectorXd& y);
+  void keep_one_of_each_pair(const Eigen::VectorXcd& eigenvalues, const Eigen::MatrixXcd& vectors,
+                             const Eigen::MatrixXcd& inverse);
   Eigen::VectorXd forcing(double t);   // b(t) = f(t, y_phase) − J y_phase
   Segment segment_from(double t, const ComplexVector& eta, double t_end);
   ComplexVector modal(const Segment& segment, double t) const;
@@ -72,11 +75,14 @@ class ExactIntegrator final : public Integrator {
   std::unique_ptr<Integrator> held_;  // integrates the held stretches
   bool held_phase_ = false;
   Eigen::MatrixXd jacobian_;
+  Eigen::MatrixXd decomposed_jacobian_;  // the J that eigenvalues_ and vectors_ decompose
   Eigen::VectorXd y_phase_;           // the linearisation point of this phase
+  // The modes advanced: one of each conjugate pair and the real ones (keep_one_of_each_pair).
   Eigen::VectorXcd eigenvalues_;
-  Eigen::MatrixXcd vectors_;
-  Eigen::PartialPivLU<Eigen::MatrixXcd> inverse_;
+  Eigen::MatrixXcd vectors_;       // columns v_k scaled by their weight (2 for a pair), n × m
+  Eigen::MatrixXcd inverse_rows_;  // the matching rows of V⁻¹, m × n
   Segment segment_;                   // the last step's forcing, for interpolation inside it
+  double forcing_fitted_to_s_ = 0.0;  // segment_'s forcing holds up to this stop time (NaN: refit)
   Eigen::VectorXd state_;
   Eigen::VectorXd roots_start_;       // root functions at the current time
   std::vector<int> roots_found_;

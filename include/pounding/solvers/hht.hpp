@@ -1,5 +1,5 @@
 #pragma once
-// The published reference scheme (DESIGN.md §3): HHT-α time stepping with fixed Δt, contacts
+// The published reference scheme (docs/model.md §8): HHT-α time stepping with fixed Δt, contacts
 // checked at step ends, and the step repeated with Δt/2, Δt/4, … when a slab overlaps another,
 // until the end state is in contact within a tolerance; then the impact law, and on with Δt.
 // Also the variants users compare against: impacts at the end of the overlapping step (no

@@ -27,7 +27,8 @@ class Recorder {
   /// Writes a history row at t (also observes it).
   void sample(double t, const dynamics::VectorXd& y);
   /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns and whose end
-  /// state is `y_b`: history samples that fall inside, the peaks at t_b, and the energy
+  /// state is `y_b`: history samples that fall inside, the peaks (turning points inside located
+  /// on `at` to round-off, so a peak does not depend on where the steps end), and the energy
   /// integrals (3-point Gauss–Legendre). `constraint_power(t, y)` is the power of
   /// sustained-contact forces (kW).
   void advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
@@ -46,12 +47,19 @@ class Recorder {
 
  private:
   void append_row(double t, const dynamics::VectorXd& y);
+  void locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_b,
+                    const std::function<dynamics::VectorXd(double)>& at);
+  /// Updates `peak` at the turning point of `value` inside (t_a, t_b), if its rate changes sign
+  /// there and it can beat the peak.
+  template <class Value, class Rate>
+  void locate_peak(Peak& peak, double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
+                   const std::function<dynamics::VectorXd(double)>& at, const Value& value, const Rate& rate);
 
   const dynamics::CoupledSystem& system_;
   std::vector<contact::Level> history_levels_;
   double interval_s_;
   double next_sample_s_;
-  std::array<std::vector<model::Point2>, 2> vertices_;  // contact vertices per building
+  std::array<std::vector<model::Point2>, 2> vertices_;  // contact vertices per building, by outline number
   std::vector<BuildingPeaks> peaks_;
   History history_;
   EnergyAudit energy_;

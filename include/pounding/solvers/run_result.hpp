@@ -88,7 +88,8 @@ struct FloorPeaks {
 
 struct BuildingPeaks {
   std::string name;
-  std::vector<model::Point2> contact_vertices_rest;  // the vertices tracked in vertex_dx_m
+  std::vector<int> contact_vertices;                 // their 1-based numbers in the slab outline, ascending
+  std::vector<model::Point2> contact_vertices_rest;  // the same vertices at rest; vertex_dx_m follows this order
   std::vector<FloorPeaks> floors;                      // every floor of the building
 };
 

@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""Solver time and accuracy of every method on the paper scene against the scipy peer, and how
+the cost grows with building size: the measurements issue 12's targets are stated in.
+
+    bench/speed.py [--pounding build/apps/pounding] [--repeat 5] [--out bench/results]
+
+Writes speed.md (tables to paste into the README) and speed.json into --out, with the commit
+and the CPU they were measured on. Times are medians of --repeat runs:
+- solver time: the run's own `statistics.wall_time_s` (the solution path alone, no scene
+  reading, model assembly or file writing);
+- CPU: the whole `pounding run` process (user + system), for comparison with the peer's CPU.
+Measure on a quiet machine: other work on the cores inflates every number.
+"""
+import argparse
+import json
+import math
+import platform
+import re
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "bench/peers"))
+import scipy_paper  # noqa: E402  (the independent peer)
+
+PAPER = ROOT / "examples/paper/paper.toml"
+METHODS = ["cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "exact", "hht"]
+SIZES = [10, 20, 40, 60]  # storeys of each building in the size ladder
+SIZE_METHODS = ["cvode-bdf", "exact"]
+
+
+def cpu_model():
+    for line in Path("/proc/cpuinfo").read_text().splitlines():
+        if line.startswith("model name"):
+            return line.split(":", 1)[1].strip()
+    return platform.processor() or "unknown CPU"
+
+
+def commit():
+    done = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    return done.stdout.strip() or "unknown"
+
+
+def timed_run(pounding, scene, out, *extra):
+    """One `pounding run`: (summary, process CPU s)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    done = subprocess.run([pounding, "run", str(scene), "--out", str(out), *extra], stdout=subprocess.DEVNULL)
+    if done.returncode not in (0, 3):  # 3: a run status other than completed, still timed
+        sys.exit(f"pounding run {scene} {' '.join(extra)} failed with exit code {done.returncode}")
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return json.loads((Path(out) / "summary.json").read_text()), cpu
+
+
+def impact_error_s(summary, peer_impacts):
+    """Largest impact-time difference to the peer over the impacts before the first hold."""
+    ours = []
+    for impact in summary["impacts"]:
+        ours.append(impact["t_s"])
+        if impact.get("starts_sustained_contact"):
+            break
+    if len(ours) != len(peer_impacts):
+        return math.nan
+    return max(abs(a - b["t_s"]) for a, b in zip(ours, peer_impacts))
+
+
+def paper_table(pounding, repeat, scratch):
+    t_rec, a_rec = scipy_paper.record()
+    peer_cpu = []
+    for _ in range(repeat):
+        start = time.process_time()
+        peer, _, _ = scipy_paper.solve(scipy_paper.Scene(0.20, 0.5), t_rec, a_rec, 1e-10, 1e-12, 1e-3)
+        peer_cpu.append(time.process_time() - start)
+    rows = [dict(method="scipy DOP853 peer (rtol 1e-10)", solver_s=statistics.median(peer_cpu),
+                 cpu_s=statistics.median(peer_cpu), error_s=0.0, impacts=len(peer), status="up to the first hold")]
+    for method in METHODS:
+        solver, cpu = [], []
+        for k in range(repeat):
+            summary, c = timed_run(pounding, PAPER, Path(scratch) / f"{method}-{k}", "--method", method)
+            solver.append(summary["statistics"]["wall_time_s"])
+            cpu.append(c)
+        rows.append(dict(method=method, solver_s=statistics.median(solver), cpu_s=statistics.median(cpu),
+                         error_s=impact_error_s(summary, peer), impacts=summary["impact_count"],
+                         status=summary["status"]))
+    return rows
+
+
+def sized_scene(storeys, folder):
+    """The paper's buildings with `storeys` floors each, 0.5 m apart (no contact: pure cost)."""
+    text = PAPER.read_text()
+    text = re.sub(r"^storeys = \d+", f"storeys = {storeys}", text, flags=re.M)
+    text = re.sub(r"^frame_factor = .*$", "frame_factor = 1.0", text, flags=re.M)
+    text = text.replace('file = "../records/', f'file = "{ROOT}/examples/records/')
+    text = re.sub(r'^name = "paper"', f'name = "size-{storeys}"', text, flags=re.M)
+    scene = Path(folder) / f"size-{storeys}.toml"
+    scene.write_text(text)
+    return scene
+
+
+def size_table(pounding, repeat, scratch):
+    rows = []
+    for storeys in SIZES:
+        scene = sized_scene(storeys, scratch)
+        for method in SIZE_METHODS:
+            solver = []
+            for k in range(repeat):
+                summary, _ = timed_run(pounding, scene, Path(scratch) / f"size{storeys}-{method}-{k}", "--method",
+                                       method, "--gap", "0.5", "--max-wall-time", "600")
+                solver.append(summary["statistics"]["wall_time_s"])
+            rows.append(dict(storeys=storeys, states=12 * storeys, method=method, solver_s=statistics.median(solver)))
+    return rows
+
+
+def fitted_exponent(rows, method):
+    """Least-squares slope of log(solver time) against log(states)."""
+    points = [(math.log(r["states"]), math.log(r["solver_s"])) for r in rows if r["method"] == method]
+    mx = sum(x for x, _ in points) / len(points)
+    my = sum(y for _, y in points) / len(points)
+    return sum((x - mx) * (y - my) for x, y in points) / sum((x - mx) ** 2 for x, _ in points)
+
+
+def markdown(paper, sizes, exponents, where):
+    lines = [f"Measured {where}.", "",
+             "| paper scene, gap 0.20 m | solver [s] | process CPU [s] | impact-time error vs peer [s] | impacts | status |",
+             "|---|---|---|---|---|---|"]
+    for r in paper:
+        lines.append(f"| {r['method']} | {r['solver_s']:.4f} | {r['cpu_s']:.3f} | {r['error_s']:.1e} | {r['impacts']} | {r['status']} |")
+    lines += ["", "(error: largest impact-time difference over the impacts before the first sustained contact)", "",
+              "| storeys (each) | states | " + " | ".join(f"{m} solver [s]" for m in SIZE_METHODS) + " |",
+              "|---|---|" + "---|" * len(SIZE_METHODS)]
+    for storeys in SIZES:
+        cells = [f"{r['solver_s']:.3f}" for m in SIZE_METHODS for r in sizes if r["storeys"] == storeys and r["method"] == m]
+        lines.append(f"| {storeys} | {12 * storeys} | " + " | ".join(cells) + " |")
+    lines.append("| fitted exponent (time ∝ states^p) | | " + " | ".join(f"{exponents[m]:.2f}" for m in SIZE_METHODS) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--pounding", default=str(ROOT / "build/apps/pounding"))
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--out", default=str(ROOT / "bench/results"))
+    args = parser.parse_args()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    where = f"at commit {commit()} on {cpu_model()} ({platform.node()}), median of {args.repeat}"
+    with tempfile.TemporaryDirectory() as scratch:
+        paper = paper_table(args.pounding, args.repeat, scratch)
+        sizes = size_table(args.pounding, args.repeat, scratch)
+    exponents = {m: fitted_exponent(sizes, m) for m in SIZE_METHODS}
+    (out / "speed.json").write_text(json.dumps(dict(measured=where, paper=paper, sizes=sizes, exponents=exponents),
+                                               indent=2))
+    text = markdown(paper, sizes, exponents, where)
+    (out / "speed.md").write_text(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,50 @@
+#pragma once
+// The one list of an impact's fields, read by both writers: summary.json's `impacts` and
+// impacts.csv (the streamed and the finished one), so the two files cannot drift apart.
+//
+// How a field is spelled. A scalar is the JSON key and the CSV column `name_unit` (just `name`
+// when it has no unit: counts, 1-based numbers, flags). A pair (a plan point, or the floors of
+// building 1 and 2) is a JSON array under `name` and the CSV columns `name_component_unit` (or
+// `name_component`), components in array order: `point` -> point_x_m, point_y_m; `floors` ->
+// floors_b1, floors_b2. A flag is a JSON boolean and a CSV 1 or 0.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::io {
+
+struct ImpactField {
+  enum class Type { real, integer, flag };
+  std::string_view name;
+  std::string_view unit;                      // "s", "m", "mps", "kNs", "kJ"; empty: none
+  std::vector<std::string_view> components;  // empty: a scalar; else the array's components
+  Type type = Type::real;
+  /// The field's value (a scalar) or values (one per component) for an impact.
+  std::vector<double> (*values)(const solvers::ImpactRecord& impact) = nullptr;
+
+  /// The JSON key: `name_unit` for a scalar with a unit, else `name`.
+  std::string json_key() const;
+  /// The CSV columns, as described above.
+  std::vector<std::string> csv_columns() const;
+};
+
+/// The fields in output order: t_s, level, floors, elevation_m, striking_building, vertex (the
+/// slab-outline number, 1-based), vertex_rest, struck_edge, point, approach_velocity_mps,
+/// separation_velocity_mps, impulse_kNs, energy_lost_kJ, starts_sustained_contact.
+const std::vector<ImpactField>& impact_fields();
+
+/// One impact as summary.json writes it, keys in field order.
+nlohmann::ordered_json impact_json(const solvers::ImpactRecord& impact);
+
+/// impacts.csv's header columns, in field order.
+std::vector<std::string> impact_csv_columns();
+
+/// One impacts.csv row (comma-separated, no newline); reals in the shortest text that reads back
+/// to the same double.
+std::string impact_csv_row(const solvers::ImpactRecord& impact);
+
+}  // namespace pounding::io

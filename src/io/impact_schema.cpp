@@ -1,0 +1,105 @@
+#include "pounding/io/impact_schema.hpp"
+
+#include <fmt/format.h>
+
+namespace pounding::io {
+namespace {
+
+using Type = ImpactField::Type;
+using solvers::ImpactRecord;
+
+std::vector<double> pair(const model::Point2& p) { return {p.x(), p.y()}; }
+
+std::string suffixed(std::string name, std::string_view suffix) {
+  if (!suffix.empty()) name += fmt::format("_{}", suffix);
+  return name;
+}
+
+std::string csv_text(Type type, double value) {
+  switch (type) {
+    case Type::real: return fmt::format("{}", value);
+    case Type::integer: return fmt::format("{}", static_cast<long long>(value));
+    case Type::flag: return value != 0.0 ? "1" : "0";
+  }
+  return "";
+}
+
+nlohmann::ordered_json json_value(Type type, double value) {
+  switch (type) {
+    case Type::real: return value;
+    case Type::integer: return static_cast<long long>(value);
+    case Type::flag: return value != 0.0;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::string ImpactField::json_key() const {
+  return components.empty() ? suffixed(std::string(name), unit) : std::string(name);
+}
+
+std::vector<std::string> ImpactField::csv_columns() const {
+  if (components.empty()) return {json_key()};
+  std::vector<std::string> columns;
+  for (std::string_view component : components) columns.push_back(suffixed(suffixed(std::string(name), component), unit));
+  return columns;
+}
+
+const std::vector<ImpactField>& impact_fields() {
+  static const std::vector<ImpactField> kFields = {
+      {"t", "s", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.t_s}; }},
+      {"level", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.level)}; }},
+      {"floors", "", {"b1", "b2"}, Type::integer,
+       [](const ImpactRecord& i) { return std::vector{double(i.floors[0]), double(i.floors[1])}; }},
+      {"elevation", "m", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.elevation_m}; }},
+      {"striking_building", "", {}, Type::integer,
+       [](const ImpactRecord& i) { return std::vector{double(i.striking_building)}; }},
+      {"vertex", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.vertex)}; }},
+      {"vertex_rest", "m", {"x", "y"}, Type::real, [](const ImpactRecord& i) { return pair(i.vertex_rest); }},
+      {"struck_edge", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.struck_edge)}; }},
+      {"point", "m", {"x", "y"}, Type::real, [](const ImpactRecord& i) { return pair(i.point); }},
+      {"approach_velocity", "mps", {}, Type::real,
+       [](const ImpactRecord& i) { return std::vector{i.approach_velocity_mps}; }},
+      {"separation_velocity", "mps", {}, Type::real,
+       [](const ImpactRecord& i) { return std::vector{i.separation_velocity_mps}; }},
+      {"impulse", "kNs", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.impulse_kNs}; }},
+      {"energy_lost", "kJ", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.energy_lost_kJ}; }},
+      {"starts_sustained_contact", "", {}, Type::flag,
+       [](const ImpactRecord& i) { return std::vector{i.starts_hold ? 1.0 : 0.0}; }},
+  };
+  return kFields;
+}
+
+nlohmann::ordered_json impact_json(const ImpactRecord& impact) {
+  nlohmann::ordered_json document;
+  for (const ImpactField& field : impact_fields()) {
+    const std::vector<double> values = field.values(impact);
+    if (field.components.empty()) {
+      document[field.json_key()] = json_value(field.type, values.front());
+      continue;
+    }
+    nlohmann::ordered_json array = nlohmann::ordered_json::array();
+    for (double value : values) array.push_back(json_value(field.type, value));
+    document[field.json_key()] = array;
+  }
+  return document;
+}
+
+std::vector<std::string> impact_csv_columns() {
+  std::vector<std::string> columns;
+  for (const ImpactField& field : impact_fields()) {
+    for (std::string& column : field.csv_columns()) columns.push_back(std::move(column));
+  }
+  return columns;
+}
+
+std::string impact_csv_row(const ImpactRecord& impact) {
+  std::string row;
+  for (const ImpactField& field : impact_fields()) {
+    for (double value : field.values(impact)) row += fmt::format("{}{}", row.empty() ? "" : ",", csv_text(field.type, value));
+  }
+  return row;
+}
+
+}  // namespace pounding::io

@@ -1,0 +1,121 @@
+#include "pounding/io/run_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iterator>
+#include <map>
+
+namespace pounding::io {
+namespace {
+
+/// "level 3 (B1 floor 3, B2 floor 2, 9 m)": where a contact is.
+std::string where(int level, const std::array<int, 2>& floors, double elevation_m) {
+  return fmt::format("level {} (B1 floor {}, B2 floor {}, {:.6g} m)", level, floors[0], floors[1], elevation_m);
+}
+template <class Located>
+std::string where(const Located& r) {
+  return where(r.level, r.floors, r.elevation_m);
+}
+
+void append_contacts(const analysis::RunReport& report, std::string& text) {
+  const solvers::RunResult& r = report.result;
+  auto out = std::back_inserter(text);
+  std::map<int, int> by_level;
+  for (const auto& i : r.impacts) ++by_level[i.level];
+  fmt::format_to(out, "Impacts: {}", r.impacts.size());
+  for (const auto& [level, count] : by_level) {
+    const contact::Level& l = report.levels.at(static_cast<std::size_t>(level - 1));
+    fmt::format_to(out, "; {}: {}", where(l.index, l.floors, l.elevation_m), count);
+  }
+  text += '\n';
+  if (!r.impacts.empty()) {
+    const auto& first = r.impacts.front();
+    fmt::format_to(out, "  first at t = {:.6f} s on {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
+                   first.t_s, where(first), first.striking_building, first.vertex, first.approach_velocity_mps,
+                   first.impulse_kNs);
+  }
+  fmt::format_to(out, "Touches (contact without impact): {}\n", r.touches.size());
+  for (const auto& t : r.touches) {
+    fmt::format_to(out, "  t = {:.6f} s, {}, B{} vertex {}\n", t.t_s, where(t), t.striking_building, t.vertex);
+  }
+  fmt::format_to(out, "Sustained contacts: {}\n", r.sustained_contacts.size());
+  for (const auto& s : r.sustained_contacts) {
+    fmt::format_to(out, "  {}, B{} vertex {}: {:.6f} s to {:.6f} s ({}), max force {:.1f} kN\n", where(s),
+                   s.striking_building, s.vertex, s.start_s, s.release_s, s.release_reason, s.max_force_kN);
+  }
+}
+
+void append_response(const analysis::RunReport& report, std::string& text) {
+  const solvers::RunResult& r = report.result;
+  auto out = std::back_inserter(text);
+  // The top level is where the buildings pound hardest; each building's own floor there.
+  for (std::size_t b = 0; b < r.peaks.size() && !report.levels.empty(); ++b) {
+    const auto& building = r.peaks[b];
+    const auto& top = building.floors.at(static_cast<std::size_t>(report.levels.back().floors[b] - 1));
+    fmt::format_to(out, "Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",
+                   building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
+                   top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
+  }
+  const auto& st = r.statistics;
+  if (st.max_interpenetration_candidate >= 0) {
+    fmt::format_to(out, "Largest overlap: {:.3e} m at {:.6f} s, {}\n", st.max_interpenetration_m,
+                   st.max_interpenetration_t_s,
+                   contact::describe(report.candidates.at(static_cast<std::size_t>(st.max_interpenetration_candidate))));
+  } else {
+    text += "Largest overlap: none\n";
+  }
+  const auto& e = r.energy;
+  const std::string algorithmic =
+      r.method == "hht" ? fmt::format(", algorithmic dissipation {:.3f} kJ", e.algorithmic_dissipation_kJ) : "";
+  fmt::format_to(out, "Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ{}, residual {:.3e} kJ ({:.2e} of input)\n",
+                 e.input_kJ, e.damping_kJ, e.impact_loss_kJ, algorithmic, e.residual_kJ(),
+                 e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
+}
+
+void append_solver(const analysis::RunReport& report, std::string& text) {
+  const solvers::RunResult& r = report.result;
+  const auto& s = r.statistics;
+  auto out = std::back_inserter(text);
+  if (r.method == "hht") {
+    fmt::format_to(out, "Solver: {} steps ({} solves), {} factorisations, {} halvings, smallest step {:.3e} s, {} unresolved; "
+                   "run time {:.3f} s\n", s.steps, s.rhs_evaluations, s.jacobian_evaluations, s.halvings,
+                   s.smallest_step_s, s.unresolved_contacts, s.wall_time_s);
+  } else {
+    fmt::format_to(out, "Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
+                   s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
+  }
+}
+
+}  // namespace
+
+std::string method_settings_text(const analysis::RunReport& report) {
+  const auto& solver = report.solver;
+  const std::string& method = report.result.method;
+  if (method == "hht") {
+    return fmt::format("dt {} s, alpha {}, contact tolerance {} m, event location {}", solver.dt_s, solver.alpha,
+                       solver.contact_tolerance_m, solver.event_location);
+  }
+  if (method == "exact") return fmt::format("held stretches at rtol {}", solver.hold_rtol);
+  return fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
+}
+
+std::string brief_report(const analysis::RunReport& report) {
+  const solvers::RunResult& r = report.result;
+  const std::string first = r.impacts.empty() ? "" : fmt::format(", first at t = {:.6f} s", r.impacts.front().t_s);
+  return fmt::format("{}: {}, {}, {} impact{}{}, run time {:.3f} s", report.scene, r.method, solvers::to_string(r.status),
+                     r.impacts.size(), r.impacts.size() == 1 ? "" : "s", first, r.statistics.wall_time_s);
+}
+
+std::string full_report(const analysis::RunReport& report) {
+  const solvers::RunResult& r = report.result;
+  std::string text = fmt::format("Run '{}' with {} ({}), gap {} m, k = {}: {}{}\n", report.scene, r.method,
+                                 method_settings_text(report), report.gap_m, report.restitution,
+                                 solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
+  append_contacts(report, text);
+  append_response(report, text);
+  append_solver(report, text);
+  return text;
+}
+
+}  // namespace pounding::io
