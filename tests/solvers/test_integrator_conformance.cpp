@@ -50,7 +50,7 @@ struct Method {
   Factory make;
   /// The tolerances the method works to: the global error of a short run is checked against
   /// kGlobalErrorFactor · (rtol |y| + atol). The exact path's free flight is exact up to
-  /// round-off, its held stretch is CVODE Adams at ExactSettings' tolerances.
+  /// round-off, its held stretch is CVODE (BDF) at ExactSettings' tolerances.
   double rtol = kRtol, atol = kAtol;
   bool declares_linear = true;  // false sends the exact path down its held (CVODE) stretch
   bool uses_jacobian = true;    // false for the explicit ERK
