@@ -162,7 +162,8 @@ class InterruptRequests {
 };
 
 int run_run(const RunCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
+  analysis::Scene scene = io::read_scene(
+      command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
   apply_run_options(command, scene.solver);
   const analysis::RunLimits limits = run_limits(command);
   const std::filesystem::path folder =
@@ -246,8 +247,8 @@ int run_modes(const ModesCommand& command) {
 }
 
 int run_check(const CheckCommand& command) {
-  const analysis::Scene scene =
-      io::read_scene(command.scene, {.gap_m = command.gap_m, .restitution = command.restitution});
+  const analysis::Scene scene = io::read_scene(
+      command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
   const auto buildings = analysis::summarise_buildings(scene);
   const excitation::GroundMotion motion = excitation::load_ground_motion(scene.excitation);
 

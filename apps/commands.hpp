@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "pounding/excitation/record_choice.hpp"
+
 namespace pounding::cli {
 
 struct ModesCommand {
@@ -18,12 +20,14 @@ struct CheckCommand {
   std::string scene;
   std::optional<double> gap_m;
   std::optional<double> restitution;
+  excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
 };
 
 struct RunCommand {
   std::string scene;
   std::optional<double> gap_m;
   std::optional<double> restitution;
+  excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
   std::optional<int> order;
   std::optional<double> rtol;
@@ -55,9 +59,11 @@ struct GapCommand {
   std::optional<double> gap_m;
   std::optional<double> rtol;
   std::optional<double> atol;
+  excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
+  std::string records;   // --records: a list file or a folder of .AT2 files; empty: the scene's record
   int curve = 0;         // gaps of the severity curve; 0: none
-  unsigned threads = 0;  // for the curve; 0: every core
-  std::string out_dir;   // empty: out/<scene name>-gap
+  unsigned threads = 0;  // runs at a time (curve, records); 0: every core
+  std::string out_dir;   // empty: out/<scene name>-gap (out/<scene name>-records with --records)
 };
 
 int run_gap(const GapCommand& command, const std::string& command_line);  // in gap_command.cpp

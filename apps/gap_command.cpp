@@ -1,16 +1,24 @@
-// `pounding gap`: prints what analysis::needed_gap and analysis::severity_curve find.
+// `pounding gap`: prints what analysis::needed_gap, analysis::severity_curve and
+// analysis::record_set_gaps find.
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
+#include <thread>
+#include <utility>
 
 #include "commands.hpp"
 #include "pounding/analysis/needed_gap.hpp"
+#include "pounding/analysis/record_set.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/gap_writer.hpp"
 #include "pounding/io/output_files.hpp"
 #include "pounding/io/provenance.hpp"
+#include "pounding/io/record_list.hpp"
 #include "pounding/io/scene_reader.hpp"
 
 namespace pounding::cli {
@@ -52,10 +60,95 @@ void print_curve(const std::vector<analysis::SeverityPoint>& curve) {
   }
 }
 
+/// "0.364275" for a number that exists, "-" otherwise (a failed record, a statistic of one value).
+std::string cell(double value, int decimals = 6) {
+  return std::isfinite(value) ? fmt::format("{:.{}f}", value, decimals) : "-";
+}
+
+void print_record_rows(const analysis::RecordSetResult& set) {
+  fmt::print("{:<46} {:>7} {:>10} {:>15} {:>7} {:>8} {:>10} {:>10} {:>10}\n", "record", "PGA [g]", "length [s]",
+             "needed gap [m]", "floors", "t [s]", "ABS [m]", "SRSS [m]", "DDC [m]");
+  for (const analysis::RecordGap& r : set.records) {
+    if (!r.completed()) {
+      fmt::print("{:<46} FAILED: {}\n", r.record, r.message);
+      continue;
+    }
+    const bool closes = r.level > 0;
+    fmt::print("{:<46} {:>7} {:>10} {:>15} {:>7} {:>8} {:>10} {:>10} {:>10}\n", r.record, cell(r.pga_g, 3),
+               cell(r.duration_s, 2), closes ? cell(r.needed_gap_m) : "never",
+               closes ? fmt::format("{}/{}", r.floors[0], r.floors[1]) : "-", closes ? cell(r.t_s, 3) : "-",
+               cell(r.rules.abs_m), cell(r.rules.srss_m), cell(r.rules.ddc_m));
+  }
+}
+
+void print_set_statistics(const analysis::RecordSetResult& set) {
+  const std::array<const analysis::SetStatistic*, 4> columns{&set.needed_gap_m, &set.abs_m, &set.srss_m, &set.ddc_m};
+  fmt::print("Over the {} completed records{}:\n", set.records.size() - static_cast<std::size_t>(set.failed),
+             set.failed ? fmt::format(" ({} failed)", set.failed) : "");
+  fmt::print("{:<22} {:>15} {:>10} {:>10} {:>10}\n", "", "needed gap [m]", "ABS [m]", "SRSS [m]", "DDC [m]");
+  auto row = [&](const char* name, double analysis::SetStatistic::*field) {
+    fmt::print("{:<22} {:>15} {:>10} {:>10} {:>10}\n", name, cell(columns[0]->*field), cell(columns[1]->*field),
+               cell(columns[2]->*field), cell(columns[3]->*field));
+  };
+  row("mean", &analysis::SetStatistic::mean);
+  row("median", &analysis::SetStatistic::median);
+  row("84th pct (lognormal)", &analysis::SetStatistic::p84_lognormal);
+  fmt::print("  84th percentile = exp(m + s), m and s the mean and the sample standard deviation (divisor n - 1) "
+             "of ln x over the records\n");
+  if (set.worst >= 0) {
+    const analysis::RecordGap& worst = set.records[static_cast<std::size_t>(set.worst)];
+    fmt::print("Worst record: {}, needed gap {} at floors {}/{}, t = {:.3f} s\n", worst.record,
+               metres(worst.needed_gap_m), worst.floors[0], worst.floors[1], worst.t_s);
+  }
+  // Per rule, under how many records it asks for less than the needed gap.
+  const std::array<std::pair<const char*, double analysis::GapRules::*>, 3> rules{
+      {{"ABS", &analysis::GapRules::abs_m}, {"SRSS", &analysis::GapRules::srss_m}, {"DDC", &analysis::GapRules::ddc_m}}};
+  for (const auto& [name, field] : rules) {
+    int short_of = 0, compared = 0;
+    for (const analysis::RecordGap& r : set.records) {
+      if (!r.completed() || !std::isfinite(r.needed_gap_m)) continue;
+      ++compared;
+      if (r.rules.*field < r.needed_gap_m) ++short_of;
+    }
+    fmt::print("  {:<5} unconservative under {} of {} records\n", name, short_of, compared);
+  }
+}
+
+/// `gap --records`: the needed gap under every record of the set, then the set's statistics.
+/// Returns 3 when a record failed (its row says why; the others are still written).
+int run_record_set(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
+  const std::vector<analysis::RecordEntry> records = io::read_record_list(command.records, scene.excitation);
+  const std::string folder =
+      command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-records") : command.out_dir;
+  io::require_writable_folder(folder, "--out");
+  // The scene's own record is not run: the rows name theirs.
+  analysis::Scene without_record = scene;
+  without_record.excitation.file.clear();
+  const io::Provenance provenance = io::make_provenance(without_record, command_line);
+  const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
+  fmt::print("Needed gap of '{}' under {} records ({}; contact-free runs, CVODE rtol {:g}, {} at a time):\n",
+             scene.name, records.size(), command.records, scene.solver.rtol,
+             std::min<std::size_t>(threads, records.size()));
+  const auto start = std::chrono::steady_clock::now();
+  int done = 0, failed = 0;
+  const analysis::RecordSetResult set =
+      analysis::record_set_gaps(scene, records, threads, [&](const analysis::RecordGap& r) {
+        failed += r.completed() ? 0 : 1;
+        const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        fmt::print(stderr, "\r  {}/{} records done, {} failed, {:.1f} s", ++done, records.size(), failed, elapsed_s);
+      });
+  fmt::print(stderr, "\n");
+  print_record_rows(set);
+  print_set_statistics(set);
+  io::write_record_set(scene.name, set, provenance, folder);
+  fmt::print("Wrote {0}/records.csv and records.json ({1:.1f} s for the set)\n", folder, set.wall_time_s);
+  return set.failed == 0 ? 0 : 3;
+}
+
 }  // namespace
 
 int run_gap(const GapCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m});
+  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .record = command.record});
   if (command.rtol) scene.solver.rtol = *command.rtol;
   if (command.atol) scene.solver.atol = *command.atol;
   try {
@@ -64,6 +157,7 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
     throw InputError(error.key() == "solver.rtol" ? "--rtol" : error.key() == "solver.atol" ? "--atol" : error.key(),
                      error.value(), error.reason(), command.scene);
   }
+  if (!command.records.empty()) return run_record_set(command, scene, command_line);
   // A scene name is text, not a path; the folder must take files before the runs, not after them.
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-gap") : command.out_dir;
   io::require_writable_folder(folder, "--out");
@@ -85,11 +179,16 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   if (command.curve > 0) {
     fmt::print("Severity below the needed gap: {} runs ({})\n", command.curve, scene.solver.method);
     int done = 0;
-    curve = analysis::severity_curve(scene, gap.needed_gap_m, command.curve, command.threads,
-                                     [&](const analysis::SeverityPoint& p) {
-                                       fmt::print(stderr, "\r  {}/{} runs done (gap {:.4f} m)", ++done, command.curve,
-                                                  p.gap_m);
-                                     });
+    try {
+      curve = analysis::severity_curve(scene, gap.needed_gap_m, command.curve, command.threads,
+                                       [&](const analysis::SeverityPoint& p) {
+                                         fmt::print(stderr, "\r  {}/{} runs done (gap {:.4f} m)", ++done,
+                                                    command.curve, p.gap_m);
+                                       });
+    } catch (const InputError& error) {
+      if (error.key() != "count") throw;
+      throw InputError("--curve", error.value(), error.reason());
+    }
     fmt::print(stderr, "\n");
     print_curve(curve);
   }

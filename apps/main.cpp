@@ -18,6 +18,21 @@ void add_scene_argument(CLI::App& command, std::string& scene) {
   command.add_option("scene", scene, "Scene file (TOML)")->required();
 }
 
+/// The options that replace the scene's record or its scaling (io::SceneOverrides::record).
+void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& record) {
+  command.add_option_function<std::string>(
+      "--record", [&record](const std::string& file) { record.file = file; },
+      "Record file replacing the scene's (path from the current folder); the scene's format, units, scaling and "
+      "direction still apply, its dt_s, columns and cut do not");
+  command.add_option("--record-format", record.format, "Format of the record: peer-at2, columns or single");
+  command.add_option("--units", record.units, "Units of the record's accelerations: g, m/s2 or cm/s2");
+  command.add_option("--record-dt", record.dt_s, "single: the record's sample spacing (s); other formats: re-spaces it");
+  command.add_option("--record-column", record.accel_column, "Column of the acceleration in the record (from 1)");
+  command.add_option("--scale", record.scale_factor, "Multiply the record by this (replaces the scene's scaling)");
+  command.add_option("--pga-g", record.pga_g, "Scale the record to this peak |a_g| in g (replaces the scene's scaling)");
+  command.add_option("--direction-deg", record.direction_deg, "Direction of the shaking in plan (degrees from +x)");
+}
+
 /// "pounding 0.1.0 (git 0123abc...)", or without the commit when the build did not know it.
 std::string version_text() {
   const std::string_view commit = pounding::git_commit();
@@ -44,12 +59,14 @@ int main(int argc, char** argv) {
   add_scene_argument(*check_app, check.scene);
   check_app->add_option("--gap", check.gap_m, "Clear gap (m); moves building 2 along x");
   check_app->add_option("--restitution", check.restitution, "Coefficient of restitution k in [0, 1]");
+  add_record_options(*check_app, check.record);
 
   pounding::cli::RunCommand run;
   CLI::App* run_app = app.add_subcommand("run", "Time-history analysis with event-driven contact");
   add_scene_argument(*run_app, run.scene);
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
+  add_record_options(*run_app, run.record);
   run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk, arkode-dirk, hht or exact");
   run_app->add_option("--order", run.order, "ARKODE table order: erk 5 (the only one), dirk 4 (default) or 3");
   run_app->add_option("--rtol", run.rtol, "Relative tolerance (default 1e-8)");
@@ -85,10 +102,17 @@ int main(int argc, char** argv) {
   gap_app->add_option("--gap", gap.gap_m, "Clear gap of the scene (m); moves building 2 along x");
   gap_app->add_option("--rtol", gap.rtol, "Relative tolerance of the run (default: the scene's)");
   gap_app->add_option("--atol", gap.atol, "Absolute tolerance of the run, m and rad (default: the scene's)");
-  gap_app->add_option("--curve", gap.curve, "Also run N gaps from 0 towards the needed gap: the severity table")
-      ->check(CLI::Range(2, 1000));
-  gap_app->add_option("--threads", gap.threads, "Runs of --curve at a time (default: every core)");
-  gap_app->add_option("--out", gap.out_dir, "Output folder (default out/<scene name>-gap)");
+  add_record_options(*gap_app, gap.record);
+  CLI::Option* curve = gap_app->add_option("--curve", gap.curve,
+                                           "Also run N gaps from 0 towards the needed gap: the severity table")
+                           ->check(CLI::Range(2, 1000));
+  gap_app->add_option("--records", gap.records,
+                      "The needed gap under every record of a list file (a path and options a line) or of a "
+                      "folder's .AT2 files, with the set's statistics")
+      ->excludes(curve)->excludes("--record");
+  gap_app->add_option("--threads", gap.threads, "Runs of --curve or --records at a time (default: every core)");
+  gap_app->add_option("--out", gap.out_dir,
+                      "Output folder (default out/<scene name>-gap, or out/<scene name>-records with --records)");
 
   try {
     app.parse(argc, argv);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Runs every fuzz target (fuzz/*.cpp: the scene reader, the record readers) under ASan+UBSan for
-# SECONDS each (default 3600), one after the other, growing the corpus in out/fuzz/corpus/.
+# Runs every fuzz target (fuzz/*.cpp: the scene reader, the record readers, the record list)
+# under ASan+UBSan for SECONDS each (default 3600), one after the other, growing the corpus in
+# out/fuzz/corpus/.
 # An input that crashes a target is copied into fuzz/regressions/<target>/, which the test
 # suite replays from then on (fix the bug, commit the input). Exit 1 if any target crashed.
 # Usage: fuzz.sh [SECONDS] [TARGET...]
@@ -9,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-3600}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(fuzz_scene fuzz_record)
+[ ${#targets[@]} -eq 0 ] && targets=(fuzz_scene fuzz_record fuzz_record_list)
 ./scripts/build-sanitized.sh --target "${targets[@]}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

@@ -24,7 +24,7 @@ SKIPPED_DIRS = {".git", "__pycache__"}
 
 
 def ignored_folders(root: Path):
-    """Top-level folders .gitignore lists ('build/', 'out/', …): generated, never in the repository."""
+    """Folders .gitignore lists ('build/', 'out/', 'bench/results/', …): generated, never in the repository."""
     gitignore = root / ".gitignore"
     lines = gitignore.read_text().splitlines() if gitignore.is_file() else []
     return {line.strip().strip("/") for line in lines if line.strip().endswith("/")} | SKIPPED_DIRS
@@ -75,7 +75,7 @@ def problems(document: Path, root: Path, ignored, names):
         if "/" not in token or token.startswith("/") or not PATH_TOKEN.match(token):
             continue
         parts = [part for part in token.split("/") if part not in ("", ".")]
-        if not parts or parts[0] in ignored:
+        if not parts or any("/".join(parts[:k]) in ignored for k in range(1, len(parts) + 1)):
             continue
         names_a_file = "." in parts[-1].strip(".")
         if not (parts[0] == ".." or parts[0] in top_level or names_a_file):

@@ -6,8 +6,6 @@
 #include <fmt/format.h>
 #include <limits>
 #include <mutex>
-#include <thread>
-#include <atomic>
 
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/input_error.hpp"
@@ -15,6 +13,7 @@
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
+#include "parallel.hpp"
 
 namespace pounding::analysis {
 
@@ -351,35 +350,19 @@ SeverityPoint severity_at(Scene scene, double gap_m) {
 
 std::vector<SeverityPoint> severity_curve(const Scene& scene, double needed_gap_m, int count, unsigned threads,
                                           const std::function<void(const SeverityPoint&)>& progress) {
-  if (count < 2) throw InputError("--curve", std::to_string(count), "needs at least 2 gaps");
+  if (count < 2) throw InputError("count", std::to_string(count), "needs at least 2 gaps");
   if (!(needed_gap_m > 0.0) || !std::isfinite(needed_gap_m)) {
     throw InputError("needed_gap_m", format_value(needed_gap_m), "must be positive: no gap short of it to try");
   }
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<SeverityPoint> points(static_cast<std::size_t>(count));
-  std::vector<std::exception_ptr> errors(points.size());
-  std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
-  // Each worker takes the next gap; the runs share nothing but the (copied) scene.
-  auto worker = [&] {
-    for (std::size_t k = next++; k < points.size(); k = next++) {
-      try {
-        points[k] = severity_at(scene, needed_gap_m * static_cast<double>(k) / count);
-        if (progress) {
-          const std::lock_guard<std::mutex> lock(progress_mutex);
-          progress(points[k]);
-        }
-      } catch (...) {
-        errors[k] = std::current_exception();
-      }
+  detail::parallel_for(points.size(), threads, [&](std::size_t k) {
+    points[k] = severity_at(scene, needed_gap_m * static_cast<double>(k) / count);
+    if (progress) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      progress(points[k]);
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned w = 0; w < std::min<unsigned>(threads, static_cast<unsigned>(count)); ++w) pool.emplace_back(worker);
-  for (std::thread& thread : pool) thread.join();
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  });
   return points;
 }
 

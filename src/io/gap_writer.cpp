@@ -68,7 +68,84 @@ void write_curve_csv(const std::vector<analysis::SeverityPoint>& curve, const st
   }
 }
 
+/// A text field of a CSV row: quoted, with inner quotes doubled (messages hold commas and quotes).
+std::string csv_text(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+  return quoted + "\"";
+}
+
+/// A number of a CSV row; empty where it does not exist.
+std::string csv_number(double value) { return std::isfinite(value) ? fmt::format("{}", value) : ""; }
+
+void write_records_csv(const analysis::RecordSetResult& set, const std::filesystem::path& file) {
+  std::ofstream out = open_for_writing(file);
+  out << "record,source,status,message,pga_g,duration_s,needed_gap_m,level,floor_b1,floor_b2,t_s,abs_m,srss_m,ddc_m,"
+         "steps,wall_time_s\n";
+  for (const analysis::RecordGap& r : set.records) {
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.record), csv_text(r.source),
+                       r.status, csv_text(r.message), csv_number(r.pga_g), csv_number(r.duration_s),
+                       csv_number(r.needed_gap_m), r.level, r.floors[0], r.floors[1], csv_number(r.t_s),
+                       csv_number(r.rules.abs_m), csv_number(r.rules.srss_m), csv_number(r.rules.ddc_m), r.steps,
+                       r.wall_time_s);
+  }
+}
+
+json statistic_json(const analysis::SetStatistic& s) {
+  return {{"count", s.count},
+          {"mean", finite_or_null(s.mean)},
+          {"median", finite_or_null(s.median)},
+          {"log_mean", finite_or_null(s.log_mean)},
+          {"log_std", finite_or_null(s.log_std)},
+          {"p84_lognormal", finite_or_null(s.p84_lognormal)}};
+}
+
+json record_json(const analysis::RecordGap& r) {
+  const bool governed = r.completed() && r.level > 0;
+  return {{"record", r.record},
+          {"source", r.source},
+          {"status", r.status},
+          {"message", r.message},
+          {"pga_g", finite_or_null(r.pga_g)},
+          {"duration_s", finite_or_null(r.duration_s)},
+          {"needed_gap_m", finite_or_null(r.needed_gap_m)},
+          {"level", r.level},
+          {"floor", governed ? json({r.floors[0], r.floors[1]}) : json(nullptr)},
+          {"t_s", governed ? finite_or_null(r.t_s) : json(nullptr)},
+          {"rules",
+           {{"abs_m", finite_or_null(r.rules.abs_m)},
+            {"srss_m", finite_or_null(r.rules.srss_m)},
+            {"ddc_m", finite_or_null(r.rules.ddc_m)}}},
+          {"steps", r.steps},
+          {"wall_time_s", r.wall_time_s}};
+}
+
 }  // namespace
+
+json record_set_json(const std::string& scene, const analysis::RecordSetResult& set) {
+  json records = json::array();
+  for (const analysis::RecordGap& r : set.records) records.push_back(record_json(r));
+  return {{"scene", scene},
+          {"records", records},
+          {"statistics",
+           {{"needed_gap_m", statistic_json(set.needed_gap_m)},
+            {"abs_m", statistic_json(set.abs_m)},
+            {"srss_m", statistic_json(set.srss_m)},
+            {"ddc_m", statistic_json(set.ddc_m)},
+            {"lognormal_std", "sample standard deviation of ln x (divisor n - 1); p84 = exp(log_mean + log_std)"}}},
+          {"worst", set.worst >= 0 ? json(set.records[static_cast<std::size_t>(set.worst)].record) : json(nullptr)},
+          {"failed", set.failed},
+          {"wall_time_s", set.wall_time_s}};
+}
+
+void write_record_set(const std::string& scene, const analysis::RecordSetResult& set, const Provenance& provenance,
+                      const std::filesystem::path& folder) {
+  std::filesystem::create_directories(folder);
+  json document = record_set_json(scene, set);
+  document["provenance"] = provenance_json(provenance);
+  write_json(document, folder / "records.json");
+  write_records_csv(set, folder / "records.csv");
+}
 
 json gap_json(const std::string& scene, const analysis::NeededGap& gap,
               const std::vector<analysis::SeverityPoint>& curve) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -533,6 +534,34 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   }
 }
 
+/// The option that set the excitation key `key`, if one did; empty otherwise.
+std::string record_option(const std::string& key, const excitation::RecordChoice& choice) {
+  const std::map<std::string, std::pair<bool, const char*>> options = {
+      {"excitation.file", {choice.file.has_value(), "--record"}},
+      {"excitation.format", {choice.format.has_value(), "--record-format"}},
+      {"excitation.units", {choice.units.has_value(), "--units"}},
+      {"excitation.dt_s", {choice.dt_s.has_value(), "--record-dt"}},
+      {"excitation.accel_column", {choice.accel_column.has_value(), "--record-column"}},
+      {"excitation.scale_factor", {choice.scale_factor.has_value(), "--scale"}},
+      {"excitation.scale_to_pga_g", {choice.pga_g.has_value(), "--pga-g"}},
+      {"excitation.direction_deg", {choice.direction_deg.has_value(), "--direction-deg"}}};
+  const auto found = options.find(key);
+  return found != options.end() && found->second.first ? found->second.second : "";
+}
+
+/// Applies the record options and reads the record they make, so that its errors arrive now,
+/// naming the option that caused them (the record file's own errors keep its line and field).
+void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice) {
+  try {
+    scene.excitation = excitation::with_record(scene.excitation, choice);
+    excitation::load_ground_motion(scene.excitation);
+  } catch (const InputError& error) {
+    const std::string option = record_option(error.key(), choice);
+    if (option.empty()) throw;
+    throw InputError(option, error.value(), error.reason(), error.file().empty() ? scene.file.string() : error.file());
+  }
+}
+
 }  // namespace
 
 analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& file,
@@ -554,6 +583,7 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
   if (overrides.restitution) {
     apply_option("--restitution", [&] { scene.contact.restitution = *overrides.restitution; });
   }
+  if (!overrides.record.empty()) apply_record(scene, overrides.record);
   return scene;
 }
 

@@ -112,7 +112,7 @@ BOOST_AUTO_TEST_CASE(BadOptionsNameTheField) {
                         [](const InputError& e) { return e.key() == "rtol"; });
   const analysis::Scene scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml");
   BOOST_CHECK_EXCEPTION(analysis::severity_curve(scene, 0.3, 1), InputError,
-                        [](const InputError& e) { return e.key() == "--curve"; });
+                        [](const InputError& e) { return e.key() == "count"; });
 }
 
 BOOST_AUTO_TEST_CASE(SeverityCurveRunsEachGapOnItsOwn) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end checks of `pounding gap`: the files it writes and their keys, that the printed
-# needed gap is the written one, the severity table, the plot script, and bad input exiting 2
-# with a message naming the option. Usage: test_gap_cli.sh POUNDING_BINARY SOURCE_DIR
+# needed gap is the written one, the severity table, the plot script, a two-record set (rows,
+# statistics against Python's, a failed record), and bad input exiting 2 with a message naming
+# the option or the list line. Usage: test_gap_cli.sh POUNDING_BINARY SOURCE_DIR
 set -uo pipefail
 pounding=$1
 source_dir=$2
@@ -54,6 +55,64 @@ grep -q -- "--out = $work/a-file/gap: cannot create this folder" "$work/bad-err.
 [ ! -s "$work/bad-out.txt" ] || fail "gap ran before refusing its --out"
 "$pounding" gap "$work/missing.toml" > /dev/null 2>&1
 [ $? -eq 2 ] || fail "missing scene should exit 2"
+
+# A record set of two records (one by a relative path, one with its own options), two threads.
+true_time=$source_dir/examples/paper/el-centro-true-time.toml
+records=$source_dir/examples/records
+mkdir -p "$work/list"
+cp "$records/elcentro1940_ns_0.02s.AT2" "$work/list/"
+{
+  echo "# two records"
+  echo "elcentro1940_ns_0.02s.AT2"
+  echo "$records/northridge1994_newhall360_peer_RSN1044.AT2 pga_g=0.25   # its own PGA"
+} > "$work/list/set.txt"
+"$pounding" gap "$true_time" --records "$work/list/set.txt" --threads 2 --out "$work/set" > "$work/set.txt" \
+  2> "$work/set.err" || fail "gap --records exited $?"
+grep -q "2/2 records done, 0 failed" "$work/set.err" || fail "no progress line: $(cat "$work/set.err")"
+"$pounding" gap "$true_time" --out "$work/alone" > /dev/null 2>&1 || fail "gap of the true-time scene exited $?"
+/usr/bin/python3 - "$work/set" "$work/set.txt" "$work/alone/gap.json" <<'PY' || fail "records.csv / records.json content"
+import csv, json, math, re, statistics, sys
+folder, printed, alone = sys.argv[1], open(sys.argv[2]).read(), json.load(open(sys.argv[3]))
+rows = list(csv.DictReader(open(f"{folder}/records.csv")))
+doc = json.load(open(f"{folder}/records.json"))
+assert [r["record"] for r in rows] == ["elcentro1940_ns_0.02s.AT2", "northridge1994_newhall360_peer_RSN1044.AT2"], rows
+assert all(r["status"] == "completed" for r in rows) and doc["failed"] == 0
+assert [r["needed_gap_m"] for r in doc["records"]] == [float(r["needed_gap_m"]) for r in rows]
+# The scene's own record, run in the set, gives the scene's needed gap and rules.
+assert float(rows[0]["needed_gap_m"]) == alone["needed_gap_m"], (rows[0], alone["needed_gap_m"])
+assert float(rows[0]["srss_m"]) == alone["rules"]["srss_m"]
+assert abs(float(rows[0]["pga_g"]) - 0.32) < 1e-12 and abs(float(rows[1]["pga_g"]) - 0.25) < 1e-12
+for key in ("needed_gap_m", "abs_m", "srss_m", "ddc_m"):
+    x = [float(r[key]) for r in rows]
+    s = doc["statistics"][key]
+    logs = [math.log(v) for v in x]
+    assert s["count"] == 2
+    assert math.isclose(s["mean"], sum(x) / 2, rel_tol=1e-14) and math.isclose(s["median"], sum(x) / 2, rel_tol=1e-14)
+    p84 = math.exp(statistics.mean(logs) + statistics.stdev(logs))  # stdev: divisor n - 1
+    assert math.isclose(s["p84_lognormal"], p84, rel_tol=1e-12), (key, s, p84)
+worst = max(rows, key=lambda r: float(r["needed_gap_m"]))
+assert doc["worst"] == worst["record"]
+line = rf"^Worst record: {re.escape(worst['record'])}, needed gap {float(worst['needed_gap_m']):.6f} m"
+assert re.search(line, printed, re.M), printed
+for r in rows:
+    assert re.search(rf"^{re.escape(r['record'])} .* {float(r['needed_gap_m']):.6f} ", printed, re.M), r["record"]
+PY
+
+# A bad line stops the set before any run, naming the list file, the line and the field.
+printf 'elcentro1940_ns_0.02s.AT2\nelcentro1940_ns_0.02s.AT2 pga_g=lots\n' > "$work/list/bad.txt"
+"$pounding" gap "$true_time" --records "$work/list/bad.txt" --out "$work/bad-set" > /dev/null 2> "$work/bad-set.txt"
+[ $? -eq 2 ] || fail "a bad record list should exit 2"
+grep -q "bad.txt:2: pga_g = lots: expected a number" "$work/bad-set.txt" || fail "bad list message: $(cat "$work/bad-set.txt")"
+# A record that cannot be read is a failed row, not a lost set: exit 3, both rows written.
+printf 'elcentro1940_ns_0.02s.AT2\nset.txt\n' > "$work/list/unreadable.txt"
+"$pounding" gap "$true_time" --records "$work/list/unreadable.txt" --out "$work/unreadable" > /dev/null 2>&1
+[ $? -eq 3 ] || fail "a set with a failed record should exit 3"
+grep -q '^"set.txt",.*,failed,' "$work/unreadable/records.csv" || fail "no failed row: $(cat "$work/unreadable/records.csv")"
+grep -q '^"elcentro1940_ns_0.02s.AT2",.*,completed,' "$work/unreadable/records.csv" || fail "no completed row"
+# The record options of run/check/gap name the option in their errors.
+"$pounding" check "$true_time" --pga-g -0.3 > /dev/null 2> "$work/bad-pga.txt"
+[ $? -eq 2 ] || fail "a bad --pga-g should exit 2"
+grep -q -- "--pga-g = -0.3" "$work/bad-pga.txt" || fail "bad --pga-g message: $(cat "$work/bad-pga.txt")"
 
 [ $failures -eq 0 ] && echo "all gap CLI checks passed"
 exit $failures

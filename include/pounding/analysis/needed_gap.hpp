@@ -116,7 +116,8 @@ struct SeverityPoint {
 
 /// Runs `scene` (its own solver settings) at the gaps k·needed_gap_m/count, k = 0 … count − 1,
 /// `threads` at a time (0: every core); `progress` is called after each run (from any thread,
-/// one call at a time). @throws InputError if count < 2 or needed_gap_m is not positive.
+/// one call at a time). @throws InputError (key `count`, `needed_gap_m`) if count < 2 or
+/// needed_gap_m is not positive.
 std::vector<SeverityPoint> severity_curve(const Scene& scene, double needed_gap_m, int count, unsigned threads = 0,
                                           const std::function<void(const SeverityPoint&)>& progress = {});
 

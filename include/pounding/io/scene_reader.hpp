@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "pounding/analysis/scene.hpp"
+#include "pounding/excitation/record_choice.hpp"
 
 namespace pounding::io {
 
@@ -15,14 +16,20 @@ namespace pounding::io {
 struct SceneOverrides {
   std::optional<double> gap_m{};      // moves building 2 along x
   std::optional<double> restitution{};
+  /// Another record or scaling (`--record`, `--pga-g`, ...; excitation::with_record says what
+  /// it keeps of the scene's). When set, the record is read once here, so that a record that
+  /// cannot be read or scales beyond 10 g is refused before any run, naming the option.
+  excitation::RecordChoice record{};
 };
+
 
 /// The largest scene file read (1 MiB): a scene is a page of text; more is the wrong file.
 inline constexpr std::uintmax_t kMaxSceneBytes = 1 << 20;
 
-/// Reads, applies overrides and validates a scene. Relative record paths resolve against the
-/// scene file's folder, and the record file must exist (it is read later, by
-/// excitation::load_ground_motion).
+/// Reads, applies overrides and validates a scene. Relative record paths in the file resolve
+/// against the scene file's folder (an override's record path is used as given), and the record
+/// file must exist (it is read later, by excitation::load_ground_motion).
+/// An override's error names its option (`--gap`, `--pga-g`, ...) and value instead of the key.
 /// @throws InputError naming the file (with line where known), the key and the value for a
 ///   syntax error, an unknown, missing or mistyped key, or any rule of Scene::validate().
 ///   A file over kMaxSceneBytes or not valid UTF-8 is refused before it is parsed.

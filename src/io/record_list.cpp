@@ -1,0 +1,196 @@
+#include "pounding/io/record_list.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <string_view>
+#include <type_traits>
+
+#include "pounding/excitation/record_choice.hpp"
+#include "pounding/input_error.hpp"
+
+namespace pounding::io {
+namespace {
+
+using excitation::RecordChoice;
+
+/// The most bytes of a list file: 10'000 lines of a path and a few options.
+constexpr std::uintmax_t kMaxListBytes = 4 << 20;
+
+/// The field of a list line that sets the excitation key `key` (as with_record() names it).
+const std::map<std::string, std::string>& field_of_key() {
+  static const std::map<std::string, std::string> kFields = {
+      {"excitation.file", "file"},           {"excitation.format", "format"},
+      {"excitation.units", "units"},         {"excitation.dt_s", "dt_s"},
+      {"excitation.accel_column", "accel_column"}, {"excitation.scale_factor", "scale"},
+      {"excitation.scale_to_pga_g", "pga_g"}, {"excitation.direction_deg", "direction_deg"}};
+  return kFields;
+}
+
+/// One line being read, for errors that name `list:line`.
+class ListLine {
+ public:
+  ListLine(std::string where, std::string_view text) : where_(std::move(where)), text_(text) {}
+
+  const std::string& where() const { return where_; }
+  InputError error(const std::string& field, const std::string& value, const std::string& reason) const {
+    return InputError(field, value, reason, where_);
+  }
+
+  /// The next whitespace-separated word, or a double-quoted one; empty at the end of the line.
+  std::optional<std::string> next_word() {
+    while (at_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[at_]))) ++at_;
+    if (at_ == text_.size()) return std::nullopt;
+    if (text_[at_] == '"') {
+      const std::size_t close = text_.find('"', at_ + 1);
+      if (close == std::string_view::npos) throw error("file", std::string(text_.substr(at_)), "no closing quote");
+      std::string word(text_.substr(at_ + 1, close - at_ - 1));
+      at_ = close + 1;
+      return word;
+    }
+    const std::size_t start = at_;
+    while (at_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[at_]))) ++at_;
+    return std::string(text_.substr(start, at_ - start));
+  }
+
+  template <class Number>
+  Number number(const std::string& field, const std::string& value) const {
+    Number parsed{};
+    const auto [end, status] = std::from_chars(value.data(), value.data() + value.size(), parsed);
+    if (status != std::errc() || end != value.data() + value.size()) {
+      throw error(field, value, std::is_integral_v<Number> ? "expected a whole number" : "expected a number");
+    }
+    return parsed;
+  }
+
+ private:
+  std::string where_;
+  std::string_view text_;
+  std::size_t at_ = 0;
+};
+
+/// Sets the field `field` of `choice` from its text. @throws InputError for an unknown or repeated field.
+void set_field(const ListLine& line, const std::string& field, const std::string& value, RecordChoice& choice) {
+  auto once = [&](auto& slot, auto parsed) {
+    if (slot) throw line.error(field, value, "given twice on this line");
+    slot = parsed;
+  };
+  if (field == "format") return once(choice.format, value);
+  if (field == "units") return once(choice.units, value);
+  if (field == "dt_s") return once(choice.dt_s, line.number<double>(field, value));
+  if (field == "accel_column") return once(choice.accel_column, line.number<int>(field, value));
+  if (field == "scale") return once(choice.scale_factor, line.number<double>(field, value));
+  if (field == "pga_g") return once(choice.pga_g, line.number<double>(field, value));
+  if (field == "direction_deg") return once(choice.direction_deg, line.number<double>(field, value));
+  throw line.error(field, value, "unknown field (expected format, units, dt_s, accel_column, scale, pga_g or direction_deg)");
+}
+
+/// `base` with `choice` applied; errors name the list line and the field.
+analysis::RecordEntry entry(const ListLine& line, const RecordChoice& choice, const excitation::ExcitationSpec& base) {
+  try {
+    return {choice.file->filename().string(), line.where(), excitation::with_record(base, choice)};
+  } catch (const InputError& error) {
+    const auto field = field_of_key().find(error.key());
+    throw line.error(field != field_of_key().end() ? field->second : error.key(), error.value(), error.reason());
+  }
+}
+
+std::string read_text(const std::filesystem::path& file) {
+  std::error_code error;
+  const auto size = std::filesystem::file_size(file, error);
+  if (error || size > kMaxListBytes) {
+    throw InputError("--records", file.string(), fmt::format("a record list may hold at most {} bytes", kMaxListBytes));
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError("--records", file.string(), "cannot open the record list");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<analysis::RecordEntry> read_list_file(const std::filesystem::path& file,
+                                                  const excitation::ExcitationSpec& base) {
+  const std::string text = read_text(file);
+  std::vector<analysis::RecordEntry> records;
+  std::size_t begin = 0;
+  for (int number = 1; begin < text.size(); ++number) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    std::string_view content(text.data() + begin, end - begin);
+    begin = end + 1;
+    content = content.substr(0, content.find('#'));
+    ListLine line(fmt::format("{}:{}", file.string(), number), content);
+    const std::optional<std::string> path = line.next_word();
+    if (!path) continue;  // blank or comment
+    RecordChoice choice;
+    const std::filesystem::path record(*path);
+    choice.file = (record.is_absolute() ? record : file.parent_path() / record).lexically_normal();
+    while (const std::optional<std::string> word = line.next_word()) {
+      const std::size_t equals = word->find('=');
+      if (equals == std::string::npos || equals == 0) {
+        throw line.error("", *word, "expected field=value after the record's path");
+      }
+      set_field(line, word->substr(0, equals), word->substr(equals + 1), choice);
+    }
+    if (records.size() == kMaxRecordsInSet) {
+      throw InputError("--records", file.string(), fmt::format("a set may hold at most {} records", kMaxRecordsInSet));
+    }
+    records.push_back(entry(line, choice, base));
+  }
+  return records;
+}
+
+bool is_at2(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return extension == ".AT2";
+}
+
+std::vector<analysis::RecordEntry> read_folder(const std::filesystem::path& folder,
+                                               const excitation::ExcitationSpec& base) {
+  std::vector<std::filesystem::path> files;
+  std::error_code error;
+  std::filesystem::directory_iterator listing(folder, error);
+  if (error) throw InputError("--records", folder.string(), "cannot list the folder: " + error.message());
+  for (const auto& item : listing) {
+    if (item.is_regular_file() && is_at2(item.path())) files.push_back(item.path());
+    if (files.size() > kMaxRecordsInSet) {
+      throw InputError("--records", folder.string(),
+                       fmt::format("a set may hold at most {} records", kMaxRecordsInSet));
+    }
+  }
+  std::sort(files.begin(), files.end());
+  std::vector<analysis::RecordEntry> records;
+  for (const std::filesystem::path& file : files) {
+    RecordChoice choice{.file = file, .format = "peer-at2", .units = "g"};
+    records.push_back(entry(ListLine(file.string(), ""), choice, base));
+  }
+  return records;
+}
+
+}  // namespace
+
+std::vector<analysis::RecordEntry> read_record_list(const std::filesystem::path& list_or_folder,
+                                                    const excitation::ExcitationSpec& scene_excitation) {
+  std::error_code error;
+  std::vector<analysis::RecordEntry> records;
+  if (std::filesystem::is_directory(list_or_folder, error)) {
+    records = read_folder(list_or_folder, scene_excitation);
+  } else if (std::filesystem::is_regular_file(list_or_folder, error)) {
+    records = read_list_file(list_or_folder, scene_excitation);
+  } else {
+    throw InputError("--records", list_or_folder.string(), "no such record list or folder");
+  }
+  if (records.empty()) {
+    throw InputError("--records", list_or_folder.string(),
+                     std::filesystem::is_directory(list_or_folder) ? "the folder holds no .AT2 file"
+                                                                   : "the list names no record");
+  }
+  return records;
+}
+
+}  // namespace pounding::io
