@@ -60,6 +60,7 @@ void CvodeIntegrator::restart(double t, const Eigen::VectorXd& y) {
   view(y_.get()) = y;
   state_ = y;
   check(CVodeReInit(memory_, t, y_.get()), "CVodeReInit");
+  stepped_since_restart_ = false;
   if (second_order_) {
     second_order_->invalidate();  // the contact phase, so the Jacobian, changed
     factorizations_at_restart_ = second_order_->factorizations();  // CVODE's counters restart too
@@ -74,6 +75,7 @@ StepOutcome CvodeIntegrator::step(double t_final) {
   double t = 0.0;
   last_error_.clear();
   const int flag = CVode(memory_, t_final, y_.get(), &t, CV_ONE_STEP);
+  stepped_since_restart_ = true;
   return outcome(flag, t, CV_ROOT_RETURN, CV_TSTOP_RETURN, CVodeGetReturnFlagName);
 }
 
@@ -95,7 +97,9 @@ IntegratorCounters CvodeIntegrator::counters() {
   check(CVodeGetNumGEvals(memory_, &c.root_evaluations), "CVodeGetNumGEvals");
   if (second_order_) {
     c.jacobian_evaluations = second_order_->factorizations() - factorizations_at_restart_;
-  } else {
+  } else if (stepped_since_restart_) {
+    // CVodeReInit resets the linear solver's counters only at the first step after it: until
+    // then CVodeGetNumJacEvals still holds the previous stretch's count.
     check(CVodeGetNumJacEvals(memory_, &c.jacobian_evaluations), "CVodeGetNumJacEvals");
   }
   check(CVodeGetNumErrTestFails(memory_, &c.error_test_failures), "CVodeGetNumErrTestFails");

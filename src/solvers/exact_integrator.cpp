@@ -199,7 +199,10 @@ StepOutcome ExactIntegrator::step(double t_final) {
   state_ = std::move(y_end);
   t_s_ = t_end;
   roots_start_ = roots_end;
-  return {t_end == stop_time_s_ ? StepKind::stop_time : StepKind::step, t_end, {}};
+  if (t_end != stop_time_s_) return {StepKind::step, t_end, {}};
+  // Like SUNDIALS', a stop time applies once: kept, it would make every later step empty.
+  stop_time_s_ = std::numeric_limits<double>::infinity();
+  return {StepKind::stop_time, t_end, {}};
 }
 
 void ExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {

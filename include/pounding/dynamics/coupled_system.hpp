@@ -74,7 +74,11 @@ class CoupledSystem {
   /// its force, this decides which contacts can stay held together.
   contact::LcpSolution hold_complementarity(double t, ConstVectorRef y, const std::vector<std::size_t>& held) const;
   /// Jacobian of constrained_rhs with the constraint rows frozen at y: the free Jacobian with
-  /// the acceleration rows projected by P = I − M⁻¹Gᵀ W⁻¹ G, plus the Baumgarte terms.
+  /// the acceleration rows projected by P = I − M⁻¹Gᵀ W⁻¹ G, plus the Baumgarte terms. Exact in
+  /// the velocity rows and in the columns of floors outside the held contacts; in the contact
+  /// floors' columns it leaves out the turning of G (terms carrying λ, q̈ or q̇), an error that
+  /// vanishes at rest and is first order in the motion (0.15 % of ‖J‖ at 5 cm, 5 mrad, 0.5 m/s,
+  /// 0.05 rad/s): enough for a Newton matrix (tests/dynamics/test_constrained_jacobian.cpp).
   void constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
                             Eigen::Ref<MatrixXd> jacobian) const;
 

@@ -49,6 +49,7 @@ class CvodeIntegrator final : public SundialsIntegrator {
   sundials::LinearSolver linear_solver_;            // dense Newton solver only
   std::unique_ptr<SecondOrderLinearSolver> second_order_;
   long factorizations_at_restart_ = 0;  // counters() counts from the last restart, like CVODE's
+  bool stepped_since_restart_ = false;   // CVODE's linear-solver counters reset at the first step
 };
 
 }  // namespace pounding::solvers

@@ -36,21 +36,37 @@ struct IntegratorCounters {
        error_test_failures = 0;
 };
 
+/// The contract below is checked for every implementation by tests/solvers/
+/// test_integrator_conformance.cpp.
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  /// (Re)starts at t from y: at the beginning and after every event.
+  /// (Re)starts at t from y: at the beginning and after every event. The loop then sets the
+  /// stop time and the maximum step, in that order.
   virtual void restart(double t, const Eigen::VectorXd& y) = 0;
   virtual void set_max_step(double h_s) = 0;
+  /// step() will end exactly (bit for bit) at t_s with StepKind::stop_time, never past it. A
+  /// stop time applies once: after it is reached, steps are bounded only by the next one set.
   virtual void set_stop_time(double t_s) = 0;
   /// One internal step, never past the stop time; a root inside the step ends it at the root.
+  /// `t_final` is the end of the run; only a stop time bounds a step for certain (the loop
+  /// makes the end of the record one).
   virtual StepOutcome step(double t_final) = 0;
   /// The state at the time step() returned.
   virtual const Eigen::VectorXd& state() const = 0;
-  /// The state at t within the last step, from the integrator's own interpolant.
+  /// The state at t within the last step, from the integrator's own interpolant; at the step's
+  /// end it is state(). @pre t within the last step: outside it CVODE and ARKODE throw
+  /// std::runtime_error (their BAD_T flag), the exact path's free flight extends its closed form.
   virtual void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) = 0;
-  /// Components of the root vector that changed sign at the last root return.
+  /// Per root component: −1 if it went from > 0 to ≤ 0 at the last root return, else 0. Only
+  /// such closing crossings end a step (an opening one never does). Crossings are listed
+  /// together only when they coincide to the root finder's round-off; two that coincide only
+  /// in exact arithmetic (computed differently) come as consecutive root returns, each at its
+  /// own crossing within the integration tolerance.
   virtual std::vector<int> roots_found() = 0;
+  /// The work since the last restart() (or construction), including what restart() itself
+  /// evaluated (the exact path diagonalises J and evaluates the forcing there): right after
+  /// restart() no step and no error test failure is counted.
   virtual IntegratorCounters counters() = 0;
 };
 
