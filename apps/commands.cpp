@@ -95,12 +95,15 @@ std::string storeys_text(const model::BuildingDefinition& b) {
 
 }  // namespace
 
-/// The command-line options of `run` replace their scene keys.
+/// The command-line options of `run` replace their scene keys. `--method` keeps the file's keys
+/// its method uses and lists the others as not used (the file's keys were checked against the
+/// file's method); the options themselves are checked against the method run (Scene::validate).
 void apply_run_options(const RunCommand& command, analysis::SolverSettings& solver) {
-  if (command.method) solver.method = *command.method;
+  if (command.method) solver = analysis::with_method(solver, *command.method);
   if (command.order) solver.order = *command.order;
   if (command.rtol) solver.rtol = *command.rtol;
   if (command.atol) solver.atol = *command.atol;
+  if (command.newton) solver.newton = *command.newton;
   if (command.dt_s) solver.dt_s = *command.dt_s;
   if (command.alpha) solver.alpha = *command.alpha;
   if (command.contact_tolerance_m) solver.contact_tolerance_m = *command.contact_tolerance_m;
@@ -108,6 +111,9 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
   if (command.event_location) solver.event_location = *command.event_location;
   if (command.hold_rtol) solver.hold_rtol = *command.hold_rtol;
   if (command.halving) {
+    if (!analysis::applies(analysis::method_info(solver.method), analysis::Setting::event_location)) {
+      throw InputError("--halving", *command.halving, fmt::format("does not apply to method {}", solver.method));
+    }
     if (*command.halving != "on" && *command.halving != "off") {
       throw InputError("--halving", *command.halving, "expected on or off");
     }
@@ -118,13 +124,16 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
 /// The option that sets a [solver] key or a run limit, for error messages about a value given on
 /// the command line.
 std::string option_for(const std::string& key) {
-  static const std::map<std::string, std::string> kOptions = {
-      {"limits.max_steps", "--max-steps"}, {"limits.max_wall_time_s", "--max-wall-time"},
-      {"limits.max_history_values", "--max-history-values"},
-      {"solver.method", "--method"}, {"solver.order", "--order"}, {"solver.rtol", "--rtol"},
-      {"solver.atol", "--atol"}, {"solver.dt_s", "--dt"}, {"solver.alpha", "--alpha"},
-      {"solver.contact_tolerance_m", "--contact-tol"}, {"solver.max_halvings", "--max-halvings"},
-      {"solver.event_location", "--event-location"}, {"solver.hold_rtol", "--hold-rtol"}};
+  static const std::map<std::string, std::string> kOptions = [] {
+    std::map<std::string, std::string> options = {{"limits.max_steps", "--max-steps"},
+                                                  {"limits.max_wall_time_s", "--max-wall-time"},
+                                                  {"limits.max_history_values", "--max-history-values"},
+                                                  {"solver.method", "--method"}};
+    for (const analysis::SettingSpec& s : analysis::setting_specs()) {
+      options["solver." + std::string(s.key)] = std::string(s.option);
+    }
+    return options;
+  }();
   const auto found = kOptions.find(key);
   return found != kOptions.end() ? found->second : key;
 }
@@ -164,7 +173,11 @@ class InterruptRequests {
 int run_run(const RunCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(
       command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
-  apply_run_options(command, scene.solver);
+  try {
+    apply_run_options(command, scene.solver);
+  } catch (const InputError& error) {
+    throw InputError(option_for(error.key()), error.value(), error.reason(), command.scene);
+  }
   const analysis::RunLimits limits = run_limits(command);
   const std::filesystem::path folder =
       command.out_dir.empty() ? std::filesystem::path("out") / io::folder_name(scene.name) : std::filesystem::path(command.out_dir);
@@ -198,10 +211,7 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
   const analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m});
   analysis::StudyOptions options;
   options.repeat = command.repeat;
-  if (command.quick) {
-    options.rtols = {1e-6, 1e-8};
-    options.dts_s = {0.05, 0.01};
-  }
+  options.quick = command.quick;
   options.validate();
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");
@@ -250,7 +260,8 @@ int run_check(const CheckCommand& command) {
   const analysis::Scene scene = io::read_scene(
       command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
   const auto buildings = analysis::summarise_buildings(scene);
-  const excitation::GroundMotion motion = excitation::load_ground_motion(scene.excitation);
+  const dynamics::CoupledSystem system = analysis::build_system(scene);
+  const excitation::GroundMotion& motion = system.ground_motion();
 
   fmt::print("Scene '{}' ({}) is valid.\n", scene.name, scene.file.string());
   int total_dof = 0;
@@ -278,7 +289,30 @@ int run_check(const CheckCommand& command) {
   fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
              candidates.size());
   for (const auto& c : candidates) fmt::print("  level {}: {}\n", c.level, contact::describe(c));
-  fmt::print("Solver: {}, rtol {}, atol {} (m, rad)\n", scene.solver.method, scene.solver.rtol, scene.solver.atol);
+  const analysis::UsedSettings used = analysis::resolve(scene.solver, &system);
+  fmt::print("Solver: {} ({}): {}\n", scene.solver.method, used.method->description, analysis::describe_used_settings(used));
+  return 0;
+}
+
+int run_methods(const MethodsCommand& command) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const analysis::MethodInfo& method : analysis::methods()) {
+    std::vector<std::string> keys;
+    for (analysis::Setting s : method.settings) keys.emplace_back(analysis::spec(s).key);
+    if (!command.json) {
+      fmt::print("{:<12} {}\n{:<12} uses {}\n", method.name, method.description, "", fmt::join(keys, ", "));
+      continue;
+    }
+    nlohmann::json series = nlohmann::json::array();
+    for (const analysis::StudySeries& s : method.series) {
+      series.push_back({{"label", s.label}, {"colour", s.style.colour}, {"marker", s.style.marker}});
+    }
+    list.push_back({{"name", method.name}, {"description", method.description}, {"settings", keys},
+                    {"event_driven", method.event_driven}, {"reference", method.reference},
+                    {"study", {{"setting", analysis::spec(method.ladder_setting).key}, {"ladder", method.ladder},
+                               {"quick_ladder", method.quick_ladder}, {"series", series}}}});
+  }
+  if (command.json) fmt::print("{}\n", list.dump(2));
   return 0;
 }
 

@@ -16,6 +16,10 @@ struct ModesCommand {
   int count = 6;          // modes printed per building
 };
 
+struct MethodsCommand {
+  bool json = false;  // the registry as JSON on stdout (for scripts)
+};
+
 struct CheckCommand {
   std::string scene;
   std::optional<double> gap_m;
@@ -32,6 +36,7 @@ struct RunCommand {
   std::optional<int> order;
   std::optional<double> rtol;
   std::optional<double> atol;
+  std::optional<std::string> newton;
   std::optional<double> dt_s;
   std::optional<double> alpha;
   std::optional<double> contact_tolerance_m;
@@ -71,5 +76,6 @@ int run_modes(const ModesCommand& command);
 int run_study(const StudyCommand& command, const std::string& command_line);
 int run_run(const RunCommand& command, const std::string& command_line);
 int run_check(const CheckCommand& command);
+int run_methods(const MethodsCommand& command);
 
 }  // namespace pounding::cli

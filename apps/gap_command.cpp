@@ -127,7 +127,7 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
   const io::Provenance provenance = io::make_provenance(without_record, command_line);
   const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
   fmt::print("Needed gap of '{}' under {} records ({}; contact-free runs, CVODE rtol {:g}, {} at a time):\n",
-             scene.name, records.size(), command.records, scene.solver.rtol,
+             scene.name, records.size(), command.records, analysis::resolve(scene.solver).rtol,
              std::min<std::size_t>(threads, records.size()));
   const auto start = std::chrono::steady_clock::now();
   int done = 0, failed = 0;
@@ -164,7 +164,7 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   const io::Provenance provenance = io::make_provenance(scene, command_line);
   const analysis::NeededGap gap = analysis::needed_gap(scene);
   fmt::print("Needed gap of '{}' (contact-free run, CVODE rtol {:g}; {} maxima located, {} steps, {:.3f} s):\n",
-             scene.name, scene.solver.rtol, gap.extrema, gap.steps, gap.wall_time_s);
+             scene.name, analysis::resolve(scene.solver).rtol, gap.extrema, gap.steps, gap.wall_time_s);
   if (gap.candidate < 0) {
     fmt::print("  no vertex-edge pair ever approaches: any gap prevents contact\n");
   } else {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "pounding/analysis/methods.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/provenance.hpp"
 #include "pounding/version.hpp"
@@ -54,6 +55,10 @@ int main(int argc, char** argv) {
   modes_app->add_option("--count", modes.count, "Modes printed per building")
       ->capture_default_str()->check(CLI::PositiveNumber);
 
+  pounding::cli::MethodsCommand methods;
+  CLI::App* methods_app = app.add_subcommand("methods", "The solution paths and the settings each uses");
+  methods_app->add_flag("--json", methods.json, "As JSON (name, description, settings, study ladder and plot styles)");
+
   pounding::cli::CheckCommand check;
   CLI::App* check_app = app.add_subcommand("check", "Validate a scene and print what it describes");
   add_scene_argument(*check_app, check.scene);
@@ -67,18 +72,20 @@ int main(int argc, char** argv) {
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
   add_record_options(*run_app, run.record);
-  run_app->add_option("--method", run.method, "cvode-bdf (default), cvode-adams, arkode-erk, arkode-dirk, hht or exact");
-  run_app->add_option("--order", run.order, "ARKODE table order: erk 5 (the only one), dirk 4 (default) or 3");
-  run_app->add_option("--rtol", run.rtol, "Relative tolerance (default 1e-8)");
-  run_app->add_option("--atol", run.atol, "Absolute tolerance, m and rad (default 1e-10)");
-  run_app->add_option("--dt", run.dt_s, "hht: time step in s (default 0.05, as published)");
-  run_app->add_option("--alpha", run.alpha, "hht: alpha in [-1/3, 0] (default -0.05)");
-  run_app->add_option("--contact-tol", run.contact_tolerance_m, "hht: contact tolerance in m (default 1e-4)");
-  run_app->add_option("--max-halvings", run.max_halvings, "hht: deepest step halving (default 30)");
+  using pounding::analysis::option_help;
+  using pounding::analysis::Setting;
+  run_app->add_option("--method", run.method, pounding::analysis::methods_help());
+  run_app->add_option("--order", run.order, option_help(Setting::order));
+  run_app->add_option("--rtol", run.rtol, option_help(Setting::rtol));
+  run_app->add_option("--atol", run.atol, option_help(Setting::atol));
+  run_app->add_option("--newton", run.newton, option_help(Setting::newton));
+  run_app->add_option("--dt", run.dt_s, option_help(Setting::dt_s));
+  run_app->add_option("--alpha", run.alpha, option_help(Setting::alpha));
+  run_app->add_option("--contact-tol", run.contact_tolerance_m, option_help(Setting::contact_tolerance_m));
+  run_app->add_option("--max-halvings", run.max_halvings, option_help(Setting::max_halvings));
   run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
-  run_app->add_option("--event-location", run.event_location, "hht: halving (default) or interpolate (Hermite root)");
-  run_app->add_option("--hold-rtol", run.hold_rtol,
-                      "exact: relative tolerance of held stretches, integrated by CVODE BDF (default 1e-12)");
+  run_app->add_option("--event-location", run.event_location, option_help(Setting::event_location));
+  run_app->add_option("--hold-rtol", run.hold_rtol, option_help(Setting::hold_rtol));
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
   run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
@@ -124,6 +131,7 @@ int main(int argc, char** argv) {
   try {
     if (*modes_app) return pounding::cli::run_modes(modes);
     if (*check_app) return pounding::cli::run_check(check);
+    if (*methods_app) return pounding::cli::run_methods(methods);
     if (*run_app) return pounding::cli::run_run(run, command_line);
     if (*study_app) return pounding::cli::run_study(study, command_line);
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);

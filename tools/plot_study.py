@@ -24,11 +24,6 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-STYLES = {
-    "cvode-bdf": ("tab:blue", "o"), "cvode-adams": ("tab:cyan", "s"), "arkode-erk": ("tab:green", "^"),
-    "arkode-dirk": ("tab:olive", "v"), "hht-halving": ("tab:red", "D"), "hht-end-of-step": ("tab:orange", "x"),
-    "hht-interpolate": ("tab:purple", "P"),
-}
 # Label positions tried around a point, in points: right-above, right-below, left-above, left-below, above, below.
 OFFSETS = [((4, 2), "left", "bottom"), ((4, -2), "left", "top"), ((-4, 2), "right", "bottom"),
            ((-4, -2), "right", "top"), ((0, 6), "center", "bottom"), ((0, -6), "center", "top")]
@@ -90,12 +85,14 @@ def main():
     rows = list(csv.DictReader(study_file.open()))
     study = json.loads(summary_file.read_text())
     reference = study["reference"]
+    # Colour and marker of each line, as the method registry (src/analysis/methods.cpp) wrote them.
+    style_of = {label: (s["colour"], s["marker"]) for label, s in study.get("styles", {}).items()}
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(13, 6.2))
     labels = {left: [], right: []}
     for method in dict.fromkeys(r["method"] for r in rows):
         mine = sorted((r for r in rows if r["method"] == method), key=lambda r: float(r["run_time_s"]))
-        colour, marker = STYLES.get(method, ("black", "."))
+        colour, marker = style_of.get(method, ("black", "."))
         times = [float(r["run_time_s"]) for r in mine]
         for axis, key, at_ref in ((left, "impact_time_error_before_hold_s", None),
                                   (right, "history_u_error_m", "history_u_at_reference")):

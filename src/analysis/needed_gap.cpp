@@ -275,10 +275,9 @@ void NeededGapOptions::validate() const {
 NeededGap needed_gap(const Scene& scene) {
   const auto clock_start = std::chrono::steady_clock::now();
   const CoupledSystem system = build_system(scene);
+  const UsedSettings used = resolve(scene.solver);  // the scene's tolerances, or the defaults
   NeededGap result = needed_gap(system, scene.contact.gap_m,
-                                {.adams = scene.solver.method == "cvode-adams",
-                                 .rtol = scene.solver.rtol,
-                                 .atol = scene.solver.atol});
+                                {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol});
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }

@@ -4,19 +4,12 @@
 #include <fmt/format.h>
 
 #include "pounding/input_error.hpp"
-#include "pounding/solvers/arkode_integrator.hpp"
-#include "pounding/solvers/cvode_integrator.hpp"
-#include "pounding/solvers/exact_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
 #include "pounding/solvers/hht.hpp"
 #include "pounding/solvers/recorder.hpp"
 
 namespace pounding::analysis {
-
-namespace {
-constexpr double kExactSubdivisionsPerPeriod = 16.0;
-}  // namespace
 
 std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
   contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
@@ -38,16 +31,15 @@ dynamics::CoupledSystem build_system(const Scene& scene) {
                                  scene.levels(), scene_candidates(scene));
 }
 
-solvers::HhtOptions hht_options(const Scene& scene) {
+solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used) {
   solvers::HhtOptions options;
-  options.dt_s = scene.solver.dt_s;
-  options.alpha = scene.solver.alpha;
-  options.contact_tolerance_m = scene.solver.contact_tolerance_m;
-  options.max_halvings = scene.solver.max_halvings;
-  const std::string& location = scene.solver.event_location;
-  options.location = location == "end-of-step"   ? solvers::HhtEventLocation::end_of_step
-                     : location == "interpolate" ? solvers::HhtEventLocation::interpolate
-                                                 : solvers::HhtEventLocation::halving;
+  options.dt_s = used.dt_s;
+  options.alpha = used.alpha;
+  options.contact_tolerance_m = used.contact_tolerance_m;
+  options.max_halvings = used.max_halvings;
+  options.location = used.event_location == "end-of-step"   ? solvers::HhtEventLocation::end_of_step
+                     : used.event_location == "interpolate" ? solvers::HhtEventLocation::interpolate
+                                                            : solvers::HhtEventLocation::halving;
   options.restitution = scene.contact.restitution;
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
@@ -56,20 +48,13 @@ solvers::HhtOptions hht_options(const Scene& scene) {
 
 namespace {
 
-solvers::NewtonSolver newton_solver(const SolverSettings& solver) {
-  return solver.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
-}
-
-solvers::EventOptions event_options(const Scene& scene) {
+solvers::EventOptions event_options(const Scene& scene, const MethodInfo& method) {
   solvers::EventOptions options;
   options.restitution = scene.contact.restitution;
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
-  if (scene.solver.method == "exact") {
-    // Bracket roots on a subdivision fine against the shortest period that moves a gap.
-    options.steps_per_period = kExactSubdivisionsPerPeriod;
-  }
+  if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
   return options;
 }
 
@@ -95,11 +80,12 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   double per_level = 0.0;  // u, v, φ and the contact vertices' dx of both buildings' slabs
   for (int b = 0; b < 2; ++b) per_level += 3.0 + static_cast<double>(solvers::contact_vertices(system.candidates(), b).size());
   estimate.history_columns = 1.0 + levels * per_level;
-  if (scene.solver.method == "hht") {
-    estimate.min_steps = std::ceil(estimate.duration_s / scene.solver.dt_s);
+  const UsedSettings used = resolve(scene.solver);
+  if (!used.method->event_driven) {
+    estimate.min_steps = std::ceil(estimate.duration_s / used.dt_s);
   } else {
     // The automatic step bound is longest at rest (motion only adds modal amplitude).
-    const solvers::EventOptions options = event_options(scene);
+    const solvers::EventOptions options = event_options(scene, *used.method);
     const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period);
     estimate.min_steps =
         std::ceil(estimate.duration_s / bound.max_step_s(Eigen::VectorXd::Zero(system.state_size())));
@@ -122,55 +108,29 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
 }
 
 RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSink* sink) {
+  scene.solver.validate();
   limits.validate();
   const dynamics::CoupledSystem system = build_system(scene);
   check_work(estimate_work(scene, system), limits);
-  RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver,
+  const UsedSettings used = resolve(scene.solver, &system);
+  RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
-  if (scene.solver.method == "hht") {
-    solvers::HhtOptions options = hht_options(scene);
+  const std::string method(used.method->name);
+  if (used.method->factory) {
+    solvers::EventOptions options = event_options(scene, *used.method);
     options.max_steps = limits.max_steps;
     options.budget = budget;
     options.sink = sink;
-    report.result = solvers::run_hht(system, options, "hht");
+    report.result = solvers::run_event_driven(system, options, used.method->factory(used, system), method);
   } else {
-    solvers::EventOptions options = event_options(scene);
+    solvers::HhtOptions options = hht_options(scene, used);
     options.max_steps = limits.max_steps;
     options.budget = budget;
     options.sink = sink;
-    report.result = solvers::run_event_driven(system, options, integrator_factory(scene.solver), scene.solver.method);
+    report.result = solvers::run_hht(system, options, method);
   }
   return report;
-}
-
-solvers::IntegratorFactory integrator_factory(const SolverSettings& solver) {
-  using IntegratorPtr = std::unique_ptr<solvers::Integrator>;
-  if (solver.method == "exact") {
-    const solvers::ExactSettings settings{solver.hold_rtol, solver.hold_rtol / 100};
-    return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
-      return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, settings);
-    };
-  }
-  if (solver.method.starts_with("arkode")) {
-    solvers::ArkodeSettings settings;
-    settings.method = solver.method == "arkode-erk" ? solvers::ArkodeMethod::erk : solvers::ArkodeMethod::dirk;
-    settings.order = solver.order;
-    settings.newton_solver = newton_solver(solver);
-    settings.rtol = solver.rtol;
-    settings.atol = solver.atol;
-    return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) {
-      return solvers::make_arkode_integrator(functions, settings, t0, y0);
-    };
-  }
-  solvers::CvodeSettings settings;
-  settings.method = solver.method == "cvode-adams" ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
-  settings.rtol = solver.rtol;
-  settings.atol = solver.atol;
-  settings.newton_solver = newton_solver(solver);
-  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
-    return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
-  };
 }
 
 }  // namespace pounding::analysis

@@ -19,13 +19,6 @@ constexpr Range kHoldVelocity{0.0, 0.1, "m/s", true};      // pounding approache
 // Floors this far apart still meet face on: up to a slab's thickness. validate_levels() also
 // keeps it below half of every storey, so a floor meets at most one floor of the other building.
 constexpr Range kLevelTolerance{0.0, 0.5, "m", true};
-constexpr Range kRtol{1e-14, 0.1};                         // below 1e-14 is under round-off
-constexpr Range kAtol{1e-16, 1e-3, "m, rad"};
-// Held stretches of the exact path: tighter than 1e-14 is under round-off; looser than 1e-6
-// would make the ground truth less accurate than the paths it judges.
-constexpr Range kHoldRtol{1e-14, 1e-6};
-constexpr Range kHhtStep{0.0, 0.1, "s", true};             // published 0.05 s
-constexpr Range kHhtContactTolerance{0.0, 0.01, "m", true};
 constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
 
 void validate_gap(const std::string& key, double gap_m) { require_range(key, gap_m, kGap); }
@@ -63,40 +56,6 @@ void validate_levels(const Scene& scene) {
                                "contact.level_tolerance_m = {} m): their slabs could only strike columns, and "
                                "slab-to-column impacts are outside this model",
                                fmt::join(elevations(0), ", "), fmt::join(elevations(1), ", "), tolerance));
-}
-
-void validate_solver(const SolverSettings& solver) {
-  static const std::set<std::string> kMethods = {"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "hht", "exact"};
-  if (!kMethods.count(solver.method)) {
-    throw InputError("solver.method", "\"" + solver.method + "\"",
-                     "expected cvode-bdf, cvode-adams, arkode-erk, arkode-dirk, hht or exact");
-  }
-  const bool order_ok = solver.order == 0 || (solver.method == "arkode-erk" && solver.order == 5) ||
-                        (solver.method == "arkode-dirk" && (solver.order == 3 || solver.order == 4));
-  if (!order_ok) {
-    throw InputError("solver.order", std::to_string(solver.order),
-                     "arkode-erk offers order 5 (the 8th-order Fehlberg table was dropped: its error estimate "
-                     "cannot see the forcing), arkode-dirk 3 and 4; other methods take none");
-  }
-  require_range("solver.rtol", solver.rtol, kRtol);
-  require_range("solver.atol", solver.atol, kAtol);
-  require_range("solver.dt_s", solver.dt_s, kHhtStep);
-  if (!(solver.alpha >= -1.0 / 3.0 && solver.alpha <= 0.0)) {
-    throw InputError("solver.alpha", format_value(solver.alpha), "must lie in [-1/3, 0]");
-  }
-  require_range("solver.contact_tolerance_m", solver.contact_tolerance_m, kHhtContactTolerance);
-  if (solver.max_halvings < 0 || solver.max_halvings > 60) {
-    throw InputError("solver.max_halvings", std::to_string(solver.max_halvings), "must lie in 0..60");
-  }
-  if (solver.event_location != "halving" && solver.event_location != "end-of-step" &&
-      solver.event_location != "interpolate") {
-    throw InputError("solver.event_location", "\"" + solver.event_location + "\"",
-                     "expected halving, end-of-step or interpolate");
-  }
-  require_range("solver.hold_rtol", solver.hold_rtol, kHoldRtol);
-  if (solver.newton != "reduced" && solver.newton != "dense") {
-    throw InputError("solver.newton", "\"" + solver.newton + "\"", "expected reduced or dense");
-  }
 }
 
 void validate_output(const OutputSettings& output, std::size_t levels) {
@@ -163,7 +122,7 @@ void Scene::validate() const {
     excitation.validate();
     validate_contact(contact);
     validate_levels(*this);
-    validate_solver(solver);
+    solver.validate();
     validate_output(output, levels().size());
     validate_pair(*this);
   } catch (const InputError& error) {

@@ -9,6 +9,9 @@
 namespace pounding::io {
 namespace {
 
+/// A fixed-step run (hht): its statistics and energy balance have their own terms.
+bool fixed_step(const analysis::RunReport& report) { return report.used.method && !report.used.method->event_driven; }
+
 /// "level 3 (B1 floor 3, B2 floor 2, 9 m)": where a contact is.
 std::string where(int level, const std::array<int, 2>& floors, double elevation_m) {
   return fmt::format("level {} (B1 floor {}, B2 floor {}, {:.6g} m)", level, floors[0], floors[1], elevation_m);
@@ -67,7 +70,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   }
   const auto& e = r.energy;
   const std::string algorithmic =
-      r.method == "hht" ? fmt::format(", algorithmic dissipation {:.3f} kJ", e.algorithmic_dissipation_kJ) : "";
+      fixed_step(report) ? fmt::format(", algorithmic dissipation {:.3f} kJ", e.algorithmic_dissipation_kJ) : "";
   fmt::format_to(out, "Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ{}, residual {:.3e} kJ ({:.2e} of input)\n",
                  e.input_kJ, e.damping_kJ, e.impact_loss_kJ, algorithmic, e.residual_kJ(),
                  e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
@@ -77,7 +80,7 @@ void append_solver(const analysis::RunReport& report, std::string& text) {
   const solvers::RunResult& r = report.result;
   const auto& s = r.statistics;
   auto out = std::back_inserter(text);
-  if (r.method == "hht") {
+  if (fixed_step(report)) {
     fmt::format_to(out, "Solver: {} steps ({} solves), {} factorisations, {} halvings, smallest step {:.3e} s, {} unresolved; "
                    "run time {:.3f} s\n", s.steps, s.rhs_evaluations, s.jacobian_evaluations, s.halvings,
                    s.smallest_step_s, s.unresolved_contacts, s.wall_time_s);
@@ -90,14 +93,7 @@ void append_solver(const analysis::RunReport& report, std::string& text) {
 }  // namespace
 
 std::string method_settings_text(const analysis::RunReport& report) {
-  const auto& solver = report.solver;
-  const std::string& method = report.result.method;
-  if (method == "hht") {
-    return fmt::format("dt {} s, alpha {}, contact tolerance {} m, event location {}", solver.dt_s, solver.alpha,
-                       solver.contact_tolerance_m, solver.event_location);
-  }
-  if (method == "exact") return fmt::format("held stretches at rtol {}", solver.hold_rtol);
-  return fmt::format("rtol {}, atol {}", solver.rtol, solver.atol);
+  return analysis::describe_used_settings(report.used);
 }
 
 std::string brief_report(const analysis::RunReport& report) {

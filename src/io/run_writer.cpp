@@ -104,6 +104,24 @@ json statistics_json(const solvers::SolverStatistics& s, const std::vector<conta
           {"wall_time_s", s.wall_time_s}};
 }
 
+json setting_json(const analysis::SettingValue& value) {
+  return std::visit([](const auto& v) { return json(v); }, value);
+}
+
+/// What the user gave, what the run used (the registry's settings of its method, with the real
+/// order, Newton solver and absolute tolerances per component) and what was given but not used.
+json settings_json(const analysis::RunReport& report) {
+  json given = json::object(), used = json::object();
+  for (const analysis::SettingEntry& e : analysis::given_entries(report.solver)) given[std::string(e.key)] = setting_json(e.value);
+  for (const analysis::SettingEntry& e : analysis::used_entries(report.used)) used[std::string(e.key)] = setting_json(e.value);
+  if (const auto& c = report.used.atol_components) {
+    used["atol_per_component"] = {{"u_m", c->displacement_m}, {"v_m", c->displacement_m},
+                                  {"phi_rad", c->rotation_rad}, {"rates_factor_per_s", c->rate_per_s}};
+  }
+  if (report.used.method->event_driven) used["hold_velocity_mps"] = report.hold_velocity_mps;
+  return {{"given", given}, {"used", used}, {"not_used", report.solver.not_used}};
+}
+
 }  // namespace
 
 json run_json(const analysis::RunReport& report, const Provenance& provenance) {
@@ -125,19 +143,11 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
                                      {"max_gap_drift_m", s.max_gap_drift_m},
                                      {"impulse_kNs", s.impulse_kNs}}));
   }
-  json settings = {{"rtol", report.solver.rtol}, {"atol", report.solver.atol}, {"newton", report.solver.newton},
-                   {"order", report.solver.order}, {"hold_velocity_mps", report.hold_velocity_mps}};
-  if (r.method == "exact") settings = {{"hold_rtol", report.solver.hold_rtol}, {"hold_atol", report.solver.hold_rtol / 100}};
-  if (r.method == "hht") {
-    settings = {{"dt_s", report.solver.dt_s}, {"alpha", report.solver.alpha},
-                {"contact_tolerance_m", report.solver.contact_tolerance_m},
-                {"max_halvings", report.solver.max_halvings}, {"event_location", report.solver.event_location}};
-  }
   return {{"scene", report.scene},
           {"method", r.method},
           {"status", solvers::to_string(r.status)},
           {"status_detail", r.status_detail},
-          {"settings", settings},
+          {"settings", settings_json(report)},
           {"gap_m", report.gap_m},
           {"restitution", report.restitution},
           {"start_s", r.start_s},

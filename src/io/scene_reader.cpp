@@ -453,17 +453,19 @@ excitation::ExcitationSpec read_excitation(TableReader table, const std::filesys
 analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   analysis::SolverSettings solver;
   if (!table) return solver;
+  // Unset keys stay unset: the method's defaults fill them (analysis::resolve), and a key set
+  // for a method that does not use it is refused by Scene::validate().
   solver.method = table->optional_string("method").value_or(solver.method);
-  solver.order = table->optional_integer("order").value_or(solver.order);
-  solver.rtol = table->number_or("rtol", solver.rtol);
-  solver.atol = table->number_or("atol", solver.atol);
-  solver.newton = table->optional_string("newton").value_or(solver.newton);
-  solver.hold_rtol = table->number_or("hold_rtol", solver.hold_rtol);
-  solver.dt_s = table->number_or("dt_s", solver.dt_s);
-  solver.alpha = table->number_or("alpha", solver.alpha);
-  solver.contact_tolerance_m = table->number_or("contact_tolerance_m", solver.contact_tolerance_m);
-  solver.max_halvings = table->optional_integer("max_halvings").value_or(solver.max_halvings);
-  solver.event_location = table->optional_string("event_location").value_or(solver.event_location);
+  solver.order = table->optional_integer("order");
+  solver.rtol = table->optional_number("rtol");
+  solver.atol = table->optional_number("atol");
+  solver.newton = table->optional_string("newton");
+  solver.hold_rtol = table->optional_number("hold_rtol");
+  solver.dt_s = table->optional_number("dt_s");
+  solver.alpha = table->optional_number("alpha");
+  solver.contact_tolerance_m = table->optional_number("contact_tolerance_m");
+  solver.max_halvings = table->optional_integer("max_halvings");
+  solver.event_location = table->optional_string("event_location");
   table->finish();
   return solver;
 }

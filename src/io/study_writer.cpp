@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <ostream>
 
+#include "pounding/analysis/methods.hpp"
 #include "pounding/io/json_report.hpp"
 #include "pounding/io/output_files.hpp"
 
@@ -44,12 +45,27 @@ void write_study_csv(const analysis::StudyResult& study, std::ostream& out) {
 
 }  // namespace
 
+namespace {
+
+/// The plot style of every study series (the registry's), so plots need no table of their own.
+nlohmann::json styles_json() {
+  nlohmann::json styles = nlohmann::json::object();
+  for (const analysis::MethodInfo& method : analysis::methods()) {
+    for (const analysis::StudySeries& series : method.series) {
+      styles[std::string(series.label)] = {{"colour", series.style.colour}, {"marker", series.style.marker}};
+    }
+  }
+  return styles;
+}
+
+}  // namespace
+
 nlohmann::json study_json(const analysis::StudyResult& study) {
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& row : study.rows) rows.push_back(row_json(row));
   return {{"scene", study.scene},
           {"gap_m", study.gap_m},
-          {"reference", {{"method", "exact"}, {"impacts", study.reference.impacts.size()},
+          {"reference", {{"method", analysis::reference_method().name}, {"impacts", study.reference.impacts.size()},
                          {"run_time_s", study.reference_run_time_s},
                          {"error_estimate", {{"impact_time_s", study.reference_error.impact_time_all_s},
                                              {"impact_time_fast_s", study.reference_error.impact_time_s},
@@ -58,7 +74,8 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
                                              {"history_phi_rad", study.reference_error.history_phi_rad},
                                              {"missing", study.reference_error.missing},
                                              {"extra", study.reference_error.extra}}}}},
-          {"rows", rows}};
+          {"rows", rows},
+          {"styles", styles_json()}};
 }
 
 void write_study(const analysis::StudyResult& study, const Provenance& provenance, const std::filesystem::path& folder) {

@@ -3,7 +3,8 @@
 #include <arkode/arkode_arkstep.h>
 #include <arkode/arkode_erkstep.h>
 
-#include "pounding/input_error.hpp"
+#include <cassert>
+
 #include "pounding/solvers/second_order_solver.hpp"
 #include "pounding/solvers/sundials_integrator.hpp"
 
@@ -26,6 +27,7 @@ struct ErkApi {
   static constexpr auto num_err_test_fails = ERKStepGetNumErrTestFails;
   static constexpr auto flag_name = ERKStepGetReturnFlagName;
   static constexpr auto sstolerances = ERKStepSStolerances;
+  static constexpr auto svtolerances = ERKStepSVtolerances;
   static constexpr auto set_user_data = ERKStepSetUserData;
   static constexpr auto set_err_handler = ERKStepSetErrHandlerFn;
   static constexpr auto root_init = ERKStepRootInit;
@@ -53,6 +55,7 @@ struct ArkApi {
   static constexpr auto num_err_test_fails = ARKStepGetNumErrTestFails;
   static constexpr auto flag_name = ARKStepGetReturnFlagName;
   static constexpr auto sstolerances = ARKStepSStolerances;
+  static constexpr auto svtolerances = ARKStepSVtolerances;
   static constexpr auto set_user_data = ARKStepSetUserData;
   static constexpr auto set_err_handler = ARKStepSetErrHandlerFn;
   static constexpr auto root_init = ARKStepRootInit;
@@ -119,7 +122,14 @@ class ArkodeIntegrator final : public SundialsIntegrator {
     }
     check(Api::set_err_handler(memory_, error_callback, this), "SetErrHandlerFn");
     check(Api::set_user_data(memory_, this), "SetUserData");
-    check(Api::sstolerances(memory_, settings.rtol, settings.atol), "SStolerances");
+    if (settings.atol_vector.size() == 0) {
+      check(Api::sstolerances(memory_, settings.rtol, settings.atol), "SStolerances");
+    } else {
+      assert(settings.atol_vector.size() == functions.state_size());
+      const sundials::Vector atol = sundials::make_vector(functions.state_size(), context_.get());
+      view(atol.get()) = settings.atol_vector;
+      check(Api::svtolerances(memory_, settings.rtol, atol.get()), "SVtolerances");  // ARKODE keeps a copy
+    }
     check(Api::root_init(memory_, functions.root_count(), root_callback), "RootInit");
     check(Api::set_root_direction(memory_, root_directions_.data()), "SetRootDirection");
     check(Api::no_inactive_root_warn(memory_), "SetNoInactiveRootWarn");
@@ -204,14 +214,10 @@ class ArkodeIntegrator final : public SundialsIntegrator {
 std::unique_ptr<Integrator> make_arkode_integrator(OdeFunctions& functions, const ArkodeSettings& settings,
                                                    double t0, const Eigen::VectorXd& y0) {
   if (settings.method == ArkodeMethod::erk) {
-    if (settings.order != 0 && settings.order != 5) {
-      throw InputError("solver.order", std::to_string(settings.order), "arkode-erk offers order 5");
-    }
+    assert(settings.order == 0 || settings.order == 5);
     return std::make_unique<ArkodeIntegrator<ErkApi>>(functions, settings, t0, y0);
   }
-  if (settings.order != 0 && settings.order != 3 && settings.order != 4) {
-    throw InputError("solver.order", std::to_string(settings.order), "arkode-dirk offers orders 3 and 4");
-  }
+  assert(settings.order == 0 || settings.order == 3 || settings.order == 4);
   return std::make_unique<ArkodeIntegrator<ArkApi>>(functions, settings, t0, y0);
 }
 

@@ -1,5 +1,6 @@
 #include "pounding/solvers/cvode_integrator.hpp"
 
+#include <cassert>
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -20,7 +21,14 @@ CvodeIntegrator::CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& s
   check(CVodeSetErrHandlerFn(memory_, error_callback, this), "CVodeSetErrHandlerFn");
   check(CVodeInit(memory_, rhs_callback, t0, y_.get()), "CVodeInit");
   check(CVodeSetUserData(memory_, this), "CVodeSetUserData");
-  check(CVodeSStolerances(memory_, settings.rtol, settings.atol), "CVodeSStolerances");
+  if (settings.atol_vector.size() == 0) {
+    check(CVodeSStolerances(memory_, settings.rtol, settings.atol), "CVodeSStolerances");
+  } else {
+    assert(settings.atol_vector.size() == functions.state_size());
+    const sundials::Vector atol = sundials::make_vector(functions.state_size(), context_.get());
+    view(atol.get()) = settings.atol_vector;
+    check(CVodeSVtolerances(memory_, settings.rtol, atol.get()), "CVodeSVtolerances");  // CVODE keeps a copy
+  }
   if (settings.newton_solver == NewtonSolver::dense) {
     matrix_ = sundials::make_dense_matrix(n, context_.get());
     linear_solver_ = sundials::make_dense_solver(y_.get(), matrix_.get(), context_.get());

@@ -1,5 +1,7 @@
 #include "pounding/solvers/event_driven.hpp"
 
+#include <cassert>
+
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -35,9 +37,7 @@ void EventOptions::validate() const {
   auto positive = [](double value, const char* field) {
     if (!(value > 0.0) || !std::isfinite(value)) throw InputError(field, format_value(value), "must be positive");
   };
-  if (!(restitution >= 0.0 && restitution <= 1.0)) {
-    throw InputError("restitution", format_value(restitution), "must lie in [0, 1]");
-  }
+  assert(restitution >= 0.0 && restitution <= 1.0);  // the scene's contact validator checks user input
   positive(contact_tolerance_m, "contact_tolerance_m");
   positive(reopen_gap_m, "reopen_gap_m");
   positive(overlap_allowance_m, "overlap_allowance_m");

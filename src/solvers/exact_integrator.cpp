@@ -47,6 +47,7 @@ void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
       tight.method = CvodeMethod::bdf;
       tight.rtol = settings_.hold_rtol;
       tight.atol = settings_.hold_atol;
+      tight.atol_vector = settings_.hold_atol_vector;
       held_ = std::make_unique<CvodeIntegrator>(functions_, tight, t, y);
     }
     held_->set_max_step(max_step_s_);

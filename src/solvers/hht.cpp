@@ -1,5 +1,7 @@
 #include "pounding/solvers/hht.hpp"
 
+#include <cassert>
+
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
@@ -82,17 +84,13 @@ double HhtStepper::algorithmic_dissipation(const State& from, const State& to) c
 }
 
 void HhtOptions::validate() const {
-  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) throw InputError("dt_s", format_value(dt_s), "the time step must be positive (s)");
-  if (!(alpha >= -1.0 / 3.0 && alpha <= 0.0)) throw InputError("alpha", format_value(alpha), "must lie in [-1/3, 0]");
-  if (!(contact_tolerance_m > 0.0) || !std::isfinite(contact_tolerance_m)) {
-    throw InputError("contact_tolerance_m", format_value(contact_tolerance_m), "must be positive (m)");
-  }
-  if (max_halvings < 0 || max_halvings > 60) {
-    throw InputError("max_halvings", std::to_string(max_halvings), "must lie in 0..60");
-  }
-  if (!(restitution >= 0.0 && restitution <= 1.0)) {
-    throw InputError("restitution", format_value(restitution), "must lie in [0, 1]");
-  }
+  // The user-facing rules of these (with the scene's keys) are analysis::SolverSettings::validate()
+  // and the scene's contact validator; here they are preconditions.
+  assert(dt_s > 0.0 && std::isfinite(dt_s));
+  assert(alpha >= -1.0 / 3.0 && alpha <= 0.0);
+  assert(contact_tolerance_m > 0.0 && std::isfinite(contact_tolerance_m));
+  assert(max_halvings >= 0 && max_halvings <= 60);
+  assert(restitution >= 0.0 && restitution <= 1.0);
   if (!(history_interval_s > 0.0)) {
     throw InputError("history_interval_s", format_value(history_interval_s), "must be positive (s)");
   }

@@ -109,10 +109,32 @@ for method in cvode-adams arkode-erk arkode-dirk hht; do
   /usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['method']==sys.argv[2] and s['impact_count']>0, s['method']" \
     "$work/$method/summary.json" "$method" || fail "--method $method summary"
 done
+# summary.json records what was used: the real table order and Newton solver, none for methods
+# without them, and what was given (nothing here) apart from it.
+/usr/bin/python3 - "$work" <<'PY' || fail "settings used"
+import json, sys
+used = {m: json.load(open(f"{sys.argv[1]}/{m}/summary.json"))["settings"] for m in ("arkode-dirk", "arkode-erk", "cvode-adams", "hht")}
+assert used["arkode-dirk"]["used"]["order"] == 4 and used["arkode-dirk"]["used"]["newton"] == "reduced", used["arkode-dirk"]
+assert used["arkode-erk"]["used"]["order"] == 5 and "newton" not in used["arkode-erk"]["used"], used["arkode-erk"]
+assert used["cvode-adams"]["used"]["newton"] == "reduced" and "order" not in used["cvode-adams"]["used"]
+assert "newton" not in used["hht"]["used"] and "rtol" not in used["hht"]["used"] and used["hht"]["used"]["dt_s"] == 0.05
+atol = used["arkode-dirk"]["used"]["atol_per_component"]
+assert atol["u_m"] == used["arkode-dirk"]["used"]["atol"] and all(p < atol["u_m"] for p in atol["phi_rad"])
+assert all(s["given"] == {} and s["not_used"] == {} for s in used.values())
+PY
+# A scene file's key for its own method is kept but not used when --method runs another.
+sed -e 's|^\[contact\]|[solver]\nmethod = "hht"\ndt_s = 0.01\n\n[contact]|' -e "s|\.\./records/|$source_dir/examples/records/|" \
+  "$scene" > "$work/hht-scene.toml"
+"$pounding" check "$work/hht-scene.toml" | grep -q "^Solver: hht .*dt_s 0.01, alpha -0.05" || fail "check prints the hht settings"
+"$pounding" check "$work/hht-scene.toml" | grep -q "rtol" && fail "check prints rtol for an hht scene"
+"$pounding" run "$work/hht-scene.toml" --method exact --out "$work/overridden" > "$work/overridden.txt" \
+  || fail "--method over a scene's method exited $?"
+/usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['settings']; assert s['not_used']=={'dt_s': '0.01'} and s['given']=={} and 'dt_s' not in s['used'] and s['used']['hold_rtol']==1e-12, s" \
+  "$work/overridden/summary.json" || fail "a file key the run's method does not use is listed as not used"
 /usr/bin/python3 - "$work/hht/summary.json" "$work/hht.txt" <<'PY' || fail "hht overlap and energy report"
 import json, sys
 s = json.load(open(sys.argv[1]))
-tol = s["settings"]["contact_tolerance_m"]
+tol = s["settings"]["used"]["contact_tolerance_m"]
 assert s["status"] == "unresolved_overlap", s["status"]
 assert s["statistics"]["unresolved_contacts"] > 0
 stats = s["statistics"]
@@ -124,7 +146,7 @@ assert "unresolved_overlap" in printout and "Largest overlap:" in printout and "
 PY
 "$pounding" run "$scene" --method hht --dt 0.01 --halving off --out "$work/naive" > /dev/null
 [ $? -eq 3 ] || fail "--halving off: impacts at step ends always overlap, expected exit 3"
-/usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); assert s['settings']['event_location']=='end-of-step' and s['settings']['dt_s']==0.01 and s['statistics']['halvings']==0" \
+/usr/bin/python3 -c "import json,sys; s=json.load(open(sys.argv[1])); u=s['settings']['used']; assert u['event_location']=='end-of-step' and u['dt_s']==0.01 and s['settings']['given']=={'dt_s': 0.01, 'event_location': 'end-of-step'} and 'rtol' not in u and s['statistics']['halvings']==0" \
   "$work/naive/summary.json" || fail "--halving off settings"
 
 /usr/bin/python3 "$source_dir/tools/compare_runs.py" "$work/d20" "$work/d20" --json "$work/same.json" > /dev/null \
@@ -210,6 +232,15 @@ expect_refusal "--atol = 1e+300: must lie in \[1e-16, 0.001\]" run "$scene" --at
 expect_refusal "--contact-tol = 10: must lie in (0, 0.01\] m" run "$scene" --method hht --contact-tol 10 --out "$work/bad"
 expect_refusal "--hold-rtol = 0.001: must lie in \[1e-14, 1e-06\]" run "$scene" --method exact --hold-rtol 1e-3 --out "$work/bad"
 # Work beyond the limits is refused before the run, with the estimate; the option lifts it.
+# A setting the method run does not use is refused, naming the option and the method.
+expect_refusal "--rtol = 1e-12: does not apply to method hht" run "$scene" --method hht --rtol 1e-12 --out "$work/bad"
+expect_refusal "--dt = 0.01: does not apply to method cvode-bdf" run "$scene" --dt 0.01 --out "$work/bad"
+expect_refusal "--order = 4: does not apply to method cvode-bdf" run "$scene" --order 4 --out "$work/bad"
+expect_refusal "--hold-rtol = 1e-10: does not apply to method arkode-dirk" run "$scene" --method arkode-dirk --hold-rtol 1e-10 --out "$work/bad"
+expect_refusal "--newton = \"dense\": does not apply to method arkode-erk" run "$scene" --method arkode-erk --newton dense --out "$work/bad"
+expect_refusal "--newton = \"dense\": does not apply to method exact" run "$scene" --method exact --newton dense --out "$work/bad"
+expect_refusal "--halving = off: does not apply to method cvode-bdf" run "$scene" --halving off --out "$work/bad"
+expect_refusal "--order = 5: arkode-dirk offers order 4 or 3" run "$scene" --method arkode-dirk --order 5 --out "$work/bad"
 expect_refusal "--max-steps = 100: the run needs at least 24[0-9] steps" run "$scene" --method hht --max-steps 100 --out "$work/bad"
 expect_refusal "--max-steps = 10000000: the run needs at least 1.22e+10 steps" run "$scene" --method hht --dt 1e-9 --out "$work/bad"
 expect_refusal "--max-steps = 10000000: the run needs at least 2.44e+07 steps" run "$scene" --method hht --dt 5e-7 --out "$work/bad"

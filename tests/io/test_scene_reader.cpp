@@ -105,7 +105,8 @@ BOOST_AUTO_TEST_CASE(ValidSceneIsReadCompletely) {
   BOOST_TEST(scene.buildings[1].damping.modes[1] == 2);
   BOOST_TEST(scene.excitation.file == c.dir.path() / "record.txt");  // relative to the scene
   BOOST_TEST(scene.levels().size() == 2u);
-  BOOST_TEST(scene.solver.rtol == 1e-8);
+  BOOST_TEST(!scene.solver.rtol.has_value());  // not given: the method's default is used
+  BOOST_TEST(pounding::analysis::resolve(scene.solver).rtol == 1e-8);
 }
 
 BOOST_AUTO_TEST_CASE(GapOverrideMovesBuildingTwoAlongX) {
@@ -368,8 +369,8 @@ BOOST_AUTO_TEST_CASE(AbsurdContactSolverAndOutputValuesNameTheirRange) {
   const auto with_solver = [](const std::string& table) { return kScene + table; };
   BOOST_TEST(mentions(error_of(with_solver("[solver]\nrtol = 1e-300\n")), {"solver.rtol = 1e-300", "[1e-14, 0.1]"}));
   BOOST_TEST(mentions(error_of(with_solver("[solver]\natol = 1e300\n")), {"solver.atol = 1e+300", "[1e-16, 0.001]"}));
-  BOOST_TEST(mentions(error_of(with_solver("[solver]\ndt_s = 100.0\n")), {"solver.dt_s = 100", "(0, 0.1] s"}));
-  BOOST_TEST(mentions(error_of(with_solver("[solver]\ncontact_tolerance_m = 10.0\n")),
+  BOOST_TEST(mentions(error_of(with_solver("[solver]\nmethod = \"hht\"\ndt_s = 100.0\n")), {"solver.dt_s = 100", "(0, 0.1] s"}));
+  BOOST_TEST(mentions(error_of(with_solver("[solver]\nmethod = \"hht\"\ncontact_tolerance_m = 10.0\n")),
                       {"solver.contact_tolerance_m = 10", "(0, 0.01] m"}));
   BOOST_TEST(mentions(error_of(with_solver("[output]\nhistory_interval_s = 1e-9\n")),
                       {"output.history_interval_s = 1e-09", "[0.0001, 10] s"}));
@@ -377,13 +378,23 @@ BOOST_AUTO_TEST_CASE(AbsurdContactSolverAndOutputValuesNameTheirRange) {
                       {"output.history_floors[3] = 1", "listed twice"}));
 }
 
+BOOST_AUTO_TEST_CASE(ASolverKeyTheFilesMethodDoesNotUseIsRefused) {
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\nmethod = \"hht\"\nrtol = 1e-10\n"),
+                      {"scene.toml", "solver.rtol = 1e-10", "does not apply to method hht"}));
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\ndt_s = 0.01\n"), {"solver.dt_s = 0.01", "method cvode-bdf"}));
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\nmethod = \"arkode-erk\"\nnewton = \"dense\"\n"),
+                      {"solver.newton = \"dense\"", "does not apply to method arkode-erk"}));
+  Case ok(kScene + "[solver]\nmethod = \"hht\"\ndt_s = 0.01\n");
+  BOOST_TEST(read_scene(ok.file).solver.dt_s.value_or(0.0) == 0.01);
+}
+
 BOOST_AUTO_TEST_CASE(HoldRtolOfTheExactPathNamesItsRange) {
   Case ok(kScene + "[solver]\nmethod = \"exact\"\nhold_rtol = 1e-10\n");
-  BOOST_TEST(read_scene(ok.file).solver.hold_rtol == 1e-10);
-  BOOST_TEST(mentions(error_of(kScene + "[solver]\nhold_rtol = 1e-3\n"),
+  BOOST_TEST(read_scene(ok.file).solver.hold_rtol.value_or(0.0) == 1e-10);
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\nmethod = \"exact\"\nhold_rtol = 1e-3\n"),
                       {"scene.toml", "solver.hold_rtol = 0.001", "[1e-14, 1e-06]"}));
-  BOOST_TEST(mentions(error_of(kScene + "[solver]\nhold_rtol = 1e-300\n"), {"solver.hold_rtol = 1e-300", "[1e-14, 1e-06]"}));
-  BOOST_TEST(mentions(error_of(kScene + "[solver]\nhold_rtol = nan\n"), {"solver.hold_rtol = nan", "[1e-14, 1e-06]"}));
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\nmethod = \"exact\"\nhold_rtol = 1e-300\n"), {"solver.hold_rtol = 1e-300", "[1e-14, 1e-06]"}));
+  BOOST_TEST(mentions(error_of(kScene + "[solver]\nmethod = \"exact\"\nhold_rtol = nan\n"), {"solver.hold_rtol = nan", "[1e-14, 1e-06]"}));
 }
 
 BOOST_AUTO_TEST_CASE(AbsurdExcitationValuesNameTheirRange) {

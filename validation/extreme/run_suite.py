@@ -28,7 +28,6 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 PY = "/usr/bin/python3"
-METHODS = ["cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "hht", "exact"]
 REFERENCE = ("reference", ["--method", "cvode-bdf", "--rtol", "1e-12", "--atol", "1e-14"])
 COLUMNS = ["case", "method", "status", "impacts", "touches", "holds", "largest_overlap_m", "energy_residual",
            "steps", "run_time_s", "matched", "only_in_reference", "only_in_run", "impact_time_error_s",
@@ -126,7 +125,7 @@ def main():
     parser.add_argument("--quick", action="store_true", help="only the cases marked quick")
     parser.add_argument("--timeout", type=float, default=120.0, help="per run (s)")
     parser.add_argument("--reference-timeout", type=float, default=600.0, help="per reference run (s)")
-    parser.add_argument("--methods", help="comma-separated subset of " + ",".join(METHODS))
+    parser.add_argument("--methods", help="comma-separated subset of the methods `pounding methods` lists")
     parser.add_argument("--cases", help="comma-separated case names")
     parser.add_argument("--out", type=Path, default=ROOT / "out/extreme")
     parser.add_argument("--check", action="store_true", help="exit 1 on a hang, crash or NaN")
@@ -135,10 +134,13 @@ def main():
         if not getattr(args, name) > 0:
             sys.exit(f"error: --{name.replace('_', '-')} = {getattr(args, name)}: must be positive (s)")
     index = json.loads((HERE / "cases/index.json").read_text())
-    methods = args.methods.split(",") if args.methods else METHODS
-    unknown = [m for m in methods if m not in METHODS]
+    # Every method of the program's registry (src/analysis/methods.cpp), in its order.
+    known = [m["name"] for m in json.loads(subprocess.run([args.pounding, "methods", "--json"], check=True,
+                                                          capture_output=True, text=True).stdout)]
+    methods = args.methods.split(",") if args.methods else known
+    unknown = [m for m in methods if m not in known]
     if unknown:
-        sys.exit(f"error: --methods: unknown {', '.join(unknown)}; expected some of {', '.join(METHODS)}")
+        sys.exit(f"error: --methods: unknown {', '.join(unknown)}; expected some of {', '.join(known)}")
     cases = [c for c in index if (not args.quick or c["quick"]) and (not args.cases or c["name"] in args.cases.split(","))]
     if not cases:
         sys.exit("error: no case selected")

@@ -153,7 +153,7 @@ def main():
         f"resolve let the slabs sink up to {1000 * hht['statistics']['max_interpenetration_m']:.2f} mm into each "
         f"other ({hht['statistics']['max_interpenetration_pair']}, {hht['statistics']['max_interpenetration_t_s']:.3f} "
         "s), beyond its "
-        f"{1000 * hht['settings']['contact_tolerance_m']:.1f} mm contact tolerance.",
+        f"{1000 * hht['settings']['used']['contact_tolerance_m']:.1f} mm contact tolerance.",
         "",
         "## Exact path against CVODE",
         "",

@@ -20,11 +20,8 @@ std::vector<contact::Candidate> scene_candidates(const Scene& scene);
 /// @throws InputError for bad buildings or a bad record.
 dynamics::CoupledSystem build_system(const Scene& scene);
 
-/// The event-driven integrator that `solver` names (CVODE or ARKODE).
-solvers::IntegratorFactory integrator_factory(const SolverSettings& solver);
-
-/// The HHT-α options that scene.solver and scene.output describe.
-solvers::HhtOptions hht_options(const Scene& scene);
+/// The HHT-α options that `used` (method hht), scene.contact and scene.output describe.
+solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used);
 
 /// What one run may cost (README, "Limits"): checked against an estimate before the run starts,
 /// and enforced while it runs (the run then ends with status step_limit or time_limit).
@@ -58,17 +55,20 @@ struct RunReport {
   std::string scene;
   double gap_m = 0.0;
   double restitution = 0.0;
-  SolverSettings solver;
+  SolverSettings solver;  // as given
+  UsedSettings used;      // as run (real order, Newton solver, tolerances per component)
   double hold_velocity_mps = 0.0;
   std::vector<contact::Level> levels;
   std::vector<contact::Candidate> candidates;
   solvers::RunResult result;
 };
 
-/// Integrates the scene with scene.solver (method, rtol, atol) and scene.output, within `limits`.
+/// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and
+/// scene.output, within `limits`.
 /// With a `sink` (must outlive the call) the history rows and impacts go to it as they come and
 /// the report's history keeps its columns only; without, the whole history is in the report.
-/// @throws InputError for invalid settings or a run whose estimate exceeds the limits; numerical
+/// @throws InputError for invalid settings (a given setting the method does not use among them)
+///   or a run whose estimate exceeds the limits; numerical
 ///   trouble, an exhausted budget or an interrupt come back in the status.
 RunReport run_scene(const Scene& scene, const RunLimits& limits = {}, solvers::RunSink* sink = nullptr);
 

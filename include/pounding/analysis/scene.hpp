@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/methods.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/model/building.hpp"
@@ -25,24 +26,6 @@ struct ContactSettings {
   double level_tolerance_m = 1e-3;
 };
 
-/// Time integration of `pounding run`.
-struct SolverSettings {
-  std::string method = "cvode-bdf";  // cvode-bdf | cvode-adams | arkode-erk | arkode-dirk | hht | exact
-  int order = 0;                     // ARKODE table order (erk: 5 or 8; dirk: 4 or 3); 0 = default
-  double rtol = 1e-8;
-  double atol = 1e-10;               // m, rad (and their rates)
-  std::string newton = "reduced";    // reduced (n×n structural system) | dense (2n×2n LU)
-  // exact: relative tolerance of the held stretches (CVODE BDF, atol = hold_rtol/100 in m, rad);
-  // free flight is exact whatever it is.
-  double hold_rtol = 1e-12;
-  // HHT-α (method "hht"):
-  double dt_s = 0.05;                      // fixed step (s), the published value
-  double alpha = -0.05;                    // in [−1/3, 0]
-  double contact_tolerance_m = 1e-4;       // |g| that counts as contact
-  int max_halvings = 30;
-  std::string event_location = "halving";  // halving | end-of-step | interpolate
-};
-
 /// What `pounding run` writes to history.csv.
 struct OutputSettings {
   std::vector<int> history_floors;   // levels (1-based, as `check` lists them); empty: every level
@@ -55,7 +38,7 @@ struct Scene {
   std::array<model::BuildingDefinition, 2> buildings;  // building 1 on the −x side
   excitation::ExcitationSpec excitation;
   ContactSettings contact;
-  SolverSettings solver;
+  SolverSettings solver;  // as given (methods.hpp)
   OutputSettings output;
 
   /// The floor pairs at a common elevation (within contact.level_tolerance_m), lowest first.

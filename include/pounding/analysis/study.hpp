@@ -11,10 +11,9 @@
 namespace pounding::analysis {
 
 struct StudyOptions {
-  int repeat = 3;                                              // timed runs per case (median)
-  std::vector<double> rtols{1e-4, 1e-6, 1e-8, 1e-10, 1e-12};   // event-driven methods
-  std::vector<double> dts_s{0.05, 0.01, 0.002, 0.0005};        // hht variants
-  double match_window_s = 0.05;                                // impacts further apart are not a match
+  int repeat = 3;                // timed runs per case (median)
+  bool quick = false;            // each method's quick ladder (MethodInfo::quick_ladder), not its full one
+  double match_window_s = 0.05;  // impacts further apart are not a match
   /// @throws InputError naming the field.
   void validate() const;
 };
@@ -38,8 +37,8 @@ struct RunErrors {
 RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunResult& run, double window_s);
 
 struct StudyRow {
-  std::string method;   // cvode-bdf, ..., hht-halving, hht-end-of-step, hht-interpolate
-  std::string setting;  // "rtol" or "dt_s"
+  std::string method;   // the series' label (StudySeries::label): cvode-bdf, ..., hht-halving, ...
+  std::string setting;  // the method's ladder setting: "rtol" or "dt_s"
   double value = 0.0;
   std::string status;
   double run_time_s = 0.0;  // median wall time of the solver over the repeats
@@ -62,7 +61,8 @@ struct StudyResult {
   std::vector<StudyRow> rows;
 };
 
-/// Runs the study against the exact path (at scene.solver.hold_rtol). `progress` is called with each finished row (for printing as it goes).
+/// Runs every series of every method of the registry over its ladder against the reference
+/// method (the exact path, with the scene's settings for it). `progress` is called with each finished row (for printing as it goes).
 StudyResult run_study(const Scene& scene, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress = {});
 

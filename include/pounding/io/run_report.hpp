@@ -18,8 +18,8 @@ std::string brief_report(const analysis::RunReport& report);
 /// energy balance and the solver's statistics.
 std::string full_report(const analysis::RunReport& report);
 
-/// The settings of the run's method, e.g. "rtol 1e-08, atol 1e-10" or, for hht, "dt 0.05 s,
-/// alpha -0.05, ...": the one place that knows which settings each method reports.
+/// The settings the run's method used, e.g. "rtol 1e-08, atol 1e-10 m (phi ...), newton reduced"
+/// or, for hht, "dt_s 0.05, alpha -0.05, ...": analysis::describe_used_settings() of the registry.
 std::string method_settings_text(const analysis::RunReport& report);
 
 }  // namespace pounding::io

@@ -20,8 +20,10 @@ enum class NewtonSolver { second_order, dense };
 struct CvodeSettings {
   CvodeMethod method = CvodeMethod::bdf;
   double rtol = 1e-8;
-  double atol = 1e-10;   // m, rad and their rates
+  double atol = 1e-10;   // every component (m, rad and their rates) unless atol_vector is set
   NewtonSolver newton_solver = NewtonSolver::second_order;
+  /// Per state component (CVodeSVtolerances); empty: atol for every one. @pre size 0 or the state's.
+  Eigen::VectorXd atol_vector{};
 };
 
 class CvodeIntegrator final : public SundialsIntegrator {

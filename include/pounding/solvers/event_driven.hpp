@@ -57,7 +57,8 @@ struct EventOptions {
   /// the whole history is kept in the result. Must outlive the run.
   RunSink* sink = nullptr;
 
-  /// @throws InputError naming the field.
+  /// @pre restitution ∈ [0, 1] (user input is checked by the scene's contact validator).
+  /// @throws InputError naming any other field.
   void validate() const;
 };
 

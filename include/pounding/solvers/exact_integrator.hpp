@@ -32,7 +32,8 @@ namespace pounding::solvers {
 /// Tolerances of the held stretches, the part of the exact path that is integrated numerically.
 struct ExactSettings {
   double hold_rtol = 1e-12;
-  double hold_atol = 1e-14;  // m, rad and their rates
+  double hold_atol = 1e-14;  // every component (m, rad and their rates) unless hold_atol_vector is set
+  Eigen::VectorXd hold_atol_vector{};  // per state component; empty: hold_atol for every one
 };
 
 class ExactIntegrator final : public Integrator {

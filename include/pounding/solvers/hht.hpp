@@ -77,7 +77,9 @@ struct HhtOptions {
   RunSink* sink = nullptr;
   long max_steps = 10'000'000;        // trial steps (halvings included) before step_limit
   RunBudget budget;                   // wall time; a run also stops when interrupted
-  /// @throws InputError naming the field (dt_s, alpha, contact_tolerance_m, max_halvings, ...).
+  /// @pre dt_s, contact_tolerance_m > 0, alpha ∈ [−1/3, 0], max_halvings ∈ 0..60, restitution ∈
+  ///   [0, 1] (user input is checked by analysis::SolverSettings::validate() and the scene).
+  /// @throws InputError naming the field for history_interval_s, max_steps, budget.
   void validate() const;
 };
 
