@@ -137,7 +137,8 @@ Run run(Scene scene, const std::optional<std::string>& method, const py::dict& s
   try {
     if (method) scene.solver = pounding::analysis::with_method(scene.solver, *method);
     for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
-      if (settings.contains(spec.key.data())) set_setting(scene.solver, spec.id, settings[spec.key.data()]);
+      const py::str key(std::string(spec.key));
+      if (settings.contains(key)) set_setting(scene.solver, spec.id, settings[key]);
     }
     scene.validate();
     limits.validate();

@@ -4,7 +4,7 @@ returning Python objects and numpy arrays instead of files.
     scene = pounding.load_scene("examples/paper/paper.toml", gap=0.02)
     result = pounding.run(scene, method="cvode-bdf", rtol=1e-8)
     result.status, len(result.impacts), result.impacts_array["impulse_kNs"].max()
-    result.history["b1_f7_u_m"]            # numpy array over result.history["t_s"]
+    result.history["B1_f7_u_m"]            # numpy array over result.history["t_s"]
     pounding.needed_gap(scene).needed_gap_m
 
 Units are in the names (m, s, kNs, kJ), as in the command line's files. Bad input raises
@@ -28,6 +28,9 @@ class InputError(ValueError):
     def __init__(self, message, file="", key="", value="", reason=""):
         super().__init__(message)
         self.file, self.key, self.value, self.reason = file, key, value, reason
+
+    def __reduce__(self):  # pickled whole, parts included (an error sent back by a worker process)
+        return type(self), (str(self), self.file, self.key, self.value, self.reason)
 
 
 from . import _pounding  # noqa: E402  (after InputError, which its error translator raises)

@@ -8,6 +8,7 @@ import csv
 import json
 import os
 import pathlib
+import pickle
 import subprocess
 import threading
 import time
@@ -27,6 +28,8 @@ RECORD = SOURCE / "examples" / "records" / "elcentro1940_ns_peer_RSN6.AT2"
 #   provenance.date_utc      when each run started
 #   statistics.wall_time_s   each run's measured run time
 #   wall_time_s (gap.json)   the same, for the needed-gap run
+# The rest of provenance is compared: the program and the module must come from one build
+# (git_commit ends in -dirty for a build from edited sources).
 NOT_REPRODUCIBLE = {("provenance", "command_line"), ("provenance", "date_utc"), ("statistics", "wall_time_s"),
                     ("wall_time_s",)}
 
@@ -165,6 +168,9 @@ def test_bad_copies_name_the_key():
         scene.with_record(RECORD, format="peer-at2", scale_to_pga_g=-1.0)
     assert raised.value.key == "excitation.scale_to_pga_g" and raised.value.value == "-1"
     assert scene.gap_m == 0.2  # the copies failed; the scene is unchanged
+    copy = pickle.loads(pickle.dumps(raised.value))
+    assert (str(copy), copy.key, copy.value, copy.file) == (str(raised.value), "excitation.scale_to_pga_g", "-1",
+                                                           str(PAPER))
 
 
 def test_inapplicable_setting_raises_naming_it():
