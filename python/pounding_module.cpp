@@ -9,6 +9,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -115,18 +116,21 @@ void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis:
     if (!py::isinstance<py::str>(value)) throw refuse("expected a string");
     return value.cast<std::string>();
   };
+  // No default: a Setting added to the registry without a line here is a -Wswitch warning, and
+  // a run given it raises instead of ignoring it.
   switch (setting) {
-    case Setting::order: solver.order = integer(); break;
-    case Setting::rtol: solver.rtol = real(); break;
-    case Setting::atol: solver.atol = real(); break;
-    case Setting::newton: solver.newton = text(); break;
-    case Setting::hold_rtol: solver.hold_rtol = real(); break;
-    case Setting::dt_s: solver.dt_s = real(); break;
-    case Setting::alpha: solver.alpha = real(); break;
-    case Setting::contact_tolerance_m: solver.contact_tolerance_m = real(); break;
-    case Setting::max_halvings: solver.max_halvings = integer(); break;
-    case Setting::event_location: solver.event_location = text(); break;
+    case Setting::order: solver.order = integer(); return;
+    case Setting::rtol: solver.rtol = real(); return;
+    case Setting::atol: solver.atol = real(); return;
+    case Setting::newton: solver.newton = text(); return;
+    case Setting::hold_rtol: solver.hold_rtol = real(); return;
+    case Setting::dt_s: solver.dt_s = real(); return;
+    case Setting::alpha: solver.alpha = real(); return;
+    case Setting::contact_tolerance_m: solver.contact_tolerance_m = real(); return;
+    case Setting::max_halvings: solver.max_halvings = integer(); return;
+    case Setting::event_location: solver.event_location = text(); return;
   }
+  throw std::logic_error("the Python module cannot set " + key + " yet (python/pounding_module.cpp, set_setting)");
 }
 
 /// `pounding run` without files: the method and settings replace the scene's (as the options do
