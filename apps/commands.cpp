@@ -1,10 +1,10 @@
 #include "commands.hpp"
+#include "interrupts.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <csignal>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -146,30 +146,6 @@ analysis::RunLimits run_limits(const RunCommand& command) {
   return limits;
 }
 
-/// While it lives, SIGINT and SIGTERM ask the run to stop (it then writes what it has, with
-/// status interrupted); a second signal has the default effect, so a stuck program still dies.
-class InterruptRequests {
- public:
-  InterruptRequests() {
-    struct sigaction action {};
-    action.sa_handler = [](int) { solvers::request_interrupt(); };
-    action.sa_flags = SA_RESETHAND;
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &old_int_);
-    sigaction(SIGTERM, &action, &old_term_);
-  }
-  ~InterruptRequests() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-  }
-  InterruptRequests(const InterruptRequests&) = delete;
-  InterruptRequests& operator=(const InterruptRequests&) = delete;
-
- private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-};
-
 int run_run(const RunCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(
       command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
@@ -234,8 +210,14 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
                at_reference(r.history_u_at_reference, e.history_u_m), e.history_v_m, e.history_phi_rad,
                r.status == "completed" ? "" : "  " + r.status);
   };
+  const InterruptRequests interrupts;
   const analysis::StudyResult study = analysis::run_study(scene, options, print_row);
   io::write_study(study, provenance, folder);
+  if (study.interrupted) {
+    fmt::print("Interrupted after {} of the study's runs; wrote them to {}/study.csv and study.json\n",
+               study.rows.size(), folder);
+    return 3;
+  }
   fmt::print("Reference: exact path, {} impacts, {:.3f} s; its own error estimate (against held stretches at "
              "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv and study.json; "
              "draw them with tools/plot_study.py {}\n",

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "commands.hpp"
+#include "interrupts.hpp"
 #include "pounding/analysis/needed_gap.hpp"
 #include "pounding/analysis/record_set.hpp"
 #include "pounding/contact/candidates.hpp"
@@ -114,6 +115,18 @@ void print_set_statistics(const analysis::RecordSetResult& set) {
   }
 }
 
+/// Each contact-free run's budget (--max-wall-time). @throws InputError naming the option.
+solvers::RunBudget run_budget(const GapCommand& command) {
+  solvers::RunBudget budget;
+  if (command.max_wall_time_s) budget.max_wall_time_s = *command.max_wall_time_s;
+  try {
+    budget.validate();
+  } catch (const InputError& error) {
+    throw InputError("--max-wall-time", error.value(), error.reason());
+  }
+  return budget;
+}
+
 /// `gap --records`: the needed gap under every record of the set, then the set's statistics.
 /// Returns 3 when a record failed (its row says why; the others are still written).
 int run_record_set(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
@@ -131,12 +144,15 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
              std::min<std::size_t>(threads, records.size()));
   const auto start = std::chrono::steady_clock::now();
   int done = 0, failed = 0;
-  const analysis::RecordSetResult set =
-      analysis::record_set_gaps(scene, records, threads, [&](const analysis::RecordGap& r) {
+  const InterruptRequests interrupts;
+  const analysis::RecordSetResult set = analysis::record_set_gaps(
+      scene, records, threads,
+      [&](const analysis::RecordGap& r) {
         failed += r.completed() ? 0 : 1;
         const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         fmt::print(stderr, "\r  {}/{} records done, {} failed, {:.1f} s", ++done, records.size(), failed, elapsed_s);
-      });
+      },
+      run_budget(command));
   fmt::print(stderr, "\n");
   print_record_rows(set);
   print_set_statistics(set);
@@ -162,7 +178,8 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-gap") : command.out_dir;
   io::require_writable_folder(folder, "--out");
   const io::Provenance provenance = io::make_provenance(scene, command_line);
-  const analysis::NeededGap gap = analysis::needed_gap(scene);
+  const InterruptRequests interrupts;
+  const analysis::NeededGap gap = analysis::needed_gap(scene, run_budget(command));
   fmt::print("Needed gap of '{}' (contact-free run, CVODE rtol {:g}; {} maxima located, {} steps, {:.3f} s):\n",
              scene.name, analysis::resolve(scene.solver).rtol, gap.extrema, gap.steps, gap.wall_time_s);
   if (gap.candidate < 0) {
@@ -174,9 +191,15 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   }
   print_levels(gap);
   print_rules(gap);
+  const bool completed = gap.status == solvers::RunStatus::completed;
+  if (!completed) {
+    fmt::print("Stopped at t = {:.3f} s ({}: {}): the figures above cover the record up to there only; the needed "
+               "gap is a lower bound\n",
+               gap.end_s, solvers::to_string(gap.status), gap.status_detail);
+  }
 
   std::vector<analysis::SeverityPoint> curve;
-  if (command.curve > 0) {
+  if (command.curve > 0 && completed) {
     fmt::print("Severity below the needed gap: {} runs ({})\n", command.curve, scene.solver.method);
     int done = 0;
     try {
@@ -195,7 +218,7 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   io::write_gap(scene.name, gap, curve, provenance, folder);
   fmt::print("Wrote {0}/gap.json, gap.csv, gap_history.csv{1}; draw them with tools/plot_gap.py {0}\n", folder,
              curve.empty() ? "" : ", gap_curve.csv");
-  return 0;
+  return completed ? 0 : 3;
 }
 
 }  // namespace pounding::cli

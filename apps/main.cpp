@@ -118,6 +118,8 @@ int main(int argc, char** argv) {
                       "folder's .AT2 files, with the set's statistics")
       ->excludes(curve)->excludes("--record");
   gap_app->add_option("--threads", gap.threads, "Runs of --curve or --records at a time (default: every core)");
+  gap_app->add_option("--max-wall-time", gap.max_wall_time_s,
+                      "Stop each contact-free run after this many seconds (default 3600); SIGINT/SIGTERM stop them too");
   gap_app->add_option("--out", gap.out_dir,
                       "Output folder (default out/<scene name>-gap, or out/<scene name>-records with --records)");
 

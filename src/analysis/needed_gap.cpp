@@ -224,7 +224,14 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
   double next_sample = t0;
   VectorXd state(system.state_size());
   double t = t0;
+  solvers::BudgetClock clock(options.budget);
+  solvers::RunResult stop;  // receives the reason when the budget or a signal ends the run
   while (t < t_end) {
+    if (clock.exhausted(t, stop)) {
+      result.status = stop.status;
+      result.status_detail = stop.status_detail;
+      break;
+    }
     const solvers::StepOutcome outcome = integrator.step(t_end);
     if (outcome.kind == solvers::StepKind::failure) {
       throw std::runtime_error(fmt::format("contact-free run failed after t = {} s: {}", t, outcome.failure));
@@ -244,6 +251,7 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
   }
   note_maxima(run, t, integrator.state(), counted, nullptr, result);  // maxima still rising at the end
   result.steps = integrator.counters().steps;
+  result.end_s = t;
 }
 
 void fill_history(const FreeRun& run, const std::vector<VectorXd>& samples, NeededGap& result) {
@@ -270,14 +278,15 @@ void NeededGapOptions::validate() const {
   positive(rtol, "rtol");
   positive(atol, "atol");
   positive(history_interval_s, "history_interval_s");
+  budget.validate();
 }
 
-NeededGap needed_gap(const Scene& scene) {
+NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
   const auto clock_start = std::chrono::steady_clock::now();
   const CoupledSystem system = build_system(scene);
   const UsedSettings used = resolve(scene.solver);  // the scene's tolerances, or the defaults
   NeededGap result = needed_gap(system, scene.contact.gap_m,
-                                {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol});
+                                {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol, .budget = budget});
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }

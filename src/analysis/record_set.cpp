@@ -13,7 +13,7 @@ namespace {
 
 /// needed_gap(scene) under one record; any failure (a record that cannot be read, a run that
 /// fails) becomes the row's message.
-RecordGap record_gap(Scene scene, const RecordEntry& entry) {
+RecordGap record_gap(Scene scene, const RecordEntry& entry, const solvers::RunBudget& budget) {
   RecordGap row;
   row.record = entry.name;
   row.source = entry.source;
@@ -25,7 +25,7 @@ RecordGap record_gap(Scene scene, const RecordEntry& entry) {
     const excitation::GroundMotion motion = excitation::load_ground_motion(scene.excitation);
     row.pga_g = motion.peak_mps2() / scene.excitation.g_mps2;
     row.duration_s = motion.end_s() - motion.start_s();
-    const NeededGap gap = needed_gap(scene);
+    const NeededGap gap = needed_gap(scene, budget);
     row.needed_gap_m = gap.needed_gap_m;
     row.level = gap.level;
     row.t_s = gap.t_s;
@@ -34,7 +34,8 @@ RecordGap record_gap(Scene scene, const RecordEntry& entry) {
     }
     row.rules = gap.rules;
     row.steps = gap.steps;
-    row.status = "completed";
+    row.status = std::string(solvers::to_string(gap.status));  // interrupted / time_limit: a partial run
+    row.message = gap.status_detail;
   } catch (const std::exception& error) {
     row.message = error.what();
   }
@@ -76,14 +77,14 @@ SetStatistic set_statistic(const std::vector<double>& values) {
 }
 
 RecordSetResult record_set_gaps(const Scene& scene, const std::vector<RecordEntry>& records, unsigned threads,
-                                const std::function<void(const RecordGap&)>& progress) {
+                                const std::function<void(const RecordGap&)>& progress, const solvers::RunBudget& budget) {
   if (records.empty()) throw InputError("records", "none", "a record set needs at least one record");
   const auto clock_start = std::chrono::steady_clock::now();
   RecordSetResult result;
   result.records.resize(records.size());
   std::mutex progress_mutex;
   detail::parallel_for(records.size(), threads, [&](std::size_t k) {
-    result.records[k] = record_gap(scene, records[k]);
+    result.records[k] = record_gap(scene, records[k], budget);
     if (progress) {
       const std::lock_guard<std::mutex> lock(progress_mutex);
       progress(result.records[k]);

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "pounding/analysis/run_scene.hpp"
+#include "pounding/solvers/run_budget.hpp"
 #include "pounding/input_error.hpp"
 
 namespace pounding::analysis {
@@ -132,6 +133,10 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options,
   constexpr double kMargin = 2.0;
 
   auto add = [&](Scene variant, const std::string& label, const std::string& setting, double value) {
+    if (solvers::interrupt_requested()) {
+      study.interrupted = true;
+      return;
+    }
     StudyRow row;
     row.method = label;
     row.setting = setting;
@@ -148,6 +153,7 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options,
     if (progress) progress(row);
     study.rows.push_back(std::move(row));
   };
+  study.interrupted = study.reference.status == solvers::RunStatus::interrupted;
 
   for (const MethodInfo& method : methods()) {
     if (method.reference) continue;

@@ -65,6 +65,7 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
   for (const auto& row : study.rows) rows.push_back(row_json(row));
   return {{"scene", study.scene},
           {"gap_m", study.gap_m},
+          {"interrupted", study.interrupted},
           {"reference", {{"method", analysis::reference_method().name}, {"impacts", study.reference.impacts.size()},
                          {"run_time_s", study.reference_run_time_s},
                          {"error_estimate", {{"impact_time_s", study.reference_error.impact_time_all_s},

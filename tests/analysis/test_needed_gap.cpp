@@ -106,6 +106,25 @@ BOOST_AUTO_TEST_CASE(PaperSceneAgreesWithABisectionOnFullRuns) {
   BOOST_TEST(gap.needed_gap_m <= clear);
 }
 
+BOOST_AUTO_TEST_CASE(ABudgetOrAnInterruptEndsTheRunWithANamedStatus) {
+  const analysis::Scene scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml");
+  const analysis::NeededGap whole = analysis::needed_gap(scene);
+  BOOST_TEST(solvers::to_string(whole.status) == "completed");
+  BOOST_TEST(whole.end_s == 12.2, boost::test_tools::tolerance(1e-12));
+
+  const analysis::NeededGap spent = analysis::needed_gap(scene, {.max_wall_time_s = 1e-9});
+  BOOST_TEST(solvers::to_string(spent.status) == "time_limit");
+  BOOST_TEST(spent.end_s < whole.end_s);
+
+  solvers::request_interrupt();
+  const analysis::NeededGap interrupted = analysis::needed_gap(scene);
+  solvers::clear_interrupt();
+  BOOST_TEST(solvers::to_string(interrupted.status) == "interrupted");
+  BOOST_TEST(interrupted.end_s == 0.0);
+  // What was covered is a lower bound of the whole record's answer.
+  BOOST_TEST(!(spent.needed_gap_m > whole.needed_gap_m));
+}
+
 BOOST_AUTO_TEST_CASE(BadOptionsNameTheField) {
   const auto system = testing::two_slabs({}, testing::box(0.1, 0, 10.1, 10), {}, 0.1, 1.0, 1.0);
   BOOST_CHECK_EXCEPTION(analysis::needed_gap(system, 0.1, {.rtol = -1.0}), InputError,

@@ -171,6 +171,16 @@ PY
   "$work/study/study.json" "$scene_sha" || fail "provenance in study.json"
 /usr/bin/python3 "$source_dir/tools/plot_study.py" "$work/study" > /dev/null || fail "plot_study.py exited $?"
 [ -s "$work/study/work-precision.png" ] || fail "no work-precision.png"
+# SIGINT during a study (after its first row is printed): no further run starts, the rows so far
+# are written with "interrupted": true, exit 3.
+stdbuf -oL "$pounding" study "$scene" --quick --repeat 1 --out "$work/study-int" > "$work/study-int.txt" 2>&1 &
+studying=$!
+for _ in $(seq 600); do grep -q "^cvode-bdf" "$work/study-int.txt" 2> /dev/null && break; sleep 0.5; done
+kill -INT $studying
+wait $studying
+[ $? -eq 3 ] || fail "an interrupted study should exit 3"
+/usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['interrupted'] is True, d['interrupted']" \
+  "$work/study-int/study.json" || fail "study.json should say interrupted"
 
 # Building 2 on a 6 m ground storey: B1 floor j (3j m) meets B2 floor j - 1, and nothing else.
 levels_scene=$source_dir/examples/levels/unequal-storeys.toml

@@ -113,6 +113,24 @@ grep -q '^"elcentro1940_ns_0.02s.AT2",.*,completed,' "$work/unreadable/records.c
 "$pounding" check "$true_time" --pga-g -0.3 > /dev/null 2> "$work/bad-pga.txt"
 [ $? -eq 2 ] || fail "a bad --pga-g should exit 2"
 grep -q -- "--pga-g = -0.3" "$work/bad-pga.txt" || fail "bad --pga-g message: $(cat "$work/bad-pga.txt")"
+# A budget or a signal ends the contact-free runs with a named status: exit 3, the outputs say so.
+"$pounding" gap "$scene" --max-wall-time 1e-9 --out "$work/budget" > "$work/budget.txt" 2>&1
+[ $? -eq 3 ] || fail "gap over its wall-time budget should exit 3"
+/usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['status']=='time_limit', d['status']" \
+  "$work/budget/gap.json" || fail "gap.json status after the budget"
+grep -q "lower bound" "$work/budget.txt" || fail "no lower-bound warning: $(cat "$work/budget.txt")"
+"$pounding" gap "$true_time" --records "$work/list/set.txt" --max-wall-time 1e-9 --out "$work/budget-set" > /dev/null 2>&1
+[ $? -eq 3 ] || fail "a record set over its budget should exit 3"
+[ "$(grep -c ',time_limit,' "$work/budget-set/records.csv")" -eq 2 ] || fail "rows not time_limit: $(cat "$work/budget-set/records.csv")"
+# SIGINT once the first record is done (its progress line is out): the second stops, interrupted.
+"$pounding" gap "$true_time" --records "$work/list/set.txt" --threads 1 --out "$work/signal-set" > /dev/null \
+  2> "$work/signal-set.err" &
+signalled=$!
+for _ in $(seq 600); do grep -q "1/2 records done" "$work/signal-set.err" 2> /dev/null && break; sleep 0.5; done
+kill -INT $signalled
+wait $signalled
+[ $? -eq 3 ] || fail "an interrupted record set should exit 3"
+grep -q ',interrupted,' "$work/signal-set/records.csv" || fail "no interrupted row: $(cat "$work/signal-set/records.csv" 2>&1)"
 
 [ $failures -eq 0 ] && echo "all gap CLI checks passed"
 exit $failures

@@ -35,20 +35,28 @@ double sdof_response(double omega, double zeta, const std::vector<double>& times
   return u;
 }
 
-void check_against_closed_form(const std::vector<double>& times, const std::vector<double>& accel) {
-  const double period = 0.5, zeta = 0.05, omega = 2 * std::numbers::pi / period;
-  const auto system = two_slabs({100, period, zeta}, diamond(10.0), {1e4, 0.2, 0.05}, 10.0,
+// The oscillator the closed form describes: slab 1 of two_slabs, far from slab 2 (no contact).
+constexpr double kPeriodS = 0.5, kZeta = 0.05, kOmega = 2 * std::numbers::pi / kPeriodS;
+
+/// The exact path's run of that oscillator under a_g through (times, accel), steps of T/16.
+solvers::RunResult run_oscillator(const std::vector<double>& times, const std::vector<double>& accel) {
+  const auto system = two_slabs({100, kPeriodS, kZeta}, diamond(10.0), {1e4, 0.2, 0.05}, 10.0,
                                 excitation::GroundMotion(times, accel, 0.0));
   solvers::EventOptions options;
-  options.max_step_s = period / 16;
+  options.max_step_s = kPeriodS / 16;
   options.history_interval_s = 0.005;
-  const auto result = solvers::run_event_driven(system, options, exact(), "exact");
+  auto result = solvers::run_event_driven(system, options, exact(), "exact");
   BOOST_TEST_REQUIRE(solvers::to_string(result.status) == "completed");
+  return result;
+}
+
+void check_against_closed_form(const std::vector<double>& times, const std::vector<double>& accel) {
+  const solvers::RunResult result = run_oscillator(times, accel);
   const auto& h = result.history;
   const auto column = std::find(h.columns.begin(), h.columns.end(), "B1_f1_u_m") - h.columns.begin() - 1;
   double peak = 0.0, worst = 0.0;
   for (std::size_t r = 0; r < h.time_s.size(); ++r) {
-    const double expected = sdof_response(omega, zeta, times, accel, h.time_s[r]);
+    const double expected = sdof_response(kOmega, kZeta, times, accel, h.time_s[r]);
     peak = std::max(peak, std::abs(expected));
     worst = std::max(worst, std::abs(h.rows[r][column] - expected));
   }
@@ -72,16 +80,8 @@ BOOST_AUTO_TEST_CASE(FindsThePeakBetweenStepEndsAndSamples) {
   // the run's: located on the trajectory, not taken at step ends (steps of T/16 would miss it by
   // up to 2 %) or history samples (every 5 ms: up to 5e-4 of it).
   const std::vector<double> times{0.0, 0.1, 0.25, 0.4, 0.6, 0.61, 1.2}, accel{0.0, 2.0, -1.0, 0.6, 0.0, 1.5, 0.0};
-  const double period = 0.5, zeta = 0.05, omega = 2 * std::numbers::pi / period;
-  const auto system = two_slabs({100, period, zeta}, diamond(10.0), {1e4, 0.2, 0.05}, 10.0,
-                                excitation::GroundMotion(times, accel, 0.0));
-  solvers::EventOptions options;
-  options.max_step_s = period / 16;
-  options.history_interval_s = 0.005;
-  const auto result = solvers::run_event_driven(system, options, exact(), "exact");
-  BOOST_TEST_REQUIRE(solvers::to_string(result.status) == "completed");
-
-  auto magnitude = [&](double t) { return std::abs(sdof_response(omega, zeta, times, accel, t)); };
+  const solvers::RunResult result = run_oscillator(times, accel);
+  auto magnitude = [&](double t) { return std::abs(sdof_response(kOmega, kZeta, times, accel, t)); };
   double t_best = 0.0;
   for (double t = 0.0; t <= 1.2; t += 1e-4) t_best = magnitude(t) > magnitude(t_best) ? t : t_best;
   double a = std::max(0.0, t_best - 1e-4), b = std::min(1.2, t_best + 1e-4);

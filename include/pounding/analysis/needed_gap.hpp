@@ -17,6 +17,7 @@
 #include "pounding/analysis/scene.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/run_budget.hpp"
 
 namespace pounding::analysis {
 
@@ -67,6 +68,11 @@ struct NeededGap {
   GapRules rules;            // each rule's largest value over the levels
   long extrema = 0;          // touch-gap maxima located (root returns on the pairs' rates)
   long steps = 0;
+  /// completed, or interrupted / time_limit when the run stopped at end_s: everything above then
+  /// covers the record only up to end_s (the needed gap is a lower bound).
+  solvers::RunStatus status = solvers::RunStatus::completed;
+  std::string status_detail;
+  double end_s = 0.0;
   double wall_time_s = 0.0;
   /// Touch gap (m) of each level's governing pair, sampled every history_interval_s; one column
   /// per level (NaN where the vertex is off the edge), times in history_t_s.
@@ -79,6 +85,7 @@ struct NeededGapOptions {
   double rtol = 1e-8;
   double atol = 1e-10;  // m, rad and their rates
   double history_interval_s = 0.01;
+  solvers::RunBudget budget{};  // wall time; a SIGINT/SIGTERM (solvers::request_interrupt) also stops it
   /// @throws InputError naming the field.
   void validate() const;
 };
@@ -91,8 +98,8 @@ struct NeededGapOptions {
 NeededGap needed_gap(const dynamics::CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options);
 
 /// The same for a scene, with its solver's rtol/atol (Adams when its method is cvode-adams).
-/// @throws InputError for a bad scene or record (as build_system does).
-NeededGap needed_gap(const Scene& scene);
+/// @throws InputError for a bad scene or record (as build_system does), or a bad budget.
+NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget = {});
 
 /// A code rule against the needed gap: unconservative when it asks for less.
 struct RuleVerdict {

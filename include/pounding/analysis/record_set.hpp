@@ -27,7 +27,7 @@ struct RecordGap {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::string record;
   std::string source;
-  std::string status = "failed";  // "completed" | "failed"
+  std::string status = "failed";  // "completed" | "failed" | "interrupted" | "time_limit" (message says where)
   std::string message;
   double pga_g = kNaN;            // processed peak |a_g|
   double duration_s = kNaN;       // of the processed record
@@ -65,9 +65,11 @@ struct RecordSetResult {
 
 /// Runs needed_gap(scene) with each record's excitation, `threads` runs at a time (0: every
 /// core); `progress` is called after each record (from any thread, one call at a time). The
-/// results do not depend on `threads`: the runs share nothing but the (copied) scene.
+/// results do not depend on `threads`: the runs share nothing but the (copied) scene. `budget`
+/// bounds each run; after a SIGINT/SIGTERM every run still to come stops at once (interrupted).
 /// @throws InputError if `records` is empty. A record's own failure never throws: it is a row.
 RecordSetResult record_set_gaps(const Scene& scene, const std::vector<RecordEntry>& records, unsigned threads = 0,
-                                const std::function<void(const RecordGap&)>& progress = {});
+                                const std::function<void(const RecordGap&)>& progress = {},
+                                const solvers::RunBudget& budget = {});
 
 }  // namespace pounding::analysis

@@ -59,10 +59,14 @@ struct StudyResult {
   /// upper estimate of the reference's own error (free flight is exact either way).
   RunErrors reference_error;
   std::vector<StudyRow> rows;
+  /// A SIGINT/SIGTERM (solvers::request_interrupt) ended the study: the rows run so far, the
+  /// last of them (and the reference, if it was still running) with status interrupted.
+  bool interrupted = false;
 };
 
 /// Runs every series of every method of the registry over its ladder against the reference
 /// method (the exact path, with the scene's settings for it). `progress` is called with each finished row (for printing as it goes).
+/// After an interrupt request no further run starts.
 StudyResult run_study(const Scene& scene, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress = {});
 
