@@ -27,6 +27,7 @@
 #include "pounding/io/run_report.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "pounding/io/scene_reader.hpp"
+#include "pounding/solvers/run_budget.hpp"
 #include "pounding/version.hpp"
 
 namespace py = pybind11;
@@ -189,10 +190,10 @@ py::array_t<double> history_table(const Run& run) {
   });
 }
 
-Gap needed_gap(const Scene& scene) {
+Gap find_needed_gap(const Scene& scene, const pounding::solvers::RunBudget& budget) {
   Gap result{scene.name, {}};
   py::gil_scoped_release unlocked;
-  result.gap = pounding::analysis::needed_gap(scene);
+  result.gap = pounding::analysis::needed_gap(scene, budget);
   return result;
 }
 
@@ -283,5 +284,12 @@ PYBIND11_MODULE(_pounding, m) {
       .def("gap_json", [](const Gap& g) { return pounding::io::gap_json(g.scene, g.gap).dump(); })
       .def("history_t_s", [](const Gap& g) { return py::array_t<double>(py::ssize_t(g.gap.history_t_s.size()), g.gap.history_t_s.data()); })
       .def("touch_gap_table", &touch_gap_table);
-  m.def("needed_gap", &needed_gap, py::arg("scene"));
+  m.def(
+      "needed_gap",
+      [](const Scene& scene, std::optional<double> max_wall_time_s) {
+        pounding::solvers::RunBudget budget;
+        if (max_wall_time_s) budget.max_wall_time_s = *max_wall_time_s;
+        return find_needed_gap(scene, budget);
+      },
+      py::arg("scene"), py::arg("max_wall_time_s"));
 }

@@ -162,12 +162,13 @@ def run(scene, method=None, max_steps=None, max_wall_time_s=None, max_history_va
 
 class GapResult:
     """The needed gap (`pounding gap`): summary is gap.json's document (without provenance);
-    needed_gap_m, level, floor, t_s, levels and rules are its entries; history_t_s and
+    status, status_detail, end_s, needed_gap_m, level, floor, t_s, levels and rules are its
+    entries (a status other than completed: the run stopped at end_s, the gap is a lower bound); history_t_s and
     history_touch_gap_m (one column a level) are gap_history.csv's touch gaps as numpy arrays."""
 
     def __init__(self, gap):
         self.summary = json.loads(gap.gap_json())
-        for key in ("needed_gap_m", "level", "floor", "t_s", "levels", "rules"):
+        for key in ("status", "status_detail", "end_s", "needed_gap_m", "level", "floor", "t_s", "levels", "rules"):
             setattr(self, key, self.summary.get(key))
         self.history_t_s = gap.history_t_s()
         self.history_touch_gap_m = gap.touch_gap_table()
@@ -176,7 +177,8 @@ class GapResult:
         return f"<pounding.GapResult needed gap {self.needed_gap_m} m at level {self.level}, t = {self.t_s} s>"
 
 
-def needed_gap(scene):
+def needed_gap(scene, max_wall_time_s=None):
     """The clear gap that prevents every contact, from one contact-free run (`pounding gap`), with
-    the code rules ABS, SRSS and DDC per level. Releases the GIL while it runs."""
-    return GapResult(_pounding.needed_gap(scene))
+    the code rules ABS, SRSS and DDC per level; the run stops after max_wall_time_s (None: the
+    command line's default, an hour) with status time_limit. Releases the GIL while it runs."""
+    return GapResult(_pounding.needed_gap(scene, max_wall_time_s))

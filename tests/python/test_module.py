@@ -208,7 +208,7 @@ def test_needed_gap_matches_cli(tmp_path):
     expected = json.loads((tmp_path / "gap.json").read_text())
     del expected["provenance"]
     gap = pounding.needed_gap(pounding.load_scene(PAPER))
-    assert gap.needed_gap_m.hex() == expected["needed_gap_m"].hex()
+    assert gap.needed_gap_m.hex() == expected["needed_gap_m"].hex() and gap.status == "completed"
     assert_same(gap.summary, expected)
     with open(tmp_path / "gap_history.csv") as f:
         rows = list(csv.reader(f))
@@ -245,3 +245,17 @@ def test_threads_give_serial_results_and_release_the_gil():
     assert longest_stall_s < 0.5 * shortest_run_s, (longest_stall_s, shortest_run_s)
     for parallel, alone in zip(results, serial):
         assert_same(parallel, alone)
+
+
+def test_budget_ends_runs_with_a_status():
+    """A run over its wall-time budget ends early with status time_limit (no exception), as the
+    command line's --max-wall-time does; a budget that is not positive is bad input."""
+    scene = pounding.load_scene(PAPER)
+    result = pounding.run(scene, max_wall_time_s=1e-6)
+    assert result.status == "time_limit" and result.summary["end_s"] < 12.0
+    gap = pounding.needed_gap(scene, max_wall_time_s=1e-6)
+    assert gap.status == "time_limit" and gap.end_s < 12.0
+    for call in (lambda: pounding.run(scene, max_wall_time_s=0.0), lambda: pounding.needed_gap(scene, max_wall_time_s=0.0)):
+        with pytest.raises(pounding.InputError) as raised:
+            call()
+        assert "max_wall_time_s" in raised.value.key
