@@ -1,0 +1,184 @@
+"""Seismic pounding of two adjacent buildings, from Python: the command line's analyses
+returning Python objects and numpy arrays instead of files.
+
+    scene = pounding.load_scene("examples/paper/paper.toml", gap=0.02)
+    result = pounding.run(scene, method="cvode-bdf", rtol=1e-8)
+    result.status, len(result.impacts), result.impacts_array["impulse_kNs"].max()
+    result.history["B1_f7_u_m"]            # numpy array over result.history["t_s"]
+    pounding.needed_gap(scene).needed_gap_m
+
+Units are in the names (m, s, kNs, kJ), as in the command line's files. Bad input raises
+pounding.InputError (a ValueError) with the command line's message, naming file, key and value.
+run() and needed_gap() release the GIL: runs on several threads proceed in parallel.
+"""
+
+import json
+
+import numpy as np
+
+__all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "modes", "run", "needed_gap",
+           "methods", "settings", "__version__"]
+
+
+class InputError(ValueError):
+    """Bad input, with the command line's message (str(error)) and its parts: the file, the key
+    (a scene key such as `contact.gap_m` or `solver.rtol`, or a load_scene option such as
+    `--gap`), the value as text and the reason."""
+
+    def __init__(self, message, file="", key="", value="", reason=""):
+        super().__init__(message)
+        self.file, self.key, self.value, self.reason = file, key, value, reason
+
+    def __reduce__(self):  # pickled whole, parts included (an error sent back by a worker process)
+        return type(self), (str(self), self.file, self.key, self.value, self.reason)
+
+
+from . import _pounding  # noqa: E402  (after InputError, which its error translator raises)
+
+__version__ = _pounding.__version__
+Scene = _pounding.Scene
+
+
+def _with_record(self, file, format=None, units=None, scale_factor=None, scale_to_pga_g=None,
+                 direction_deg=None, dt_s=None, accel_column=None):
+    """The scene under another record or scaling, as `pounding run --record FILE ...` applies it:
+    every argument left None keeps the scene's value; a new file drops the old file's dt_s,
+    columns and cut (the arguments may set dt_s and accel_column again); scale_factor and
+    scale_to_pga_g each replace the scene's scaling. The record is read now, so an unreadable one
+    raises here. The path is used as given (relative to the current folder).
+    Errors name the scene key (`excitation.scale_to_pga_g`, ...) that the argument sets."""
+    return self._with_record(file, format, units, scale_factor, scale_to_pga_g, direction_deg, dt_s,
+                             accel_column)
+
+
+Scene.with_record = _with_record
+Scene.__repr__ = lambda self: (f"<pounding.Scene {self.name!r}: gap {self.gap_m} m, restitution "
+                               f"{self.restitution}, method {self.method}, record {str(self.record_file)!r}>")
+
+
+def load_scene(path, gap=None, restitution=None):
+    """Reads and validates a scene file, like `pounding check SCENE [--gap G] [--restitution K]`
+    (the same errors, the options named `--gap` and `--restitution`). Returns a Scene with
+    .name, .file, .gap_m, .restitution, .method, .record_file and the with_gap(m),
+    with_restitution(k), with_record(path, ...) copies."""
+    return _pounding.load_scene(path, gap, restitution)
+
+
+def methods():
+    """The registry's method names, the default first."""
+    return _pounding.method_names()
+
+
+def settings():
+    """The [solver] settings run() accepts as keywords, in registry order."""
+    return _pounding.setting_keys()
+
+
+def modes(scene):
+    """Modal analysis of both buildings (`pounding modes --json`'s `buildings`): one dict a
+    building with the command line's keys (name, storeys, dof, total_mass_t, frame_factor, rayleigh, modes, ...),
+    plus numpy arrays over the modes, longest period first: periods_s, frequencies_hz and
+    effective_mass_ratio {x, y, rz} (fractions of the total mass)."""
+    buildings = json.loads(_pounding.modes_json(scene))["buildings"]
+    for building in buildings:
+        building["periods_s"] = np.array(building["periods_s"])
+        building["frequencies_hz"] = np.array([m["frequency_hz"] for m in building["modes"]])
+        building["effective_mass_ratio"] = {
+            axis: np.array([m["effective_mass_ratio"][axis] for m in building["modes"]]) for axis in ("x", "y", "rz")}
+    return buildings
+
+
+_IMPACT_DTYPES = {"real": np.float64, "integer": np.int64, "flag": np.bool_}
+
+
+class RunResult:
+    """One run (`pounding run`), kept in memory. summary is summary.json's document (the same keys
+    and values; its provenance has no command line); impacts, touches, sustained_contacts, peaks,
+    energy and statistics are its entries; impacts_array is impacts.csv as a numpy structured
+    array; history maps history.csv's columns (t_s first) to numpy arrays."""
+
+    def __init__(self, run):
+        self._run = run
+        self.summary = json.loads(run.summary_json())
+        for key in ("status", "status_detail", "impacts", "touches", "sustained_contacts", "peaks", "energy",
+                    "statistics"):
+            setattr(self, key, self.summary[key])
+        self._impacts_array = None
+        self._history = None
+
+    @property
+    def impacts_array(self):
+        if self._impacts_array is None:
+            columns = _pounding.impact_columns()
+            table = self._run.impact_table()
+            array = np.zeros(len(table), dtype=[(name, _IMPACT_DTYPES[kind]) for name, kind in columns])
+            for index, (name, kind) in enumerate(columns):
+                array[name] = table[:, index].astype(_IMPACT_DTYPES[kind])
+            self._impacts_array = array
+        return self._impacts_array
+
+    @property
+    def history(self):
+        if self._history is None:
+            table = self._run.history_table()
+            self._history = {name: table[:, c].copy() for c, name in enumerate(self._run.history_columns())}
+        return self._history
+
+    @property
+    def time_s(self):
+        """The history's sample times (s): history["t_s"]."""
+        return self.history["t_s"]
+
+    def report(self):
+        """The report `pounding run` prints (several lines)."""
+        return self._run.full_report()
+
+    def brief(self):
+        """One line: scene, method, status, impacts, first impact, run time."""
+        return self._run.brief_report()
+
+    def __repr__(self):
+        return f"<pounding.RunResult {self.brief()}>"
+
+
+def run(scene, method=None, max_steps=None, max_wall_time_s=None, max_history_values=None, **settings):
+    """Runs `scene` like `pounding run`: method (a name of methods(); None: the scene's, whose
+    [solver] keys for another method are then not used, as with --method), the [solver] settings
+    by their registry names (settings(); e.g. rtol=1e-8, dt_s=0.01), and the run limits
+    (--max-steps, --max-wall-time, --max-history-values). A setting the method does not use
+    raises InputError naming it, as the command line refuses it. Releases the GIL while it runs.
+    Returns a RunResult; a run that did not complete says so in .status, it does not raise."""
+    unknown = sorted(set(settings) - set(_pounding.setting_keys()))
+    if unknown:
+        raise TypeError(f"run() got unknown settings {', '.join(unknown)}; "
+                        f"expected keywords among {', '.join(_pounding.setting_keys())}")
+    limits = _pounding.RunLimits()
+    for name, value in (("max_steps", max_steps), ("max_wall_time_s", max_wall_time_s),
+                        ("max_history_values", max_history_values)):
+        if value is not None:
+            setattr(limits, name, value)
+    return RunResult(_pounding.run(scene, method, settings, limits))
+
+
+class GapResult:
+    """The needed gap (`pounding gap`): summary is gap.json's document (without provenance);
+    status, status_detail, end_s, needed_gap_m, level, floor, t_s, levels and rules are its
+    entries (a status other than completed: the run stopped at end_s, the gap is a lower bound); history_t_s and
+    history_touch_gap_m (one column a level) are gap_history.csv's touch gaps as numpy arrays."""
+
+    def __init__(self, gap):
+        self.summary = json.loads(gap.gap_json())
+        for key in ("status", "status_detail", "end_s", "needed_gap_m", "level", "floor", "t_s", "levels", "rules"):
+            setattr(self, key, self.summary.get(key))
+        self.history_t_s = gap.history_t_s()
+        self.history_touch_gap_m = gap.touch_gap_table()
+
+    def __repr__(self):
+        return f"<pounding.GapResult needed gap {self.needed_gap_m} m at level {self.level}, t = {self.t_s} s>"
+
+
+def needed_gap(scene, max_wall_time_s=None):
+    """The clear gap that prevents every contact, from one contact-free run (`pounding gap`), with
+    the code rules ABS, SRSS and DDC per level; the run stops after max_wall_time_s (None: the
+    command line's default, an hour) with status time_limit. Releases the GIL while it runs."""
+    return GapResult(_pounding.needed_gap(scene, max_wall_time_s))

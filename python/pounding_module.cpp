@@ -1,0 +1,295 @@
+// The bindings behind `import pounding` (python/pounding/__init__.py is the public API): the
+// library called the way apps/commands.cpp calls it, its documents handed over as the JSON text the
+// command line writes (so the keys cannot drift from summary.json, gap.json and the modes JSON)
+// and its tables as numpy arrays. Runs release the GIL, so Python threads run them in parallel.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pounding/analysis/methods.hpp"
+#include "pounding/analysis/modal_summary.hpp"
+#include "pounding/analysis/needed_gap.hpp"
+#include "pounding/analysis/run_scene.hpp"
+#include "pounding/excitation/ground_motion.hpp"
+#include "pounding/excitation/record_choice.hpp"
+#include "pounding/input_error.hpp"
+#include "pounding/io/gap_writer.hpp"
+#include "pounding/io/impact_schema.hpp"
+#include "pounding/io/json_report.hpp"
+#include "pounding/io/provenance.hpp"
+#include "pounding/io/run_report.hpp"
+#include "pounding/io/run_writer.hpp"
+#include "pounding/io/scene_reader.hpp"
+#include "pounding/solvers/run_budget.hpp"
+#include "pounding/version.hpp"
+
+namespace py = pybind11;
+using pounding::InputError;
+using pounding::analysis::Scene;
+
+namespace {
+
+/// A run and what it was run on: the inputs of run_json(), full_report() and the arrays.
+struct Run {
+  pounding::analysis::RunReport report;
+  pounding::io::Provenance provenance;
+};
+
+/// The needed-gap analysis of a scene, with the scene's name for gap_json().
+struct Gap {
+  std::string scene;
+  pounding::analysis::NeededGap gap;
+};
+
+/// `rows` × `columns` doubles, filled by value(row, column).
+template <typename Value>
+py::array_t<double> matrix(std::size_t rows, std::size_t columns, Value value) {
+  py::array_t<double> array({rows, columns});
+  auto cells = array.mutable_unchecked<2>();
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns; ++c) cells(r, c) = value(r, c);
+  }
+  return array;
+}
+
+/// `scene`'s error with the scene file named, as the readers name it for the command line.
+[[noreturn]] void rethrow_in_scene(const InputError& error, const Scene& scene) {
+  throw error.in_context(scene.file.string());
+}
+
+Scene with_gap(Scene scene, double gap_m) {
+  try {
+    scene.set_gap(gap_m);
+    scene.validate();
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  return scene;
+}
+
+Scene with_restitution(Scene scene, double restitution) {
+  try {
+    scene.contact.restitution = restitution;
+    scene.validate();
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  return scene;
+}
+
+/// excitation::with_record(), as `run --record ...` applies it, then the record read once so that
+/// a record that cannot be read or scales beyond 10 g is refused now (io::read_scene does the same).
+Scene with_record(Scene scene, const pounding::excitation::RecordChoice& choice) {
+  try {
+    scene.excitation = pounding::excitation::with_record(scene.excitation, choice);
+    pounding::excitation::load_ground_motion(scene.excitation);
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  return scene;
+}
+
+/// Sets the [solver] key `key` from a Python value of its type (int, float or str).
+/// @throws InputError (key `solver.<key>`) for a value of another type.
+void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis::Setting setting, py::handle value) {
+  using pounding::analysis::Setting;
+  const std::string key = "solver." + std::string(pounding::analysis::spec(setting).key);
+  const bool is_int = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value);
+  auto refuse = [&](const char* expected) -> InputError {
+    return InputError(key, py::str(py::repr(value)), expected);
+  };
+  auto integer = [&] {
+    if (!is_int) throw refuse("expected an integer");
+    return value.cast<int>();
+  };
+  auto real = [&] {
+    if (!is_int && !py::isinstance<py::float_>(value)) throw refuse("expected a number");
+    return value.cast<double>();
+  };
+  auto text = [&] {
+    if (!py::isinstance<py::str>(value)) throw refuse("expected a string");
+    return value.cast<std::string>();
+  };
+  // No default: a Setting added to the registry without a line here is a -Wswitch warning, and
+  // a run given it raises instead of ignoring it.
+  switch (setting) {
+    case Setting::order: solver.order = integer(); return;
+    case Setting::rtol: solver.rtol = real(); return;
+    case Setting::atol: solver.atol = real(); return;
+    case Setting::newton: solver.newton = text(); return;
+    case Setting::hold_rtol: solver.hold_rtol = real(); return;
+    case Setting::dt_s: solver.dt_s = real(); return;
+    case Setting::alpha: solver.alpha = real(); return;
+    case Setting::contact_tolerance_m: solver.contact_tolerance_m = real(); return;
+    case Setting::max_halvings: solver.max_halvings = integer(); return;
+    case Setting::event_location: solver.event_location = text(); return;
+  }
+  throw std::logic_error("the Python module cannot set " + key + " yet (python/pounding_module.cpp, set_setting)");
+}
+
+/// `pounding run` without files: the method and settings replace the scene's (as the options do
+/// in cli::apply_run_options), the scene is checked, then run with the GIL released.
+/// @pre every key of `settings` is a [solver] key (the Python layer refuses others by name).
+Run run(Scene scene, const std::optional<std::string>& method, const py::dict& settings,
+        const pounding::analysis::RunLimits& limits) {
+  try {
+    if (method) scene.solver = pounding::analysis::with_method(scene.solver, *method);
+    for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
+      const py::str key(std::string(spec.key));
+      if (settings.contains(key)) set_setting(scene.solver, spec.id, settings[key]);
+    }
+    scene.validate();
+    limits.validate();
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  Run result;
+  result.provenance = pounding::io::make_provenance(scene);
+  py::gil_scoped_release unlocked;
+  result.report = pounding::analysis::run_scene(scene, limits);
+  return result;
+}
+
+py::array_t<double> impact_table(const Run& run) {
+  const auto& impacts = run.report.result.impacts;
+  std::vector<std::vector<double>> rows;
+  for (const auto& impact : impacts) {
+    std::vector<double>& row = rows.emplace_back();
+    for (const pounding::io::ImpactField& field : pounding::io::impact_fields()) {
+      const std::vector<double> values = field.values(impact);
+      row.insert(row.end(), values.begin(), values.end());
+    }
+  }
+  return matrix(rows.size(), pounding::io::impact_csv_columns().size(),
+                [&](std::size_t r, std::size_t c) { return rows[r][c]; });
+}
+
+/// impacts.csv's columns with their types ("real", "integer", "flag").
+std::vector<std::pair<std::string, std::string>> impact_columns() {
+  std::vector<std::pair<std::string, std::string>> columns;
+  for (const pounding::io::ImpactField& field : pounding::io::impact_fields()) {
+    using Type = pounding::io::ImpactField::Type;
+    const char* type = field.type == Type::real ? "real" : field.type == Type::integer ? "integer" : "flag";
+    for (const std::string& column : field.csv_columns()) columns.emplace_back(column, type);
+  }
+  return columns;
+}
+
+/// The history as history.csv holds it: one row a sample, t_s first, columns as history_columns.
+py::array_t<double> history_table(const Run& run) {
+  const pounding::solvers::History& h = run.report.result.history;
+  return matrix(h.time_s.size(), h.columns.size(), [&](std::size_t r, std::size_t c) {
+    return c == 0 ? h.time_s[r] : h.rows[r][static_cast<Eigen::Index>(c - 1)];
+  });
+}
+
+Gap find_needed_gap(const Scene& scene, const pounding::solvers::RunBudget& budget) {
+  Gap result{scene.name, {}};
+  py::gil_scoped_release unlocked;
+  result.gap = pounding::analysis::needed_gap(scene, budget);
+  return result;
+}
+
+py::array_t<double> touch_gap_table(const Gap& gap) {
+  const auto& columns = gap.gap.history_touch_gap_m;
+  return matrix(gap.gap.history_t_s.size(), columns.size(),
+                [&](std::size_t r, std::size_t c) { return columns[c][r]; });
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_pounding, m) {
+  m.doc() = "Bindings of the pounding library; use the package `pounding`, not this module.";
+
+  // InputError becomes pounding.InputError (a ValueError defined in __init__.py) with its parts.
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const InputError& error) {
+      const py::object type = py::module_::import("pounding").attr("InputError");
+      const py::object instance = type(error.what(), error.file(), error.key(), error.value(), error.reason());
+      PyErr_SetObject(type.ptr(), instance.ptr());
+    }
+  });
+
+  m.attr("__version__") = std::string(pounding::program_version());
+  m.def("setting_keys", [] {
+    std::vector<std::string> keys;
+    for (const auto& spec : pounding::analysis::setting_specs()) keys.emplace_back(spec.key);
+    return keys;
+  });
+  m.def("method_names", [] {
+    std::vector<std::string> names;
+    for (const auto& method : pounding::analysis::methods()) names.emplace_back(method.name);
+    return names;
+  });
+  m.def("impact_columns", &impact_columns);
+
+  py::class_<Scene>(m, "Scene")
+      .def_readonly("name", &Scene::name)
+      .def_property_readonly("file", [](const Scene& s) { return s.file; })
+      .def_property_readonly("gap_m", [](const Scene& s) { return s.contact.gap_m; })
+      .def_property_readonly("restitution", [](const Scene& s) { return s.contact.restitution; })
+      .def_property_readonly("method", [](const Scene& s) { return s.solver.method; })
+      .def_property_readonly("record_file", [](const Scene& s) { return s.excitation.file; })
+      .def("with_gap", &with_gap, py::arg("gap_m"))
+      .def("with_restitution", &with_restitution, py::arg("restitution"))
+      .def(
+          "_with_record",
+          [](const Scene& scene, std::filesystem::path file, std::optional<std::string> format,
+             std::optional<std::string> units, std::optional<double> scale_factor,
+             std::optional<double> scale_to_pga_g, std::optional<double> direction_deg,
+             std::optional<double> dt_s, std::optional<int> accel_column) {
+            return with_record(scene, {.file = std::move(file), .format = std::move(format), .units = std::move(units),
+                                       .dt_s = dt_s, .accel_column = accel_column, .scale_factor = scale_factor,
+                                       .pga_g = scale_to_pga_g, .direction_deg = direction_deg});
+          },
+          py::arg("file"), py::arg("format"), py::arg("units"), py::arg("scale_factor"), py::arg("scale_to_pga_g"),
+          py::arg("direction_deg"), py::arg("dt_s"), py::arg("accel_column"));
+
+  m.def(
+      "load_scene",
+      [](const std::filesystem::path& file, std::optional<double> gap_m, std::optional<double> restitution) {
+        return pounding::io::read_scene(file, {.gap_m = gap_m, .restitution = restitution});
+      },
+      py::arg("file"), py::arg("gap_m"), py::arg("restitution"));
+
+  m.def("modes_json", [](const Scene& scene) {
+    return pounding::io::modes_json(pounding::analysis::summarise_buildings(scene)).dump();
+  });
+
+  py::class_<pounding::analysis::RunLimits>(m, "RunLimits")
+      .def(py::init<>())
+      .def_readwrite("max_steps", &pounding::analysis::RunLimits::max_steps)
+      .def_readwrite("max_wall_time_s", &pounding::analysis::RunLimits::max_wall_time_s)
+      .def_readwrite("max_history_values", &pounding::analysis::RunLimits::max_history_values);
+
+  py::class_<Run>(m, "Run")
+      .def("summary_json", [](const Run& r) { return pounding::io::run_json(r.report, r.provenance).dump(); })
+      .def("full_report", [](const Run& r) { return pounding::io::full_report(r.report); })
+      .def("brief_report", [](const Run& r) { return pounding::io::brief_report(r.report); })
+      .def("impact_table", &impact_table)
+      .def("history_columns", [](const Run& r) { return r.report.result.history.columns; })
+      .def("history_table", &history_table);
+  m.def("run", &run, py::arg("scene"), py::arg("method"), py::arg("settings"), py::arg("limits"));
+
+  py::class_<Gap>(m, "Gap")
+      .def("gap_json", [](const Gap& g) { return pounding::io::gap_json(g.scene, g.gap).dump(); })
+      .def("history_t_s", [](const Gap& g) { return py::array_t<double>(py::ssize_t(g.gap.history_t_s.size()), g.gap.history_t_s.data()); })
+      .def("touch_gap_table", &touch_gap_table);
+  m.def(
+      "needed_gap",
+      [](const Scene& scene, std::optional<double> max_wall_time_s) {
+        pounding::solvers::RunBudget budget;
+        if (max_wall_time_s) budget.max_wall_time_s = *max_wall_time_s;
+        return find_needed_gap(scene, budget);
+      },
+      py::arg("scene"), py::arg("max_wall_time_s"));
+}
