@@ -171,8 +171,11 @@ class InterruptRequests {
 };
 
 int run_run(const RunCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(
-      command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
+  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m,
+                                                         .restitution = command.restitution,
+                                                         .contact_law = command.contact_law,
+                                                         .contact_stiffness_kN_per_m = command.contact_stiffness_kN_per_m,
+                                                         .record = command.record});
   try {
     apply_run_options(command, scene.solver);
   } catch (const InputError& error) {
@@ -284,7 +287,11 @@ int run_check(const CheckCommand& command) {
   fmt::print("Coupled system: {} DOF ({} first-order states)\n", total_dof, 2 * total_dof);
   print_levels(scene);
   print_excitation(scene, motion);
-  fmt::print("Contact: gap {} m, restitution k = {}\n", scene.contact.gap_m, scene.contact.restitution);
+  const std::string law = scene.contact.law == "impulse"
+                              ? std::string()
+                              : fmt::format(", law {} (stiffness {} kN/m)", scene.contact.law,
+                                            scene.contact.used_stiffness_kN_per_m());
+  fmt::print("Contact: gap {} m, restitution k = {}{}\n", scene.contact.gap_m, scene.contact.restitution, law);
   const auto candidates = analysis::scene_candidates(scene);
   fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
              candidates.size());
