@@ -113,7 +113,11 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
 RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSink* sink) {
   scene.solver.validate();
   const ContactLawInfo& law = contact_law_info(scene.contact.law);
-  require_supported(law, method_info(scene.solver.method));
+  try {
+    require_supported(law, method_info(scene.solver.method));
+  } catch (const InputError& error) {
+    throw error.in_context(scene.file.string());
+  }
   limits.validate();
   const dynamics::CoupledSystem system = build_system(scene);
   check_work(estimate_work(scene, system), limits);
