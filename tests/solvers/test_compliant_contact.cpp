@@ -200,6 +200,10 @@ BOOST_AUTO_TEST_CASE(PaperSceneRunsWithKelvinOnEventDrivenMethods) {
         BOOST_TEST(i.t_s + i.duration_s < report.result.end_s);  // every contact ended within the run
       }
       BOOST_TEST(report.result.sustained_contacts.empty());
+      // The contacts' losses close the energy audit (as impulses' do, to 1e-6 of the input).
+      const solvers::EnergyAudit& energy = report.result.energy;
+      BOOST_TEST(energy.impact_loss_kJ > 0.0);
+      BOOST_TEST(std::abs(energy.residual_kJ()) < 1e-6 * energy.input_kJ);
     }
   }
 }
