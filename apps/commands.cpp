@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/analysis/study.hpp"
@@ -319,7 +320,16 @@ int run_methods(const MethodsCommand& command) {
                     {"study", {{"setting", analysis::spec(method.ladder_setting).key}, {"ladder", method.ladder},
                                {"quick_ladder", method.quick_ladder}, {"series", series}}}});
   }
-  if (command.json) fmt::print("{}\n", list.dump(2));
+  if (command.json) {
+    fmt::print("{}\n", list.dump(2));
+    return 0;
+  }
+  fmt::print("\nContact laws ([contact] law, --contact-law):\n");
+  for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
+    const std::string keys = law.keys.empty() ? "no keys" : fmt::format("{}", fmt::join(law.keys, ", "));
+    const std::string runs = law.methods.empty() ? "every method" : fmt::format("{}", fmt::join(law.methods, ", "));
+    fmt::print("{:<12} {}\n{:<12} uses {}; runs on {}\n", law.name, law.description, "", keys, runs);
+  }
   return 0;
 }
 

@@ -363,8 +363,8 @@ void EventDrivenRun::handle_compliant_event(double t, const VectorXd& y, const s
                                             const std::vector<std::size_t>& force_roots,
                                             const std::vector<std::size_t>& edge_roots) {
   // A root is located to the solver's tolerance on either side of zero, so after the restart the
-  // same function may cross back: each root acts only in the direction of its switch (closing
-  // gap, falling force, rising trial force), read from the rates in y.
+  // same function may cross again: each root acts only if the state at it moves in the direction
+  // of its switch (closing gap, falling force, rising trial force, opening gap).
   count_event(t);
   for (std::size_t i : edge_roots) {
     if (modes_[i] == Mode::compliant) end_contact(i, t, y);
@@ -827,8 +827,10 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
     if (open_[i]) end_contact(i, prev_t_, prev_y_);
   }
   // Compliant impacts are complete, so streamed, at their release; the result lists them by onset.
-  std::stable_sort(result_.impacts.begin(), result_.impacts.end(),
-                   [](const ImpactRecord& a, const ImpactRecord& b) { return a.t_s < b.t_s; });
+  if (compliant()) {
+    std::stable_sort(result_.impacts.begin(), result_.impacts.end(),
+                     [](const ImpactRecord& a, const ImpactRecord& b) { return a.t_s < b.t_s; });
+  }
   recorder_.finish(prev_y_, result_);
   result_.statistics.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
