@@ -19,7 +19,7 @@ double kelvin_damping_ratio(double restitution);
 /// A lone Kelvin–Voigt contact (δ̈ = −ω²δ − 2ξωδ̇, δ(0) = 0, δ̇(0) = v₀) released where its force
 /// turns tensile (kδ + cδ̇ = 0, while δ > 0), as this library releases it; not at δ = 0, where
 /// the formula for ξ would put it (the dashpot pulls in between). So the rebound exceeds e:
-/// 0.550 for e = 0.5, 0.253 for e = 0.1, e⁻² = 0.135 for e = 0 (docs/model.md).
+/// 0.550 for e = 0.5, 0.253 for e = 0.1, exp(−2) = 0.135 for e = 0 (docs/model.md).
 struct KelvinRelease {
   double omega_time = 0.0;    // ω t* of the release
   double rebound = 0.0;       // −δ̇(t*)/v₀: the effective restitution
