@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/analysis/study.hpp"
@@ -147,8 +148,11 @@ analysis::RunLimits run_limits(const RunCommand& command) {
 }
 
 int run_run(const RunCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(
-      command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
+  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m,
+                                                         .restitution = command.restitution,
+                                                         .contact_law = command.contact_law,
+                                                         .contact_stiffness_kN_per_m = command.contact_stiffness_kN_per_m,
+                                                         .record = command.record});
   try {
     apply_run_options(command, scene.solver);
   } catch (const InputError& error) {
@@ -266,7 +270,11 @@ int run_check(const CheckCommand& command) {
   fmt::print("Coupled system: {} DOF ({} first-order states)\n", total_dof, 2 * total_dof);
   print_levels(scene);
   print_excitation(scene, motion);
-  fmt::print("Contact: gap {} m, restitution k = {}\n", scene.contact.gap_m, scene.contact.restitution);
+  const std::string law = scene.contact.law == "impulse"
+                              ? std::string()
+                              : fmt::format(", law {} (stiffness {} kN/m)", scene.contact.law,
+                                            scene.contact.used_stiffness_kN_per_m());
+  fmt::print("Contact: gap {} m, restitution k = {}{}\n", scene.contact.gap_m, scene.contact.restitution, law);
   const auto candidates = analysis::scene_candidates(scene);
   fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
              candidates.size());
@@ -294,7 +302,16 @@ int run_methods(const MethodsCommand& command) {
                     {"study", {{"setting", analysis::spec(method.ladder_setting).key}, {"ladder", method.ladder},
                                {"quick_ladder", method.quick_ladder}, {"series", series}}}});
   }
-  if (command.json) fmt::print("{}\n", list.dump(2));
+  if (command.json) {
+    fmt::print("{}\n", list.dump(2));
+    return 0;
+  }
+  fmt::print("\nContact laws ([contact] law, --contact-law):\n");
+  for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
+    const std::string keys = law.keys.empty() ? "no keys" : fmt::format("{}", fmt::join(law.keys, ", "));
+    const std::string runs = law.methods.empty() ? "every method" : fmt::format("{}", fmt::join(law.methods, ", "));
+    fmt::print("{:<12} {}\n{:<12} uses {}; runs on {}\n", law.name, law.description, "", keys, runs);
+  }
   return 0;
 }
 

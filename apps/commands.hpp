@@ -31,6 +31,8 @@ struct RunCommand {
   std::string scene;
   std::optional<double> gap_m;
   std::optional<double> restitution;
+  std::optional<std::string> contact_law;
+  std::optional<double> contact_stiffness_kN_per_m;
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
   std::optional<int> order;

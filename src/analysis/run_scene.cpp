@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
@@ -52,6 +53,8 @@ solvers::EventOptions event_options(const Scene& scene, const MethodInfo& method
   solvers::EventOptions options;
   options.restitution = scene.contact.restitution;
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
+  options.law = contact_law_info(scene.contact.law).law;
+  options.contact_stiffness_kN_per_m = scene.contact.used_stiffness_kN_per_m();
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
@@ -109,12 +112,23 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
 
 RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSink* sink) {
   scene.solver.validate();
+  const ContactLawInfo& law = contact_law_info(scene.contact.law);
+  try {
+    require_supported(law, method_info(scene.solver.method));
+  } catch (const InputError& error) {
+    throw error.in_context(scene.file.string());
+  }
   limits.validate();
   const dynamics::CoupledSystem system = build_system(scene);
   check_work(estimate_work(scene, system), limits);
   const UsedSettings used = resolve(scene.solver, &system);
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
+  report.contact_law = law.name;
+  if (law.law == contact::ContactLaw::kelvin) {
+    report.contact_stiffness_kN_per_m = scene.contact.used_stiffness_kN_per_m();
+    report.contact_damping_ratio = contact::kelvin_damping_ratio(scene.contact.restitution);
+  }
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
   const std::string method(used.method->name);
   if (used.method->factory) {

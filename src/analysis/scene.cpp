@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/input_error.hpp"
 
 namespace pounding::analysis {
@@ -20,6 +21,9 @@ constexpr Range kHoldVelocity{0.0, 0.1, "m/s", true};      // pounding approache
 // keeps it below half of every storey, so a floor meets at most one floor of the other building.
 constexpr Range kLevelTolerance{0.0, 0.5, "m", true};
 constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
+// From a soft pad (1 kN/m) to far stiffer than concrete (1e12 kN/m: contact periods of
+// microseconds for floor masses of tonnes, below which no integrator resolves the contact).
+constexpr Range kContactStiffness{1.0, 1e12, "kN/m"};
 
 void validate_gap(const std::string& key, double gap_m) { require_range(key, gap_m, kGap); }
 
@@ -33,6 +37,14 @@ void validate_contact(const ContactSettings& contact) {
   require_range("contact.candidate_margin_m", contact.candidate_margin_m, kCandidateMargin);
   require_range("contact.hold_velocity_mps", contact.hold_velocity_mps, kHoldVelocity);
   require_range("contact.level_tolerance_m", contact.level_tolerance_m, kLevelTolerance);
+  const ContactLawInfo& law = contact_law_info(contact.law);
+  if (contact.stiffness_kN_per_m) {
+    if (law.keys.empty()) {
+      throw InputError("contact.stiffness_kN_per_m", format_value(*contact.stiffness_kN_per_m),
+                       fmt::format("does not apply to law {} (it uses no stiffness)", law.name));
+    }
+    require_range("contact.stiffness_kN_per_m", *contact.stiffness_kN_per_m, kContactStiffness);
+  }
 }
 
 void validate_levels(const Scene& scene) {
@@ -93,6 +105,10 @@ void validate_pair(const Scene& scene) {
 }
 
 }  // namespace
+
+double ContactSettings::used_stiffness_kN_per_m() const {
+  return stiffness_kN_per_m.value_or(contact_law_info(law).default_stiffness_kN_per_m);
+}
 
 void Scene::set_gap(double gap_m) {
   validate_gap("contact.gap_m", gap_m);

@@ -150,6 +150,34 @@ void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std
   jacobian.bottomRightCorner(dof_, dof_) -= coupling * (3.0 / tau);
 }
 
+Eigen::RowVectorXd CoupledSystem::full_row(ConstVectorRef y, std::size_t index) const {
+  const contact::Candidate& c = candidates_[index];
+  const contact::GapState s = gap(y, index);
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(dof_);
+  row.segment<3>(floor_index(c.striking_building, c.floors[c.striking_building])) = s.striking_row;
+  row.segment<3>(floor_index(c.struck_building, c.floors[c.struck_building])) = s.struck_row;
+  return row;
+}
+
+double CoupledSystem::normal_inverse_mass(ConstVectorRef y, std::size_t index) const {
+  const Eigen::RowVectorXd row = full_row(y, index);
+  return row.cwiseAbs2().dot(mass_.cwiseInverse().transpose());
+}
+
+void CoupledSystem::add_contact_force(ConstVectorRef y, std::size_t index, double force_kN,
+                                      Eigen::Ref<VectorXd> y_dot) const {
+  const Eigen::RowVectorXd row = full_row(y, index);
+  y_dot.tail(dof_) += (row.transpose() * force_kN).cwiseQuotient(mass_);
+}
+
+void CoupledSystem::add_contact_force_jacobian(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
+                                               double damping_kNs_per_m, Eigen::Ref<MatrixXd> jacobian) const {
+  const Eigen::RowVectorXd row = full_row(y, index);
+  const MatrixXd coupling = mass_.cwiseInverse().asDiagonal() * (row.transpose() * row);  // M⁻¹GᵀG
+  jacobian.bottomLeftCorner(dof_, dof_) -= stiffness_kN_per_m * coupling;
+  jacobian.bottomRightCorner(dof_, dof_) -= damping_kNs_per_m * coupling;
+}
+
 double CoupledSystem::kinetic_energy(ConstVectorRef y) const {
   return 0.5 * y.tail(dof_).cwiseAbs2().dot(mass_);
 }

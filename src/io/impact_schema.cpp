@@ -64,6 +64,8 @@ const std::vector<ImpactField>& impact_fields() {
       {"separation_velocity", "mps", {}, Type::real,
        [](const ImpactRecord& i) { return std::vector{i.separation_velocity_mps}; }},
       {"impulse", "kNs", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.impulse_kNs}; }},
+      {"duration", "s", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.duration_s}; }},
+      {"peak_force", "kN", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.peak_force_kN}; }},
       {"energy_lost", "kJ", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.energy_lost_kJ}; }},
       {"starts_sustained_contact", "", {}, Type::flag,
        [](const ImpactRecord& i) { return std::vector{i.starts_hold ? 1.0 : 0.0}; }},

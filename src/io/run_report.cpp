@@ -105,8 +105,13 @@ std::string brief_report(const analysis::RunReport& report) {
 
 std::string full_report(const analysis::RunReport& report) {
   const solvers::RunResult& r = report.result;
-  std::string text = fmt::format("Run '{}' with {} ({}), gap {} m, k = {}: {}{}\n", report.scene, r.method,
-                                 method_settings_text(report), report.gap_m, report.restitution,
+  const std::string law =
+      report.contact_law == "impulse"
+          ? std::string()
+          : fmt::format(", {} law k_c = {} kN/m, xi = {:.4g}", report.contact_law, report.contact_stiffness_kN_per_m,
+                        report.contact_damping_ratio);
+  std::string text = fmt::format("Run '{}' with {} ({}), gap {} m, k = {}{}: {}{}\n", report.scene, r.method,
+                                 method_settings_text(report), report.gap_m, report.restitution, law,
                                  solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
   append_contacts(report, text);
   append_response(report, text);

@@ -104,6 +104,16 @@ json statistics_json(const solvers::SolverStatistics& s, const std::vector<conta
           {"wall_time_s", s.wall_time_s}};
 }
 
+/// The contact law and the parameters it ran with (impulse: none).
+json contact_law_json(const analysis::RunReport& report) {
+  json law = {{"name", report.contact_law}};
+  if (report.contact_law != "impulse") {
+    law["stiffness_kN_per_m"] = report.contact_stiffness_kN_per_m;
+    law["damping_ratio"] = report.contact_damping_ratio;
+  }
+  return law;
+}
+
 json setting_json(const analysis::SettingValue& value) {
   return std::visit([](const auto& v) { return json(v); }, value);
 }
@@ -150,6 +160,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
           {"settings", settings_json(report)},
           {"gap_m", report.gap_m},
           {"restitution", report.restitution},
+          {"contact_law", contact_law_json(report)},
           {"start_s", r.start_s},
           {"end_s", r.end_s},
           {"levels", levels_json(report.levels)},

@@ -2,6 +2,7 @@
 
 #include <cassert>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -50,6 +51,7 @@ void EventOptions::validate() const {
     throw InputError("steps_per_period", format_value(steps_per_period), "must be at least 1");
   }
   if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
+  if (law != contact::ContactLaw::impulse) positive(contact_stiffness_kN_per_m, "contact_stiffness_kN_per_m");
   budget.validate();
   if (initial_state.size() != 0 && !initial_state.allFinite()) {
     throw InputError("initial_state", "", "must be finite");
@@ -61,7 +63,17 @@ namespace {
 using dynamics::VectorXd;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-enum class Mode { armed, masked, held };
+// compliant: a compliant law's force acts (δ > 0, F > 0). released: its force turned tensile
+// while the slabs still overlap; they fly apart until the gap opens (or the force would push
+// again).
+enum class Mode { armed, masked, held, compliant, released };
+
+/// A compliant contact in progress: its record, its dashpot and the integrals over it.
+struct OpenContact {
+  ImpactRecord record;
+  double damping_kNs_per_m = 0.0;
+  double work_kJ = 0.0;  // ∫F ġ dt: the contact's work on the slabs (−energy lost)
+};
 
 class EventDrivenRun final : public OdeFunctions {
  public:
@@ -73,19 +85,24 @@ class EventDrivenRun final : public OdeFunctions {
         reopen_at_m_(count_, options.reopen_gap_m),
         mask_floor_m_(count_, -options.overlap_allowance_m),
         hold_record_(count_, -1),
+        open_(count_),
         recorder_(system, options.history_floors, options.history_interval_s, options.sink) {}
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(3 * count_); }
-  bool is_linear() const override { return held_.empty(); }
+  bool is_linear() const override { return held_.empty() && active_.empty(); }
 
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
     forces_.resize(static_cast<Eigen::Index>(held_.size()));
     system_.constrained_rhs(t, y, held_, y_dot, forces_);
+    for (std::size_t i : active_) system_.add_contact_force(y, i, compliant_force(i, y), y_dot);
   }
 
   void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
     system_.constrained_jacobian(y, held_, jac);
+    for (std::size_t i : active_) {
+      system_.add_contact_force_jacobian(y, i, options_.contact_stiffness_kN_per_m, open_[i]->damping_kNs_per_m, jac);
+    }
   }
 
   // Root vector: [0, n) gaps of armed candidates, and of masked ones shifted down to their
@@ -98,6 +115,18 @@ class EventDrivenRun final : public OdeFunctions {
     for (std::size_t i = 0; i < count_; ++i) {
       if (modes_[i] == Mode::armed) g[i] = system_.gap(y, i).gap_m;
       if (modes_[i] == Mode::masked && mask_floor_m_[i] > -kInfinity) g[i] = system_.gap(y, i).gap_m - mask_floor_m_[i];
+    }
+    // Compliant laws: [n, 2n) the force of an acting contact (it turns tensile at a root), and
+    // for a released one, whose switches are rising crossings, the negated gap in [0, n) (it
+    // opens) and the negated trial force in [n, 2n) (it would push again): the integrators
+    // report falling crossings only. [2n, 3n) as for held contacts.
+    for (std::size_t i : active_) {
+      const double s = system_.gap(y, i).segment_param;
+      g[count_ + i] = compliant_force(i, y);
+      g[2 * count_ + i] = std::min(s, 1.0 - s) + contact::kOnSegmentTolerance;
+    }
+    for (std::size_t i = 0; i < count_; ++i) {
+      if (modes_[i] == Mode::released) g[i] = -system_.gap(y, i).gap_m, g[count_ + i] = -compliant_force(i, y);
     }
     if (held_.empty()) return;
     const VectorXd forces = hold_forces(t, y);
@@ -121,6 +150,19 @@ class EventDrivenRun final : public OdeFunctions {
     VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(held_.size()));
     system_.constrained_rhs(t, y, held_, y_dot, forces);
     return forces;
+  }
+  /// F = k δ + c δ̇ of compliant contact i (kN), δ = −g; negative when it would pull.
+  double compliant_force(std::size_t i, const Eigen::Ref<const VectorXd>& y) const {
+    const contact::GapState s = system_.gap(y, i);
+    return -options_.contact_stiffness_kN_per_m * s.gap_m - open_[i]->damping_kNs_per_m * s.gap_rate_mps;
+  }
+  /// dF/dt of compliant contact i in state y (kN/s).
+  double compliant_force_rate(double t, const VectorXd& y, std::size_t i) {
+    VectorXd y_dot(system_.state_size());
+    rhs(t, y, y_dot);
+    const contact::GapState s = system_.gap(y, i);
+    return -options_.contact_stiffness_kN_per_m * s.gap_rate_mps -
+           open_[i]->damping_kNs_per_m * system_.gap_acceleration(y, y_dot, i);
   }
   double constraint_power(double t, const VectorXd& y) const {
     if (held_.empty()) return 0.0;
@@ -165,6 +207,14 @@ class EventDrivenRun final : public OdeFunctions {
     mask_floor_m_[i] = watch ? std::min(system_.gap(y, i).gap_m, 0.0) - options_.overlap_allowance_m : -kInfinity;
   }
   void hold(std::size_t i, double t);
+  bool compliant() const { return options_.law != contact::ContactLaw::impulse; }
+  /// Compliant laws: the events at t (gap, force and edge roots) instead of impulses and holds.
+  void handle_compliant_event(double t, const VectorXd& y, const std::vector<std::size_t>& gap_roots,
+                              const std::vector<std::size_t>& force_roots, const std::vector<std::size_t>& edge_roots);
+  void begin_contact(std::size_t i, double t, const VectorXd& y);
+  void end_contact(std::size_t i, double t, const VectorXd& y);
+  /// Peak force, impulse and work of the acting contacts over [t_a, t_b] on the interpolant.
+  void integrate_contacts(double t_a, double t_b, const VectorXd& y_b);
   void release(std::size_t i, double t, const VectorXd& y, const std::string& reason);
   /// Step limits and bookkeeping for a new smooth stretch starting at (t, y).
   void begin_phase(double t, const VectorXd& y);
@@ -185,6 +235,8 @@ class EventDrivenRun final : public OdeFunctions {
   std::vector<double> mask_floor_m_;  // gap below which a masked candidate's root fires
   std::vector<std::size_t> held_;
   std::vector<int> hold_record_;  // index into result_.sustained_contacts while held
+  std::vector<std::optional<OpenContact>> open_;  // compliant contacts: set from onset until the gap opens
+  std::vector<std::size_t> active_;                // compliant contacts whose force acts
   VectorXd forces_;
   Recorder recorder_;
   RunResult result_;
@@ -276,7 +328,12 @@ void EventDrivenRun::start(double t, VectorXd& y) {
     const contact::GapState s = system_.gap(y, i);
     if (s.gap_m <= options_.contact_tolerance_m && s.on_segment()) touching.push_back(i);
   }
-  if (!touching.empty()) handle_event(t, y, touching, {}, "");
+  if (touching.empty()) return;
+  if (compliant()) {
+    handle_compliant_event(t, y, touching, {}, {});
+  } else {
+    handle_event(t, y, touching, {}, "");
+  }
 }
 
 void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
@@ -300,6 +357,114 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
   settle_holds(t, y);
   update_hold_records(t, y);  // a hold may end before the next step does
   recorder_.sample(t, y);
+}
+
+void EventDrivenRun::handle_compliant_event(double t, const VectorXd& y, const std::vector<std::size_t>& gap_roots,
+                                            const std::vector<std::size_t>& force_roots,
+                                            const std::vector<std::size_t>& edge_roots) {
+  // A root is located to the solver's tolerance on either side of zero, so after the restart the
+  // same function may cross again: each root acts only if the state at it moves in the direction
+  // of its switch (closing gap, falling force, rising trial force, opening gap).
+  count_event(t);
+  for (std::size_t i : edge_roots) {
+    if (modes_[i] == Mode::compliant) end_contact(i, t, y);
+  }
+  for (std::size_t i : force_roots) {
+    const double rate = compliant_force_rate(t, y, i);
+    if (modes_[i] == Mode::compliant && rate < 0.0) {
+      modes_[i] = Mode::released;  // tensile from here on: the slabs fly apart while still overlapping
+      active_.erase(std::find(active_.begin(), active_.end(), i));
+      open_[i]->record.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
+      open_[i]->record.duration_s = t - open_[i]->record.t_s;
+    } else if (modes_[i] == Mode::released && rate > 0.0 && system_.gap(y, i).gap_m < 0.0) {
+      modes_[i] = Mode::compliant;  // pushing again before the gap opened: the same contact goes on
+      active_.push_back(i);
+    }
+  }
+  for (std::size_t i : gap_roots) {
+    const contact::GapState s = system_.gap(y, i);
+    if (modes_[i] == Mode::released) {
+      if (s.gap_rate_mps >= 0.0) end_contact(i, t, y);
+      continue;
+    }
+    if (modes_[i] != Mode::armed && modes_[i] != Mode::masked) continue;
+    if (!s.on_segment()) {
+      mask(i, options_.reopen_gap_m, y, false);  // the vertex crossed the edge's extension, not the edge
+      ++result_.statistics.off_segment_crossings;
+    } else if (s.gap_rate_mps < 0.0) {
+      begin_contact(i, t, y);
+    } else if (s.gap_m <= options_.contact_tolerance_m) {
+      result_.touches.push_back(touch_record(system_, t, i, s));
+      mask(i, options_.reopen_gap_m, y);  // grazed: armed again once clearly open
+    }
+  }
+  recorder_.sample(t, y);
+}
+
+void EventDrivenRun::begin_contact(std::size_t i, double t, const VectorXd& y) {
+  const contact::Candidate& c = system_.candidates()[i];
+  const contact::GapState s = system_.gap(y, i);
+  OpenContact open;
+  ImpactRecord& r = open.record;
+  r.t_s = t;
+  r.level = c.level;
+  r.floors = c.floors;
+  r.elevation_m = c.elevation_m;
+  r.striking_building = c.striking_building + 1;
+  r.vertex = c.vertex_index + 1;
+  r.struck_edge = c.edge_index + 1;
+  r.candidate = i;
+  r.vertex_rest = c.vertex_rest;
+  r.point = s.contact_point;
+  r.approach_velocity_mps = -s.gap_rate_mps;
+  // The effective mass at onset, held for the contact so that c (and the Jacobian) stay smooth.
+  open.damping_kNs_per_m = contact::kelvin_damping(options_.contact_stiffness_kN_per_m, options_.restitution,
+                                                   system_.normal_inverse_mass(y, i));
+  open_[i] = open;
+  r.peak_force_kN = std::max(0.0, compliant_force(i, y));
+  modes_[i] = Mode::compliant;
+  active_.push_back(i);
+}
+
+void EventDrivenRun::end_contact(std::size_t i, double t, const VectorXd& y) {
+  ImpactRecord& r = open_[i]->record;
+  if (modes_[i] == Mode::compliant) {  // slid off the edge or the run ended while pushing
+    active_.erase(std::find(active_.begin(), active_.end(), i));
+    r.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
+    r.duration_s = t - r.t_s;
+  }
+  // What the contact took from the slabs (dissipated, or still in its spring at the run's end)
+  // counts as impact loss, as an impulse's does.
+  r.energy_lost_kJ = -open_[i]->work_kJ;
+  recorder_.add_impact_loss(r.energy_lost_kJ);
+  result_.impacts.push_back(r);
+  recorder_.stream_new_impacts(result_.impacts);
+  open_[i].reset();
+  mask(i, options_.reopen_gap_m, y);
+}
+
+void EventDrivenRun::integrate_contacts(double t_a, double t_b, const VectorXd& y_b) {
+  // Composite Simpson on the step's interpolant: its error is of the interpolant's order, far
+  // below the solver tolerance for the smooth force inside a contact (no switch inside a step).
+  if (active_.empty() || !(t_b > t_a)) return;
+  constexpr int kIntervals = 16;
+  VectorXd y(system_.state_size());
+  const double h = (t_b - t_a) / kIntervals;
+  for (int k = 0; k <= kIntervals; ++k) {
+    if (k == kIntervals) {
+      y = y_b;
+    } else {
+      integrator_->interpolate(t_a + k * h, y);
+    }
+    const double weight = (k == 0 || k == kIntervals ? 1.0 : k % 2 ? 4.0 : 2.0) * h / 3.0;
+    for (std::size_t i : active_) {
+      const double force = compliant_force(i, y);
+      OpenContact& open = *open_[i];
+      open.record.peak_force_kN = std::max(open.record.peak_force_kN, force);
+      open.record.impulse_kNs += weight * force;
+      open.work_kJ += weight * force * system_.gap(y, i).gap_rate_mps;
+    }
+  }
 }
 
 void EventDrivenRun::settle_holds(double t, const VectorXd& y) {
@@ -541,6 +706,7 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
 void EventDrivenRun::note_overlaps(double t, const VectorXd& y) {
   for (std::size_t i = 0; i < count_; ++i) {
     if (modes_[i] == Mode::held) continue;  // a held gap's drift is reported with its hold
+    if (modes_[i] == Mode::compliant || modes_[i] == Mode::released) continue;  // penetration is the law's
     const contact::GapState s = system_.gap(y, i);
     if (s.on_segment()) result_.statistics.note_overlap(s.gap_m, t, i);
   }
@@ -589,11 +755,17 @@ bool EventDrivenRun::step_once() {
     ++result_.statistics.interpolant_events;
     VectorXd y_event = interpolated(hidden->t_s);
     recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power);
-    handle_event(hidden->t_s, y_event, {hidden->candidate}, {}, "");
+    integrate_contacts(prev_t_, hidden->t_s, y_event);
+    if (compliant()) {
+      handle_compliant_event(hidden->t_s, y_event, {hidden->candidate}, {}, {});
+    } else {
+      handle_event(hidden->t_s, y_event, {hidden->candidate}, {}, "");
+    }
     restart(hidden->t_s, y_event);
     return !stop_;
   }
   recorder_.advance(prev_t_, t, y, interpolated, power);
+  integrate_contacts(prev_t_, t, y);
 
   if (outcome.kind == StepKind::root) {
     const std::vector<int> found = integrator_->roots_found();
@@ -602,6 +774,11 @@ bool EventDrivenRun::step_once() {
       if (found[i] != 0) gap_roots.push_back(i);
       if (found[count_ + i] != 0) force_roots.push_back(i);
       if (found[2 * count_ + i] != 0) edge_roots.push_back(i);
+    }
+    if (compliant()) {
+      handle_compliant_event(t, y, gap_roots, force_roots, edge_roots);
+      restart(t, y);
+      return !stop_;
     }
     for (std::size_t i : edge_roots) release(i, t, y, "slid off the edge");
     handle_event(t, y, gap_roots, force_roots, "tensile force");
@@ -646,6 +823,14 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   }
   result_.end_s = prev_t_;
   for (std::size_t i : std::vector<std::size_t>(held_)) release(i, prev_t_, prev_y_, "end of run");
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (open_[i]) end_contact(i, prev_t_, prev_y_);
+  }
+  // Compliant impacts are complete, so streamed, at their release; the result lists them by onset.
+  if (compliant()) {
+    std::stable_sort(result_.impacts.begin(), result_.impacts.end(),
+                     [](const ImpactRecord& a, const ImpactRecord& b) { return a.t_s < b.t_s; });
+  }
   recorder_.finish(prev_y_, result_);
   result_.statistics.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();

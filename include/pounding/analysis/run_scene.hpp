@@ -61,13 +61,17 @@ struct RunReport {
   std::vector<contact::Level> levels;
   std::vector<contact::Candidate> candidates;
   solvers::RunResult result;
+  std::string contact_law = "impulse";     // contact_laws.hpp
+  double contact_stiffness_kN_per_m = 0.0;  // used by compliant laws; 0 for impulse
+  double contact_damping_ratio = 0.0;       // kelvin's ξ from the restitution; 0 for impulse
 };
 
 /// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and
 /// scene.output, within `limits`.
 /// With a `sink` (must outlive the call) the history rows and impacts go to it as they come and
 /// the report's history keeps its columns only; without, the whole history is in the report.
-/// @throws InputError for invalid settings (a given setting the method does not use among them)
+/// @throws InputError for invalid settings (a given setting the method does not use among them,
+///   a contact law the method does not run)
 ///   or a run whose estimate exceeds the limits; numerical
 ///   trouble, an exhausted budget or an interrupt come back in the status.
 RunReport run_scene(const Scene& scene, const RunLimits& limits = {}, solvers::RunSink* sink = nullptr);

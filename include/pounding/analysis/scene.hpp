@@ -24,6 +24,11 @@ struct ContactSettings {
   // can touch (m). 1 mm: far above the round-off of summed storey heights, far below any
   // storey height or slab thickness, so only floors the file puts at one height match.
   double level_tolerance_m = 1e-3;
+  std::string law = "impulse";     // a name of contact_laws() (contact_laws.hpp)
+  /// kelvin's spring (kN/m); unset: the law's published default. Refused for the impulse law.
+  std::optional<double> stiffness_kN_per_m;
+  /// The stiffness a run uses: the given one or the law's default (0 for impulse).
+  double used_stiffness_kN_per_m() const;
 };
 
 /// What `pounding run` writes to history.csv.

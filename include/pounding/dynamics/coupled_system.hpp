@@ -82,6 +82,18 @@ class CoupledSystem {
   void constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
                             Eigen::Ref<MatrixXd> jacobian) const;
 
+  /// W = G M⁻¹ Gᵀ (1/t) of candidate `index` in state y: the inverse of the pair's effective mass
+  /// along the normal, 1/m₁ + 1/m₂ with each slab's m = 1/(1/m + h²/J), h the lever arm ρ × n.
+  double normal_inverse_mass(ConstVectorRef y, std::size_t index) const;
+  /// Adds a compliant contact force `force_kN` (> 0 pushes the slabs apart) of candidate `index`
+  /// along the struck edge's normal, with its moments about both CMs, to the accelerations of ẏ.
+  void add_contact_force(ConstVectorRef y, std::size_t index, double force_kN, Eigen::Ref<VectorXd> y_dot) const;
+  /// Adds the Jacobian of the force F = −k g − c ġ of candidate `index` (k kN/m, c kN·s/m) to
+  /// `jacobian`: −M⁻¹GᵀG k in ∂q̈/∂q, −M⁻¹GᵀG c in ∂q̈/∂q̇, with the row G frozen at y (as in
+  /// constrained_jacobian: the turning of G, terms carrying F or q̇, is left out).
+  void add_contact_force_jacobian(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
+                                  double damping_kNs_per_m, Eigen::Ref<MatrixXd> jacobian) const;
+
   /// Energies (kJ) and powers (kW) of the relative motion.
   double kinetic_energy(ConstVectorRef y) const;
   double strain_energy(ConstVectorRef y) const;
@@ -92,6 +104,8 @@ class CoupledSystem {
 
  private:
   contact::SlabMotion slab(ConstVectorRef y, int building, int floor) const;
+  /// G of candidate `index` over all n velocities.
+  Eigen::RowVectorXd full_row(ConstVectorRef y, std::size_t index) const;
   /// Rows G (one per held contact, over all n velocities) and g̈'s velocity-only part.
   void constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows,
                        VectorXd& bias) const;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "pounding/contact/kelvin.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/run_budget.hpp"
@@ -17,6 +18,10 @@ namespace pounding::solvers {
 
 struct EventOptions {
   double restitution = 0.5;            // Newton k ∈ [0, 1]
+  /// impulse: velocity jumps and held contacts. kelvin: a spring–dashpot force while the slabs
+  /// overlap, its damping set by `restitution` (contact/kelvin.hpp); no holds.
+  contact::ContactLaw law = contact::ContactLaw::impulse;
+  double contact_stiffness_kN_per_m = 0.0;  // kelvin's k (kN/m), > 0; unused by impulse
   /// A candidate counts as in contact at an event when |g| ≤ this (m): contacts this close at the
   /// same instant are solved together as simultaneous.
   double contact_tolerance_m = 1e-8;

@@ -36,8 +36,12 @@ struct ImpactRecord {
   model::Point2 point;                // contact point at impact (m)
   double approach_velocity_mps = 0.0;    // −ġ⁻ > 0
   double separation_velocity_mps = 0.0;  // ġ⁺ (= k·approach for a lone contact)
-  double impulse_kNs = 0.0;
+  double impulse_kNs = 0.0;           // compliant laws: ∫F dt over the contact
   double energy_lost_kJ = 0.0;        // of the whole slab pair, shared by its simultaneous contacts
+  /// Compliant laws: onset (t_s) to release, and the largest force in between. 0 for the
+  /// impulse law, whose impacts are instantaneous impulses with no finite force.
+  double duration_s = 0.0;
+  double peak_force_kN = 0.0;
   bool starts_hold = false;           // the pair was then held in sustained contact
 };
 
