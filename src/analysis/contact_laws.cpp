@@ -28,7 +28,7 @@ const std::vector<ContactLawInfo> kLaws = {
      .law = contact::ContactLaw::kelvin,
      .keys = {"stiffness_kN_per_m"},
      // Jankowski (2005, Earthquake Engng Struct. Dyn. 34:595-611) fitted the linear viscoelastic
-     // model to concrete-on-concrete impact tests: k = 93.5 kN/mm.
+     // model to concrete-on-concrete impact tests: k = 93.5 kN/mm (quoted, not yet checked against the paper).
      .default_stiffness_kN_per_m = 93.5e3,
      .stiffness_source = "Jankowski 2005, linear viscoelastic fit to concrete impact tests (93.5 kN/mm)",
      .methods = kEventDrivenIntegrators},
