@@ -402,21 +402,9 @@ void EventDrivenRun::handle_compliant_event(double t, const VectorXd& y, const s
 }
 
 void EventDrivenRun::begin_contact(std::size_t i, double t, const VectorXd& y) {
-  const contact::Candidate& c = system_.candidates()[i];
-  const contact::GapState s = system_.gap(y, i);
   OpenContact open;
   ImpactRecord& r = open.record;
-  r.t_s = t;
-  r.level = c.level;
-  r.floors = c.floors;
-  r.elevation_m = c.elevation_m;
-  r.striking_building = c.striking_building + 1;
-  r.vertex = c.vertex_index + 1;
-  r.struck_edge = c.edge_index + 1;
-  r.candidate = i;
-  r.vertex_rest = c.vertex_rest;
-  r.point = s.contact_point;
-  r.approach_velocity_mps = -s.gap_rate_mps;
+  r = impact_at(system_, t, i, system_.gap(y, i));
   // The effective mass at onset, held for the contact so that c (and the Jacobian) stay smooth.
   open.damping_kNs_per_m = contact::kelvin_damping(options_.contact_stiffness_kN_per_m, options_.restitution,
                                                    system_.normal_inverse_mass(y, i));

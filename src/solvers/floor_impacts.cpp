@@ -27,6 +27,24 @@ TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::s
           gap.gap_m};
 }
 
+ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,
+                       const contact::GapState& gap) {
+  const contact::Candidate& c = system.candidates()[index];
+  ImpactRecord r;
+  r.t_s = t;
+  r.level = c.level;
+  r.floors = c.floors;
+  r.elevation_m = c.elevation_m;
+  r.striking_building = c.striking_building + 1;
+  r.vertex = c.vertex_index + 1;
+  r.struck_edge = c.edge_index + 1;
+  r.candidate = index;
+  r.vertex_rest = c.vertex_rest;
+  r.point = gap.contact_point;
+  r.approach_velocity_mps = -gap.gap_rate_mps;
+  return r;
+}
+
 contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
                                         const FloorContacts& contacts) {
   contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.floors));
@@ -44,23 +62,12 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
     if (!were_held.empty() && were_held[k]) continue;  // a held contact's share: not an impact
-    const contact::Candidate& c = system.candidates()[i];
     const contact::GapState& s = contacts.states[k];
     const double impulse = solution.impulses_kNs[k];
     const double rate_before = contacts.rows[k].gap_rate_mps;
     const double rate_after = contacts.rows[k].jacobian.dot(v_after);
     if (impulse > 0.0 && rate_before < 0.0) {
-      ImpactRecord r;
-      r.t_s = t;
-      r.level = c.level;
-      r.floors = c.floors;
-      r.elevation_m = c.elevation_m;
-      r.striking_building = c.striking_building + 1;
-      r.vertex = c.vertex_index + 1;
-      r.struck_edge = c.edge_index + 1;
-      r.candidate = i;
-      r.vertex_rest = c.vertex_rest;
-      r.point = s.contact_point;
+      ImpactRecord r = impact_at(system, t, i, s);
       r.approach_velocity_mps = -rate_before;
       r.separation_velocity_mps = rate_after;
       r.impulse_kNs = impulse;
