@@ -29,7 +29,6 @@ sys.path.insert(0, str(ROOT / "bench/peers"))
 import scipy_paper  # noqa: E402  (the independent peer)
 
 PAPER = ROOT / "examples/paper/paper.toml"
-METHODS = ["cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk", "exact", "hht"]
 SIZES = [10, 20, 40, 60]  # storeys of each building in the size ladder
 SIZE_METHODS = ["cvode-bdf", "exact"]
 
@@ -69,6 +68,12 @@ def impact_error_s(summary, peer_impacts):
     return max(abs(a - b["t_s"]) for a, b in zip(ours, peer_impacts))
 
 
+def registry_methods(pounding):
+    """Every method of the program's registry (`pounding methods --json`), in its order."""
+    done = subprocess.run([pounding, "methods", "--json"], check=True, capture_output=True, text=True)
+    return [m["name"] for m in json.loads(done.stdout)]
+
+
 def paper_table(pounding, repeat, scratch):
     t_rec, a_rec = scipy_paper.record()
     peer_cpu = []
@@ -78,7 +83,7 @@ def paper_table(pounding, repeat, scratch):
         peer_cpu.append(time.process_time() - start)
     rows = [dict(method="scipy DOP853 peer (rtol 1e-10)", solver_s=statistics.median(peer_cpu),
                  cpu_s=statistics.median(peer_cpu), error_s=0.0, impacts=len(peer), status="up to the first hold")]
-    for method in METHODS:
+    for method in registry_methods(pounding):
         solver, cpu = [], []
         for k in range(repeat):
             summary, c = timed_run(pounding, PAPER, Path(scratch) / f"{method}-{k}", "--method", method)

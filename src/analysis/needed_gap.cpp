@@ -214,10 +214,8 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
   // record sample (the forcing's slope changes there).
   const solvers::GapModeBound bound(system, kGapResolution_m, 4.0);
   integrator.set_max_step(bound.max_step_s(y));
-  const auto& knots = system.ground_motion().time_s();
   auto set_next_stop = [&](double t) {
-    const auto next = std::upper_bound(knots.begin(), knots.end(), t + 1e-12 * std::max(1.0, std::abs(t)));
-    if (next != knots.end()) integrator.set_stop_time(*next);
+    if (const auto next = system.ground_motion().next_sample_after(t)) integrator.set_stop_time(*next);
   };
   set_next_stop(t0);
   note_maxima(run, t0, y, counted, nullptr, result);

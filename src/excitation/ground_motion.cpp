@@ -131,6 +131,13 @@ double GroundMotion::accel_at(double t_s) const {
   return interpolate(time_s_, accel_mps2_, t_s);
 }
 
+std::optional<double> GroundMotion::next_sample_after(double t_s) const {
+  // "Clearly": a stop just reached (t_s equal to a sample up to round-off) is not set again.
+  const auto next = std::upper_bound(time_s_.begin(), time_s_.end(), t_s + 1e-12 * std::max(1.0, std::abs(t_s)));
+  if (next == time_s_.end()) return std::nullopt;
+  return *next;
+}
+
 double GroundMotion::peak_mps2() const { return std::abs(accel_mps2_[peak_index_]); }
 double GroundMotion::peak_time_s() const { return time_s_[peak_index_]; }
 

@@ -251,9 +251,7 @@ class EventDrivenRun final : public OdeFunctions {
 
 void EventDrivenRun::set_next_stop(double t) {
   // Record samples are where the forcing's slope changes: never step across one.
-  const auto& knots = system_.ground_motion().time_s();
-  const auto next = std::upper_bound(knots.begin(), knots.end(), t + 1e-12 * std::max(1.0, std::abs(t)));
-  if (next != knots.end()) integrator_->set_stop_time(*next);
+  if (const auto next = system_.ground_motion().next_sample_after(t)) integrator_->set_stop_time(*next);
 }
 
 void EventDrivenRun::accumulate_counters() {

@@ -59,6 +59,9 @@ class GroundMotion {
   const std::vector<double>& accel_mps2() const { return accel_mps2_; }
   double direction_rad() const { return direction_rad_; }
   double start_s() const { return time_s_.front(); }
+  /// The first sample clearly after t (s), where the forcing's slope may change: the stop time
+  /// no integrator step may cross. Empty past the last sample.
+  std::optional<double> next_sample_after(double t_s) const;
   double end_s() const { return time_s_.back(); }
   /// max |a_g| (m/s²) and the time of that sample (s).
   double peak_mps2() const;
