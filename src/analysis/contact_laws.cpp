@@ -14,6 +14,11 @@ namespace {
 // propagator assume impulses and held contacts.
 const std::vector<std::string_view> kEventDrivenIntegrators{"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk"};
 
+double impulse_rebound(double restitution) { return restitution; }
+double kelvin_rebound(double restitution) {
+  return contact::kelvin_release(contact::kelvin_damping_ratio(restitution)).rebound;
+}
+
 const std::vector<ContactLawInfo> kLaws = {
     {.name = "impulse",
      .description = "rigid impact with Newton's restitution, sustained contacts held: the paper's law",
@@ -21,7 +26,8 @@ const std::vector<ContactLawInfo> kLaws = {
      .keys = {},
      .default_stiffness_kN_per_m = 0.0,
      .stiffness_source = "",
-     .methods = {}},
+     .methods = {},
+     .rebound = impulse_rebound},
     {.name = "kelvin",
      .description = "Kelvin-Voigt element F = k delta + c delta_dot while overlapping, c from restitution "
                     "(Anagnostopoulos 1988)",
@@ -31,7 +37,8 @@ const std::vector<ContactLawInfo> kLaws = {
      // model to concrete-on-concrete impact tests: k = 93.5 kN/mm (quoted, not yet checked against the paper).
      .default_stiffness_kN_per_m = 93.5e3,
      .stiffness_source = "Jankowski 2005, linear viscoelastic fit to concrete impact tests (93.5 kN/mm)",
-     .methods = kEventDrivenIntegrators},
+     .methods = kEventDrivenIntegrators,
+     .rebound = kelvin_rebound},
 };
 
 }  // namespace

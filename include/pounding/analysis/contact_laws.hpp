@@ -21,6 +21,10 @@ struct ContactLawInfo {
   double default_stiffness_kN_per_m = 0.0;
   std::string_view stiffness_source;     // where the default comes from
   std::vector<std::string_view> methods{};  // names of the methods that run it; empty: every method
+  /// The ratio of separation to approach speed a lone contact of this law achieves for the
+  /// scene's restitution e (closed form, as the law releases a contact; the stiff limit for
+  /// laws whose ratio depends on the stiffness); null when no closed form is known.
+  double (*rebound)(double restitution) = nullptr;
 };
 
 /// Every law, the default (impulse) first.

@@ -64,6 +64,7 @@ struct RunReport {
   std::string contact_law = "impulse";     // contact_laws.hpp
   double contact_stiffness_kN_per_m = 0.0;  // used by compliant laws; 0 for impulse
   double contact_damping_ratio = 0.0;       // kelvin's ξ from the restitution; 0 for impulse
+  double g_mps2 = 9.81;                     // the scene's gravity: accelerations are also reported in g
 };
 
 /// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and
