@@ -14,15 +14,27 @@ void add_unique(std::vector<model::Point2>& points, const model::Point2& p) {
   if (std::find(points.begin(), points.end(), p) == points.end()) points.push_back(p);
 }
 
+/// Displacement (m) of a slab point given at rest, `arm` from the CM, with exact rotation, and
+/// its rate (m/s), from the slab's (u, v), its rates and φ̇; c, s: cos φ and sin φ, which the
+/// caller takes once per slab.
+model::Point2 point_displacement(const model::Point2& arm, double u, double v, double c, double s) {
+  return {u + (c - 1.0) * arm.x() - s * arm.y(), v + s * arm.x() + (c - 1.0) * arm.y()};
+}
+
+model::Point2 point_velocity(const model::Point2& arm, double c, double s, double u_rate, double v_rate,
+                             double phi_rate) {
+  return {u_rate - phi_rate * (s * arm.x() + c * arm.y()), v_rate + phi_rate * (c * arm.x() - s * arm.y())};
+}
+
 /// x-displacement of a slab point given at rest, exact rotation.
 double vertex_dx(const model::Point2& vertex, const model::Point2& centre, double u, double phi) {
-  return point_displacement(vertex - centre, u, 0.0, phi).x();
+  return point_displacement(vertex - centre, u, 0.0, std::cos(phi), std::sin(phi)).x();
 }
 
 /// Its rate (m/s).
 double vertex_dx_rate(const model::Point2& vertex, const model::Point2& centre, double phi, double u_rate,
                       double phi_rate) {
-  return point_velocity(vertex - centre, phi, u_rate, 0.0, phi_rate).x();
+  return point_velocity(vertex - centre, std::cos(phi), std::sin(phi), u_rate, 0.0, phi_rate).x();
 }
 
 /// The 1-based numbers in `slab`'s outline of `points` (each one of its vertices, as candidates
@@ -51,16 +63,6 @@ std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate
     }
   }
   return points;
-}
-
-model::Point2 point_displacement(const model::Point2& arm, double u, double v, double phi) {
-  const double c = std::cos(phi) - 1.0, s = std::sin(phi);
-  return {u + c * arm.x() - s * arm.y(), v + s * arm.x() + c * arm.y()};
-}
-
-model::Point2 point_velocity(const model::Point2& arm, double phi, double u_rate, double v_rate, double phi_rate) {
-  const double c = std::cos(phi), s = std::sin(phi);
-  return {u_rate - phi_rate * (s * arm.x() + c * arm.y()), v_rate + phi_rate * (c * arm.x() - s * arm.y())};
 }
 
 RecordedDynamics free_dynamics(const dynamics::CoupledSystem& system) {
@@ -154,12 +156,11 @@ Recorder::Drifts Recorder::storey_drifts(const dynamics::VectorXd& y) const {
     for (int f = 1; f <= system_.building(b).storeys(); ++f) {
       const int i = system_.floor_index(b, f);
       const double height_m = def.storey_height_m.at(static_cast<std::size_t>(f - 1));
-      const double c = std::cos(y[i + 2]), s = std::sin(y[i + 2]), w = y[n + i + 2];
+      const double c = std::cos(y[i + 2]), s = std::sin(y[i + 2]);
       for (std::size_t k = 0; k < points; ++k) {
         const model::Point2 arm = k == 0 ? model::Point2::Zero() : model::Point2(def.slab.vertex(k - 1) - def.centre_of_mass);
-        // point_displacement and point_velocity, with the floor's sin and cos taken once.
-        const model::Point2 here(y[i] + (c - 1.0) * arm.x() - s * arm.y(), y[i + 1] + s * arm.x() + (c - 1.0) * arm.y());
-        const model::Point2 here_rate(y[n + i] - w * (s * arm.x() + c * arm.y()), y[n + i + 1] + w * (c * arm.x() - s * arm.y()));
+        const model::Point2 here = point_displacement(arm, y[i], y[i + 1], c, s);
+        const model::Point2 here_rate = point_velocity(arm, c, s, y[n + i], y[n + i + 1], y[n + i + 2]);
         for (int axis = 0; axis < 2; ++axis) {
           const auto j = static_cast<Eigen::Index>(drift_index(b, f, 2 * k + static_cast<std::size_t>(axis)));
           d.value[j] = (here[axis] - below[k][axis]) / height_m;
@@ -365,6 +366,10 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                        const std::function<dynamics::VectorXd(double)>& at,
                        const std::function<double(double, const dynamics::VectorXd&)>& constraint_power) {
   if (!(t_b > t_a)) return;
+  const dynamics::VectorXd y_a = at(t_a);  // the stretch's own start (after an impact there)
+  // The last state observed at t_a is where this stretch starts: the step end before it, or an
+  // event's state after the event, with the dynamics that go on from there.
+  const dynamics::VectorXd a_a = observed_t_s_ == t_a ? observed_accel_ : absolute_accelerations(t_a, y_a);
   // 3-point Gauss–Legendre on [t_a, t_b]: exact for the input power of a degree-5 interpolant
   // times the linear a_g of one record interval.
   static constexpr double kNodes[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
@@ -382,10 +387,6 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     next_sample_s_ = system_.ground_motion().start_s() +
                      interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
   }
-  const dynamics::VectorXd y_a = at(t_a);  // the stretch's own start (after an impact there)
-  // The last state observed at t_a is where this stretch starts: the step end before it, or an
-  // event's state after the event, with the dynamics that go on from there.
-  const dynamics::VectorXd a_a = observed_t_s_ == t_a ? observed_accel_ : absolute_accelerations(t_a, y_a);
   const dynamics::VectorXd a_b = absolute_accelerations(t_b, y_b);
   const Drifts d_a = storey_drifts(y_a), d_b = storey_drifts(y_b);
   locate_peaks(t_a, t_b, y_a, y_b, at);

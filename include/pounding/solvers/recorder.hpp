@@ -119,9 +119,4 @@ class Recorder {
 /// Vertices of `building`'s slab that take part in some candidate (as vertex or edge end).
 std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate>& candidates, int building);
 
-/// Displacement (m) of a slab point given at rest, `arm` from the CM, with exact rotation, and
-/// its rate (m/s), from the slab's (u, v, φ) and their rates.
-model::Point2 point_displacement(const model::Point2& arm, double u, double v, double phi);
-model::Point2 point_velocity(const model::Point2& arm, double phi, double u_rate, double v_rate, double phi_rate);
-
 }  // namespace pounding::solvers
