@@ -203,3 +203,38 @@ BOOST_AUTO_TEST_CASE(ContactForceSamplesAreTheKelvinLawOfTheSampledGap) {
                tt::tolerance(1e-6));
   }
 }
+
+// The impulse law's analogue of a force history: the force λ holding a sustained contact. On the
+// paper scene (six holds) every sample lies within a hold of its contact and the largest sample
+// of each hold does not exceed the hold's own maximum, which the solver tracks on every step.
+BOOST_AUTO_TEST_CASE(HoldForcesAreSampledWithinTheirSustainedContacts) {
+  analysis::Scene scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml");
+  scene.output.history_interval_s = 1e-3;
+  const analysis::RunReport report = analysis::run_scene(scene);
+  const solvers::RunResult& r = report.result;
+  BOOST_REQUIRE(!r.sustained_contacts.empty());
+  BOOST_TEST(r.history.contact_forces.size() > 50u);
+  for (const solvers::SustainedContactRecord& hold : r.sustained_contacts) {
+    double largest = 0.0;
+    std::size_t samples = 0;
+    for (const solvers::ContactForceSample& s : r.history.contact_forces) {
+      if (s.candidate != hold.candidate || s.t_s < hold.start_s || s.t_s > hold.release_s) continue;
+      largest = std::max(largest, s.force_kN);
+      ++samples;
+    }
+    BOOST_TEST_CONTEXT("hold from " << hold.start_s << " s") {
+      BOOST_TEST(samples >= 1u);  // at least its start's event row
+      BOOST_TEST(largest <= hold.max_force_kN * (1 + 1e-9));
+      if (hold.release_s - hold.start_s > 0.02) BOOST_TEST(largest >= 0.9 * hold.max_force_kN);
+    }
+  }
+  for (const solvers::ContactForceSample& s : r.history.contact_forces) {
+    const auto hold = std::find_if(r.sustained_contacts.begin(), r.sustained_contacts.end(), [&](const auto& h) {
+      return h.candidate == s.candidate && s.t_s >= h.start_s && s.t_s <= h.release_s;
+    });
+    BOOST_REQUIRE_MESSAGE(hold != r.sustained_contacts.end(),
+                          "a force sample at " << s.t_s << " s outside every hold of candidate " << s.candidate);
+    BOOST_TEST(s.force_kN >= -1e-6);  // compressive (a hold is released where λ turns tensile)
+    BOOST_TEST(std::abs(s.gap_m) <= hold->max_gap_drift_m * (1 + 1e-9));  // held closed, up to its drift
+  }
+}
