@@ -147,8 +147,8 @@ json accelerations_json(const analysis::RunReport& report) {
                              "their impulses are in impacts (impulse_kNs)"
                            : "the contact forces are part of the accelerations"},
           {"g_mps2", report.g_mps2},
-          {"peaks_located", "on the dense output: turning points of a central-difference rate, and every step end, "
-                            "event and sample"},
+          {"peaks_located", "on the dense output: turning points of the rate (exact in free motion, a central "
+                            "difference while contact forces act), and every step end, event and sample"},
           {"drift_peaks_located", "on the dense output: turning points, and every step end, event and sample"}};
 }
 

@@ -164,7 +164,8 @@ class EventDrivenRun final : public OdeFunctions {
     return -options_.contact_stiffness_kN_per_m * s.gap_rate_mps -
            open_[i]->damping_kNs_per_m * system_.gap_acceleration(y, y_dot, i);
   }
-  /// For the recorder: this rhs, and the forces of the acting compliant contacts and the held ones.
+  /// For the recorder: this rhs, the forces of the acting compliant contacts and the held ones,
+  /// and whether none acts (is_linear: the free motion).
   RecordedDynamics recorded_dynamics() {
     return {.derivative = [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); },
             .contact_forces = [this](double t, const VectorXd& y) {
@@ -174,7 +175,8 @@ class EventDrivenRun final : public OdeFunctions {
               const VectorXd held_forces = hold_forces(t, y);
               for (std::size_t r = 0; r < held_.size(); ++r) forces.push_back({held_[r], held_forces[static_cast<Eigen::Index>(r)]});
               return forces;
-            }};
+            },
+            .free_motion = [this] { return is_linear(); }};
   }
   double constraint_power(double t, const VectorXd& y) const {
     if (held_.empty()) return 0.0;

@@ -68,7 +68,8 @@ std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate
 RecordedDynamics free_dynamics(const dynamics::CoupledSystem& system) {
   return {.derivative = [&system](double t, const dynamics::VectorXd& y,
                                   Eigen::Ref<dynamics::VectorXd> y_dot) { system.rhs(t, y, y_dot); },
-          .contact_forces = {}};
+          .contact_forces = {},
+          .free_motion = {}};
 }
 
 namespace {
@@ -174,13 +175,40 @@ Recorder::Drifts Recorder::storey_drifts(const dynamics::VectorXd& y) const {
   return d;
 }
 
+bool Recorder::free_motion() const { return !dynamics_.free_motion || dynamics_.free_motion(); }
+
+Recorder::Drift Recorder::storey_drift(const dynamics::VectorXd& y, int b, int floor, std::size_t slot) const {
+  const model::BuildingDefinition& def = system_.building(b).definition;
+  const std::size_t k = slot / 2;
+  const int axis = static_cast<int>(slot % 2), n = system_.dof();
+  const model::Point2 arm = k == 0 ? model::Point2::Zero() : model::Point2(def.slab.vertex(k - 1) - def.centre_of_mass);
+  auto motion = [&](int f) {  // displacement and rate of the point on floor f along the axis; the ground's is zero
+    if (f == 0) return std::pair{0.0, 0.0};
+    const int i = system_.floor_index(b, f);
+    const double c = std::cos(y[i + 2]), s = std::sin(y[i + 2]);
+    return std::pair{point_displacement(arm, y[i], y[i + 1], c, s)[axis],
+                     point_velocity(arm, c, s, y[n + i], y[n + i + 1], y[n + i + 2])[axis]};
+  };
+  const auto [upper, upper_rate] = motion(floor);
+  const auto [lower, lower_rate] = motion(floor - 1);
+  const double height_m = def.storey_height_m.at(static_cast<std::size_t>(floor - 1));
+  return {(upper - lower) / height_m, (upper_rate - lower_rate) / height_m};
+}
+
 dynamics::VectorXd Recorder::absolute_accelerations(double t, const dynamics::VectorXd& y) const {
+  // Free motion: q̈ = A_v y − r a_g, so q̈ + r a_g = A_v y, with A_v the acceleration rows of A.
+  if (free_motion()) return system_.jacobian().bottomRows(system_.dof()) * y;
   dynamics::VectorXd y_dot(system_.state_size());
   dynamics_.derivative(t, y, y_dot);
   return y_dot.tail(system_.dof()) + system_.influence() * system_.ground_motion().accel_at(t);
 }
 
 namespace {
+
+/// How closely the drift and acceleration peaks' instants are located: at a turning point the
+/// value is flat, so an instant 1e-7 of the stretch off moves it by ~10⁻¹⁴ of its change over
+/// the stretch, while the root finder stops several costly interpolations earlier.
+double peak_time_width(double t_a, double t_b) { return 1e-7 * (t_b - t_a); }
 
 Peak& drift_peak(FloorPeaks& floor, std::size_t slot) {
   if (slot < 2) return slot == 0 ? floor.drift_x : floor.drift_y;
@@ -214,21 +242,37 @@ void Recorder::observe(double t, const dynamics::VectorXd& y, const dynamics::Ve
   }
 }
 
-void Recorder::locate_acceleration_peaks(double t_a, double t_b, const dynamics::VectorXd& a_a,
+dynamics::VectorXd Recorder::free_acceleration_rates(double t, const dynamics::VectorXd& y,
+                                                     const dynamics::VectorXd& accel) const {
+  // d/dt (A_v y) = A_v ẏ, ẏ = (q̇, q̈) with q̈ = accel − r a_g.
+  const int n = system_.dof();
+  dynamics::VectorXd y_dot(system_.state_size());
+  y_dot << y.tail(n), accel - system_.influence() * system_.ground_motion().accel_at(t);
+  return system_.jacobian().bottomRows(n) * y_dot;
+}
+
+void Recorder::locate_acceleration_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a,
+                                         const dynamics::VectorXd& y_b, const dynamics::VectorXd& a_a,
                                          const dynamics::VectorXd& a_b,
                                          const std::function<dynamics::VectorXd(double)>& at) {
-  // No rate of the acceleration comes with the state (it would need the derivative of every
-  // contact force): a central difference on the interpolant, whose states are smooth inside a
-  // stretch, stands in. Its step, 1e-4 of the stretch, keeps both truncation and round-off far
-  // below what moves the located peak's value (a turning point: the value is flat there).
-  const double h = 1e-4 * (t_b - t_a);
   auto accel = [&](double t) { return absolute_accelerations(t, at(t)); };
+  // Free motion: the rate is exact (free_acceleration_rates). While contact forces act no rate
+  // comes with the state (it would need the derivative of every contact force): a central
+  // difference on the interpolant, whose states are smooth inside a stretch, stands in, one-sided
+  // at the ends. Its step, 1e-4 of the stretch, keeps both truncation and round-off far below
+  // what moves the located peak's value (a turning point: the value is flat there).
+  const bool free = free_motion();
+  const double h = 1e-4 * (t_b - t_a);
   auto rate = [&](double t) {
+    if (free) {
+      const dynamics::VectorXd y = at(t);
+      return free_acceleration_rates(t, y, absolute_accelerations(t, y));
+    }
     const double lo = std::max(t_a, t - h), hi = std::min(t_b, t + h);
     return dynamics::VectorXd((accel(hi) - accel(lo)) / (hi - lo));
   };
-  // One-sided at the ends, reusing the end values.
-  const dynamics::VectorXd rate_a = (accel(t_a + h) - a_a) / h, rate_b = (a_b - accel(t_b - h)) / h;
+  const dynamics::VectorXd rate_a = free ? free_acceleration_rates(t_a, y_a, a_a) : (accel(t_a + h) - a_a) / h;
+  const dynamics::VectorXd rate_b = free ? free_acceleration_rates(t_b, y_b, a_b) : (a_b - accel(t_b - h)) / h;
   for (int b = 0; b < 2; ++b) {
     for (FloorPeaks& floor : peaks_[b].floors) {
       const int i = system_.floor_index(b, floor.floor);
@@ -240,7 +284,8 @@ void Recorder::locate_acceleration_peaks(double t_a, double t_b, const dynamics:
         const double bound = std::max(std::abs(a_a[j]), std::abs(a_b[j])) +
                              2.0 * (t_b - t_a) * std::max(std::abs(rate_a[j]), std::abs(rate_b[j]));
         if (bound <= std::abs(peaks[k]->value)) continue;
-        const double t = find_root([&](double t_s) { return rate(t_s)[j]; }, t_a, t_b, rate_a[j], rate_b[j]);
+        const double t = find_root([&](double t_s) { return rate(t_s)[j]; }, t_a, t_b, rate_a[j], rate_b[j],
+                                   peak_time_width(t_a, t_b));
         peaks[k]->update(accel(t)[j], t);
       }
     }
@@ -300,9 +345,9 @@ void Recorder::locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, con
         const double bound = std::max(std::abs(d_a.value[j]), std::abs(d_b.value[j])) +
                              2.0 * (t_b - t_a) * std::max(std::abs(d_a.rate[j]), std::abs(d_b.rate[j]));
         if (bound <= std::abs(peak.value)) continue;
-        const double t = find_root([&](double t_s) { return storey_drifts(at(t_s)).rate[j]; }, t_a, t_b, d_a.rate[j],
-                                   d_b.rate[j]);
-        peak.update(storey_drifts(at(t)).value[j], t);
+        const double t = find_root([&](double t_s) { return storey_drift(at(t_s), b, floor.floor, slot).rate; }, t_a,
+                                   t_b, d_a.rate[j], d_b.rate[j], peak_time_width(t_a, t_b));
+        peak.update(storey_drift(at(t), b, floor.floor, slot).value, t);
       }
     }
   }
@@ -391,7 +436,7 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
   const Drifts d_a = storey_drifts(y_a), d_b = storey_drifts(y_b);
   locate_peaks(t_a, t_b, y_a, y_b, at);
   locate_drift_peaks(t_a, t_b, d_a, d_b, at);
-  locate_acceleration_peaks(t_a, t_b, a_a, a_b, at);
+  locate_acceleration_peaks(t_a, t_b, y_a, y_b, a_a, a_b, at);
   observe(t_b, y_b, a_b, d_b);
 }
 

@@ -27,6 +27,9 @@ struct RecordedDynamics {
   std::function<void(double, const dynamics::VectorXd&, Eigen::Ref<dynamics::VectorXd>)> derivative;
   /// The contacts carrying a force at (t, y); empty function: none ever do (impulses only).
   std::function<std::vector<ContactForce>(double, const dynamics::VectorXd&)> contact_forces;
+  /// True while no contact force acts, so ẏ = A y + B a_g (the system's free motion), whose
+  /// accelerations the recorder then takes from A directly; empty function: always.
+  std::function<bool()> free_motion;
 };
 
 /// The free motion's dynamics (no contact forces between impacts), for the fixed-step path.
@@ -56,7 +59,8 @@ class Recorder {
   /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns and whose end
   /// state is `y_b`: history samples that fall inside, the peaks (turning points inside located
   /// on `at` to round-off, so a peak does not depend on where the steps end; for accelerations
-  /// the rate is a central difference on `at`), and the energy
+  /// the rate is exact in free motion and a central difference on `at` while contact forces
+  /// act), and the energy
   /// integrals (3-point Gauss–Legendre). `constraint_power(t, y)` is the power of
   /// sustained-contact forces (kW).
   void advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
@@ -75,10 +79,14 @@ class Recorder {
 
  private:
   void append_row(double t, const dynamics::VectorXd& y);
+  bool free_motion() const;
   /// q̈ + r a_g (m/s², rad/s²) of every DOF at (t, y), ordered as q.
   dynamics::VectorXd absolute_accelerations(double t, const dynamics::VectorXd& y) const;
-  /// a_a, a_b: the accelerations at the stretch's ends.
-  void locate_acceleration_peaks(double t_a, double t_b, const dynamics::VectorXd& a_a, const dynamics::VectorXd& a_b,
+  /// Their rates (m/s³, rad/s³) in free motion, given the accelerations `accel` at (t, y).
+  dynamics::VectorXd free_acceleration_rates(double t, const dynamics::VectorXd& y, const dynamics::VectorXd& accel) const;
+  /// y_a, y_b, a_a, a_b: the states and accelerations at the stretch's ends.
+  void locate_acceleration_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
+                                 const dynamics::VectorXd& a_a, const dynamics::VectorXd& a_b,
                                  const std::function<dynamics::VectorXd(double)>& at);
   /// Every storey drift ratio at y and its rate (1/s), at drift_index(building, floor, slot); slot
   /// 0, 1: x, y at the CM; 2k + 2, 2k + 3: x, y at slab corner k + 1.
@@ -86,6 +94,11 @@ class Recorder {
     dynamics::VectorXd value, rate;
   };
   Drifts storey_drifts(const dynamics::VectorXd& y) const;
+  /// One of them (for root finding, where the table would be wasted).
+  struct Drift {
+    double value, rate;
+  };
+  Drift storey_drift(const dynamics::VectorXd& y, int building, int floor, std::size_t slot) const;
   std::size_t drift_slots(int building) const;
   std::size_t drift_index(int building, int floor, std::size_t slot) const;
   void locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, const Drifts& d_b,
