@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/analysis/methods.hpp"
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/analysis/needed_gap.hpp"
@@ -138,7 +139,8 @@ void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis:
 }
 
 /// The scene with the method and settings replacing its own (as the options do in
-/// cli::apply_run_options), checked: what run() runs.
+/// cli::apply_run_options), checked, the contact law against the method too (as run_scene does):
+/// what run() runs.
 /// @pre every key of `settings` is a [solver] key (the Python layer refuses others by name).
 Scene with_solver(Scene scene, const std::optional<std::string>& method, const py::dict& settings) {
   try {
@@ -148,6 +150,8 @@ Scene with_solver(Scene scene, const std::optional<std::string>& method, const p
       if (settings.contains(key)) set_setting(scene.solver, spec.id, settings[key]);
     }
     scene.validate();
+    pounding::analysis::require_supported(pounding::analysis::contact_law_info(scene.contact.law),
+                                          pounding::analysis::method_info(scene.solver.method));
   } catch (const InputError& error) {
     rethrow_in_scene(error, scene);
   }

@@ -73,8 +73,10 @@ def _text(value):
 
 
 def _error(file, key, value, reason):
+    """InputError with the message the library composes (input_error.cpp)."""
     message = f"{file}: " if file else ""
-    message += key + (f" = {value}" if value != "" else "") + ": " + reason
+    message += key + ((" = " if key else "") + value if value else "")
+    message += (": " if key or value else "") + reason
     return InputError(message, str(file), key, value, reason)
 
 
@@ -600,7 +602,7 @@ def _client(workers, scheduler):
         os.environ["PYTHONPATH"] = package_parent + (os.pathsep + path if path else "")
     count = workers or os.cpu_count() or 1
     cluster = dask.distributed.LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                                            dashboard_address=None, silence_logs=logging.ERROR)
+                                            dashboard_address=":0", silence_logs=logging.ERROR)  # any free port
     client = dask.distributed.Client(cluster)
     client._pounding_cluster = cluster
     return client, f"LocalCluster({count} workers x 1 thread)"
