@@ -4,7 +4,7 @@ of a sweep file, one run each, on Dask distributed, into one tidy table.
     python3 -m pounding.sweep SWEEP.toml [--workers N | --scheduler tcp://HOST:PORT | --serial] [--out DIR]
     pounding.sweep("SWEEP.toml", workers=2)          # the same from Python; returns a SweepResult
 
-The sweep file (TOML; paths relative to its folder; docs/sweep-format in README "Sweeps"):
+The sweep file (TOML; paths relative to its folder; README, "Sweeps"):
 
     scenes = ["../paper/el-centro-true-time.toml"]   # required
     records = "../records/set.txt"     # a record list, a folder of .AT2 files, or a list of paths
@@ -106,7 +106,7 @@ class Sweep:
 
         self.scene_files = self._paths("scenes", required=True)
         self.scenes = {}  # scene_file as written -> loaded Scene (driver only)
-        for index, scene_file in enumerate(self.scene_files):
+        for scene_file in self.scene_files:
             self.scenes[scene_file] = pounding.load_scene(self._resolve(scene_file))
         self.gaps_m = self._numbers("gaps_m")
         self.restitutions = self._numbers("restitutions")
@@ -154,13 +154,13 @@ class Sweep:
         values = self._list(key)
         if values is None:
             return [None]
-        overrides = {"gaps_m": ("gap", "--gap"), "restitutions": ("restitution", "--restitution")}[key]
+        option = {"gaps_m": "gap", "restitutions": "restitution"}[key]
         for index, value in enumerate(values):
             if not _is_number(value):
                 raise _error(self.file, f"{key}[{index}]", _text(value), "expected a number")
             for scene_file in self.scene_files:  # each scene checks its own range (a gap must fit its plan)
                 try:
-                    pounding.load_scene(self._resolve(scene_file), **{overrides[0]: float(value)})
+                    pounding.load_scene(self._resolve(scene_file), **{option: float(value)})
                 except InputError as error:
                     raise _error(self.file, f"{key}[{index}]", _text(value),
                                  f"{error.reason} (scene {scene_file})") from None
@@ -623,14 +623,22 @@ def _distributed(client, sweep, todo):
                     gaps[pair] = client.submit(needed_gap_task, task, pure=False)
                 gap = gaps[pair]
             futures[client.submit(run_task, task, gap, pure=False)] = row
+        lost = 0
         for future in dask.distributed.as_completed(futures):
             row = futures.pop(future)
             try:
                 result = future.result()
-            except Exception as error:  # noqa: BLE001  (a worker that died: still a row)
+            except dask.distributed.KilledWorker as error:  # the run killed every worker it was given
                 result = dict.fromkeys(RESULTS)
-                result.update(status="failed", message=f"the worker failed: {_failure(error)}")
+                result.update(status="failed", message=f"the run killed its worker process: {error}")
+            except Exception:  # noqa: BLE001  (a connection lost, a worker stopped by Ctrl-C)
+                # run_task never raises, so this is the cluster's failure, not the run's: no row,
+                # and a sweep started again runs it.
+                lost += 1
+                continue
             yield row, result
+        if lost:
+            print(f"{lost} runs lost with their workers; start the sweep again to run them", file=sys.stderr)
     finally:
         client.cancel(list(futures))
         cluster = getattr(client, "_pounding_cluster", None)
