@@ -35,6 +35,7 @@ import logging
 import math
 import os
 import pathlib
+import signal
 import socket
 import sys
 import time
@@ -692,6 +693,7 @@ def main(argv=None):
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     arguments = parser.parse_args(argv)
     workers = 0 if arguments.serial else arguments.workers
+    signal.signal(signal.SIGTERM, _stop)  # a kill stops the sweep as Ctrl-C does: the cluster closed
     try:
         result = run_sweep(arguments.sweep_file, out=arguments.out, workers=workers, scheduler=arguments.scheduler,
                            progress=not arguments.no_progress)
@@ -704,6 +706,10 @@ def main(argv=None):
         print("interrupted: run the same command again to finish the sweep", file=sys.stderr)
         return 3
     return 3 if result.failed else 0
+
+
+def _stop(signal_number, frame):
+    raise KeyboardInterrupt
 
 
 class _CallableModule(types.ModuleType):
