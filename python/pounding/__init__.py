@@ -6,6 +6,7 @@ returning Python objects and numpy arrays instead of files.
     result.status, len(result.impacts), result.impacts_array["impulse_kNs"].max()
     result.history["B1_f7_u_m"]            # numpy array over result.history["t_s"]
     pounding.needed_gap(scene).needed_gap_m
+    pounding.sweep("examples/sweep/sweep.toml", workers=2)   # many runs on Dask (pounding/sweep.py)
 
 Units are in the names (m, s, kNs, kJ), as in the command line's files. Bad input raises
 pounding.InputError (a ValueError) with the command line's message, naming file, key and value.

@@ -130,7 +130,8 @@ class Sweep:
         self._check_combinations()
 
     def _resolve(self, path):
-        return str((self.folder / path).resolve()) if not os.path.isabs(path) else path
+        """An absolute path: relative ones from the sweep file's folder."""
+        return str((self.folder / path).resolve())
 
     def _list(self, key, required=False):
         if key not in self.document:
@@ -149,6 +150,8 @@ class Sweep:
                 raise _error(self.file, f"{key}[{index}]", _text(value), "expected a file's path")
             if not os.path.isfile(self._resolve(value)):
                 raise _error(self.file, f"{key}[{index}]", _text(value), "no such file")
+            if self._resolve(value) in map(self._resolve, values[:index]):
+                raise _error(self.file, f"{key}[{index}]", _text(value), "given twice")
         return values
 
     def _numbers(self, key):

@@ -139,6 +139,7 @@ def test_a_failed_run_is_a_row(folder):
 @pytest.mark.parametrize("text, key, value, reason", [
     ("gap_m = [0.1]", "gap_m", "[0.1]", "unknown key"),
     ('scenes = ["missing.toml"]', "scenes[0]", '"missing.toml"', "no such file"),
+    (f'scenes = ["{PAPER}", "{PAPER.parent}/../paper/paper.toml"]', "scenes[1]", "../paper/paper.toml", "given twice"),
     ("gaps_m = [0.1, 20.0]", "gaps_m[1]", "20.0", "must lie in [0, 10] m (scene"),
     ('gaps_m = [0.1, "wide"]', "gaps_m[1]", '"wide"', "expected a number"),
     ("restitutions = [1.5]", "restitutions[0]", "1.5", "must lie in [0, 1]"),
