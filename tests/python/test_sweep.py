@@ -191,3 +191,22 @@ def test_cli_runs_the_sweep_and_refuses_a_bad_file(folder, serial):
         pounding.sweep(folder / "typo.toml", workers=0, progress=False)
     done = subprocess.run([CLI, "sweep", folder / "typo.toml", "--serial"], capture_output=True, text=True)
     assert done.returncode == 2 and done.stderr == f"error: {raised.value}\n"
+
+
+def test_plot_sweep_fits_the_needed_gaps(folder, serial):
+    """tools/plot_sweep.py on the serial table: its lognormal fit of two needed gaps g1, g2 has the
+    closed form median √(g1·g2) and 84th percentile exp(m + s), s = |ln g1 − ln g2| / √2."""
+    figure = folder / "sweep.png"
+    done = subprocess.run(["/usr/bin/python3", SOURCE / "tools" / "plot_sweep.py", folder / "serial", "--out", figure],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert figure.stat().st_size > 10_000
+    fits = json.loads((folder / "serial" / "sweep_fit.json").read_text())
+    assert len(fits) == 1 and fits[0]["records"] == 2  # one panel: only the record and the gap vary
+    g1, g2 = sorted({float(row["needed_gap_m"]) for row in serial.rows})
+    fit = fits[0]["fit"]
+    assert fit["median_lognormal_m"] == pytest.approx(math.sqrt(g1 * g2), rel=1e-14)
+    s = abs(math.log(g1) - math.log(g2)) / math.sqrt(2)
+    assert fit["p84_lognormal_m"] == pytest.approx(math.sqrt(g1 * g2) * math.exp(s), rel=1e-14)
+    assert fit["median_m"] == pytest.approx((g1 + g2) / 2, rel=1e-15)
+    assert f"median {fit['median_lognormal_m']:.4f} m" in done.stdout
