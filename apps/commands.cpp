@@ -151,7 +151,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m,
                                                          .restitution = command.restitution,
                                                          .contact_law = command.contact_law,
-                                                         .contact_stiffness_kN_per_m = command.contact_stiffness_kN_per_m,
+                                                         .contact_stiffness = command.contact_stiffness,
                                                          .record = command.record});
   try {
     apply_run_options(command, scene.solver);
@@ -272,8 +272,9 @@ int run_check(const CheckCommand& command) {
   print_excitation(scene, motion);
   const std::string law = scene.contact.law == "impulse"
                               ? std::string()
-                              : fmt::format(", law {} (stiffness {} kN/m)", scene.contact.law,
-                                            scene.contact.used_stiffness_kN_per_m());
+                              : fmt::format(", law {} (stiffness {} {})", scene.contact.law,
+                                            scene.contact.used_stiffness(),
+                                            analysis::contact_law_info(scene.contact.law).stiffness_unit);
   fmt::print("Contact: gap {} m, restitution k = {}{}\n", scene.contact.gap_m, scene.contact.restitution, law);
   const auto candidates = analysis::scene_candidates(scene);
   fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
@@ -308,7 +309,10 @@ int run_methods(const MethodsCommand& command) {
   }
   fmt::print("\nContact laws ([contact] law, --contact-law):\n");
   for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
-    const std::string keys = law.keys.empty() ? "no keys" : fmt::format("{}", fmt::join(law.keys, ", "));
+    const std::string keys = law.stiffness_key.empty()
+                                 ? "no keys"
+                                 : fmt::format("{} ({}, default {:g}: {})", law.stiffness_key, law.stiffness_unit,
+                                               law.default_stiffness, law.stiffness_source);
     const std::string runs = law.methods.empty() ? "every method" : fmt::format("{}", fmt::join(law.methods, ", "));
     fmt::print("{:<12} {}\n{:<12} uses {}; runs on {}\n", law.name, law.description, "", keys, runs);
   }
