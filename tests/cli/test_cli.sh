@@ -166,11 +166,23 @@ assert len(rows) == 4 * 2 + 3 * 2, len(rows)
 fine = [r for r in rows if r["method"] == "cvode-bdf"]
 assert float(fine[1]["impact_time_error_before_hold_s"]) < float(fine[0]["impact_time_error_before_hold_s"])
 assert all(float(r["run_time_s"]) > 0 for r in rows)
+# The quick contact-stiffness ladder: kelvin at 1 and 100 times its default on its four methods;
+# the stiffer contact pushes harder (peak force grows ~ sqrt(k) for the same approach).
+ladder = list(csv.DictReader(open(f"{sys.argv[1]}/stiffness.csv")))
+assert len(ladder) == 2 * 4 and all(r["law"] == "kelvin" and r["status"] == "completed" for r in ladder), ladder
+by_method = {}
+for r in ladder:
+    by_method.setdefault(r["method"], []).append(r)
+for runs in by_method.values():
+    soft, stiff = sorted(runs, key=lambda r: float(r["stiffness"]))
+    assert float(stiff["stiffness"]) == 100 * float(soft["stiffness"]), runs
+    assert float(stiff["peak_force_kN"]) > 3 * float(soft["peak_force_kN"]), runs
 PY
 /usr/bin/python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['provenance']; assert p['scene_sha256']==sys.argv[2] and 'study' in p['command_line'], p" \
   "$work/study/study.json" "$scene_sha" || fail "provenance in study.json"
 /usr/bin/python3 "$source_dir/tools/plot_study.py" "$work/study" > /dev/null || fail "plot_study.py exited $?"
 [ -s "$work/study/work-precision.png" ] || fail "no work-precision.png"
+[ -s "$work/study/stiffness.png" ] || fail "no stiffness.png"
 # SIGINT during a study (after its first row is printed): no further run starts, the rows so far
 # are written with "interrupted": true, exit 3.
 stdbuf -oL "$pounding" study "$scene" --quick --repeat 1 --out "$work/study-int" > "$work/study-int.txt" 2>&1 &
