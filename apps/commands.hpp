@@ -32,7 +32,7 @@ struct RunCommand {
   std::optional<double> gap_m;
   std::optional<double> restitution;
   std::optional<std::string> contact_law;
-  std::optional<double> contact_stiffness_kN_per_m;
+  std::optional<double> contact_stiffness;  // in the law's unit (contact_laws.hpp)
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
   std::optional<int> order;

@@ -73,8 +73,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
   run_app->add_option("--contact-law", run.contact_law, pounding::analysis::contact_laws_help());
-  run_app->add_option("--contact-stiffness", run.contact_stiffness_kN_per_m,
-                      "kelvin: contact spring stiffness (kN/m; default 93500, Jankowski 2005)");
+  run_app->add_option("--contact-stiffness", run.contact_stiffness, pounding::analysis::contact_stiffness_help());
   add_record_options(*run_app, run.record);
   using pounding::analysis::option_help;
   using pounding::analysis::Setting;
