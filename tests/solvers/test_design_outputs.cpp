@@ -173,7 +173,7 @@ BOOST_AUTO_TEST_CASE(ContactForceSamplesAreTheKelvinLawOfTheSampledGap) {
   solvers::EventOptions options;
   options.restitution = e;
   options.law = contact::ContactLaw::kelvin;
-  options.contact_stiffness_kN_per_m = k;
+  options.contact_stiffness = k;
   options.initial_state = pushed(system, v0);
   options.history_interval_s = 1e-4;
   const solvers::RunResult r = solvers::run_event_driven(system, options, cvode(1e-10, 1e-12), "test");
