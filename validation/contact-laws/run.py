@@ -213,7 +213,8 @@ def limit_check(pounding, laws, out, restitution):
                          "ratio": first["separation_velocity_mps"] / first["approach_velocity_mps"],
                          "duration_s": first["duration_s"], "peak_force_kN": first["peak_force_kN"],
                          "second_s": s["impacts"][1]["t_s"] if len(s["impacts"]) > 1 else None})
-        reference = impulse_second(rebound if rebound is not None else restitution)
+        # Without a closed form, the ratio the law reaches at its largest stiffness stands in.
+        reference = impulse_second(rebound if rebound is not None else rows[-1]["ratio"])
         for r in rows:
             r["second_error_s"] = abs(r["second_s"] - reference) if r["second_s"] and reference else None
         results[law["name"]] = {"rebound": rebound, "rows": rows, "impulse_second_s": reference}
@@ -324,8 +325,9 @@ def write_page(laws, rows, first, level, results, restitution, method):
         "centres of mass, after a 0.2 s ground pulse (`two-slabs.toml`, e = 0.5). For each compliant law,",
         f"its default stiffness × {', '.join(f'{f:g}' for f in LADDER)}: the first contact's ratio of separation to",
         "approach speed (separation where the law releases the contact), its duration and the second",
-        "contact's onset against the impulse law run with the law's closed-form rebound as its",
-        "restitution (same first onset; the second tends to it as the contact becomes an impulse).",
+        "contact's onset against the impulse law run with the law's closed-form rebound (or, without",
+        "one, the ratio reached at the largest stiffness) as its restitution (same first onset; the",
+        "second tends to it as the contact becomes an impulse).",
         "",
     ]
     for name, r in results.items():
@@ -336,14 +338,14 @@ def write_page(laws, rows, first, level, results, restitution, method):
         for row in r["rows"]:
             off = None if rebound is None else row["ratio"] / rebound - 1
             lines.append(
-                f"| {row['stiffness']:.4g} | {row['ratio']:.5f} | {fmt(None if off is None else 100 * off, '+.2f')} % | "
+                f"| {row['stiffness']:.4g} | {row['ratio']:.5f} | {"–" if off is None else format(100 * off, "+.2f") + " %"} | "
                 f"{1e3 * row['duration_s']:.3f} | {row['peak_force_kN']:.0f} | {fmt(row['second_s'], '.6f')} | "
                 f"{fmt(row['second_error_s'], '.2e')} |")
         last = r["rows"][-1]
         if rebound is None:
-            verdict = (f"No closed-form rebound is known for {name} (`pounding laws --json` gives none), so the "
-                       f"second onset is compared with the impulse law at e = {restitution}: at the largest "
-                       f"stiffness its ratio is {last['ratio']:.4f}.")
+            verdict = (f"No closed-form rebound is known for {name} (`pounding laws --json` gives none): at the "
+                       f"largest stiffness its ratio is {last['ratio']:.4f} (e = {restitution}), and the second onset "
+                       f"is compared with the impulse law run with that ratio as its restitution.")
         else:
             off = abs(last["ratio"] / rebound - 1)
             verdict = (f"At the largest stiffness the ratio is {last['ratio']:.4f}, {100 * off:.2f} % from the closed form "
