@@ -338,7 +338,7 @@ def write_page(laws, rows, first, level, results, restitution, method):
         for row in r["rows"]:
             off = None if rebound is None else row["ratio"] / rebound - 1
             lines.append(
-                f"| {row['stiffness']:.4g} | {row['ratio']:.5f} | {"–" if off is None else format(100 * off, "+.2f") + " %"} | "
+                f"| {row['stiffness']:.4g} | {row['ratio']:.5f} | {'–' if off is None else f'{100 * off:+.2f} %'} | "
                 f"{1e3 * row['duration_s']:.3f} | {row['peak_force_kN']:.0f} | {fmt(row['second_s'], '.6f')} | "
                 f"{fmt(row['second_error_s'], '.2e')} |")
         last = r["rows"][-1]
