@@ -1,6 +1,7 @@
 #include "pounding/dynamics/modal_system.hpp"
 
 #include <set>
+#include <vector>
 #include <stdexcept>
 
 #include "pounding/model/modal.hpp"
@@ -61,12 +62,21 @@ void ModalSystem::jacobian(Eigen::Ref<MatrixXd> jacobian) const {
   jacobian.bottomRightCorner(n, n).diagonal() = -damping_per_s_;
 }
 
+namespace {
+
+// A building's displacements and rates as the two columns of one matrix (they lie n apart in the
+// state), so that a map reads its matrix once for both: the maps are memory-bound.
+using Columns = Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>>;
+using ConstColumns = Eigen::Map<const MatrixXd, 0, Eigen::OuterStride<>>;
+
+}  // namespace
+
 void ModalSystem::to_physical(ConstVectorRef z, Eigen::Ref<VectorXd> y) const {
   const int n = dof();
   for (int b = 0; b < 2; ++b) {
     const Eigen::Index offset = system_.floor_index(b, 1), size = shapes_[b].rows();
-    y.segment(offset, size).noalias() = shapes_[b] * z.segment(offset, size);
-    y.segment(n + offset, size).noalias() = shapes_[b] * z.segment(n + offset, size);
+    Columns(y.data() + offset, size, 2, Eigen::OuterStride<>(n)).noalias() =
+        shapes_[b] * ConstColumns(z.data() + offset, size, 2, Eigen::OuterStride<>(n));
   }
 }
 
@@ -74,17 +84,28 @@ void ModalSystem::to_modal(ConstVectorRef y, Eigen::Ref<VectorXd> z) const {
   const int n = dof();
   for (int b = 0; b < 2; ++b) {
     const Eigen::Index offset = system_.floor_index(b, 1), size = inverse_[b].rows();
-    z.segment(offset, size).noalias() = inverse_[b] * y.segment(offset, size);
-    z.segment(n + offset, size).noalias() = inverse_[b] * y.segment(n + offset, size);
+    Columns(z.data() + offset, size, 2, Eigen::OuterStride<>(n)).noalias() =
+        inverse_[b] * ConstColumns(y.data() + offset, size, 2, Eigen::OuterStride<>(n));
   }
 }
 
 void ModalSystem::jacobian_to_modal(const MatrixXd& physical, Eigen::Ref<MatrixXd> modal) const {
+  // T⁻¹ J T = T⁻¹ A T + T⁻¹ (J − A) T with T⁻¹ A T = jacobian(). A contact force changes only
+  // the accelerations of its floors (M⁻¹Gᵀ λ), so J − A has few nonzero rows R:
+  // Φ⁻¹ D Φ = Φ⁻¹[:, R] (D[R, :] Φ) costs |R| n² instead of n³.
   const int n = dof();
+  jacobian(modal);
+  const MatrixXd& free = system_.jacobian();
   for (int row = 0; row < 2; ++row) {
     for (int col = 0; col < 2; ++col) {
-      modal.block(row * n, col * n, n, n).noalias() =
-          inverse_full_ * physical.block(row * n, col * n, n, n) * shape_full_;
+      const MatrixXd change = physical.block(row * n, col * n, n, n) - free.block(row * n, col * n, n, n);
+      std::vector<Eigen::Index> rows;
+      for (Eigen::Index r = 0; r < n; ++r) {
+        if (!change.row(r).isZero(0.0)) rows.push_back(r);
+      }
+      if (rows.empty()) continue;
+      const MatrixXd moved = change(rows, Eigen::all) * shape_full_;  // D[R, :] Φ
+      modal.block(row * n, col * n, n, n).noalias() += inverse_full_(Eigen::all, rows) * moved;
     }
   }
 }

@@ -37,7 +37,8 @@ class ModalSystem {
   /// z = T⁻¹ y = (ΦᵀM q, ΦᵀM q̇): exact inverse of to_physical for mass-normalised Φ.
   void to_modal(ConstVectorRef y, Eigen::Ref<VectorXd> z) const;
   /// T⁻¹ J T of a physical Jacobian J (2n×2n): what the modal form integrates while a contact
-  /// force acts (holds, compliant laws). O(n³).
+  /// force acts (holds, compliant laws). O(r n²), r the rows where J differs from the free
+  /// Jacobian (the contact floors' accelerations).
   void jacobian_to_modal(const MatrixXd& physical, Eigen::Ref<MatrixXd> modal) const;
 
   /// Absolute tolerances of z from the physical ones `physical_atol` (over y, analysis::
