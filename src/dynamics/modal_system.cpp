@@ -62,21 +62,14 @@ void ModalSystem::jacobian(Eigen::Ref<MatrixXd> jacobian) const {
   jacobian.bottomRightCorner(n, n).diagonal() = -damping_per_s_;
 }
 
-namespace {
-
-// A building's displacements and rates as the two columns of one matrix (they lie n apart in the
-// state), so that a map reads its matrix once for both: the maps are memory-bound.
-using Columns = Eigen::Map<MatrixXd, 0, Eigen::OuterStride<>>;
-using ConstColumns = Eigen::Map<const MatrixXd, 0, Eigen::OuterStride<>>;
-
-}  // namespace
-
 void ModalSystem::to_physical(ConstVectorRef z, Eigen::Ref<VectorXd> y) const {
+  // Two products per building rather than one with two columns: Eigen's matrix-matrix kernel
+  // packs Φ at every call, 2-3 times slower here (measured, 21 to 180 modes).
   const int n = dof();
   for (int b = 0; b < 2; ++b) {
     const Eigen::Index offset = system_.floor_index(b, 1), size = shapes_[b].rows();
-    Columns(y.data() + offset, size, 2, Eigen::OuterStride<>(n)).noalias() =
-        shapes_[b] * ConstColumns(z.data() + offset, size, 2, Eigen::OuterStride<>(n));
+    y.segment(offset, size).noalias() = shapes_[b] * z.segment(offset, size);
+    y.segment(n + offset, size).noalias() = shapes_[b] * z.segment(n + offset, size);
   }
 }
 
@@ -84,8 +77,8 @@ void ModalSystem::to_modal(ConstVectorRef y, Eigen::Ref<VectorXd> z) const {
   const int n = dof();
   for (int b = 0; b < 2; ++b) {
     const Eigen::Index offset = system_.floor_index(b, 1), size = inverse_[b].rows();
-    Columns(z.data() + offset, size, 2, Eigen::OuterStride<>(n)).noalias() =
-        inverse_[b] * ConstColumns(y.data() + offset, size, 2, Eigen::OuterStride<>(n));
+    z.segment(offset, size).noalias() = inverse_[b] * y.segment(offset, size);
+    z.segment(n + offset, size).noalias() = inverse_[b] * y.segment(n + offset, size);
   }
 }
 
