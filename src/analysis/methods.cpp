@@ -64,19 +64,19 @@ Eigen::VectorXd atol_vector(const UsedSettings& used, const dynamics::CoupledSys
 template <typename Settings, typename Make>
 solvers::IntegratorFactory in_form(const UsedSettings& used, const dynamics::CoupledSystem& system, Settings settings,
                                    Make make) {
+  std::shared_ptr<const dynamics::ModalSystem> modes;
+  if (used.form == "modal") {
+    modes = std::make_shared<const dynamics::ModalSystem>(system);
+    const Eigen::VectorXd physical_atol = settings.atol_vector.size()
+                                              ? settings.atol_vector
+                                              : Eigen::VectorXd::Constant(system.state_size(), settings.atol);
+    settings.atol_vector = modes->atol(physical_atol);
+  }
   solvers::IntegratorFactory inner = [settings, make](solvers::OdeFunctions& functions, double t0,
                                                       const Eigen::VectorXd& y0) -> IntegratorPtr {
     return make(functions, settings, t0, y0);
   };
-  if (used.form != "modal") return inner;
-  auto modes = std::make_shared<const dynamics::ModalSystem>(system);
-  const Eigen::VectorXd physical_atol = settings.atol_vector.size()
-                                            ? settings.atol_vector
-                                            : Eigen::VectorXd::Constant(system.state_size(), settings.atol);
-  settings.atol_vector = modes->atol(physical_atol);
-  inner = [settings, make](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& z0) -> IntegratorPtr {
-    return make(functions, settings, t0, z0);
-  };
+  if (!modes) return inner;
   return [modes, inner](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
     return std::make_unique<solvers::ModalIntegrator>(*modes, functions, inner, t0, y0);
   };

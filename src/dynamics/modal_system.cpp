@@ -1,8 +1,8 @@
 #include "pounding/dynamics/modal_system.hpp"
 
 #include <set>
-#include <vector>
 #include <stdexcept>
+#include <vector>
 
 #include "pounding/model/modal.hpp"
 
