@@ -128,6 +128,7 @@ void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis:
     case Setting::rtol: solver.rtol = real(); return;
     case Setting::atol: solver.atol = real(); return;
     case Setting::newton: solver.newton = text(); return;
+    case Setting::form: solver.form = text(); return;
     case Setting::hold_rtol: solver.hold_rtol = real(); return;
     case Setting::dt_s: solver.dt_s = real(); return;
     case Setting::alpha: solver.alpha = real(); return;
