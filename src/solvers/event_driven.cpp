@@ -92,7 +92,8 @@ class EventDrivenRun final : public OdeFunctions {
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(3 * count_); }
-  bool is_linear() const override { return held_.empty() && active_.empty(); }
+  bool is_linear() const override { return is_free_motion(); }
+  bool is_free_motion() const override { return held_.empty() && active_.empty(); }
 
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
     forces_.resize(static_cast<Eigen::Index>(held_.size()));
@@ -171,7 +172,7 @@ class EventDrivenRun final : public OdeFunctions {
     return open_[i]->law.switch_rate(-s.gap_m, -s.gap_rate_mps, -system_.gap_acceleration(y, y_dot, i));
   }
   /// For the recorder: this rhs, the forces of the acting compliant contacts and the held ones,
-  /// and whether none acts (is_linear: the free motion).
+  /// and whether none acts (is_free_motion).
   RecordedDynamics recorded_dynamics() {
     return {.derivative = [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); },
             .contact_forces = [this](double t, const VectorXd& y) {
@@ -182,7 +183,7 @@ class EventDrivenRun final : public OdeFunctions {
               for (std::size_t r = 0; r < held_.size(); ++r) forces.push_back({held_[r], held_forces[static_cast<Eigen::Index>(r)]});
               return forces;
             },
-            .free_motion = [this] { return is_linear(); }};
+            .free_motion = [this] { return is_free_motion(); }};
   }
   double constraint_power(double t, const VectorXd& y) const {
     if (held_.empty()) return 0.0;

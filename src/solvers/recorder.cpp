@@ -196,8 +196,6 @@ Recorder::Drift Recorder::storey_drift(const dynamics::VectorXd& y, int b, int f
 }
 
 dynamics::VectorXd Recorder::absolute_accelerations(double t, const dynamics::VectorXd& y) const {
-  // Free motion: q̈ = A_v y − r a_g, so q̈ + r a_g = A_v y, with A_v the acceleration rows of A.
-  if (free_motion()) return system_.jacobian().bottomRows(system_.dof()) * y;
   dynamics::VectorXd y_dot(system_.state_size());
   dynamics_.derivative(t, y, y_dot);
   return y_dot.tail(system_.dof()) + system_.influence() * system_.ground_motion().accel_at(t);
@@ -244,11 +242,15 @@ void Recorder::observe(double t, const dynamics::VectorXd& y, const dynamics::Ve
 
 dynamics::VectorXd Recorder::free_acceleration_rates(double t, const dynamics::VectorXd& y,
                                                      const dynamics::VectorXd& accel) const {
-  // d/dt (A_v y) = A_v ẏ, ẏ = (q̇, q̈) with q̈ = accel − r a_g.
+  // Free motion: q̈ = A_v y − r a_g (A_v the acceleration rows of A), so q̈ + r a_g = A_v y and
+  // its rate is A_v ẏ, the forcing's slope cancelling. The system's free rhs at the "state" ẏ
+  // gives A_v ẏ − r a_g(t) in its acceleration rows (sparse, O(n)).
   const int n = system_.dof();
-  dynamics::VectorXd y_dot(system_.state_size());
-  y_dot << y.tail(n), accel - system_.influence() * system_.ground_motion().accel_at(t);
-  return system_.jacobian().bottomRows(n) * y_dot;
+  const dynamics::VectorXd r_ag = system_.influence() * system_.ground_motion().accel_at(t);
+  dynamics::VectorXd y_dot(system_.state_size()), y_ddot(system_.state_size());
+  y_dot << y.tail(n), accel - r_ag;
+  system_.rhs(t, y_dot, y_ddot);
+  return y_ddot.tail(n) + r_ag;
 }
 
 void Recorder::locate_acceleration_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a,

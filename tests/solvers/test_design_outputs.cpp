@@ -192,7 +192,9 @@ BOOST_AUTO_TEST_CASE(ContactForceSamplesAreTheKelvinLawOfTheSampledGap) {
     BOOST_TEST(s.vertex == impact.vertex);
     largest = std::max(largest, s.force_kN);
   }
-  BOOST_TEST(largest <= impact.peak_force_kN * (1 + 1e-12));
+  // The impact's peak is the largest force at the quadrature nodes of each step (event_driven.cpp,
+  // integrate_contacts), not located between them: a sample may exceed it by a hair.
+  BOOST_TEST(largest <= impact.peak_force_kN * (1 + 1e-5));
   BOOST_TEST(largest >= 0.98 * impact.peak_force_kN);  // 0.1 ms of 3.6 ms: near the peak
   // The contact force is in the accelerations: slab 1 decelerates by F/m₁ at each sample.
   const std::size_t ax = column(r.history, "B1_f1_ax_abs_mps2");

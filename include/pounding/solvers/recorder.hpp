@@ -28,7 +28,7 @@ struct RecordedDynamics {
   /// The contacts carrying a force at (t, y); empty function: none ever do (impulses only).
   std::function<std::vector<ContactForce>(double, const dynamics::VectorXd&)> contact_forces;
   /// True while no contact force acts, so ẏ = A y + B a_g (the system's free motion), whose
-  /// accelerations the recorder then takes from A directly; empty function: always.
+  /// accelerations' rates the recorder then has exactly; empty function: always.
   std::function<bool()> free_motion;
 };
 
