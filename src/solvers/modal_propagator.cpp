@@ -9,8 +9,8 @@ namespace {
 /// more accurate and, with few terms, as cheap.
 constexpr double kClosedFormSize = 0.25;
 
-/// e^X, φ₁(X) e₂ τ and φ₂(X) e₂ τ² with X = Fτ by their series, for ‖X‖ = `size` ≤ 1 in the
-/// balanced norm ωτ(1 + 2ζ): summed until the next term is below 2⁻⁵⁶ of the sum (at most 19).
+/// e^X, φ₁(X) e₂ τ and φ₂(X) e₂ τ² with X = Fτ by their series, for ‖X‖ = `size` ≤
+/// kClosedFormSize in the balanced norm ωτ(1 + 2ζ): summed until the next term is below 2⁻⁵⁶.
 OscillatorStep taylor_step(double omega, double zeta, double tau, double size) {
   Eigen::Matrix2d x;
   x << 0.0, tau, -omega * omega * tau, -2.0 * zeta * omega * tau;
@@ -20,7 +20,7 @@ OscillatorStep taylor_step(double omega, double zeta, double tau, double size) {
   Eigen::Vector2d column = term.col(1);  // Xʲ e₂ / j!
   step.start = column;
   step.slope = column / 2.0;
-  double remainder = 1.0;  // sizeʲ/j!, the balanced norm of the next term
+  double remainder = 1.0;  // sizeʲ/(j + 1)!: bounds the balanced norm of the terms after the j-th
   for (int j = 1; remainder > 0x1p-56; ++j) {
     remainder *= size / double(j + 1);
     term = term * x / double(j);
@@ -70,28 +70,44 @@ OscillatorStep closed_step(double omega, double zeta, double tau) {
   return step;
 }
 
+/// (e^x − 1 − x)/x² for x ≤ 0, by its series where the closed form would cancel.
+double phi2(double x) {
+  if (x < -0.5) return (std::expm1(x) - x) / (x * x);
+  double sum = 0.0, term = 0.5;  // xʲ/(j + 2)!
+  for (int j = 0; j < 20 && std::abs(term) > 0x1p-56 * std::abs(sum); ++j) {
+    sum += term;
+    term *= x / double(j + 3);
+  }
+  return sum;
+}
+
+/// Overdamped (ζ > 2): two real eigenvalues λ₁ = −ω/(ζ + √(ζ² − 1)) (slow) and λ₂ = −2ζω − λ₁,
+/// at least 14 times apart, so the spectral form f(F) = f(λ₁) P₁ + f(λ₂) P₂ has no cancellation,
+/// and expm1 keeps the slow mode's load response accurate however small λ₁τ is.
+OscillatorStep overdamped_step(double omega, double zeta, double tau) {
+  const double slow = -omega / (zeta + std::sqrt(zeta * zeta - 1.0)), fast = -2.0 * zeta * omega - slow;
+  // P₁ = (F − λ₂)/(λ₁ − λ₂), P₂ = (F − λ₁)/(λ₂ − λ₁); their second columns are (1, λ)/(±Δλ).
+  const double gap = slow - fast;
+  Eigen::Matrix2d p1, p2;
+  p1 << -fast, 1.0, -omega * omega, -2.0 * zeta * omega - fast;
+  p2 << -slow, 1.0, -omega * omega, -2.0 * zeta * omega - slow;
+  p1 /= gap;
+  p2 /= -gap;
+  OscillatorStep step;
+  step.free = std::exp(slow * tau) * p1 + std::exp(fast * tau) * p2;
+  const double x1 = slow * tau, x2 = fast * tau;
+  step.start = tau * (std::expm1(x1) / x1 * p1.col(1) + std::expm1(x2) / x2 * p2.col(1));
+  step.slope = tau * tau * (phi2(x1) * p1.col(1) + phi2(x2) * p2.col(1));
+  return step;
+}
+
 }  // namespace
 
 OscillatorStep oscillator_step(double omega_rad_s, double damping_ratio, double tau_s) {
   const double size = omega_rad_s * tau_s * (1.0 + 2.0 * damping_ratio);  // ‖Fτ‖ in (η, η̇/ω)
-  if (size > kClosedFormSize && damping_ratio <= 2.0) return closed_step(omega_rad_s, damping_ratio, tau_s);
-  // Series on τ/2ˢ with ‖X‖ ≤ 1, then doubled s times: over [τ, 2τ] the load is p₀ + sτ + sτ',
-  // so free(2τ) = free², start(2τ) = (I + free) start, slope(2τ) = (I + free) slope + τ start.
-  int squarings = 0;
-  double h = tau_s;
-  if (size > 1.0) {
-    squarings = static_cast<int>(std::ceil(std::log2(size)));
-    h = std::ldexp(tau_s, -squarings);
-  }
-  OscillatorStep step = taylor_step(omega_rad_s, damping_ratio, h, std::min(size, 1.0));
-  for (int k = 0; k < squarings; ++k) {
-    const Eigen::Matrix2d grow = Eigen::Matrix2d::Identity() + step.free;
-    step.slope = grow * step.slope + h * step.start;
-    step.start = grow * step.start;
-    step.free = step.free * step.free;
-    h *= 2.0;
-  }
-  return step;
+  if (size <= kClosedFormSize) return taylor_step(omega_rad_s, damping_ratio, tau_s, size);
+  if (damping_ratio <= 2.0) return closed_step(omega_rad_s, damping_ratio, tau_s);
+  return overdamped_step(omega_rad_s, damping_ratio, tau_s);
 }
 
 }  // namespace pounding::solvers

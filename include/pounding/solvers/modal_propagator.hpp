@@ -15,9 +15,10 @@ struct OscillatorStep {
   Eigen::Vector2d slope;   // response to a unit load rate s
 };
 
-/// The oscillator's step over τ (s). Exact to a few units of round-off: a Taylor series (with
-/// scaling and squaring for a strongly overdamped mode) where the closed form would cancel
-/// (ωτ small), the closed form elsewhere. @pre ω > 0, ζ ≥ 0, τ ≥ 0.
+/// The oscillator's step over τ (s), exact to round-off (1e-13 relative, tests/solvers/
+/// test_modal_exact.cpp): a Taylor series where the closed form would cancel (ωτ small), the
+/// closed form (ζ ≤ 2) or the spectral form of two real modes (ζ > 2) elsewhere.
+/// @pre ω > 0, ζ ≥ 0, τ ≥ 0.
 OscillatorStep oscillator_step(double omega_rad_s, double damping_ratio, double tau_s);
 
 }  // namespace pounding::solvers
