@@ -740,7 +740,8 @@ bool EventDrivenRun::step_once() {
   if (const std::optional<Hidden> hidden = hidden_contact(t, y)) {
     ++result_.statistics.interpolant_events;
     VectorXd y_event = interpolated(hidden->t_s);
-    recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power);
+    recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power,
+                      integrator_->energy_between(prev_t_, hidden->t_s));
     integrate_contacts(prev_t_, hidden->t_s, y_event);
     if (compliant()) {
       handle_compliant_event(hidden->t_s, y_event, {hidden->candidate}, {}, {});
@@ -750,7 +751,7 @@ bool EventDrivenRun::step_once() {
     restart(hidden->t_s, y_event);
     return !stop_;
   }
-  recorder_.advance(prev_t_, t, y, interpolated, power);
+  recorder_.advance(prev_t_, t, y, interpolated, power, integrator_->energy_between(prev_t_, t));
   integrate_contacts(prev_t_, t, y);
 
   if (outcome.kind == StepKind::root) {

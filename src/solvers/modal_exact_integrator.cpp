@@ -214,6 +214,34 @@ StepOutcome ModalExactIntegrator::step(double t_final) {
   return {StepKind::stop_time, t_end, {}};
 }
 
+ModalExactIntegrator::ModalState ModalExactIntegrator::modal_in_step(double t) {
+  if (t == segment_.t_start_s) return segment_.start;
+  if (t == end_t_s_) return end_;
+  return modal_at(t);
+}
+
+std::optional<StretchEnergy> ModalExactIntegrator::energy_between(double t_a, double t_b) {
+  if (held_phase_) return std::nullopt;
+  const ModalState a = modal_in_step(t_a), b = modal_in_step(t_b);
+  const double accel_a = segment_.accel_mps2 + segment_.slope_mps3 * (t_a - segment_.t_start_s);
+  const double accel_b = segment_.accel_mps2 + segment_.slope_mps3 * (t_b - segment_.t_start_s);
+  StretchEnergy energy;
+  for (Eigen::Index k = 0; k < omega_.size(); ++k) {
+    const double w = omega_[k], gamma = participation_[k];
+    const double load_a = -gamma * accel_a, load_b = -gamma * accel_b, load_rate = -gamma * segment_.slope_mps3;
+    const double d_eta = b.eta[k] - a.eta[k], d_rate = b.eta_rate[k] - a.eta_rate[k];
+    // ω² ∫η = ∫p − Δη̇ − 2ζω Δη, from integrating η̈ + 2ζω η̇ + ω² η = p over the stretch.
+    const double eta_integral =
+        (0.5 * (load_a + load_b) * (t_b - t_a) - d_rate - 2.0 * damping_ratio_[k] * w * d_eta) / (w * w);
+    const double input = load_b * b.eta[k] - load_a * a.eta[k] - load_rate * eta_integral;
+    const double stored_change = 0.5 * (b.eta_rate[k] * b.eta_rate[k] - a.eta_rate[k] * a.eta_rate[k]) +
+                                 0.5 * w * w * (b.eta[k] * b.eta[k] - a.eta[k] * a.eta[k]);
+    energy.input_kJ += input;
+    energy.damping_kJ += input - stored_change;
+  }
+  return energy;
+}
+
 void ModalExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
   if (held_phase_) {
     held_->interpolate(t, y);

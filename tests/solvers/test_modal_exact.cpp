@@ -163,7 +163,14 @@ void check_against_state_space(const std::string& file, const io::SceneOverrides
   BOOST_TEST(fast <= 3e-12);
   BOOST_TEST(before <= 2e-11);
   BOOST_TEST(after <= 1e-9);
-  BOOST_TEST(std::abs(modal.energy.residual_kJ()) <= 1e-6 * modal.energy.input_kJ);
+  // Free flight's energy integrals are closed forms in modal coordinates: the balance closes to
+  // round-off plus the held stretches' tolerance (the Gauss quadrature left 2.5e-10 on the paper
+  // scene), and the input is the state-space path's to its quadrature error.
+  const solvers::EnergyAudit &e = modal.energy, &reference = state_space.energy;
+  BOOST_TEST_MESSAGE("energy residual " << e.residual_kJ() / e.input_kJ << " of the input; input differs by "
+                                        << (e.input_kJ - reference.input_kJ) / reference.input_kJ);
+  BOOST_TEST(std::abs(e.residual_kJ()) <= 1e-10 * e.input_kJ);
+  BOOST_TEST(std::abs(e.input_kJ - reference.input_kJ) <= 1e-11 * reference.input_kJ);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // the functions of the current contact phase; the integrator steps, finds roots, interpolates.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,12 @@ struct StepOutcome {
 struct IntegratorCounters {
   long steps = 0, rhs_evaluations = 0, root_evaluations = 0, jacobian_evaluations = 0,
        error_test_failures = 0;
+};
+
+/// Work on the relative motion over a stretch of a step (kJ).
+struct StretchEnergy {
+  double input_kJ = 0.0;    // ∫ −q̇ᵀ M r a_g dt
+  double damping_kJ = 0.0;  // ∫ q̇ᵀ C q̇ dt
 };
 
 /// The contract below is checked for every implementation by tests/solvers/
@@ -68,6 +75,10 @@ class Integrator {
   /// evaluated (the exact path diagonalises J and evaluates the forcing there): right after
   /// restart() no step and no error test failure is counted.
   virtual IntegratorCounters counters() = 0;
+  /// The ground motion's input and the damping's dissipation over [t_a, t_b] within the last
+  /// step, where the integrator has them in closed form (the exact path's free flight, in which
+  /// no contact force acts); empty: the caller integrates them on the interpolant.
+  virtual std::optional<StretchEnergy> energy_between(double /*t_a*/, double /*t_b*/) { return std::nullopt; }
 };
 
 }  // namespace pounding::solvers

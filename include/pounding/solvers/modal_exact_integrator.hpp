@@ -22,6 +22,7 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "pounding/dynamics/coupled_system.hpp"
@@ -50,6 +51,11 @@ class ModalExactIntegrator final : public Integrator {
   void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
   std::vector<int> roots_found() override { return held_phase_ ? held_->roots_found() : roots_found_; }
   IntegratorCounters counters() override { return held_phase_ ? held_->counters() : counters_; }
+  /// Free flight: per mode, with the load p = −Γ a_g linear in t, the input ∫p η̇ dt =
+  /// [p η] − ṗ ∫η dt, where ∫η dt follows from the oscillator's equation, and the damping's
+  /// dissipation is the input less the change of ½(η̇² + ω²η²): exact, no quadrature.
+  /// Held stretches: empty. @pre t_a ≤ t_b within the last step.
+  std::optional<StretchEnergy> energy_between(double t_a, double t_b) override;
 
  private:
   /// Modal displacements and rates of both buildings (building 1's modes first).
@@ -71,6 +77,8 @@ class ModalExactIntegrator final : public Integrator {
   void begin_segment(double t, double t_end);
   const std::vector<OscillatorStep>& steps_over(double tau_s);
   ModalState modal_at(double t);
+  /// modal_at, reusing the step's start and end states.
+  ModalState modal_in_step(double t);
   void physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const;
   /// y at the contact floors only (the other components NaN), for the root functions.
   const Eigen::VectorXd& contact_state(const ModalState& modal);

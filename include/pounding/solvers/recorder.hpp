@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/run_result.hpp"
 #include "pounding/solvers/run_sink.hpp"
 
@@ -29,11 +30,13 @@ class Recorder {
   /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns and whose end
   /// state is `y_b`: history samples that fall inside, the peaks (turning points inside located
   /// on `at` to round-off, so a peak does not depend on where the steps end), and the energy
-  /// integrals (3-point Gauss–Legendre). `constraint_power(t, y)` is the power of
-  /// sustained-contact forces (kW).
+  /// integrals (3-point Gauss–Legendre, or `closed_form` when given: the integrator's own, for a
+  /// stretch without contact forces). `constraint_power(t, y)` is the power of sustained-contact
+  /// forces (kW).
   void advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                const std::function<dynamics::VectorXd(double)>& at,
-               const std::function<double(double, const dynamics::VectorXd&)>& constraint_power);
+               const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
+               const std::optional<StretchEnergy>& closed_form = std::nullopt);
   void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
   /// Passes the impacts appended to `impacts` since the last call to the sink (if any). Call it
   /// once an event's records are final.
