@@ -250,4 +250,20 @@ void ModalExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) 
   }
 }
 
+
+void ModalExactIntegrator::interpolate_components(double t, const std::vector<int>& indices,
+                                                  Eigen::Ref<Eigen::VectorXd> y) {
+  if (held_phase_) return held_->interpolate(t, y);
+  const ModalState modal = modal_at(t);
+  const int n = system_.dof();
+  for (int index : indices) {
+    const bool rate = index >= n;
+    const int dof = rate ? index - n : index;
+    const int b = dof >= dof_offset_[1] ? 1 : 0;
+    const int size = bases_[b].size();
+    const Eigen::VectorXd& coordinates = rate ? modal.eta_rate : modal.eta;
+    y[index] = bases_[b].shapes.row(dof - dof_offset_[b]).dot(coordinates.segment(mode_offset_[b], size));
+  }
+}
+
 }  // namespace pounding::solvers

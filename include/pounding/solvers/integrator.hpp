@@ -65,6 +65,12 @@ class Integrator {
   /// end it is state(). @pre t within the last step: outside it CVODE and ARKODE throw
   /// std::runtime_error (their BAD_T flag), the exact path's free flight extends its closed form.
   virtual void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) = 0;
+  /// interpolate() where only the components `indices` of y are needed (the others may be
+  /// overwritten or left as they are). An integrator that evaluates part of its state for less
+  /// overrides it (the exact path: O(modes) a component instead of O(n²) for the whole state).
+  virtual void interpolate_components(double t, const std::vector<int>& /*indices*/, Eigen::Ref<Eigen::VectorXd> y) {
+    interpolate(t, y);
+  }
   /// Per root component: −1 if it went from > 0 to ≤ 0 at the last root return, else 0. Only
   /// such closing crossings end a step (an opening one never does). Crossings are listed
   /// together only when they coincide to the root finder's round-off; two that coincide only

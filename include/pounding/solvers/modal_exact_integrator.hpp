@@ -49,6 +49,7 @@ class ModalExactIntegrator final : public Integrator {
   StepOutcome step(double t_final) override;
   const Eigen::VectorXd& state() const override { return held_phase_ ? held_->state() : state_; }
   void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
+  void interpolate_components(double t, const std::vector<int>& indices, Eigen::Ref<Eigen::VectorXd> y) override;
   std::vector<int> roots_found() override { return held_phase_ ? held_->roots_found() : roots_found_; }
   IntegratorCounters counters() override { return held_phase_ ? held_->counters() : counters_; }
   /// Free flight: per mode, with the load p = −Γ a_g linear in t, the input ∫p η̇ dt =
