@@ -11,26 +11,27 @@ constexpr double kClosedFormSize = 0.25;
 
 /// e^X, φ₁(X) e₂ τ and φ₂(X) e₂ τ² with X = Fτ by their series, for ‖X‖ = `size` ≤
 /// kClosedFormSize in the balanced norm ωτ(1 + 2ζ): summed until the next term is below 2⁻⁵⁶.
+/// By Cayley–Hamilton Xʲ = aⱼ I + bⱼ X with a scalar recurrence, so each series is two scalar sums.
 OscillatorStep taylor_step(double omega, double zeta, double tau, double size) {
-  Eigen::Matrix2d x;
-  x << 0.0, tau, -omega * omega * tau, -2.0 * zeta * omega * tau;
-  OscillatorStep step;
-  Eigen::Matrix2d term = Eigen::Matrix2d::Identity();  // Xʲ/j!
-  step.free = term;
-  Eigen::Vector2d column = term.col(1);  // Xʲ e₂ / j!
-  step.start = column;
-  step.slope = column / 2.0;
-  double remainder = 1.0;  // sizeʲ/(j + 1)!: bounds the balanced norm of the terms after the j-th
-  for (int j = 1; remainder > 0x1p-56; ++j) {
-    remainder *= size / double(j + 1);
-    term = term * x / double(j);
-    column = term.col(1);
-    step.free += term;
-    step.start += column / double(j + 1);
-    step.slope += column / double((j + 1) * (j + 2));
+  const double trace = -2.0 * zeta * omega * tau, det = omega * omega * tau * tau;
+  double a = 1.0, b = 0.0;  // Xʲ/j! = a I + b X
+  double a0 = 0.0, b0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;  // e^X, φ₁(X), φ₂(X) as (a, b)
+  double remainder = 1.0;  // size^(j+1)/(j + 1)!: bounds the balanced norm of the next term
+  for (int j = 0;; ++j) {
+    const double to_phi1 = 1.0 / double(j + 1), to_phi2 = to_phi1 / double(j + 2);  // j!/(j+1)!, j!/(j+2)!
+    a0 += a, b0 += b;
+    a1 += a * to_phi1, b1 += b * to_phi1;
+    a2 += a * to_phi2, b2 += b * to_phi2;
+    remainder *= size * to_phi1;
+    if (remainder <= 0x1p-56) break;
+    const double next_a = -det * b * to_phi1;  // X^{j+1} = −det bⱼ I + (aⱼ + tr bⱼ) X
+    b = (a + trace * b) * to_phi1;
+    a = next_a;
   }
-  step.start *= tau;
-  step.slope *= tau * tau;
+  OscillatorStep step;
+  step.free << a0, b0 * tau, -b0 * omega * omega * tau, a0 + trace * b0;
+  step.start << tau * tau * b1, tau * (a1 + trace * b1);  // τ φ₁(X) e₂, X e₂ = (τ, tr)
+  step.slope << tau * tau * tau * b2, tau * tau * (a2 + trace * b2);
   return step;
 }
 
