@@ -109,35 +109,43 @@ void ModalExactIntegrator::begin_segment(double t, double t_end) {
   segment_.accel_mps2 = system_.ground_motion().accel_at(t);
 }
 
-const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(double tau_s) {
+const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(double tau_s, Buildings buildings) {
   // Most recently used first: the step length, then the recorder's Gauss points inside it.
-  for (std::size_t k = 0; k < cache_.size(); ++k) {
-    if (cache_[k].tau_s != tau_s) continue;
-    std::rotate(cache_.begin(), cache_.begin() + static_cast<std::ptrdiff_t>(k), cache_.begin() + static_cast<std::ptrdiff_t>(k) + 1);
-    return cache_.front().steps;
+  auto slot = std::find_if(cache_.begin(), cache_.end(), [&](const CachedSteps& c) { return c.tau_s == tau_s; });
+  if (slot == cache_.end()) {
+    slot = cache_.end() - 1;  // the least recently used
+    slot->tau_s = tau_s;
+    slot->filled = {false, false};
+    slot->steps.resize(static_cast<std::size_t>(omega_.size()));
   }
-  std::rotate(cache_.rbegin(), cache_.rbegin() + 1, cache_.rend());  // the least recently used goes first
-  CachedSteps& slot = cache_.front();
-  slot.tau_s = tau_s;
-  slot.steps.resize(static_cast<std::size_t>(omega_.size()));
-  for (Eigen::Index k = 0; k < omega_.size(); ++k) {
-    slot.steps[static_cast<std::size_t>(k)] = oscillator_step(omega_[k], damping_ratio_[k], tau_s);
+  std::rotate(cache_.begin(), slot, slot + 1);
+  CachedSteps& entry = cache_.front();
+  for (int b = 0; b < 2; ++b) {
+    if (!buildings[b] || entry.filled[b]) continue;
+    for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
+      entry.steps[static_cast<std::size_t>(k)] = oscillator_step(omega_[k], damping_ratio_[k], tau_s);
+    }
+    entry.filled[b] = true;
   }
-  return slot.steps;
+  return entry.steps;
 }
 
-ModalExactIntegrator::ModalState ModalExactIntegrator::modal_at(double t) {
+ModalExactIntegrator::ModalState ModalExactIntegrator::modal_at(double t, Buildings buildings) {
   const double tau = t - segment_.t_start_s;
-  const std::vector<OscillatorStep>& steps = steps_over(tau);
+  const std::vector<OscillatorStep>& steps = steps_over(tau, buildings);
   const Eigen::Index n = omega_.size();
-  ModalState modal{Eigen::VectorXd(n), Eigen::VectorXd(n)};
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const OscillatorStep& s = steps[static_cast<std::size_t>(k)];
-    // The modal load is −Γ a_g(t) = −Γ (accel + slope τ).
-    const Eigen::Vector2d x = s.free * Eigen::Vector2d(segment_.start.eta[k], segment_.start.eta_rate[k]) -
-                              participation_[k] * (s.start * segment_.accel_mps2 + s.slope * segment_.slope_mps3);
-    modal.eta[k] = x[0];
-    modal.eta_rate[k] = x[1];
+  ModalState modal{Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN()),
+                   Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN())};
+  for (int b = 0; b < 2; ++b) {
+    if (!buildings[b]) continue;
+    for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
+      const OscillatorStep& s = steps[static_cast<std::size_t>(k)];
+      // The modal load is −Γ a_g(t) = −Γ (accel + slope τ).
+      const Eigen::Vector2d x = s.free * Eigen::Vector2d(segment_.start.eta[k], segment_.start.eta_rate[k]) -
+                                participation_[k] * (s.start * segment_.accel_mps2 + s.slope * segment_.slope_mps3);
+      modal.eta[k] = x[0];
+      modal.eta_rate[k] = x[1];
+    }
   }
   return modal;
 }
@@ -254,8 +262,10 @@ void ModalExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) 
 void ModalExactIntegrator::interpolate_components(double t, const std::vector<int>& indices,
                                                   Eigen::Ref<Eigen::VectorXd> y) {
   if (held_phase_) return held_->interpolate(t, y);
-  const ModalState modal = modal_at(t);
   const int n = system_.dof();
+  Buildings needed{false, false};  // a floor's peak needs its own building's modes only
+  for (int index : indices) needed[(index >= n ? index - n : index) >= dof_offset_[1] ? 1 : 0] = true;
+  const ModalState modal = modal_at(t, needed);
   for (int index : indices) {
     const bool rate = index >= n;
     const int dof = rate ? index - n : index;

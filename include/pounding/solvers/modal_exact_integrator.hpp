@@ -69,15 +69,18 @@ class ModalExactIntegrator final : public Integrator {
     ModalState start;
     double accel_mps2 = 0.0, slope_mps3 = 0.0;
   };
-  /// Every mode's OscillatorStep over one τ.
+  /// Every mode's OscillatorStep over one τ, filled per building as asked for.
   struct CachedSteps {
     double tau_s = -1.0;
+    std::array<bool, 2> filled{false, false};
     std::vector<OscillatorStep> steps;
   };
+  using Buildings = std::array<bool, 2>;  // which buildings' modes to evaluate
 
   void begin_segment(double t, double t_end);
-  const std::vector<OscillatorStep>& steps_over(double tau_s);
-  ModalState modal_at(double t);
+  const std::vector<OscillatorStep>& steps_over(double tau_s, Buildings buildings);
+  /// The modes of `buildings` at t within the current step (the others NaN).
+  ModalState modal_at(double t, Buildings buildings = {true, true});
   /// modal_at, reusing the step's start and end states.
   ModalState modal_in_step(double t);
   void physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const;
