@@ -151,7 +151,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m,
                                                          .restitution = command.restitution,
                                                          .contact_law = command.contact_law,
-                                                         .contact_stiffness_kN_per_m = command.contact_stiffness_kN_per_m,
+                                                         .contact_stiffness = command.contact_stiffness,
                                                          .record = command.record});
   try {
     apply_run_options(command, scene.solver);
@@ -214,16 +214,29 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
                at_reference(r.history_u_at_reference, e.history_u_m), e.history_v_m, e.history_phi_rad,
                r.status == "completed" ? "" : "  " + r.status);
   };
+  bool ladder_started = false;
+  auto print_stiffness_row = [&](const analysis::StiffnessRow& r) {
+    if (!ladder_started) {
+      fmt::print("Contact-stiffness ladder: each compliant law on each method that runs it, at most {} s a run\n",
+                 options.stiffness_run_limit_s);
+      fmt::print("{:<10} {:<12} {:>10} {:<9} {:>9} {:>8} {:>9} {:>7} {:>7} {:>12}\n", "law", "method", "stiffness",
+                 "unit", "run [s]", "steps", "rhs", "Jac", "impacts", "peak F [kN]");
+      ladder_started = true;
+    }
+    fmt::print("{:<10} {:<12} {:>10.3g} {:<9} {:>9.4f} {:>8} {:>9} {:>7} {:>7} {:>12.4g}{}\n", r.law, r.method,
+               r.stiffness, r.stiffness_unit, r.run_time_s, r.steps, r.rhs_evaluations, r.jacobian_evaluations,
+               r.impacts, r.peak_force_kN, r.status == "completed" ? "" : "  " + r.status);
+  };
   const InterruptRequests interrupts;
-  const analysis::StudyResult study = analysis::run_study(scene, options, print_row);
+  const analysis::StudyResult study = analysis::run_study(scene, options, print_row, print_stiffness_row);
   io::write_study(study, provenance, folder);
   if (study.interrupted) {
-    fmt::print("Interrupted after {} of the study's runs; wrote them to {}/study.csv and study.json\n",
-               study.rows.size(), folder);
+    fmt::print("Interrupted after {} of the study's runs; wrote them to {}/study.csv, stiffness.csv and study.json\n",
+               study.rows.size() + study.stiffness_rows.size(), folder);
     return 3;
   }
   fmt::print("Reference: exact path, {} impacts, {:.3f} s; its own error estimate (against held stretches at "
-             "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv and study.json; "
+             "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv, stiffness.csv and study.json; "
              "draw them with tools/plot_study.py {}\n",
              study.reference.impacts.size(), study.reference_run_time_s, study.reference_error.impact_time_all_s,
              study.reference_error.history_u_m, folder, folder);
@@ -272,8 +285,9 @@ int run_check(const CheckCommand& command) {
   print_excitation(scene, motion);
   const std::string law = scene.contact.law == "impulse"
                               ? std::string()
-                              : fmt::format(", law {} (stiffness {} kN/m)", scene.contact.law,
-                                            scene.contact.used_stiffness_kN_per_m());
+                              : fmt::format(", law {} (stiffness {} {})", scene.contact.law,
+                                            scene.contact.used_stiffness(),
+                                            analysis::contact_law_info(scene.contact.law).stiffness_unit);
   fmt::print("Contact: gap {} m, restitution k = {}{}\n", scene.contact.gap_m, scene.contact.restitution, law);
   const auto candidates = analysis::scene_candidates(scene);
   fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
@@ -308,7 +322,10 @@ int run_methods(const MethodsCommand& command) {
   }
   fmt::print("\nContact laws ([contact] law, --contact-law):\n");
   for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
-    const std::string keys = law.keys.empty() ? "no keys" : fmt::format("{}", fmt::join(law.keys, ", "));
+    const std::string keys = law.stiffness_key.empty()
+                                 ? "no keys"
+                                 : fmt::format("{} ({}, default {:g}: {})", law.stiffness_key, law.stiffness_unit,
+                                               law.default_stiffness, law.stiffness_source);
     const std::string runs = law.methods.empty() ? "every method" : fmt::format("{}", fmt::join(law.methods, ", "));
     fmt::print("{:<12} {}\n{:<12} uses {}; runs on {}\n", law.name, law.description, "", keys, runs);
   }

@@ -32,7 +32,7 @@ struct RunCommand {
   std::optional<double> gap_m;
   std::optional<double> restitution;
   std::optional<std::string> contact_law;
-  std::optional<double> contact_stiffness_kN_per_m;
+  std::optional<double> contact_stiffness;  // in the law's unit (contact_laws.hpp)
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
   std::optional<int> order;
@@ -74,7 +74,19 @@ struct GapCommand {
   std::string out_dir;   // empty: out/<scene name>-gap (out/<scene name>-records with --records)
 };
 
+struct SweepCommand {
+  std::string sweep_file;
+  std::optional<int> workers;  // LocalCluster processes; unset: every core
+  bool serial = false;         // no Dask: the runs one after another in the interpreter
+  std::string scheduler;       // a running Dask scheduler's address; empty: a LocalCluster
+  std::string out_dir;         // empty: the sweep file's `out`, else out/<sweep file name>
+  bool no_progress = false;
+};
+
 int run_gap(const GapCommand& command, const std::string& command_line);  // in gap_command.cpp
+/// Replaces the process by `python3 -m pounding.sweep` (its exit code is the command's).
+/// @throws InputError when the interpreter or the module is missing.
+int run_sweep(const SweepCommand& command);  // in sweep_command.cpp
 int run_modes(const ModesCommand& command);
 int run_study(const StudyCommand& command, const std::string& command_line);
 int run_run(const RunCommand& command, const std::string& command_line);

@@ -73,8 +73,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
   run_app->add_option("--contact-law", run.contact_law, pounding::analysis::contact_laws_help());
-  run_app->add_option("--contact-stiffness", run.contact_stiffness_kN_per_m,
-                      "kelvin: contact spring stiffness (kN/m; default 93500, Jankowski 2005)");
+  run_app->add_option("--contact-stiffness", run.contact_stiffness, pounding::analysis::contact_stiffness_help());
   add_record_options(*run_app, run.record);
   using pounding::analysis::option_help;
   using pounding::analysis::Setting;
@@ -127,6 +126,22 @@ int main(int argc, char** argv) {
   gap_app->add_option("--out", gap.out_dir,
                       "Output folder (default out/<scene name>-gap, or out/<scene name>-records with --records)");
 
+  pounding::cli::SweepCommand sweep;
+  CLI::App* sweep_app = app.add_subcommand(
+      "sweep", "Runs of every scene x record x gap x restitution x method x contact law of a sweep file, on Dask "
+               "(python3 -m pounding.sweep), into one table; a sweep started again skips the runs done");
+  sweep_app->add_option("sweep_file", sweep.sweep_file, "Sweep file (TOML)")->required();
+  CLI::Option* workers = sweep_app->add_option("--workers", sweep.workers,
+                                               "Worker processes of a LocalCluster (default: every core)")
+                             ->check(CLI::Range(1, 4096));
+  CLI::Option* serial =
+      sweep_app->add_flag("--serial", sweep.serial, "No Dask: the runs one after another in one process")
+          ->excludes(workers);
+  sweep_app->add_option("--scheduler", sweep.scheduler, "Address of a running Dask scheduler (tcp://HOST:8786)")
+      ->excludes(workers)->excludes(serial);
+  sweep_app->add_option("--out", sweep.out_dir, "Output folder (default: the file's out, else out/<sweep file name>)");
+  sweep_app->add_flag("--no-progress", sweep.no_progress, "No progress bar");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -141,6 +156,7 @@ int main(int argc, char** argv) {
     if (*run_app) return pounding::cli::run_run(run, command_line);
     if (*study_app) return pounding::cli::run_study(study, command_line);
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);
+    if (*sweep_app) return pounding::cli::run_sweep(sweep);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

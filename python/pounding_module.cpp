@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/analysis/methods.hpp"
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/analysis/needed_gap.hpp"
@@ -24,6 +25,7 @@
 #include "pounding/io/impact_schema.hpp"
 #include "pounding/io/json_report.hpp"
 #include "pounding/io/provenance.hpp"
+#include "pounding/io/record_list.hpp"
 #include "pounding/io/run_report.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "pounding/io/scene_reader.hpp"
@@ -84,12 +86,14 @@ Scene with_restitution(Scene scene, double restitution) {
   return scene;
 }
 
-/// excitation::with_record(), as `run --record ...` applies it, then the record read once so that
-/// a record that cannot be read or scales beyond 10 g is refused now (io::read_scene does the same).
-Scene with_record(Scene scene, const pounding::excitation::RecordChoice& choice) {
+/// excitation::with_record(), as `run --record ...` applies it, then (`read`) the record read once
+/// so that a record that cannot be read or scales beyond 10 g is refused now (io::read_scene does
+/// the same). Without `read` only the choice and the file's existence are checked, as a record
+/// list's line is (a sweep checks its records so, and leaves reading them to its runs).
+Scene with_record(Scene scene, const pounding::excitation::RecordChoice& choice, bool read) {
   try {
     scene.excitation = pounding::excitation::with_record(scene.excitation, choice);
-    pounding::excitation::load_ground_motion(scene.excitation);
+    if (read) pounding::excitation::load_ground_motion(scene.excitation);
   } catch (const InputError& error) {
     rethrow_in_scene(error, scene);
   }
@@ -134,11 +138,11 @@ void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis:
   throw std::logic_error("the Python module cannot set " + key + " yet (python/pounding_module.cpp, set_setting)");
 }
 
-/// `pounding run` without files: the method and settings replace the scene's (as the options do
-/// in cli::apply_run_options), the scene is checked, then run with the GIL released.
+/// The scene with the method and settings replacing its own (as the options do in
+/// cli::apply_run_options), checked, the contact law against the method too (as run_scene does):
+/// what run() runs.
 /// @pre every key of `settings` is a [solver] key (the Python layer refuses others by name).
-Run run(Scene scene, const std::optional<std::string>& method, const py::dict& settings,
-        const pounding::analysis::RunLimits& limits) {
+Scene with_solver(Scene scene, const std::optional<std::string>& method, const py::dict& settings) {
   try {
     if (method) scene.solver = pounding::analysis::with_method(scene.solver, *method);
     for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
@@ -146,6 +150,20 @@ Run run(Scene scene, const std::optional<std::string>& method, const py::dict& s
       if (settings.contains(key)) set_setting(scene.solver, spec.id, settings[key]);
     }
     scene.validate();
+    pounding::analysis::require_supported(pounding::analysis::contact_law_info(scene.contact.law),
+                                          pounding::analysis::method_info(scene.solver.method));
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  return scene;
+}
+
+/// `pounding run` without files: with_solver(), the limits checked, then the run with the GIL
+/// released.
+Run run(Scene scene, const std::optional<std::string>& method, const py::dict& settings,
+        const pounding::analysis::RunLimits& limits) {
+  scene = with_solver(std::move(scene), method, settings);
+  try {
     limits.validate();
   } catch (const InputError& error) {
     rethrow_in_scene(error, scene);
@@ -203,6 +221,29 @@ py::array_t<double> touch_gap_table(const Gap& gap) {
                 [&](std::size_t r, std::size_t c) { return columns[c][r]; });
 }
 
+/// The records of a list file or folder (`pounding gap --records`, read by the same reader with the
+/// same errors), one dict each: name, source ("set.txt:12") and what the line chose, as
+/// Scene.with_record's arguments (file resolved against the list's folder; None: the scene's).
+py::list record_list(const Scene& scene, const std::filesystem::path& list_or_folder) {
+  py::list entries;
+  for (const pounding::analysis::RecordEntry& entry : pounding::io::read_record_list(list_or_folder, scene.excitation)) {
+    const pounding::excitation::RecordChoice& choice = entry.choice;
+    py::dict item;
+    item["name"] = entry.name;
+    item["source"] = entry.source;
+    item["file"] = choice.file ? py::cast(choice.file->string()) : py::none();
+    item["format"] = choice.format;
+    item["units"] = choice.units;
+    item["dt_s"] = choice.dt_s;
+    item["accel_column"] = choice.accel_column;
+    item["scale_factor"] = choice.scale_factor;
+    item["scale_to_pga_g"] = choice.pga_g;
+    item["direction_deg"] = choice.direction_deg;
+    entries.append(item);
+  }
+  return entries;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_pounding, m) {
@@ -220,6 +261,7 @@ PYBIND11_MODULE(_pounding, m) {
   });
 
   m.attr("__version__") = std::string(pounding::program_version());
+  m.attr("git_commit") = std::string(pounding::git_commit());  // as `pounding --version`; empty if unknown
   m.def("setting_keys", [] {
     std::vector<std::string> keys;
     for (const auto& spec : pounding::analysis::setting_specs()) keys.emplace_back(spec.key);
@@ -238,6 +280,7 @@ PYBIND11_MODULE(_pounding, m) {
       .def_property_readonly("gap_m", [](const Scene& s) { return s.contact.gap_m; })
       .def_property_readonly("restitution", [](const Scene& s) { return s.contact.restitution; })
       .def_property_readonly("method", [](const Scene& s) { return s.solver.method; })
+      .def_property_readonly("contact_law", [](const Scene& s) { return s.contact.law; })
       .def_property_readonly("record_file", [](const Scene& s) { return s.excitation.file; })
       .def("with_gap", &with_gap, py::arg("gap_m"))
       .def("with_restitution", &with_restitution, py::arg("restitution"))
@@ -246,20 +289,29 @@ PYBIND11_MODULE(_pounding, m) {
           [](const Scene& scene, std::filesystem::path file, std::optional<std::string> format,
              std::optional<std::string> units, std::optional<double> scale_factor,
              std::optional<double> scale_to_pga_g, std::optional<double> direction_deg,
-             std::optional<double> dt_s, std::optional<int> accel_column) {
-            return with_record(scene, {.file = std::move(file), .format = std::move(format), .units = std::move(units),
-                                       .dt_s = dt_s, .accel_column = accel_column, .scale_factor = scale_factor,
-                                       .pga_g = scale_to_pga_g, .direction_deg = direction_deg});
+             std::optional<double> dt_s, std::optional<int> accel_column, bool read) {
+            return with_record(scene,
+                               {.file = std::move(file), .format = std::move(format), .units = std::move(units),
+                                .dt_s = dt_s, .accel_column = accel_column, .scale_factor = scale_factor,
+                                .pga_g = scale_to_pga_g, .direction_deg = direction_deg},
+                               read);
           },
           py::arg("file"), py::arg("format"), py::arg("units"), py::arg("scale_factor"), py::arg("scale_to_pga_g"),
-          py::arg("direction_deg"), py::arg("dt_s"), py::arg("accel_column"));
+          py::arg("direction_deg"), py::arg("dt_s"), py::arg("accel_column"), py::arg("read"))
+      .def("_with_solver", &with_solver, py::arg("method"), py::arg("settings"));
 
   m.def(
       "load_scene",
-      [](const std::filesystem::path& file, std::optional<double> gap_m, std::optional<double> restitution) {
-        return pounding::io::read_scene(file, {.gap_m = gap_m, .restitution = restitution});
+      [](const std::filesystem::path& file, std::optional<double> gap_m, std::optional<double> restitution,
+         std::optional<std::string> contact_law, std::optional<double> contact_stiffness_kN_per_m) {
+        return pounding::io::read_scene(file, {.gap_m = gap_m,
+                                               .restitution = restitution,
+                                               .contact_law = std::move(contact_law),
+                                               .contact_stiffness_kN_per_m = contact_stiffness_kN_per_m});
       },
-      py::arg("file"), py::arg("gap_m"), py::arg("restitution"));
+      py::arg("file"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"),
+      py::arg("contact_stiffness_kN_per_m"));
+  m.def("record_list", &record_list, py::arg("scene"), py::arg("list_or_folder"));
 
   m.def("modes_json", [](const Scene& scene) {
     return pounding::io::modes_json(pounding::analysis::summarise_buildings(scene)).dump();

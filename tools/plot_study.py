@@ -10,6 +10,10 @@ fits without overlapping another; the subtitle names the processor and core coun
 were taken on, from machine.txt (written at study time by scripts/run-study.sh) or, without it,
 from /proc/cpuinfo at plot time, and says which.
 
+A second figure, stiffness.png (when the study ran the contact-stiffness ladder), shows per
+compliant law the steps and the run time of each event-driven method against the contact
+stiffness; a run that stopped (time_limit, ...) is marked with a cross and its status.
+
     tools/plot_study.py out/paper-study [--out study.png]
 """
 import argparse
@@ -73,6 +77,45 @@ def label_points(fig, axis, points):
     return dropped
 
 
+def plot_stiffness(study, style_of, folder: Path):
+    """steps and run time against contact stiffness, one column per compliant law; None if no ladder."""
+    ladder = study.get("stiffness_ladder", [])
+    if not ladder:
+        return None
+    laws = list(dict.fromkeys(r["law"] for r in ladder))
+    fig, axes = plt.subplots(2, len(laws), figsize=(max(4.6 * len(laws), 9.5), 7.5), squeeze=False)
+    for column, law in enumerate(laws):
+        mine = [r for r in ladder if r["law"] == law]
+        steps_axis, time_axis = axes[0][column], axes[1][column]
+        for method in dict.fromkeys(r["method"] for r in mine):
+            runs = sorted((r for r in mine if r["method"] == method), key=lambda r: r["stiffness"])
+            colour, marker = style_of.get(method, ("black", "."))
+            k = [r["stiffness"] for r in runs]
+            for axis, key in ((steps_axis, "steps"), (time_axis, "run_time_s")):
+                values = [max(float(r[key]), 1e-6) for r in runs]
+                axis.loglog(k, values, color=colour, marker=marker, ms=6, lw=1.2,
+                            label=method if column == 0 and axis is steps_axis else None)
+                for x, y, r in zip(k, values, runs):
+                    if r["status"] != "completed":
+                        axis.plot(x, y, "x", color="red", ms=10)
+                        axis.annotate(r["status"], (x, y), xytext=(4, 4), textcoords="offset points", fontsize=7,
+                                      color="red")
+        unit = mine[0]["stiffness_unit"]
+        steps_axis.set_title(f"{law}", fontsize=11)
+        steps_axis.set_ylabel("integrator steps")
+        time_axis.set_ylabel("run time [s] (median of the repeats)")
+        for axis in (steps_axis, time_axis):
+            axis.set_xlabel(f"contact stiffness [{unit}]")
+            axis.grid(True, which="both", alpha=0.25)
+    fig.legend(*axes[0][0].get_legend_handles_labels(), loc="lower center", ncol=4, fontsize=9, frameon=False)
+    fig.suptitle(f"What each event-driven method pays as the contact stiffens, '{study['scene']}' at gap "
+                 f"{study['gap_m']:g} m\n(red cross: the run stopped). Timed on {machine(folder)}", fontsize=9)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    out = folder / "stiffness.png"
+    fig.savefig(out, dpi=110)
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder", type=Path)
@@ -129,6 +172,9 @@ def main():
     out = args.out or args.folder / "work-precision.png"
     fig.savefig(out, dpi=110)
     print(f"Wrote {out}")
+    stiffness = plot_stiffness(study, style_of, args.folder)
+    if stiffness:
+        print(f"Wrote {stiffness}")
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@ returning Python objects and numpy arrays instead of files.
     result.status, len(result.impacts), result.impacts_array["impulse_kNs"].max()
     result.history["B1_f7_u_m"]            # numpy array over result.history["t_s"]
     pounding.needed_gap(scene).needed_gap_m
+    pounding.sweep("examples/sweep/sweep.toml", workers=2)   # many runs on Dask (pounding/sweep.py)
 
 Units are in the names (m, s, kNs, kJ), as in the command line's files. Bad input raises
 pounding.InputError (a ValueError) with the command line's message, naming file, key and value.
@@ -16,8 +17,8 @@ import json
 
 import numpy as np
 
-__all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "modes", "run", "needed_gap",
-           "methods", "settings", "__version__"]
+__all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "record_list", "modes", "run",
+           "needed_gap", "methods", "settings", "sweep", "__version__"]
 
 
 class InputError(ValueError):
@@ -40,28 +41,66 @@ Scene = _pounding.Scene
 
 
 def _with_record(self, file, format=None, units=None, scale_factor=None, scale_to_pga_g=None,
-                 direction_deg=None, dt_s=None, accel_column=None):
+                 direction_deg=None, dt_s=None, accel_column=None, read=True):
     """The scene under another record or scaling, as `pounding run --record FILE ...` applies it:
     every argument left None keeps the scene's value; a new file drops the old file's dt_s,
     columns and cut (the arguments may set dt_s and accel_column again); scale_factor and
     scale_to_pga_g each replace the scene's scaling. The record is read now, so an unreadable one
     raises here. The path is used as given (relative to the current folder).
-    Errors name the scene key (`excitation.scale_to_pga_g`, ...) that the argument sets."""
+    Errors name the scene key (`excitation.scale_to_pga_g`, ...) that the argument sets.
+    read=False checks the arguments and that the file exists without reading it (as a record list
+    is checked); the record is then read by the run."""
     return self._with_record(file, format, units, scale_factor, scale_to_pga_g, direction_deg, dt_s,
-                             accel_column)
+                             accel_column, read)
+
+
+def _check_settings(settings):
+    unknown = sorted(set(settings) - set(_pounding.setting_keys()))
+    if unknown:
+        raise TypeError(f"unknown settings {', '.join(unknown)}; "
+                        f"expected keywords among {', '.join(_pounding.setting_keys())}")
+
+
+def _with_method(self, method=None, **settings):
+    """The scene with `method` (None: its own) and [solver] settings by their registry names
+    replacing its own, checked as run() checks them (InputError naming `solver.<key>`): what
+    run(scene, method, **settings) runs."""
+    _check_settings(settings)
+    return self._with_solver(method, settings)
 
 
 Scene.with_record = _with_record
+Scene.with_method = _with_method
 Scene.__repr__ = lambda self: (f"<pounding.Scene {self.name!r}: gap {self.gap_m} m, restitution "
                                f"{self.restitution}, method {self.method}, record {str(self.record_file)!r}>")
 
 
-def load_scene(path, gap=None, restitution=None):
-    """Reads and validates a scene file, like `pounding check SCENE [--gap G] [--restitution K]`
-    (the same errors, the options named `--gap` and `--restitution`). Returns a Scene with
-    .name, .file, .gap_m, .restitution, .method, .record_file and the with_gap(m),
-    with_restitution(k), with_record(path, ...) copies."""
-    return _pounding.load_scene(path, gap, restitution)
+def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiffness_kN_per_m=None):
+    """Reads and validates a scene file, like `pounding run SCENE [--gap G] [--restitution K]
+    [--contact-law L] [--contact-stiffness S]` (the same errors, naming those options). Returns a
+    Scene with .name, .file, .gap_m, .restitution, .method, .contact_law, .record_file and the
+    with_gap(m), with_restitution(k), with_record(path, ...) copies."""
+    return _pounding.load_scene(path, gap, restitution, contact_law, contact_stiffness_kN_per_m)
+
+
+def record_list(scene, list_or_folder):
+    """The records of a list file or a folder of .AT2 files, as `pounding gap --records` reads them
+    for `scene` (the same errors, naming `list:line`, the field and its value): one dict each with
+    name, source ("set.txt:12") and the keywords of Scene.with_record (file, format, units, dt_s,
+    accel_column, scale_factor, scale_to_pga_g, direction_deg; None keeps the scene's), so that
+    scene.with_record(**{k: v for k, v in entry.items() if k not in ("name", "source")}) is the
+    scene under that record."""
+    return _pounding.record_list(scene, list_or_folder)
+
+
+def __getattr__(name):
+    """pounding.sweep, imported on first use: a module (`python3 -m pounding.sweep SWEEP.toml`)
+    that is also callable, pounding.sweep(SWEEP.toml, ...) being pounding.sweep.run_sweep. Not
+    imported with the package, so that `-m pounding.sweep` runs it once."""
+    if name == "sweep":
+        import importlib
+        return importlib.import_module(".sweep", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def methods():
@@ -148,10 +187,7 @@ def run(scene, method=None, max_steps=None, max_wall_time_s=None, max_history_va
     (--max-steps, --max-wall-time, --max-history-values). A setting the method does not use
     raises InputError naming it, as the command line refuses it. Releases the GIL while it runs.
     Returns a RunResult; a run that did not complete says so in .status, it does not raise."""
-    unknown = sorted(set(settings) - set(_pounding.setting_keys()))
-    if unknown:
-        raise TypeError(f"run() got unknown settings {', '.join(unknown)}; "
-                        f"expected keywords among {', '.join(_pounding.setting_keys())}")
+    _check_settings(settings)
     limits = _pounding.RunLimits()
     for name, value in (("max_steps", max_steps), ("max_wall_time_s", max_wall_time_s),
                         ("max_history_values", max_history_values)):

@@ -54,7 +54,7 @@ solvers::EventOptions event_options(const Scene& scene, const MethodInfo& method
   options.restitution = scene.contact.restitution;
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
   options.law = contact_law_info(scene.contact.law).law;
-  options.contact_stiffness_kN_per_m = scene.contact.used_stiffness_kN_per_m();
+  options.contact_stiffness = scene.contact.used_stiffness();
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
@@ -125,10 +125,8 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.contact_law = law.name;
-  if (law.law == contact::ContactLaw::kelvin) {
-    report.contact_stiffness_kN_per_m = scene.contact.used_stiffness_kN_per_m();
-    report.contact_damping_ratio = contact::kelvin_damping_ratio(scene.contact.restitution);
-  }
+  report.contact_stiffness = scene.contact.used_stiffness();
+  report.contact_damping = contact_damping(law, scene.contact.restitution);
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
   const std::string method(used.method->name);
   if (used.method->factory) {

@@ -24,6 +24,8 @@ constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
 // From a soft pad (1 kN/m) to far stiffer than concrete (1e12 kN/m: contact periods of
 // microseconds for floor masses of tonnes, below which no integrator resolves the contact).
 constexpr Range kContactStiffness{1.0, 1e12, "kN/m"};
+// The Hertz laws' k δ^(1/2) at 1 mm of overlap spans the same 1 to 1e12 kN/m within a factor 30.
+constexpr Range kHertzStiffness{1.0, 1e13, "kN/m^1.5"};
 
 void validate_gap(const std::string& key, double gap_m) { require_range(key, gap_m, kGap); }
 
@@ -38,12 +40,24 @@ void validate_contact(const ContactSettings& contact) {
   require_range("contact.hold_velocity_mps", contact.hold_velocity_mps, kHoldVelocity);
   require_range("contact.level_tolerance_m", contact.level_tolerance_m, kLevelTolerance);
   const ContactLawInfo& law = contact_law_info(contact.law);
-  if (contact.stiffness_kN_per_m) {
-    if (law.keys.empty()) {
-      throw InputError("contact.stiffness_kN_per_m", format_value(*contact.stiffness_kN_per_m),
-                       fmt::format("does not apply to law {} (it uses no stiffness)", law.name));
+  auto check_stiffness = [&](std::string_view key, const std::optional<double>& value, const Range& range) {
+    if (!value) return;
+    const std::string name = "contact." + std::string(key);
+    if (law.stiffness_key != key) {
+      throw InputError(name, format_value(*value),
+                       law.stiffness_key.empty()
+                           ? fmt::format("does not apply to law {} (it uses no stiffness)", law.name)
+                           : fmt::format("does not apply to law {}: its stiffness is {} ({})", law.name,
+                                         law.stiffness_key, law.stiffness_unit));
     }
-    require_range("contact.stiffness_kN_per_m", *contact.stiffness_kN_per_m, kContactStiffness);
+    require_range(name, *value, range);
+  };
+  check_stiffness("stiffness_kN_per_m", contact.stiffness_kN_per_m, kContactStiffness);
+  check_stiffness("stiffness_kN_per_m1_5", contact.stiffness_kN_per_m1_5, kHertzStiffness);
+  if (law.law == contact::ContactLaw::jankowski && contact.restitution == 0.0) {
+    throw InputError("contact.restitution", "0",
+                     "must be positive for law jankowski: its damping ratio 9 sqrt(5) (1 - e^2) / (2e (e (9 pi - 16) "
+                     "+ 16)) is infinite at e = 0 (use kelvin or hertzdamp for a plastic contact)");
   }
 }
 
@@ -106,8 +120,14 @@ void validate_pair(const Scene& scene) {
 
 }  // namespace
 
-double ContactSettings::used_stiffness_kN_per_m() const {
-  return stiffness_kN_per_m.value_or(contact_law_info(law).default_stiffness_kN_per_m);
+double ContactSettings::used_stiffness() const {
+  const ContactLawInfo& info = contact_law_info(law);
+  const std::optional<double>& given = info.stiffness_key == "stiffness_kN_per_m1_5" ? stiffness_kN_per_m1_5 : stiffness_kN_per_m;
+  return given.value_or(info.default_stiffness);
+}
+
+void ContactSettings::set_stiffness(double value) {
+  (contact_law_info(law).stiffness_key == "stiffness_kN_per_m1_5" ? stiffness_kN_per_m1_5 : stiffness_kN_per_m) = value;
 }
 
 void Scene::set_gap(double gap_m) {

@@ -66,6 +66,9 @@ void compare_peaks(const solvers::RunResult& a, const solvers::RunResult& b, Run
 void StudyOptions::validate() const {
   if (repeat < 1) throw InputError("--repeat", std::to_string(repeat), "must be at least 1");
   if (!(match_window_s > 0.0)) throw InputError("match_window_s", format_value(match_window_s), "must be positive (s)");
+  if (!(stiffness_run_limit_s > 0.0) || !std::isfinite(stiffness_run_limit_s)) {
+    throw InputError("stiffness_run_limit_s", format_value(stiffness_run_limit_s), "must be positive (s)");
+  }
 }
 
 RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunResult& run, double window_s) {
@@ -104,14 +107,66 @@ RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunRe
   return errors;
 }
 
+std::vector<double> stiffness_ladder(const ContactLawInfo& law, bool quick) {
+  if (law.stiffness_key.empty() || (quick && law.law != contact::ContactLaw::kelvin)) return {};
+  const std::vector<double> factors = quick ? std::vector<double>{1.0, 100.0} : std::vector<double>{0.1, 1, 10, 100, 1000};
+  std::vector<double> ladder;
+  for (double factor : factors) ladder.push_back(factor * law.default_stiffness);
+  return ladder;
+}
+
+namespace {
+
+/// The contact-stiffness ladder: each compliant law at each rung on each method that runs it,
+/// every run within options.stiffness_run_limit_s of wall time.
+template <class Timed>
+void add_stiffness_ladder(const Scene& scene, const StudyOptions& options, StudyResult& study, Timed& timed,
+                          const std::function<void(const StiffnessRow&)>& progress) {
+  const RunLimits limits{.max_wall_time_s = options.stiffness_run_limit_s};
+  for (const ContactLawInfo& law : contact_laws()) {
+    for (double stiffness : stiffness_ladder(law, options.quick)) {
+      for (std::string_view method : law.methods) {
+        if (solvers::interrupt_requested()) {
+          study.interrupted = true;
+          return;
+        }
+        Scene variant = scene;
+        variant.solver = with_method(scene.solver, method);
+        variant.solver.not_used.clear();
+        variant.contact.law = std::string(law.name);
+        variant.contact.stiffness_kN_per_m.reset();
+        variant.contact.stiffness_kN_per_m1_5.reset();
+        variant.contact.set_stiffness(stiffness);
+        StiffnessRow row;
+        row.law = law.name;
+        row.method = method;
+        row.stiffness = stiffness;
+        row.stiffness_unit = law.stiffness_unit;
+        const solvers::RunResult result = timed(variant, row.run_time_s, limits);
+        row.status = std::string(solvers::to_string(result.status));
+        row.steps = result.statistics.steps;
+        row.rhs_evaluations = result.statistics.rhs_evaluations;
+        row.jacobian_evaluations = result.statistics.jacobian_evaluations;
+        row.impacts = result.impacts.size();
+        for (const solvers::ImpactRecord& i : result.impacts) row.peak_force_kN = std::max(row.peak_force_kN, i.peak_force_kN);
+        if (progress) progress(row);
+        study.stiffness_rows.push_back(std::move(row));
+      }
+    }
+  }
+}
+
+}  // namespace
+
 StudyResult run_study(const Scene& scene, const StudyOptions& options,
-                      const std::function<void(const StudyRow&)>& progress) {
+                      const std::function<void(const StudyRow&)>& progress,
+                      const std::function<void(const StiffnessRow&)>& stiffness_progress) {
   options.validate();
-  auto timed = [&](Scene variant, double& run_time_s) {
+  auto timed = [&](Scene variant, double& run_time_s, const RunLimits& limits = {}) {
     std::vector<double> times;
     solvers::RunResult result;
     for (int i = 0; i < options.repeat; ++i) {
-      result = run_scene(variant).result;
+      result = run_scene(variant, limits).result;
       times.push_back(result.statistics.wall_time_s);
     }
     run_time_s = median(times);
@@ -173,6 +228,7 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options,
       }
     }
   }
+  add_stiffness_ladder(scene, options, study, timed, stiffness_progress);
   return study;
 }
 

@@ -5,14 +5,6 @@
 
 namespace pounding::contact {
 
-std::string_view to_string(ContactLaw law) {
-  switch (law) {
-    case ContactLaw::impulse: return "impulse";
-    case ContactLaw::kelvin: return "kelvin";
-  }
-  return "?";
-}
-
 double kelvin_damping_ratio(double restitution) {
   if (restitution <= 0.0) return 1.0;
   const double log_e = std::log(restitution);

@@ -93,7 +93,7 @@ void set_field(const ListLine& line, const std::string& field, const std::string
 /// `base` with `choice` applied; errors name the list line and the field.
 analysis::RecordEntry entry(const ListLine& line, const RecordChoice& choice, const excitation::ExcitationSpec& base) {
   try {
-    return {choice.file->filename().string(), line.where(), excitation::with_record(base, choice)};
+    return {choice.file->filename().string(), line.where(), excitation::with_record(base, choice), choice};
   } catch (const InputError& error) {
     const auto field = field_of_key().find(error.key());
     throw line.error(field != field_of_key().end() ? field->second : error.key(), error.value(), error.reason());

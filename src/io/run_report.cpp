@@ -6,6 +6,8 @@
 #include <iterator>
 #include <map>
 
+#include "pounding/analysis/contact_laws.hpp"
+
 namespace pounding::io {
 namespace {
 
@@ -105,11 +107,13 @@ std::string brief_report(const analysis::RunReport& report) {
 
 std::string full_report(const analysis::RunReport& report) {
   const solvers::RunResult& r = report.result;
-  const std::string law =
-      report.contact_law == "impulse"
-          ? std::string()
-          : fmt::format(", {} law k_c = {} kN/m, xi = {:.4g}", report.contact_law, report.contact_stiffness_kN_per_m,
-                        report.contact_damping_ratio);
+  const analysis::ContactLawInfo& info = analysis::contact_law_info(report.contact_law);
+  const std::string law = info.stiffness_key.empty()
+                              ? std::string()
+                              : fmt::format(", {} law k_c = {:.6g} {}, {} = {:.4g}", report.contact_law,
+                                            report.contact_stiffness, info.stiffness_unit,
+                                            info.damping_key == "damping_ratio" ? "xi" : "xi v0/k_h",
+                                            report.contact_damping);
   std::string text = fmt::format("Run '{}' with {} ({}), gap {} m, k = {}{}: {}{}\n", report.scene, r.method,
                                  method_settings_text(report), report.gap_m, report.restitution, law,
                                  solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");

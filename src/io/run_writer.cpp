@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <map>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/io/impact_schema.hpp"
 #include "pounding/io/json_report.hpp"
 #include "pounding/io/output_files.hpp"
@@ -107,9 +108,10 @@ json statistics_json(const solvers::SolverStatistics& s, const std::vector<conta
 /// The contact law and the parameters it ran with (impulse: none).
 json contact_law_json(const analysis::RunReport& report) {
   json law = {{"name", report.contact_law}};
-  if (report.contact_law != "impulse") {
-    law["stiffness_kN_per_m"] = report.contact_stiffness_kN_per_m;
-    law["damping_ratio"] = report.contact_damping_ratio;
+  const analysis::ContactLawInfo& info = analysis::contact_law_info(report.contact_law);
+  if (!info.stiffness_key.empty()) {
+    law[std::string(info.stiffness_key)] = report.contact_stiffness;
+    law[std::string(info.damping_key)] = report.contact_damping;
   }
   return law;
 }

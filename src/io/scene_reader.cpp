@@ -510,6 +510,7 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
   scene.contact.level_tolerance_m = contact.number_or("level_tolerance_m", scene.contact.level_tolerance_m);
   scene.contact.law = contact.optional_string("law").value_or(scene.contact.law);
   scene.contact.stiffness_kN_per_m = contact.optional_number("stiffness_kN_per_m");
+  scene.contact.stiffness_kN_per_m1_5 = contact.optional_number("stiffness_kN_per_m1_5");
   contact.finish();
   scene.solver = read_solver(root.optional_subtable("solver"));
   scene.output = read_output(root.optional_subtable("output"));
@@ -588,8 +589,8 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
     apply_option("--restitution", [&] { scene.contact.restitution = *overrides.restitution; });
   }
   if (overrides.contact_law) apply_option("--contact-law", [&] { scene.contact.law = *overrides.contact_law; });
-  if (overrides.contact_stiffness_kN_per_m) {
-    apply_option("--contact-stiffness", [&] { scene.contact.stiffness_kN_per_m = *overrides.contact_stiffness_kN_per_m; });
+  if (overrides.contact_stiffness) {
+    apply_option("--contact-stiffness", [&] { scene.contact.set_stiffness(*overrides.contact_stiffness); });
   }
   if (!overrides.record.empty()) apply_record(scene, overrides.record);
   return scene;

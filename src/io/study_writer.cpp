@@ -43,6 +43,26 @@ void write_study_csv(const analysis::StudyResult& study, std::ostream& out) {
   }
 }
 
+const char* kStiffnessCsvHeader =
+    "law,method,stiffness,stiffness_unit,status,run_time_s,steps,rhs_evaluations,jacobian_evaluations,impacts,"
+    "peak_force_kN\n";
+
+nlohmann::json stiffness_row_json(const analysis::StiffnessRow& row) {
+  return {{"law", row.law}, {"method", row.method}, {"stiffness", row.stiffness},
+          {"stiffness_unit", row.stiffness_unit}, {"status", row.status}, {"run_time_s", row.run_time_s},
+          {"steps", row.steps}, {"rhs_evaluations", row.rhs_evaluations},
+          {"jacobian_evaluations", row.jacobian_evaluations}, {"impacts", row.impacts},
+          {"peak_force_kN", row.peak_force_kN}};
+}
+
+void write_stiffness_csv(const analysis::StudyResult& study, std::ostream& out) {
+  out << kStiffnessCsvHeader;
+  for (const auto& r : study.stiffness_rows) {
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", r.law, r.method, r.stiffness, r.stiffness_unit, r.status,
+                       r.run_time_s, r.steps, r.rhs_evaluations, r.jacobian_evaluations, r.impacts, r.peak_force_kN);
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -63,6 +83,8 @@ nlohmann::json styles_json() {
 nlohmann::json study_json(const analysis::StudyResult& study) {
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& row : study.rows) rows.push_back(row_json(row));
+  nlohmann::json stiffness_rows = nlohmann::json::array();
+  for (const auto& row : study.stiffness_rows) stiffness_rows.push_back(stiffness_row_json(row));
   return {{"scene", study.scene},
           {"gap_m", study.gap_m},
           {"interrupted", study.interrupted},
@@ -76,6 +98,7 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
                                              {"missing", study.reference_error.missing},
                                              {"extra", study.reference_error.extra}}}}},
           {"rows", rows},
+          {"stiffness_ladder", stiffness_rows},
           {"styles", styles_json()}};
 }
 
@@ -85,6 +108,7 @@ void write_study(const analysis::StudyResult& study, const Provenance& provenanc
   document["provenance"] = provenance_json(provenance);
   write_json(document, folder / "study.json");
   write_atomically(folder / "study.csv", [&](std::ostream& out) { write_study_csv(study, out); });
+  write_atomically(folder / "stiffness.csv", [&](std::ostream& out) { write_stiffness_csv(study, out); });
 }
 
 }  // namespace pounding::io

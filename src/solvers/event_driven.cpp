@@ -51,7 +51,10 @@ void EventOptions::validate() const {
     throw InputError("steps_per_period", format_value(steps_per_period), "must be at least 1");
   }
   if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
-  if (law != contact::ContactLaw::impulse) positive(contact_stiffness_kN_per_m, "contact_stiffness_kN_per_m");
+  if (law != contact::ContactLaw::impulse) positive(contact_stiffness, "contact_stiffness");
+  if (law == contact::ContactLaw::jankowski && restitution == 0.0) {
+    throw InputError("restitution", "0", "must be positive for the jankowski law (its damping ratio is infinite at 0)");
+  }
   budget.validate();
   if (initial_state.size() != 0 && !initial_state.allFinite()) {
     throw InputError("initial_state", "", "must be finite");
@@ -63,9 +66,8 @@ namespace {
 using dynamics::VectorXd;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// compliant: a compliant law's force acts (δ > 0, F > 0). released: its force turned tensile
-// while the slabs still overlap; they fly apart until the gap opens (or the force would push
-// again).
+// compliant: a compliant law's force acts (δ > 0). released: its force turned tensile while the
+// slabs still overlap; they fly apart until the gap opens (or the force would push again).
 enum class Mode { armed, masked, held, compliant, released };
 
 /// Per candidate, the components of y its gap reads: (u, v, φ) of its two floors and their rates.
@@ -83,10 +85,10 @@ std::vector<std::vector<int>> gap_components(const dynamics::CoupledSystem& syst
   return components;
 }
 
-/// A compliant contact in progress: its record, its dashpot and the integrals over it.
+/// A compliant contact in progress: its law, its record and the integrals over it.
 struct OpenContact {
+  contact::CompliantContact law;
   ImpactRecord record;
-  double damping_kNs_per_m = 0.0;
   double work_kJ = 0.0;  // ∫F ġ dt: the contact's work on the slabs (−energy lost)
 };
 
@@ -117,7 +119,9 @@ class EventDrivenRun final : public OdeFunctions {
   void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
     system_.constrained_jacobian(y, held_, jac);
     for (std::size_t i : active_) {
-      system_.add_contact_force_jacobian(y, i, options_.contact_stiffness_kN_per_m, open_[i]->damping_kNs_per_m, jac);
+      const contact::GapState s = system_.gap(y, i);
+      const contact::ForceSlopes slopes = open_[i]->law.slopes(-s.gap_m, -s.gap_rate_mps);
+      system_.add_contact_force_jacobian(y, i, slopes.per_overlap_kN_per_m, slopes.per_rate_kNs_per_m, jac);
     }
   }
 
@@ -132,17 +136,20 @@ class EventDrivenRun final : public OdeFunctions {
       if (modes_[i] == Mode::armed) g[i] = system_.gap(y, i).gap_m;
       if (modes_[i] == Mode::masked && mask_floor_m_[i] > -kInfinity) g[i] = system_.gap(y, i).gap_m - mask_floor_m_[i];
     }
-    // Compliant laws: [n, 2n) the force of an acting contact (it turns tensile at a root), and
-    // for a released one, whose switches are rising crossings, the negated gap in [0, n) (it
-    // opens) and the negated trial force in [n, 2n) (it would push again): the integrators
-    // report falling crossings only. [2n, 3n) as for held contacts.
+    // Compliant laws, for every contact from onset until its gap opens: the overlap −g in
+    // [0, n) (it falls through zero where the gap opens) and the law's switch function in
+    // [n, 2n) (released where the force turns tensile, acting again where it would push, the
+    // jankowski phases), each written to fall at its switch: the integrators report falling
+    // crossings only. [2n, 3n) as for held contacts, while the force acts.
+    for (std::size_t i = 0; i < count_; ++i) {
+      if (!open_[i]) continue;
+      const contact::GapState s = system_.gap(y, i);
+      g[i] = -s.gap_m;
+      g[count_ + i] = open_[i]->law.switch_value(-s.gap_m, -s.gap_rate_mps);
+    }
     for (std::size_t i : active_) {
       const double s = system_.gap(y, i).segment_param;
-      g[count_ + i] = compliant_force(i, y);
       g[2 * count_ + i] = std::min(s, 1.0 - s) + contact::kOnSegmentTolerance;
-    }
-    for (std::size_t i = 0; i < count_; ++i) {
-      if (modes_[i] == Mode::released) g[i] = -system_.gap(y, i).gap_m, g[count_ + i] = -compliant_force(i, y);
     }
     if (held_.empty()) return;
     const VectorXd forces = hold_forces(t, y);
@@ -167,18 +174,17 @@ class EventDrivenRun final : public OdeFunctions {
     system_.constrained_rhs(t, y, held_, y_dot, forces);
     return forces;
   }
-  /// F = k δ + c δ̇ of compliant contact i (kN), δ = −g; negative when it would pull.
+  /// The law's force of compliant contact i (kN) at δ = −g.
   double compliant_force(std::size_t i, const Eigen::Ref<const VectorXd>& y) const {
     const contact::GapState s = system_.gap(y, i);
-    return -options_.contact_stiffness_kN_per_m * s.gap_m - open_[i]->damping_kNs_per_m * s.gap_rate_mps;
+    return open_[i]->law.force_kN(-s.gap_m, -s.gap_rate_mps);
   }
-  /// dF/dt of compliant contact i in state y (kN/s).
-  double compliant_force_rate(double t, const VectorXd& y, std::size_t i) {
+  /// The rate of compliant contact i's switch function in state y (its unit per s).
+  double switch_rate(double t, const VectorXd& y, std::size_t i) {
     VectorXd y_dot(system_.state_size());
     rhs(t, y, y_dot);
     const contact::GapState s = system_.gap(y, i);
-    return -options_.contact_stiffness_kN_per_m * s.gap_rate_mps -
-           open_[i]->damping_kNs_per_m * system_.gap_acceleration(y, y_dot, i);
+    return open_[i]->law.switch_rate(-s.gap_m, -s.gap_rate_mps, -system_.gap_acceleration(y, y_dot, i));
   }
   double constraint_power(double t, const VectorXd& y) const {
     if (held_.empty()) return 0.0;
@@ -379,27 +385,31 @@ void EventDrivenRun::handle_compliant_event(double t, const VectorXd& y, const s
                                             const std::vector<std::size_t>& edge_roots) {
   // A root is located to the solver's tolerance on either side of zero, so after the restart the
   // same function may cross again: each root acts only if the state at it moves in the direction
-  // of its switch (closing gap, falling force, rising trial force, opening gap).
+  // of its switch (closing gap, falling switch function, opening gap).
   count_event(t);
   for (std::size_t i : edge_roots) {
     if (modes_[i] == Mode::compliant) end_contact(i, t, y);
   }
   for (std::size_t i : force_roots) {
-    const double rate = compliant_force_rate(t, y, i);
-    if (modes_[i] == Mode::compliant && rate < 0.0) {
+    if (!open_[i] || switch_rate(t, y, i) >= 0.0) continue;
+    contact::CompliantContact& law = open_[i]->law;
+    const bool acted = law.acts();
+    if (!acted && system_.gap(y, i).gap_m >= 0.0) continue;  // already open: the gap root ends it
+    law.toggle();
+    if (acted && !law.acts()) {
       modes_[i] = Mode::released;  // tensile from here on: the slabs fly apart while still overlapping
       active_.erase(std::find(active_.begin(), active_.end(), i));
       open_[i]->record.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
       open_[i]->record.duration_s = t - open_[i]->record.t_s;
-    } else if (modes_[i] == Mode::released && rate > 0.0 && system_.gap(y, i).gap_m < 0.0) {
+    } else if (!acted) {
       modes_[i] = Mode::compliant;  // pushing again before the gap opened: the same contact goes on
       active_.push_back(i);
-    }
+    }  // else a jankowski contact changed phase and acts on
   }
   for (std::size_t i : gap_roots) {
     const contact::GapState s = system_.gap(y, i);
-    if (modes_[i] == Mode::released) {
-      if (s.gap_rate_mps >= 0.0) end_contact(i, t, y);
+    if (modes_[i] == Mode::released || modes_[i] == Mode::compliant) {
+      if (s.gap_rate_mps >= 0.0) end_contact(i, t, y);  // the gap opened: the contact is over
       continue;
     }
     if (modes_[i] != Mode::armed && modes_[i] != Mode::masked) continue;
@@ -417,14 +427,13 @@ void EventDrivenRun::handle_compliant_event(double t, const VectorXd& y, const s
 }
 
 void EventDrivenRun::begin_contact(std::size_t i, double t, const VectorXd& y) {
-  OpenContact open;
-  ImpactRecord& r = open.record;
-  r = impact_at(system_, t, i, system_.gap(y, i));
-  // The effective mass at onset, held for the contact so that c (and the Jacobian) stay smooth.
-  open.damping_kNs_per_m = contact::kelvin_damping(options_.contact_stiffness_kN_per_m, options_.restitution,
-                                                   system_.normal_inverse_mass(y, i));
-  open_[i] = open;
-  r.peak_force_kN = std::max(0.0, compliant_force(i, y));
+  // The effective mass and approach speed at onset, held for the contact so that the damping
+  // (and the Jacobian) stay smooth.
+  const contact::GapState s = system_.gap(y, i);
+  open_[i].emplace(OpenContact{contact::CompliantContact(options_.law, options_.contact_stiffness, options_.restitution,
+                                                         -s.gap_rate_mps, system_.normal_inverse_mass(y, i)),
+                               impact_at(system_, t, i, s)});
+  open_[i]->record.peak_force_kN = std::max(0.0, compliant_force(i, y));
   modes_[i] = Mode::compliant;
   active_.push_back(i);
 }

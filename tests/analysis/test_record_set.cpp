@@ -147,3 +147,24 @@ BOOST_AUTO_TEST_CASE(RunWithRecordOptionsEqualsASceneThatNamesTheRecord) {
     BOOST_TEST(x.vertex == y.vertex);
   }
 }
+
+BOOST_AUTO_TEST_CASE(AnEntrysChoiceAppliedToTheSceneGivesItsExcitation) {
+  // A sweep sends a worker the entry's choice (a few values), not its ExcitationSpec: applied to
+  // the same scene it must give the very record the list reader built, sample for sample.
+  const analysis::Scene scene = io::read_scene(kExamples / "paper" / "el-centro-true-time.toml");
+  for (const std::filesystem::path& list : {kExamples / "records" / "set.txt", kExamples / "records"}) {
+    const std::vector<analysis::RecordEntry> set = io::read_record_list(list, scene.excitation);
+    BOOST_TEST_REQUIRE(set.size() >= 4u);
+    for (const analysis::RecordEntry& entry : set) {
+      BOOST_TEST_INFO(entry.source);
+      BOOST_TEST_REQUIRE(entry.choice.file.has_value());
+      BOOST_TEST(entry.choice.file->filename().string() == entry.name);
+      const excitation::GroundMotion expected = excitation::load_ground_motion(entry.excitation);
+      const excitation::GroundMotion rebuilt =
+          excitation::load_ground_motion(excitation::with_record(scene.excitation, entry.choice));
+      BOOST_TEST(rebuilt.time_s() == expected.time_s(), tt::per_element());
+      BOOST_TEST(rebuilt.accel_mps2() == expected.accel_mps2(), tt::per_element());
+      BOOST_TEST(rebuilt.direction_rad() == expected.direction_rad());
+    }
+  }
+}

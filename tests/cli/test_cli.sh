@@ -166,11 +166,23 @@ assert len(rows) == 4 * 2 + 3 * 2, len(rows)
 fine = [r for r in rows if r["method"] == "cvode-bdf"]
 assert float(fine[1]["impact_time_error_before_hold_s"]) < float(fine[0]["impact_time_error_before_hold_s"])
 assert all(float(r["run_time_s"]) > 0 for r in rows)
+# The quick contact-stiffness ladder: kelvin at 1 and 100 times its default on its four methods;
+# the stiffer contact pushes harder (peak force grows ~ sqrt(k) for the same approach).
+ladder = list(csv.DictReader(open(f"{sys.argv[1]}/stiffness.csv")))
+assert len(ladder) == 2 * 4 and all(r["law"] == "kelvin" and r["status"] == "completed" for r in ladder), ladder
+by_method = {}
+for r in ladder:
+    by_method.setdefault(r["method"], []).append(r)
+for runs in by_method.values():
+    soft, stiff = sorted(runs, key=lambda r: float(r["stiffness"]))
+    assert float(stiff["stiffness"]) == 100 * float(soft["stiffness"]), runs
+    assert float(stiff["peak_force_kN"]) > 3 * float(soft["peak_force_kN"]), runs
 PY
 /usr/bin/python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['provenance']; assert p['scene_sha256']==sys.argv[2] and 'study' in p['command_line'], p" \
   "$work/study/study.json" "$scene_sha" || fail "provenance in study.json"
 /usr/bin/python3 "$source_dir/tools/plot_study.py" "$work/study" > /dev/null || fail "plot_study.py exited $?"
 [ -s "$work/study/work-precision.png" ] || fail "no work-precision.png"
+[ -s "$work/study/stiffness.png" ] || fail "no stiffness.png"
 # SIGINT during a study (after its first row is printed): no further run starts, the rows so far
 # are written with "interrupted": true, exit 3.
 stdbuf -oL "$pounding" study "$scene" --quick --repeat 1 --out "$work/study-int" > "$work/study-int.txt" 2>&1 &
@@ -250,7 +262,9 @@ expect_refusal "--hold-rtol = 1e-10: does not apply to method arkode-dirk" run "
 expect_refusal "--newton = \"dense\": does not apply to method arkode-erk" run "$scene" --method arkode-erk --newton dense --out "$work/bad"
 # Contact laws: a law key for the impulse law, an unknown law, and kelvin where it cannot run.
 expect_refusal "--contact-stiffness = 1000000: does not apply to law impulse" run "$scene" --contact-stiffness 1e6 --out "$work/bad"
-expect_refusal "--contact-law = \"hertz\": expected impulse or kelvin" run "$scene" --contact-law hertz --out "$work/bad"
+expect_refusal "--contact-law = \"hertz\": expected impulse, kelvin, hertzdamp or jankowski" run "$scene" --contact-law hertz --out "$work/bad"
+expect_refusal "--contact-stiffness = 0.0001: must lie in \[1, 10000000000000\] kN/m^1.5" \
+  run "$scene" --contact-law hertzdamp --contact-stiffness 1e-4 --out "$work/bad"
 expect_refusal "contact.law = \"kelvin\": does not run on method hht" run "$scene" --contact-law kelvin --method hht --out "$work/bad"
 expect_refusal "contact.law = \"kelvin\": does not run on method exact" run "$scene" --contact-law kelvin --method exact --out "$work/bad"
 "$pounding" run "$scene" --contact-law kelvin --contact-stiffness 2e5 --out "$work/kelvin" > "$work/kelvin.txt" \
@@ -258,6 +272,10 @@ expect_refusal "contact.law = \"kelvin\": does not run on method exact" run "$sc
 head -1 "$work/kelvin/impacts.csv" | grep -q "impulse_kNs,duration_s,peak_force_kN," || fail "impacts.csv lacks duration_s, peak_force_kN"
 grep -q '"contact_law": {' "$work/kelvin/summary.json" && grep -q '"stiffness_kN_per_m": 200000' "$work/kelvin/summary.json" \
   || fail "summary.json does not state the kelvin law and its stiffness"
+"$pounding" run "$scene" --contact-law jankowski --contact-stiffness 5e6 --out "$work/jankowski" > "$work/jankowski.txt" \
+  || fail "a jankowski run of the paper scene did not complete"
+grep -q '"stiffness_kN_per_m1_5": 5000000' "$work/jankowski/summary.json" \
+  || fail "summary.json does not state the jankowski law's stiffness under its key"
 expect_refusal "--newton = \"dense\": does not apply to method exact" run "$scene" --method exact --newton dense --out "$work/bad"
 expect_refusal "--halving = off: does not apply to method cvode-bdf" run "$scene" --halving off --out "$work/bad"
 expect_refusal "--order = 5: arkode-dirk offers order 4 or 3" run "$scene" --method arkode-dirk --order 5 --out "$work/bad"

@@ -11,6 +11,7 @@
 
 #include "pounding/analysis/needed_gap.hpp"
 #include "pounding/analysis/scene.hpp"
+#include "pounding/excitation/record_choice.hpp"
 
 namespace pounding::analysis {
 
@@ -19,6 +20,10 @@ struct RecordEntry {
   std::string name;    // the record file's name, for tables
   std::string source;  // where it was listed ("set.txt:4"), or the folder it was found in
   excitation::ExcitationSpec excitation;
+  /// What the list said of the record (its resolved file and the fields given): applied to the
+  /// same scene with excitation::with_record it gives `excitation` again, so a sweep can send a
+  /// worker these few values instead of the spec.
+  excitation::RecordChoice choice{};
 };
 
 /// The needed gap under one record. A record that cannot be read or run is a row with status

@@ -62,8 +62,9 @@ struct RunReport {
   std::vector<contact::Candidate> candidates;
   solvers::RunResult result;
   std::string contact_law = "impulse";     // contact_laws.hpp
-  double contact_stiffness_kN_per_m = 0.0;  // used by compliant laws; 0 for impulse
-  double contact_damping_ratio = 0.0;       // kelvin's ξ from the restitution; 0 for impulse
+  double contact_stiffness = 0.0;  // used by compliant laws, in the law's unit; 0 for impulse
+  /// The law's damping from the restitution (contact_damping() in contact_laws.hpp); 0 for impulse.
+  double contact_damping = 0.0;
 };
 
 /// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and

@@ -25,10 +25,16 @@ struct ContactSettings {
   // storey height or slab thickness, so only floors the file puts at one height match.
   double level_tolerance_m = 1e-3;
   std::string law = "impulse";     // a name of contact_laws() (contact_laws.hpp)
-  /// kelvin's spring (kN/m); unset: the law's published default. Refused for the impulse law.
+  /// kelvin's spring (kN/m); unset: the law's published default. Refused for the other laws.
   std::optional<double> stiffness_kN_per_m;
-  /// The stiffness a run uses: the given one or the law's default (0 for impulse).
-  double used_stiffness_kN_per_m() const;
+  /// hertzdamp's k_h or jankowski's β (kN/m^1.5); unset: the law's default. Refused for the others.
+  std::optional<double> stiffness_kN_per_m1_5;
+  /// The stiffness a run uses, in the law's unit (contact_laws.hpp): the given one or the law's
+  /// default (0 for impulse).
+  double used_stiffness() const;
+  /// Sets the stiffness key of the law `law` names (--contact-stiffness); for the impulse law,
+  /// kelvin's key, which the validator then refuses naming the law.
+  void set_stiffness(double value);
 };
 
 /// What `pounding run` writes to history.csv.

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/contact_laws.hpp"
 #include "pounding/analysis/scene.hpp"
 #include "pounding/solvers/run_result.hpp"
 
@@ -14,6 +15,9 @@ struct StudyOptions {
   int repeat = 3;                // timed runs per case (median)
   bool quick = false;            // each method's quick ladder (MethodInfo::quick_ladder), not its full one
   double match_window_s = 0.05;  // impacts further apart are not a match
+  /// Wall time (s) a run of the contact-stiffness ladder may take; it then stops with status
+  /// time_limit (explicit methods pay for stiff contacts in steps).
+  double stiffness_run_limit_s = 120.0;
   /// @throws InputError naming the field.
   void validate() const;
 };
@@ -50,6 +54,24 @@ struct StudyRow {
   bool impact_time_at_reference = false, history_u_at_reference = false;
 };
 
+/// One run of the contact-stiffness ladder: a compliant law at one stiffness on one method, at the
+/// scene's settings for that method.
+struct StiffnessRow {
+  std::string law;
+  std::string method;
+  double stiffness = 0.0;       // in the law's unit (stiffness_unit)
+  std::string stiffness_unit;   // "kN/m" or "kN/m^1.5"
+  std::string status;
+  double run_time_s = 0.0;      // median wall time of the solver over the repeats
+  long steps = 0, rhs_evaluations = 0, jacobian_evaluations = 0;
+  std::size_t impacts = 0;
+  double peak_force_kN = 0.0;   // the largest contact force of the run
+};
+
+/// The ladder's stiffnesses for a compliant law, in its unit: its default times 0.1, 1, 10, 100
+/// and 1000 (quick: 1 and 100, kelvin only); empty for the impulse law.
+std::vector<double> stiffness_ladder(const ContactLawInfo& law, bool quick);
+
 struct StudyResult {
   std::string scene;
   double gap_m = 0.0;
@@ -59,15 +81,19 @@ struct StudyResult {
   /// upper estimate of the reference's own error (free flight is exact either way).
   RunErrors reference_error;
   std::vector<StudyRow> rows;
+  std::vector<StiffnessRow> stiffness_rows;  // every compliant law's ladder on each of its methods
   /// A SIGINT/SIGTERM (solvers::request_interrupt) ended the study: the rows run so far, the
   /// last of them (and the reference, if it was still running) with status interrupted.
   bool interrupted = false;
 };
 
 /// Runs every series of every method of the registry over its ladder against the reference
-/// method (the exact path, with the scene's settings for it). `progress` is called with each finished row (for printing as it goes).
-/// After an interrupt request no further run starts.
+/// method (the exact path, with the scene's settings for it), then every compliant law over its
+/// stiffness ladder on each method that runs it (what each method pays as contacts stiffen).
+/// `progress` and `stiffness_progress` are called with each finished row (for printing as it
+/// goes). After an interrupt request no further run starts.
 StudyResult run_study(const Scene& scene, const StudyOptions& options,
-                      const std::function<void(const StudyRow&)>& progress = {});
+                      const std::function<void(const StudyRow&)>& progress = {},
+                      const std::function<void(const StiffnessRow&)>& stiffness_progress = {});
 
 }  // namespace pounding::analysis

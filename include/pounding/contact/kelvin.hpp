@@ -1,15 +1,9 @@
 #pragma once
 // The Kelvin–Voigt impact element (Anagnostopoulos 1988): a spring k and a dashpot c in parallel
-// acting along the struck edge's normal while the slabs overlap, F = k δ + c δ̇, δ = −g > 0.
-
-#include <string_view>
+// acting along the struck edge's normal while the slabs overlap, F = k δ + c δ̇, δ = −g > 0: its
+// closed forms. The law's force and switches are in contact/compliant_law.hpp.
 
 namespace pounding::contact {
-
-/// How contacts are resolved (analysis/contact_laws.hpp lists them for users).
-enum class ContactLaw { impulse, kelvin };
-
-std::string_view to_string(ContactLaw law);
 
 /// ξ = −ln e / √(π² + ln² e), so that a lone Kelvin–Voigt contact rebounds at e (e ∈ (0, 1]).
 /// e = 0 gives ξ = 1 (critical damping: the limit of the formula as e → 0; it rebounds slowly,

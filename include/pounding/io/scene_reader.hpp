@@ -17,7 +17,7 @@ struct SceneOverrides {
   std::optional<double> gap_m{};      // moves building 2 along x
   std::optional<double> restitution{};
   std::optional<std::string> contact_law{};              // --contact-law
-  std::optional<double> contact_stiffness_kN_per_m{};    // --contact-stiffness
+  std::optional<double> contact_stiffness{};             // --contact-stiffness, in the law's unit
   /// Another record or scaling (`--record`, `--pga-g`, ...; excitation::with_record says what
   /// it keeps of the scene's). When set, the record is read once here, so that a record that
   /// cannot be read or scales beyond 10 g is refused before any run, naming the option.

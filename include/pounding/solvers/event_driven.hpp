@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "pounding/contact/kelvin.hpp"
+#include "pounding/contact/compliant_law.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/run_budget.hpp"
@@ -18,10 +18,12 @@ namespace pounding::solvers {
 
 struct EventOptions {
   double restitution = 0.5;            // Newton k ∈ [0, 1]
-  /// impulse: velocity jumps and held contacts. kelvin: a spring–dashpot force while the slabs
-  /// overlap, its damping set by `restitution` (contact/kelvin.hpp); no holds.
+  /// impulse: velocity jumps and held contacts. kelvin, hertzdamp, jankowski: a force while the
+  /// slabs overlap, its damping set by `restitution` (contact/compliant_law.hpp); no holds.
   contact::ContactLaw law = contact::ContactLaw::impulse;
-  double contact_stiffness_kN_per_m = 0.0;  // kelvin's k (kN/m), > 0; unused by impulse
+  /// The compliant law's stiffness, > 0: kelvin's k (kN/m), hertzdamp's k_h or jankowski's β
+  /// (kN/m^1.5). Unused by impulse.
+  double contact_stiffness = 0.0;
   /// A candidate counts as in contact at an event when |g| ≤ this (m): contacts this close at the
   /// same instant are solved together as simultaneous.
   double contact_tolerance_m = 1e-8;
@@ -63,6 +65,7 @@ struct EventOptions {
   RunSink* sink = nullptr;
 
   /// @pre restitution ∈ [0, 1] (user input is checked by the scene's contact validator).
+  /// @throws InputError for restitution 0 with the jankowski law (its damping is infinite).
   /// @throws InputError naming any other field.
   void validate() const;
 };

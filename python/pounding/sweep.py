@@ -1,0 +1,731 @@
+"""Sweeps: the Cartesian product scenes × records × gaps × restitutions × methods × contact laws
+of a sweep file, one run each, on Dask distributed, into one tidy table.
+
+    python3 -m pounding.sweep SWEEP.toml [--workers N | --scheduler tcp://HOST:PORT | --serial] [--out DIR]
+    pounding.sweep("SWEEP.toml", workers=2)          # the same from Python; returns a SweepResult
+
+The sweep file (TOML; paths relative to its folder; README, "Sweeps"):
+
+    scenes = ["../paper/el-centro-true-time.toml"]   # required
+    records = "../records/set.txt"     # a record list, a folder of .AT2 files, or a list of paths
+                                       # and tables {file, format, units, dt_s, accel_column, scale,
+                                       # pga_g, direction_deg}; absent: each scene's own record
+    gaps_m = [0.05, 0.1]               # absent: the scene's gap
+    restitutions = [0.5]               # absent: the scene's
+    methods = ["cvode-bdf", {name = "arkode-erk", rtol = 1e-8}]   # absent: the scene's
+    contact_laws = ["impulse", {name = "kelvin", stiffness_kN_per_m = 1e5}]  # absent: the scene's
+    needed_gap = true                  # also the needed gap of each scene under each record
+    max_wall_time_s = 600              # each run's budget (absent: the module's default, an hour)
+    out = "../../out/sweep"            # absent: out/<sweep file name> in the current folder
+
+Workers get parameters (paths and numbers) and build their scene themselves: Scene objects do not
+pickle. Each finished run is appended to sweep.csv at once (flushed), a failed run as a row with
+its status and message; a sweep started again skips the runs its table already holds (the key is
+the parameter columns). The needed gap does not depend on the gap, the restitution, the method or
+the contact law, so it is run once per scene and record, and the runs of that pair wait for it.
+"""
+
+import argparse
+import csv
+import datetime
+import hashlib
+import io
+import json
+import logging
+import math
+import os
+import pathlib
+import signal
+import socket
+import sys
+import time
+import tomllib
+import types
+
+import pounding
+from pounding import InputError
+
+# The keys of a sweep file, and what each record table may set (the record list's fields).
+SWEEP_KEYS = ("scenes", "records", "gaps_m", "restitutions", "methods", "contact_laws", "needed_gap",
+              "max_wall_time_s", "out")
+RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "dt_s",
+                 "accel_column": "accel_column", "scale": "scale_factor", "pga_g": "scale_to_pga_g",
+                 "direction_deg": "direction_deg"}  # field -> Scene.with_record keyword
+LAW_KEYS = ("name", "stiffness_kN_per_m")
+
+# Columns of sweep.csv after the parameters (which are PARAMETERS, then one column a [solver]
+# setting the sweep sets). Timings last: the only columns two sweeps of one file may differ in.
+PARAMETERS = ("scene_file", "scene", "record", "record_source", "gap_m", "restitution", "contact_law",
+              "contact_stiffness_kN_per_m", "method")
+RESULTS = ("status", "message", "impact_count", "touch_count", "sustained_contact_count", "first_impact_s",
+           "max_impulse_kNs", "max_approach_speed_mps", "impact_loss_kJ",
+           "b1_peak_u_m", "b1_peak_v_m", "b1_peak_phi_rad", "b2_peak_u_m", "b2_peak_v_m", "b2_peak_phi_rad", "steps")
+NEEDED_GAP = ("needed_gap_m", "needed_gap_level", "needed_gap_t_s", "needed_gap_status")
+TIMINGS = ("solver_time_s", "wall_time_s")
+
+
+def _text(value):
+    """A sweep file's value as the messages show it (TOML-like)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return f'"{value}"'
+    return repr(value)
+
+
+def _error(file, key, value, reason):
+    """InputError with the message the library composes (input_error.cpp)."""
+    message = f"{file}: " if file else ""
+    message += key + ((" = " if key else "") + value if value else "")
+    message += (": " if key or value else "") + reason
+    return InputError(message, str(file), key, value, reason)
+
+
+# ------------------------------------------------------------------------------------------------
+# The sweep file
+
+
+class Sweep:
+    """A checked sweep file: the product's axes as plain values (what the workers get)."""
+
+    def __init__(self, file):
+        self.file = pathlib.Path(file)
+        self.folder = self.file.resolve().parent
+        try:
+            raw = self.file.read_bytes()
+        except OSError as error:
+            raise _error(self.file, "", "", f"cannot read the sweep file: {error.strerror}") from None
+        self.sha256 = hashlib.sha256(raw).hexdigest()
+        try:
+            document = tomllib.loads(raw.decode("utf-8"))
+        except (UnicodeDecodeError, tomllib.TOMLDecodeError) as error:
+            raise _error(self.file, "", "", f"not a TOML file: {error}") from None
+        for key in document:
+            if key not in SWEEP_KEYS:
+                raise _error(self.file, key, _text(document[key]), f"unknown key (expected {', '.join(SWEEP_KEYS)})")
+        self.document = document
+
+        self.scene_files = self._paths("scenes", required=True)
+        self.scenes = {}  # scene_file as written -> loaded Scene (driver only)
+        for scene_file in self.scene_files:
+            self.scenes[scene_file] = pounding.load_scene(self._resolve(scene_file))
+        self.gaps_m = self._numbers("gaps_m")
+        self.restitutions = self._numbers("restitutions")
+        self.laws = self._laws()
+        self.methods = self._methods()
+        self.setting_keys = [k for k in pounding.settings() if any(k in m["settings"] for m in self.methods)]
+        self.needed_gap = self._flag("needed_gap")
+        self.max_wall_time_s = None
+        if "max_wall_time_s" in document:
+            value = document["max_wall_time_s"]
+            if not _is_number(value) or not value > 0:
+                raise _error(self.file, "max_wall_time_s", _text(value), "expected a number of seconds > 0")
+            self.max_wall_time_s = float(value)
+        self.out = None
+        if "out" in document:
+            if not isinstance(document["out"], str) or not document["out"]:
+                raise _error(self.file, "out", _text(document["out"]), "expected a folder's path")
+            self.out = self._resolve(document["out"])
+        self.records = self._records()
+        self._check_combinations()
+
+    def _resolve(self, path):
+        """An absolute path: relative ones from the sweep file's folder."""
+        return str((self.folder / path).resolve())
+
+    def _list(self, key, required=False):
+        if key not in self.document:
+            if required:
+                raise _error(self.file, key, "", "missing (a list)")
+            return None
+        value = self.document[key]
+        if not isinstance(value, list) or not value:
+            raise _error(self.file, key, _text(value), "expected a list that is not empty")
+        return value
+
+    def _paths(self, key, required=False):
+        values = self._list(key, required)
+        for index, value in enumerate(values):
+            if not isinstance(value, str) or not value:
+                raise _error(self.file, f"{key}[{index}]", _text(value), "expected a file's path")
+            if not os.path.isfile(self._resolve(value)):
+                raise _error(self.file, f"{key}[{index}]", _text(value), "no such file")
+            if self._resolve(value) in map(self._resolve, values[:index]):
+                raise _error(self.file, f"{key}[{index}]", _text(value), "given twice")
+        return values
+
+    def _numbers(self, key):
+        values = self._list(key)
+        if values is None:
+            return [None]
+        option = {"gaps_m": "gap", "restitutions": "restitution"}[key]
+        for index, value in enumerate(values):
+            if not _is_number(value):
+                raise _error(self.file, f"{key}[{index}]", _text(value), "expected a number")
+            for scene_file in self.scene_files:  # each scene checks its own range (a gap must fit its plan)
+                try:
+                    pounding.load_scene(self._resolve(scene_file), **{option: float(value)})
+                except InputError as error:
+                    raise _error(self.file, f"{key}[{index}]", _text(value),
+                                 f"{error.reason} (scene {scene_file})") from None
+        if len(set(values)) != len(values):
+            raise _error(self.file, key, _text(values), "a value is given twice")
+        return [float(v) for v in values]
+
+    def _flag(self, key):
+        value = self.document.get(key, False)
+        if not isinstance(value, bool):
+            raise _error(self.file, key, _text(value), "expected true or false")
+        return value
+
+    def _named_entries(self, key, allowed):
+        """A list of names or tables {name, ...}; returns dicts with a name."""
+        entries = []
+        for index, item in enumerate(self._list(key)):
+            where = f"{key}[{index}]"
+            if isinstance(item, str):
+                item = {"name": item}
+            if not isinstance(item, dict) or not isinstance(item.get("name"), str):
+                raise _error(self.file, where, _text(item), "expected a name or a table with a name")
+            for field, value in item.items():
+                if allowed is not None and field not in allowed:
+                    raise _error(self.file, f"{where}.{field}", _text(value),
+                                 f"unknown field (expected {', '.join(allowed)})")
+            entries.append(dict(item))
+        return entries
+
+    def _laws(self):
+        if "contact_laws" not in self.document:
+            return [{"name": None, "stiffness_kN_per_m": None}]
+        laws = []
+        for index, entry in enumerate(self._named_entries("contact_laws", LAW_KEYS)):
+            stiffness = entry.get("stiffness_kN_per_m")
+            if stiffness is not None and not _is_number(stiffness):
+                raise _error(self.file, f"contact_laws[{index}].stiffness_kN_per_m", _text(stiffness),
+                             "expected a number")
+            law = {"name": entry["name"], "stiffness_kN_per_m": None if stiffness is None else float(stiffness)}
+            for scene_file in self.scene_files:
+                try:
+                    pounding.load_scene(self._resolve(scene_file), contact_law=law["name"],
+                                        contact_stiffness_kN_per_m=law["stiffness_kN_per_m"])
+                except InputError as error:
+                    field = "stiffness_kN_per_m" if error.key == "--contact-stiffness" else "name"
+                    raise _error(self.file, f"contact_laws[{index}].{field}", error.value,
+                                 f"{error.reason} (scene {scene_file})") from None
+            if law in laws:
+                raise _error(self.file, f"contact_laws[{index}]", _text(entry), "given twice")
+            laws.append(law)
+        return laws
+
+    def _methods(self):
+        if "methods" not in self.document:
+            return [{"name": None, "settings": {}}]
+        methods = []
+        keys = ["name", *pounding.settings()]
+        for index, entry in enumerate(self._named_entries("methods", keys)):
+            method = {"name": entry.pop("name"), "settings": entry}
+            for scene_file, scene in self.scenes.items():
+                try:
+                    scene.with_method(method["name"], **method["settings"])
+                except InputError as error:
+                    field = error.key.removeprefix("solver.")
+                    field = "name" if field == "method" else field
+                    raise _error(self.file, f"methods[{index}].{field}", error.value,
+                                 f"{error.reason} (scene {scene_file})") from None
+            if method in methods:
+                raise _error(self.file, f"methods[{index}]", _text(method["name"]), "given twice")
+            methods.append(method)
+        return methods
+
+    def _records(self):
+        """One dict a record: name, source and the with_record keywords (None: the scene's record)."""
+        if "records" not in self.document:
+            return [None]
+        value = self.document["records"]
+        if isinstance(value, str):
+            return self._record_list(value)
+        records = []
+        for index, item in enumerate(self._list("records")):
+            where = f"records[{index}]"
+            if isinstance(item, str):
+                item = {"file": item}
+            if not isinstance(item, dict) or not isinstance(item.get("file"), str):
+                raise _error(self.file, where, _text(item), "expected a record's path or a table with a file")
+            choice = dict.fromkeys(RECORD_FIELDS.values())
+            for field, given in item.items():
+                if field not in RECORD_FIELDS:
+                    raise _error(self.file, f"{where}.{field}", _text(given),
+                                 f"unknown field (expected {', '.join(RECORD_FIELDS)})")
+                choice[RECORD_FIELDS[field]] = given
+            choice["file"] = self._resolve(item["file"])
+            for scene_file, scene in self.scenes.items():  # checked as a record list's line is, not read
+                try:
+                    scene.with_record(**choice, read=False)
+                except (InputError, TypeError) as error:
+                    key = getattr(error, "key", "").removeprefix("excitation.")
+                    field = {v: k for k, v in RECORD_FIELDS.items()}.get(key, key)
+                    raise _error(self.file, f"{where}.{field}" if field else where,
+                                 getattr(error, "value", _text(item)),
+                                 f"{getattr(error, 'reason', str(error))} (scene {scene_file})") from None
+            records.append({"name": os.path.basename(item["file"]), "source": f"{self.file.name}:{where}", **choice})
+        if len({r["source"] for r in records}) != len(records):
+            raise _error(self.file, "records", _text(value), "a record is given twice")
+        return records
+
+    def _record_list(self, path):
+        resolved = self._resolve(path)
+        lists = []
+        for scene_file, scene in self.scenes.items():
+            try:
+                entries = pounding.record_list(scene, resolved)
+            except InputError as error:
+                if error.key == "--records":
+                    raise _error(self.file, "records", _text(path), error.reason) from None
+                raise  # a line of the list: the error names list:line, the field and the value
+            lists.append(entries)
+        for entries in lists:
+            for entry in entries:  # "set.txt:12" with the list named as the sweep file names it
+                entry["source"] = path + entry["source"].removeprefix(resolved)
+        if any(entries != lists[0] for entries in lists):
+            raise _error(self.file, "records", _text(path), "its records differ from scene to scene")
+        return lists[0]
+
+    def _check_combinations(self):
+        """Each law with each method on each scene (kelvin does not run on hht or exact)."""
+        for scene_file in self.scene_files:
+            for law_index, law in enumerate(self.laws):
+                scene = pounding.load_scene(self._resolve(scene_file), contact_law=law["name"],
+                                            contact_stiffness_kN_per_m=law["stiffness_kN_per_m"])
+                for method_index, method in enumerate(self.methods):
+                    try:
+                        scene.with_method(method["name"], **method["settings"])
+                    except InputError as error:
+                        raise _error(self.file, f"methods[{method_index}]", _text(method["name"]),
+                                     f"{error.reason} (contact_laws[{law_index}], scene {scene_file})") from None
+
+    def columns(self):
+        return [*PARAMETERS, *self.setting_keys, *RESULTS, *(NEEDED_GAP if self.needed_gap else ()), *TIMINGS]
+
+    def runs(self):
+        """Every run of the product, as (row parameters, task parameters), in product order."""
+        for scene_file, scene in self.scenes.items():
+            for record in self.records:
+                for gap_m in self.gaps_m:
+                    for restitution in self.restitutions:
+                        for law in self.laws:
+                            for method in self.methods:
+                                yield self._run(scene_file, scene, record, gap_m, restitution, law, method)
+
+    def _run(self, scene_file, scene, record, gap_m, restitution, law, method):
+        # The row names the scene's own value where the sweep leaves one to the scene; the task
+        # gets None there, so the worker runs the scene file as it is.
+        row = {"scene_file": scene_file, "scene": scene.name,
+               "record": record["name"] if record else os.path.basename(str(scene.record_file)),
+               "record_source": record["source"] if record else "scene",
+               "gap_m": scene.gap_m if gap_m is None else gap_m,
+               "restitution": scene.restitution if restitution is None else restitution,
+               "contact_law": law["name"] or scene.contact_law,
+               "contact_stiffness_kN_per_m": law["stiffness_kN_per_m"],
+               "method": method["name"] or scene.method}
+        row.update({key: method["settings"].get(key) for key in self.setting_keys})
+        task = {"scene_file": self._resolve(scene_file), "gap_m": gap_m, "restitution": restitution,
+                "contact_law": law["name"], "contact_stiffness_kN_per_m": law["stiffness_kN_per_m"],
+                "record": _record_keywords(record), "method": method["name"], "settings": method["settings"],
+                "max_wall_time_s": self.max_wall_time_s}
+        return row, task
+
+    def parameters(self):
+        """The resolved axes, for sweep.json."""
+        return {"scenes": self.scene_files, "records": [r and {"name": r["name"], "source": r["source"]} for r in
+                                                        self.records],
+                "gaps_m": self.gaps_m, "restitutions": self.restitutions, "contact_laws": self.laws,
+                "methods": self.methods, "needed_gap": self.needed_gap, "max_wall_time_s": self.max_wall_time_s}
+
+
+def _is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _record_keywords(record):
+    return None if record is None else {k: v for k, v in record.items() if k not in ("name", "source")}
+
+
+# ------------------------------------------------------------------------------------------------
+# What a worker runs: plain parameters in, a plain dict out; never raises for a run's failure.
+
+
+def _scene(task):
+    scene = pounding.load_scene(task["scene_file"], gap=task.get("gap_m"), restitution=task.get("restitution"),
+                                contact_law=task.get("contact_law"),
+                                contact_stiffness_kN_per_m=task.get("contact_stiffness_kN_per_m"))
+    if task["record"] is not None:
+        scene = scene.with_record(**task["record"])
+    return scene
+
+
+def _failure(error):
+    return str(error) if isinstance(error, InputError) else f"{type(error).__name__}: {error}"
+
+
+def needed_gap_task(task):
+    """The needed gap of the task's scene (its own gap and tolerances) under its record."""
+    try:
+        gap = pounding.needed_gap(_scene({"scene_file": task["scene_file"], "record": task["record"]}),
+                                  max_wall_time_s=task.get("max_wall_time_s"))
+    except Exception as error:  # noqa: BLE001  (a record that cannot be read: the rows say so)
+        return {"needed_gap_m": None, "needed_gap_level": None, "needed_gap_t_s": None,
+                "needed_gap_status": "failed: " + _failure(error)}
+    finite = gap.needed_gap_m is not None and math.isfinite(gap.needed_gap_m)
+    return {"needed_gap_m": gap.needed_gap_m if finite else None, "needed_gap_level": gap.level or None,
+            "needed_gap_t_s": gap.t_s if finite else None, "needed_gap_status": gap.status}
+
+
+def run_task(task, needed_gap=None):
+    """One run of the sweep: its result columns (RESULTS, TIMINGS and, given, the needed gap's)."""
+    start = time.perf_counter()
+    row = dict.fromkeys(RESULTS)
+    try:
+        scene = _scene(task)
+        result = pounding.run(scene, method=task["method"], max_wall_time_s=task.get("max_wall_time_s"),
+                              **task["settings"])
+        row.update(_summarise(result))
+    except Exception as error:  # noqa: BLE001  (a failed run is a row with its message, never a lost row)
+        row.update(status="failed", message=_failure(error))
+    if needed_gap is not None:
+        row.update(needed_gap)
+    row["wall_time_s"] = time.perf_counter() - start
+    return row
+
+
+def _summarise(result):
+    impacts = result.impacts
+    row = {"status": result.status, "message": result.status_detail or "",
+           "impact_count": len(impacts), "touch_count": len(result.touches),
+           "sustained_contact_count": len(result.sustained_contacts),
+           "first_impact_s": min((i["t_s"] for i in impacts), default=None),
+           "max_impulse_kNs": max((abs(i["impulse_kNs"]) for i in impacts), default=0.0),
+           "max_approach_speed_mps": max((abs(i["approach_velocity_mps"]) for i in impacts), default=0.0),
+           "impact_loss_kJ": result.energy["impact_loss_kJ"],
+           "steps": result.statistics["steps"], "solver_time_s": result.statistics["wall_time_s"]}
+    for building, prefix in zip(result.peaks, ("b1", "b2")):
+        for quantity in ("u_m", "v_m", "phi_rad"):
+            row[f"{prefix}_peak_{quantity}"] = max(abs(f[quantity]["value"]) for f in building["floors"])
+    return row
+
+
+def _worker_identity():
+    return pounding.__version__, pounding._pounding.git_commit
+
+
+# ------------------------------------------------------------------------------------------------
+# The table
+
+
+def _cell(value):
+    """A CSV cell: floats as repr (the shortest text that reads back to the same bits), None empty."""
+    if value is None:
+        return ""
+    if isinstance(value, float):
+        return "" if math.isnan(value) else repr(value)
+    return str(value)
+
+
+class Table:
+    """sweep.csv, appended a row at a time and flushed; reads back the keys of the rows it holds."""
+
+    def __init__(self, path, columns, key_columns):
+        self.path, self.columns, self.key_columns = pathlib.Path(path), list(columns), list(key_columns)
+        self.keys = set()
+        self.rows = 0
+        if self.path.exists():
+            self._read_existing()
+        self.handle = open(self.path, "a", newline="")
+        if self.rows == 0 and self.path.stat().st_size == 0:
+            self._write(self.columns)
+
+    def _read_existing(self):
+        text = self.path.read_text()
+        if text and not text.endswith("\n"):  # a row cut off by a kill: drop it, the run is redone
+            text = text[: text.rfind("\n") + 1]
+            self.path.write_text(text)
+        rows = list(csv.reader(io.StringIO(text)))
+        if not rows:
+            return
+        if rows[0] != self.columns:
+            raise _error("", "out", str(self.path.parent),
+                         f"{self.path.name} holds another sweep's columns ({', '.join(rows[0])}); "
+                         "remove it or choose another output folder")
+        for cells in rows[1:]:
+            self.keys.add(tuple(cells[self.columns.index(c)] for c in self.key_columns))
+            self.rows += 1
+
+    def key(self, row):
+        return tuple(_cell(row.get(c)) for c in self.key_columns)
+
+    def _write(self, cells):
+        text = io.StringIO()
+        csv.writer(text, lineterminator="\n").writerow(cells)
+        self.handle.write(text.getvalue())
+        self.handle.flush()
+
+    def append(self, row):
+        self._write([_cell(row.get(c)) for c in self.columns])
+        self.keys.add(self.key(row))
+        self.rows += 1
+
+    def close(self):
+        self.handle.close()
+
+
+def read_table(path):
+    """sweep.csv as a list of dicts of text (empty cells for missing values)."""
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+# ------------------------------------------------------------------------------------------------
+# Running
+
+
+class SweepResult:
+    """What run_sweep did: the table's path, its rows (dicts of text, as read back), how many runs
+    this call executed and skipped (already in the table), how many rows did not complete, and
+    whether runs of the product are still missing (interrupted)."""
+
+    def __init__(self, out, executed, skipped, interrupted):
+        self.out = pathlib.Path(out)
+        self.csv = self.out / "sweep.csv"
+        self.rows = read_table(self.csv)
+        self.executed, self.skipped, self.interrupted = executed, skipped, interrupted
+        self.failed = sum(row["status"] != "completed" for row in self.rows)
+
+    def __repr__(self):
+        return (f"<pounding.sweep.SweepResult {len(self.rows)} rows in {self.csv}: {self.executed} run now, "
+                f"{self.skipped} skipped, {self.failed} not completed>")
+
+
+def run_sweep(sweep_file, out=None, workers=None, scheduler=None, progress=True, max_runs=None):
+    """Runs the sweep file's product into `out` (default: the file's `out`, else out/<file stem>
+    from the current folder): sweep.csv (a row a run, appended as runs finish), sweep.parquet when
+    pyarrow imports, sweep.json (provenance and counts).
+
+    workers: None, every core of a LocalCluster (processes, one thread each); N > 0, N of them;
+    0, no Dask at all: the runs in this process, one after another. scheduler: the address of a
+    running Dask scheduler (tcp://HOST:PORT) instead of a LocalCluster; its workers need
+    `pounding` importable (the same build) and the sweep's files at the same paths.
+    max_runs: stop after this many runs (then the sweep is incomplete, as if interrupted).
+    Runs already in sweep.csv are skipped. Returns a SweepResult.
+    @throws InputError for a bad sweep file (naming the file, the key and the value)."""
+    started = time.perf_counter()
+    date_utc = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    sweep = Sweep(sweep_file)
+    if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 0):
+        raise _error("", "--workers", _text(workers), "expected a whole number >= 0")
+    if scheduler is not None and workers is not None:
+        raise _error("", "--workers", _text(workers), "not with --scheduler (the cluster has its workers)")
+    if max_runs is not None and (not isinstance(max_runs, int) or max_runs < 0):
+        raise _error("", "max_runs", _text(max_runs), "expected a whole number >= 0")
+    out = pathlib.Path(out or sweep.out or pathlib.Path("out") / sweep.file.stem)
+    out.mkdir(parents=True, exist_ok=True)
+
+    key_columns = [*PARAMETERS, *sweep.setting_keys]
+    table = Table(out / "sweep.csv", sweep.columns(), key_columns)
+    runs = list(sweep.runs())
+    todo = [(row, task) for row, task in runs if table.key(row) not in table.keys]
+    skipped = len(runs) - len(todo)
+    if max_runs is not None:
+        todo = todo[:max_runs]
+    executed, failures, interrupted, where = 0, 0, False, "serial"
+    bar = _progress_bar(len(todo), len(runs), progress)
+    try:
+        if workers == 0:
+            results = _serial(sweep, todo)
+        else:
+            client, where = _client(workers, scheduler)
+            results = _distributed(client, sweep, todo)
+        try:
+            for row, result in results:
+                row = {**row, **result}
+                table.append(row)
+                executed += 1
+                failures += row["status"] != "completed"
+                bar.set_postfix_str(f"{failures} not completed", refresh=False)
+                bar.update(1)
+        finally:
+            results.close()  # ends the cluster this sweep started
+    except KeyboardInterrupt:
+        interrupted = True
+    finally:
+        bar.close()
+        table.close()
+    # Incomplete when a run of the product has no row yet: interrupted, stopped by max_runs, or a
+    # worker lost with its result.
+    incomplete = interrupted or any(table.key(row) not in table.keys for row, _ in runs)
+    result = SweepResult(out, executed, skipped, incomplete)
+    _write_parquet(out)
+    _write_json(out, sweep, result, runs, where, date_utc, time.perf_counter() - started)
+    return result
+
+
+def _progress_bar(count, total, enabled):
+    from tqdm import tqdm  # Debian python3-tqdm
+    return tqdm(total=count, unit="run", desc=f"sweep ({total - count} of {total} done before)" if count < total
+                else "sweep", disable=not enabled, file=sys.stderr, dynamic_ncols=True)
+
+
+def _serial(sweep, todo):
+    """The runs in this process, one after another, the needed gaps computed once per pair."""
+    gaps = {}
+    for row, task in todo:
+        gap = None
+        if sweep.needed_gap:
+            pair = (task["scene_file"], row["record_source"])
+            if pair not in gaps:
+                gaps[pair] = needed_gap_task(task)
+            gap = gaps[pair]
+        yield row, run_task(task, gap)
+
+
+def _client(workers, scheduler):
+    """A Dask client: of the scheduler at `scheduler`, or of a new LocalCluster of `workers`
+    processes (None: every core), one thread each; the client closes the cluster it started."""
+    import dask.distributed  # Debian python3-distributed
+    if scheduler is not None:
+        client = dask.distributed.Client(scheduler)
+        mine = _worker_identity()
+        for worker, identity in client.run(_worker_identity).items():
+            if tuple(identity) != mine:
+                client.close()
+                raise _error("", "--scheduler", scheduler,
+                             f"worker {worker} runs pounding {identity}, this process {mine}: use one build")
+        return client, scheduler
+    # Worker processes import pounding from where this process did.
+    package_parent = str(pathlib.Path(pounding.__file__).resolve().parents[1])
+    path = os.environ.get("PYTHONPATH", "")
+    if package_parent not in path.split(os.pathsep):
+        os.environ["PYTHONPATH"] = package_parent + (os.pathsep + path if path else "")
+    count = workers or os.cpu_count() or 1
+    cluster = dask.distributed.LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                                            dashboard_address=":0", silence_logs=logging.ERROR)  # any free port
+    client = dask.distributed.Client(cluster)
+    client._pounding_cluster = cluster
+    return client, f"LocalCluster({count} workers x 1 thread)"
+
+
+def _distributed(client, sweep, todo):
+    """Submits every run (and every needed gap, once per pair, the runs of the pair depending on
+    it) and yields (row, result) as runs finish. Closing the generator cancels what is left."""
+    import dask.distributed
+    try:
+        gaps = {}
+        futures = {}
+        for row, task in todo:
+            gap = None
+            if sweep.needed_gap:
+                pair = (task["scene_file"], row["record_source"])
+                if pair not in gaps:
+                    gaps[pair] = client.submit(needed_gap_task, task, pure=False)
+                gap = gaps[pair]
+            futures[client.submit(run_task, task, gap, pure=False)] = row
+        lost = 0
+        for future in dask.distributed.as_completed(futures):
+            row = futures.pop(future)
+            try:
+                result = future.result()
+            except dask.distributed.KilledWorker as error:  # the run killed every worker it was given
+                result = dict.fromkeys(RESULTS)
+                result.update(status="failed", message=f"the run killed its worker process: {error}")
+            except Exception:  # noqa: BLE001  (a connection lost, a worker stopped by Ctrl-C)
+                # run_task never raises, so this is the cluster's failure, not the run's: no row,
+                # and a sweep started again runs it.
+                lost += 1
+                continue
+            yield row, result
+        if lost:
+            print(f"{lost} runs lost with their workers; start the sweep again to run them", file=sys.stderr)
+    finally:
+        client.cancel(list(futures))
+        cluster = getattr(client, "_pounding_cluster", None)
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def _write_parquet(out):
+    """sweep.parquet, the same table, when pyarrow is installed (not a Debian 12 package)."""
+    try:
+        import pyarrow.csv
+        import pyarrow.parquet
+    except ImportError:
+        return
+    pyarrow.parquet.write_table(pyarrow.csv.read_csv(out / "sweep.csv"), out / "sweep.parquet")
+
+
+def _write_json(out, sweep, result, runs, where, date_utc, wall_time_s):
+    import dask
+    document = {
+        "sweep_file": str(sweep.file.resolve()), "sweep_sha256": sweep.sha256,
+        "runs": len(runs), "rows": len(result.rows), "executed": result.executed, "skipped": result.skipped,
+        "not_completed": result.failed, "complete": len(result.rows) == len(runs),
+        "interrupted": result.interrupted, "cluster": where, "wall_time_s": wall_time_s,
+        "parameters": sweep.parameters(), "columns": sweep.columns(),
+        "provenance": {"program_version": pounding.__version__,
+                       "git_commit": pounding._pounding.git_commit or None,
+                       "python": sys.version.split()[0], "dask": dask.__version__,
+                       "host": socket.gethostname(), "date_utc": date_utc}}
+    partial = out / "sweep.json.partial"
+    partial.write_text(json.dumps(document, indent=2) + "\n")
+    partial.replace(out / "sweep.json")
+
+
+# ------------------------------------------------------------------------------------------------
+# python3 -m pounding.sweep
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="pounding sweep",
+        description="Run a sweep file's product of scenes, records, gaps, restitutions, methods and contact laws "
+                    "on Dask, one row a run in OUT/sweep.csv; a sweep started again skips the runs already there.")
+    parser.add_argument("sweep_file", help="sweep file (TOML)")
+    parser.add_argument("--workers", type=int, help="LocalCluster worker processes (default: every core); "
+                                                    "0: no Dask, the runs one after another in this process")
+    parser.add_argument("--serial", action="store_true", help="the same as --workers 0")
+    parser.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://HOST:8786")
+    parser.add_argument("--out", help="output folder (default: the file's out, else out/<sweep file name>)")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    arguments = parser.parse_args(argv)
+    workers = 0 if arguments.serial else arguments.workers
+    signal.signal(signal.SIGTERM, _stop)  # a kill stops the sweep as Ctrl-C does: the cluster closed
+    try:
+        result = run_sweep(arguments.sweep_file, out=arguments.out, workers=workers, scheduler=arguments.scheduler,
+                           progress=not arguments.no_progress)
+    except InputError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    print(f"{len(result.rows)} rows in {result.csv} ({result.executed} run now, {result.skipped} already there, "
+          f"{result.failed} not completed)")
+    if result.interrupted:
+        print("interrupted: run the same command again to finish the sweep", file=sys.stderr)
+        return 3
+    return 3 if result.failed else 0
+
+
+def _stop(signal_number, frame):
+    raise KeyboardInterrupt
+
+
+class _CallableModule(types.ModuleType):
+    """pounding.sweep(...) is pounding.sweep.run_sweep(...)."""
+
+    def __call__(self, *args, **kwargs):
+        return run_sweep(*args, **kwargs)
+
+
+if __name__ == "__main__":
+    # Run the functions of the module `pounding.sweep`, not of `__main__`: Dask sends its workers
+    # references to them by module name.
+    from pounding.sweep import main as _main
+    sys.exit(_main())
+else:
+    sys.modules[__name__].__class__ = _CallableModule

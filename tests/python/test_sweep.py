@@ -1,0 +1,212 @@
+"""pounding.sweep: a sweep on a 2-worker LocalCluster gives the serial sweep's table, each row
+is the run and the needed gap the module gives alone, an interrupted sweep resumes without
+redoing runs, a failed run is a row, a bad sweep file names file, key and value, and the CLI's
+`pounding sweep` runs it. CTest runs this file as `python_sweep` (PYTHONPATH at the build's module
+folder, POUNDING_CLI at the program); by hand:
+    PYTHONPATH=build/python /usr/bin/python3 -m pytest tests/python/test_sweep.py
+Tiny sweeps (2 records × 2 gaps of the paper scene under 6 s synthetic records) keep it short.
+"""
+
+import hashlib
+import json
+import math
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import pounding
+from pounding import sweep as sweeps
+
+SOURCE = pathlib.Path(os.environ.get("POUNDING_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+CLI = os.environ.get("POUNDING_CLI", str(SOURCE / "build" / "apps" / "pounding"))
+PAPER = SOURCE / "examples" / "paper" / "paper.toml"
+TIMINGS = set(sweeps.TIMINGS)
+# The needed gaps of the two records (the scene scales both to its 0.32 g) lie between the two
+# gaps: 0.44 and 0.62 m, found by the module (test_rows_are_the_module_s_runs checks them).
+GAPS_M = (0.3, 0.5)
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    """Two 6 s records (one column of g every 0.02 s: windowed sines of 0.8 and 1.1 s) and the
+    sweep of the paper scene under them at GAPS_M, with the needed gap."""
+    folder = tmp_path_factory.mktemp("sweep")
+    t_s = np.arange(0.0, 6.0, 0.02)
+    for name, period_s in (("pulse_a.txt", 0.8), ("pulse_b.txt", 1.1)):
+        np.savetxt(folder / name, 0.3 * np.sin(2 * np.pi * t_s / period_s) * np.sin(np.pi * t_s / 6.0) ** 2)
+    write_sweep(folder / "sweep.toml")
+    return folder
+
+
+def write_sweep(path, records=None, extra=""):
+    records = records or ['{file = "pulse_a.txt", format = "single", units = "g", dt_s = 0.02}',
+                          '{file = "pulse_b.txt", format = "single", units = "g", dt_s = 0.02}']
+    path.write_text(f'scenes = ["{PAPER}"]\nrecords = [{", ".join(records)}]\n'
+                    f"gaps_m = [{GAPS_M[0]}, {GAPS_M[1]}]\nneeded_gap = true\n{extra}")
+    return path
+
+
+def without_timings(rows):
+    """The rows sorted by their parameters, every column but the timings."""
+    key = [*sweeps.PARAMETERS]
+    return sorted(({k: v for k, v in row.items() if k not in TIMINGS} for row in rows),
+                  key=lambda row: [row[k] for k in key])
+
+
+@pytest.fixture(scope="module")
+def serial(folder):
+    return pounding.sweep(folder / "sweep.toml", out=folder / "serial", workers=0, progress=False)
+
+
+def test_two_workers_give_the_serial_table(folder, serial):
+    assert serial.executed == 4 and serial.skipped == 0 and not serial.interrupted
+    distributed = pounding.sweep(folder / "sweep.toml", out=folder / "two", workers=2, progress=False)
+    assert distributed.executed == 4
+    assert without_timings(distributed.rows) == without_timings(serial.rows)
+    assert list(distributed.rows[0]) == list(serial.rows[0])  # the same columns in the same order
+    provenance = json.loads((folder / "two" / "sweep.json").read_text())
+    assert provenance["cluster"].startswith("LocalCluster(2 workers")
+    assert provenance["sweep_sha256"] == hashlib.sha256((folder / "sweep.toml").read_bytes()).hexdigest()
+    assert provenance["complete"] and provenance["rows"] == 4
+    assert provenance["provenance"]["program_version"] == pounding.__version__
+
+
+def test_rows_are_the_module_s_runs(folder, serial):
+    """Each row holds what the module's run and needed_gap give for that scene alone (floats bit for
+    bit through the CSV), and the needed gap divides the gaps that pound from those that do not."""
+    scene = pounding.load_scene(PAPER)
+    pounded = set()
+    for row in serial.rows:
+        record = scene.with_record(folder / row["record"], format="single", units="g", dt_s=0.02)
+        gap = pounding.needed_gap(record)
+        assert float(row["needed_gap_m"]).hex() == gap.needed_gap_m.hex()
+        assert int(row["needed_gap_level"]) == gap.level and row["needed_gap_status"] == "completed"
+
+        result = pounding.run(record.with_gap(float(row["gap_m"])))
+        assert row["status"] == result.status == "completed"
+        assert int(row["impact_count"]) == len(result.impacts)
+        impulse = max((abs(i["impulse_kNs"]) for i in result.impacts), default=0.0)
+        assert float(row["max_impulse_kNs"]).hex() == impulse.hex()
+        top_u = max(abs(f["u_m"]["value"]) for f in result.peaks[1]["floors"])
+        assert float(row["b2_peak_u_m"]).hex() == top_u.hex()
+        assert float(row["solver_time_s"]) > 0 and float(row["wall_time_s"]) >= float(row["solver_time_s"])
+        # No contact beyond the needed gap; impacts below it (these gaps are far from it).
+        assert (int(row["impact_count"]) > 0) == (float(row["gap_m"]) < gap.needed_gap_m)
+        if int(row["impact_count"]):
+            pounded.add((row["record"], row["gap_m"]))
+    assert 0 < len(pounded) < 4, "the sweep should hold runs with and without pounding"
+
+
+def test_interrupted_sweep_resumes_without_redoing_runs(folder, serial):
+    out = folder / "resumed"
+    first = pounding.sweep(folder / "sweep.toml", out=out, workers=0, progress=False, max_runs=1)
+    assert (first.executed, len(first.rows), first.interrupted) == (1, 1, True)
+    second = pounding.sweep(folder / "sweep.toml", out=out, workers=2, progress=False)
+    assert (second.executed, second.skipped, second.interrupted) == (3, 1, False)
+    assert without_timings(second.rows) == without_timings(serial.rows)
+
+    # A process killed while writing leaves a row cut short: it is dropped and run again.
+    table = (out / "sweep.csv").read_text()
+    last = table.rstrip("\n").rfind("\n")
+    (out / "sweep.csv").write_text(table[: last + 1] + table[last + 1: last + 40])
+    third = pounding.sweep(folder / "sweep.toml", out=out, workers=0, progress=False)
+    assert (third.executed, third.skipped, third.interrupted) == (1, 3, False)
+    assert without_timings(third.rows) == without_timings(serial.rows)
+    fourth = pounding.sweep(folder / "sweep.toml", out=out, workers=0, progress=False)
+    assert (fourth.executed, fourth.skipped, len(fourth.rows)) == (0, 4, 4)
+
+
+def test_a_failed_run_is_a_row(folder):
+    """A record that exists but cannot be read fails its runs and its needed gap: rows with the
+    reader's message; the other record's runs complete."""
+    (folder / "broken.AT2").write_text("not a PEER record\n")
+    path = write_sweep(folder / "broken.toml",
+                       ['{file = "pulse_a.txt", format = "single", units = "g", dt_s = 0.02}', '"broken.AT2"'])
+    result = pounding.sweep(path, out=folder / "broken", workers=0, progress=False)
+    assert len(result.rows) == 4 and not result.interrupted
+    failed = [row for row in result.rows if row["record"] == "broken.AT2"]
+    assert len(failed) == 2 and result.failed == 2
+    for row in failed:
+        assert row["status"] == "failed" and "broken.AT2" in row["message"] and "PEER" in row["message"]
+        assert row["impact_count"] == "" and row["needed_gap_m"] == ""
+        assert row["needed_gap_status"].startswith("failed: ") and "broken.AT2" in row["needed_gap_status"]
+    assert all(row["status"] == "completed" for row in result.rows if row["record"] == "pulse_a.txt")
+
+
+@pytest.mark.parametrize("text, key, value, reason", [
+    ("gap_m = [0.1]", "gap_m", "[0.1]", "unknown key"),
+    ('scenes = ["missing.toml"]', "scenes[0]", '"missing.toml"', "no such file"),
+    (f'scenes = ["{PAPER}", "{PAPER.parent}/../paper/paper.toml"]', "scenes[1]", "../paper/paper.toml", "given twice"),
+    ("gaps_m = [0.1, 20.0]", "gaps_m[1]", "20.0", "must lie in [0, 10] m (scene"),
+    ('gaps_m = [0.1, "wide"]', "gaps_m[1]", '"wide"', "expected a number"),
+    ("restitutions = [1.5]", "restitutions[0]", "1.5", "must lie in [0, 1]"),
+    ('methods = [{name = "hht", rtol = 1e-6}]', "methods[0].rtol", "1e-06", "does not apply to method hht"),
+    ('methods = [{name = "cvode-bdf", rtoll = 1e-6}]', "methods[0].rtoll", "1e-06", "unknown field"),
+    ('methods = ["rk4"]', "methods[0].name", '"rk4"', "expected"),
+    ('methods = ["hht"]\ncontact_laws = ["kelvin"]', "methods[0]", '"hht"', "(contact_laws[0], scene"),
+    ('contact_laws = [{name = "kelvin", stiffness_kN_per_m = -1.0}]', "contact_laws[0].stiffness_kN_per_m", "-1",
+     "must lie in"),
+    ('records = ["pulse_a.txt", {file = "pulse_b.txt", units = "furlongs"}]', "records[1].units", "furlongs",
+     "expected"),
+    ('records = ["nowhere.AT2"]', "records[0].file", "", "no such"),
+    ('records = "nowhere.txt"', "records", '"nowhere.txt"', "no such record list or folder"),
+    ("needed_gap = 1", "needed_gap", "1", "expected true or false"),
+])
+def test_bad_sweep_file_names_file_key_and_value(folder, tmp_path, text, key, value, reason):
+    path = folder / "bad.toml"
+    lines = {"scenes": f'scenes = ["{PAPER}"]', "records": 'records = ["pulse_a.txt"]'}
+    lines.update({line.split(" = ")[0]: line for line in text.split("\n")})  # the case's lines replace these
+    path.write_text("\n".join(lines.values()) + "\n")
+    with pytest.raises(pounding.InputError) as raised:
+        pounding.sweep(path, out=tmp_path / "never", workers=0, progress=False)
+    error = raised.value
+    assert (error.file, error.key) == (str(path), key), str(error)
+    assert value in error.value and reason in error.reason, str(error)
+    assert str(error).startswith(f"{path}: {key}") and not (tmp_path / "never").exists()
+
+
+def test_a_bad_line_of_a_record_list_names_the_line(folder):
+    (folder / "set.txt").write_text("pulse_a.txt format=single units=g dt_s=0.02\npulse_b.txt dt_s=fast\n")
+    path = folder / "list.toml"
+    path.write_text(f'scenes = ["{PAPER}"]\nrecords = "set.txt"\n')
+    with pytest.raises(pounding.InputError) as raised:
+        pounding.sweep(path, out=folder / "never", workers=0, progress=False)
+    assert not (folder / "never").exists()
+    assert raised.value.file == f"{folder / 'set.txt'}:2" and raised.value.key == "dt_s"
+    assert raised.value.value == "fast"
+
+
+def test_cli_runs_the_sweep_and_refuses_a_bad_file(folder, serial):
+    done = subprocess.run([CLI, "sweep", folder / "sweep.toml", "--workers", "2", "--no-progress", "--out",
+                           folder / "cli"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "4 rows in" in done.stdout
+    assert without_timings(sweeps.read_table(folder / "cli" / "sweep.csv")) == without_timings(serial.rows)
+
+    (folder / "typo.toml").write_text(f'scenes = ["{PAPER}"]\ngaps = [0.1]\n')
+    with pytest.raises(pounding.InputError) as raised:
+        pounding.sweep(folder / "typo.toml", workers=0, progress=False)
+    done = subprocess.run([CLI, "sweep", folder / "typo.toml", "--serial"], capture_output=True, text=True)
+    assert done.returncode == 2 and done.stderr == f"error: {raised.value}\n"
+
+
+def test_plot_sweep_fits_the_needed_gaps(folder, serial):
+    """tools/plot_sweep.py on the serial table: its lognormal fit of two needed gaps g1, g2 has the
+    closed form median √(g1·g2) and 84th percentile exp(m + s), s = |ln g1 − ln g2| / √2."""
+    figure = folder / "sweep.png"
+    done = subprocess.run(["/usr/bin/python3", SOURCE / "tools" / "plot_sweep.py", folder / "serial", "--out", figure],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert figure.stat().st_size > 10_000
+    fits = json.loads((folder / "serial" / "sweep_fit.json").read_text())
+    assert len(fits) == 1 and fits[0]["records"] == 2  # one panel: only the record and the gap vary
+    g1, g2 = sorted({float(row["needed_gap_m"]) for row in serial.rows})
+    fit = fits[0]["fit"]
+    assert fit["median_lognormal_m"] == pytest.approx(math.sqrt(g1 * g2), rel=1e-14)
+    s = abs(math.log(g1) - math.log(g2)) / math.sqrt(2)
+    assert fit["p84_lognormal_m"] == pytest.approx(math.sqrt(g1 * g2) * math.exp(s), rel=1e-14)
+    assert fit["median_m"] == pytest.approx((g1 + g2) / 2, rel=1e-15)
+    assert f"median {fit['median_lognormal_m']:.4f} m" in done.stdout
