@@ -105,6 +105,7 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
   if (command.rtol) solver.rtol = *command.rtol;
   if (command.atol) solver.atol = *command.atol;
   if (command.newton) solver.newton = *command.newton;
+  if (command.form) solver.form = *command.form;
   if (command.dt_s) solver.dt_s = *command.dt_s;
   if (command.alpha) solver.alpha = *command.alpha;
   if (command.contact_tolerance_m) solver.contact_tolerance_m = *command.contact_tolerance_m;

@@ -39,6 +39,7 @@ struct RunCommand {
   std::optional<double> rtol;
   std::optional<double> atol;
   std::optional<std::string> newton;
+  std::optional<std::string> form;
   std::optional<double> dt_s;
   std::optional<double> alpha;
   std::optional<double> contact_tolerance_m;

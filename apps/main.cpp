@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--rtol", run.rtol, option_help(Setting::rtol));
   run_app->add_option("--atol", run.atol, option_help(Setting::atol));
   run_app->add_option("--newton", run.newton, option_help(Setting::newton));
+  run_app->add_option("--form", run.form, option_help(Setting::form));
   run_app->add_option("--dt", run.dt_s, option_help(Setting::dt_s));
   run_app->add_option("--alpha", run.alpha, option_help(Setting::alpha));
   run_app->add_option("--contact-tol", run.contact_tolerance_m, option_help(Setting::contact_tolerance_m));

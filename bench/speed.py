@@ -2,13 +2,16 @@
 """Solver time and accuracy of every method on the paper scene against the scipy peer, and how
 the cost grows with building size: the measurements issue 12's targets are stated in.
 
-    bench/speed.py [--pounding build/apps/pounding] [--repeat 5] [--out bench/results] [--size-gap 0.5]
+    bench/speed.py [--pounding build/apps/pounding] [--repeat 5] [--out bench/results] [--sizes 10,20,40,60]
+                   [--size-gap 0.5]
 
 Writes speed.md (tables to paste into the README) and speed.json into --out, with the commit
 and the CPU they were measured on. Times are medians of --repeat runs:
 - solver time: the run's own `statistics.wall_time_s` (the solution path alone, no scene
   reading, model assembly or file writing);
 - CPU: the whole `pounding run` process (user + system), for comparison with the peer's CPU.
+Methods with a `form` setting run in both forms (physical, modal). The size table also gives the
+steps and rhs/Jacobian counts. On a shared machine compare CPU, not solver (wall) time.
 Measure on a quiet machine: other work on the cores inflates every number.
 """
 import argparse
@@ -30,7 +33,7 @@ import scipy_paper  # noqa: E402  (the independent peer)
 
 PAPER = ROOT / "examples/paper/paper.toml"
 SIZES = [10, 20, 40, 60]  # storeys of each building in the size ladder
-SIZE_METHODS = ["cvode-bdf", "exact"]
+SIZE_METHODS = ["cvode-bdf", "cvode-bdf/modal", "exact"]
 
 
 def cpu_model():
@@ -69,9 +72,21 @@ def impact_error_s(summary, peer_impacts):
 
 
 def registry_methods(pounding):
-    """Every method of the program's registry (`pounding methods --json`), in its order."""
+    """Every method of the program's registry (`pounding methods --json`), in its order, as
+    "name" and, for those with a `form` setting, also "name/modal"."""
     done = subprocess.run([pounding, "methods", "--json"], check=True, capture_output=True, text=True)
-    return [m["name"] for m in json.loads(done.stdout)]
+    names = []
+    for m in json.loads(done.stdout):
+        names.append(m["name"])
+        if "form" in m["settings"]:
+            names.append(m["name"] + "/modal")
+    return names
+
+
+def method_args(method):
+    """Command-line options of a "name" or "name/modal" entry."""
+    name, _, form = method.partition("/")
+    return ["--method", name] + (["--form", form] if form else [])
 
 
 def paper_table(pounding, repeat, scratch):
@@ -86,7 +101,8 @@ def paper_table(pounding, repeat, scratch):
     for method in registry_methods(pounding):
         solver, cpu = [], []
         for k in range(repeat):
-            summary, c = timed_run(pounding, PAPER, Path(scratch) / f"{method}-{k}", "--method", method)
+            summary, c = timed_run(pounding, PAPER, Path(scratch) / f"{method.replace('/', '-')}-{k}",
+                                   *method_args(method))
             solver.append(summary["statistics"]["wall_time_s"])
             cpu.append(c)
         rows.append(dict(method=method, solver_s=statistics.median(solver), cpu_s=statistics.median(cpu),
@@ -107,41 +123,49 @@ def sized_scene(storeys, folder):
     return scene
 
 
-def size_table(pounding, repeat, scratch, gap_m):
+def size_table(pounding, repeat, scratch, sizes, gap_m):
     rows = []
-    for storeys in SIZES:
+    for storeys in sizes:
         scene = sized_scene(storeys, scratch)
         for method in SIZE_METHODS:
-            solver = []
+            solver, cpu = [], []
             for k in range(repeat):
-                summary, _ = timed_run(pounding, scene, Path(scratch) / f"size{storeys}-{method}-{k}", "--method",
-                                       method, "--gap", str(gap_m), "--max-wall-time", "600")
+                summary, c = timed_run(pounding, scene, Path(scratch) / f"size{storeys}-{method.replace('/', '-')}-{k}",
+                                       *method_args(method), "--gap", str(gap_m), "--max-wall-time", "600")
                 solver.append(summary["statistics"]["wall_time_s"])
-            rows.append(dict(storeys=storeys, states=12 * storeys, method=method, solver_s=statistics.median(solver)))
+                cpu.append(c)
+            s = summary["statistics"]
+            rows.append(dict(storeys=storeys, states=12 * storeys, method=method, solver_s=statistics.median(solver),
+                             cpu_s=statistics.median(cpu), steps=s["steps"], rhs=s["rhs_evaluations"],
+                             jacobians=s["jacobian_evaluations"], impacts=summary["impact_count"]))
     return rows
 
 
-def fitted_exponent(rows, method):
-    """Least-squares slope of log(solver time) against log(states)."""
-    points = [(math.log(r["states"]), math.log(r["solver_s"])) for r in rows if r["method"] == method]
+def fitted_exponent(rows, method, key="solver_s"):
+    """Least-squares slope of log(time) against log(states)."""
+    points = [(math.log(r["states"]), math.log(r[key])) for r in rows if r["method"] == method]
     mx = sum(x for x, _ in points) / len(points)
     my = sum(y for _, y in points) / len(points)
     return sum((x - mx) * (y - my) for x, y in points) / sum((x - mx) ** 2 for x, _ in points)
 
 
-def markdown(paper, sizes, exponents, where):
+def markdown(paper, sizes, exponents, where, storeys_list):
     lines = [f"Measured {where}.", "",
              "| paper scene, gap 0.20 m | solver [s] | process CPU [s] | impact-time error vs peer [s] | impacts | status |",
              "|---|---|---|---|---|---|"]
     for r in paper:
         lines.append(f"| {r['method']} | {r['solver_s']:.4f} | {r['cpu_s']:.3f} | {r['error_s']:.1e} | {r['impacts']} | {r['status']} |")
     lines += ["", "(error: largest impact-time difference over the impacts before the first sustained contact)", "",
-              "| storeys (each) | states | " + " | ".join(f"{m} solver [s]" for m in SIZE_METHODS) + " |",
-              "|---|---|" + "---|" * len(SIZE_METHODS)]
-    for storeys in SIZES:
-        cells = [f"{r['solver_s']:.3f}" for m in SIZE_METHODS for r in sizes if r["storeys"] == storeys and r["method"] == m]
-        lines.append(f"| {storeys} | {12 * storeys} | " + " | ".join(cells) + " |")
-    lines.append("| fitted exponent (time ∝ states^p) | | " + " | ".join(f"{exponents[m]:.2f}" for m in SIZE_METHODS) + " |")
+              "| storeys (each) | states | method | solver [s] | process CPU [s] | steps | rhs | Jacobians | impacts |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for storeys in storeys_list:
+        for r in sizes:
+            if r["storeys"] == storeys:
+                lines.append(f"| {storeys} | {12 * storeys} | {r['method']} | {r['solver_s']:.3f} | {r['cpu_s']:.3f} | "
+                             f"{r['steps']} | {r['rhs']} | {r['jacobians']} | {r['impacts']} |")
+    lines += ["", "| fitted exponent (time ∝ states^p) | solver | process CPU |", "|---|---|---|"]
+    for m in SIZE_METHODS:
+        lines.append(f"| {m} | {exponents[m]['solver_s']:.2f} | {exponents[m]['cpu_s']:.2f} |")
     return "\n".join(lines) + "\n"
 
 
@@ -150,20 +174,22 @@ def main():
     parser.add_argument("--pounding", default=str(ROOT / "build/apps/pounding"))
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--out", default=str(ROOT / "bench/results"))
+    parser.add_argument("--sizes", default=",".join(map(str, SIZES)), help="storeys of the size ladder")
     parser.add_argument("--size-gap", type=float, default=0.5,
                         help="gap (m) of the size ladder; at 0.5 m the 60-storey pair collides, at 1.5 m no size does")
     args = parser.parse_args()
+    storeys_list = [int(s) for s in args.sizes.split(",")]
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     where = (f"at commit {commit()} on {cpu_model()} ({platform.node()}), median of {args.repeat}; "
              f"size ladder at gap {args.size_gap} m")
     with tempfile.TemporaryDirectory() as scratch:
         paper = paper_table(args.pounding, args.repeat, scratch)
-        sizes = size_table(args.pounding, args.repeat, scratch, args.size_gap)
-    exponents = {m: fitted_exponent(sizes, m) for m in SIZE_METHODS}
+        sizes = size_table(args.pounding, args.repeat, scratch, storeys_list, args.size_gap)
+    exponents = {m: {key: fitted_exponent(sizes, m, key) for key in ("solver_s", "cpu_s")} for m in SIZE_METHODS}
     (out / "speed.json").write_text(json.dumps(dict(measured=where, paper=paper, sizes=sizes, exponents=exponents),
                                                indent=2))
-    text = markdown(paper, sizes, exponents, where)
+    text = markdown(paper, sizes, exponents, where, storeys_list)
     (out / "speed.md").write_text(text)
     print(text)
 

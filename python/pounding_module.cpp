@@ -128,6 +128,7 @@ void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis:
     case Setting::rtol: solver.rtol = real(); return;
     case Setting::atol: solver.atol = real(); return;
     case Setting::newton: solver.newton = text(); return;
+    case Setting::form: solver.form = text(); return;
     case Setting::hold_rtol: solver.hold_rtol = real(); return;
     case Setting::dt_s: solver.dt_s = real(); return;
     case Setting::alpha: solver.alpha = real(); return;
@@ -303,14 +304,18 @@ PYBIND11_MODULE(_pounding, m) {
   m.def(
       "load_scene",
       [](const std::filesystem::path& file, std::optional<double> gap_m, std::optional<double> restitution,
-         std::optional<std::string> contact_law, std::optional<double> contact_stiffness_kN_per_m) {
+         std::optional<std::string> contact_law, std::optional<double> contact_stiffness) {
         return pounding::io::read_scene(file, {.gap_m = gap_m,
                                                .restitution = restitution,
                                                .contact_law = std::move(contact_law),
-                                               .contact_stiffness_kN_per_m = contact_stiffness_kN_per_m});
+                                               .contact_stiffness = contact_stiffness});
       },
       py::arg("file"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"),
-      py::arg("contact_stiffness_kN_per_m"));
+      py::arg("contact_stiffness"));
+  m.def(
+      "contact_law_stiffness_key",
+      [](const std::string& law) { return std::string(pounding::analysis::contact_law_info(law, "contact_law").stiffness_key); },
+      py::arg("law"));
   m.def("record_list", &record_list, py::arg("scene"), py::arg("list_or_folder"));
 
   m.def("modes_json", [](const Scene& scene) {

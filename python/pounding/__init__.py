@@ -75,12 +75,13 @@ Scene.__repr__ = lambda self: (f"<pounding.Scene {self.name!r}: gap {self.gap_m}
                                f"{self.restitution}, method {self.method}, record {str(self.record_file)!r}>")
 
 
-def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiffness_kN_per_m=None):
+def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiffness=None):
     """Reads and validates a scene file, like `pounding run SCENE [--gap G] [--restitution K]
     [--contact-law L] [--contact-stiffness S]` (the same errors, naming those options). Returns a
     Scene with .name, .file, .gap_m, .restitution, .method, .contact_law, .record_file and the
-    with_gap(m), with_restitution(k), with_record(path, ...) copies."""
-    return _pounding.load_scene(path, gap, restitution, contact_law, contact_stiffness_kN_per_m)
+    with_gap(m), with_restitution(k), with_record(path, ...) copies. `contact_stiffness` is in the
+    law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp and jankowski."""
+    return _pounding.load_scene(path, gap, restitution, contact_law, contact_stiffness)
 
 
 def record_list(scene, list_or_folder):

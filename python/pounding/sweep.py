@@ -13,7 +13,8 @@ The sweep file (TOML; paths relative to its folder; README, "Sweeps"):
     gaps_m = [0.05, 0.1]               # absent: the scene's gap
     restitutions = [0.5]               # absent: the scene's
     methods = ["cvode-bdf", {name = "arkode-erk", rtol = 1e-8}]   # absent: the scene's
-    contact_laws = ["impulse", {name = "kelvin", stiffness_kN_per_m = 1e5}]  # absent: the scene's
+    contact_laws = ["impulse", {name = "kelvin", stiffness_kN_per_m = 1e5},
+                    {name = "hertzdamp", stiffness_kN_per_m1_5 = 1e7}]  # absent: the scene's
     needed_gap = true                  # also the needed gap of each scene under each record
     max_wall_time_s = 600              # each run's budget (absent: the module's default, an hour)
     out = "../../out/sweep"            # absent: out/<sweep file name> in the current folder
@@ -51,12 +52,13 @@ SWEEP_KEYS = ("scenes", "records", "gaps_m", "restitutions", "methods", "contact
 RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "dt_s",
                  "accel_column": "accel_column", "scale": "scale_factor", "pga_g": "scale_to_pga_g",
                  "direction_deg": "direction_deg"}  # field -> Scene.with_record keyword
-LAW_KEYS = ("name", "stiffness_kN_per_m")
+STIFFNESS_KEYS = ("stiffness_kN_per_m", "stiffness_kN_per_m1_5")  # kelvin; hertzdamp, jankowski
+LAW_KEYS = ("name", *STIFFNESS_KEYS)
 
 # Columns of sweep.csv after the parameters (which are PARAMETERS, then one column a [solver]
 # setting the sweep sets). Timings last: the only columns two sweeps of one file may differ in.
 PARAMETERS = ("scene_file", "scene", "record", "record_source", "gap_m", "restitution", "contact_law",
-              "contact_stiffness_kN_per_m", "method")
+              "contact_stiffness", "method")
 RESULTS = ("status", "message", "impact_count", "touch_count", "sustained_contact_count", "first_impact_s",
            "max_impulse_kNs", "max_approach_speed_mps", "impact_loss_kJ",
            "b1_peak_u_m", "b1_peak_v_m", "b1_peak_phi_rad", "b2_peak_u_m", "b2_peak_v_m", "b2_peak_phi_rad", "steps")
@@ -196,26 +198,39 @@ class Sweep:
 
     def _laws(self):
         if "contact_laws" not in self.document:
-            return [{"name": None, "stiffness_kN_per_m": None}]
+            return [{"name": None, "stiffness": None}]
         laws = []
         for index, entry in enumerate(self._named_entries("contact_laws", LAW_KEYS)):
-            stiffness = entry.get("stiffness_kN_per_m")
-            if stiffness is not None and not _is_number(stiffness):
-                raise _error(self.file, f"contact_laws[{index}].stiffness_kN_per_m", _text(stiffness),
-                             "expected a number")
-            law = {"name": entry["name"], "stiffness_kN_per_m": None if stiffness is None else float(stiffness)}
+            law = {"name": entry["name"], "stiffness": self._law_stiffness(index, entry)}
             for scene_file in self.scene_files:
                 try:
                     pounding.load_scene(self._resolve(scene_file), contact_law=law["name"],
-                                        contact_stiffness_kN_per_m=law["stiffness_kN_per_m"])
+                                        contact_stiffness=law["stiffness"])
                 except InputError as error:
-                    field = "stiffness_kN_per_m" if error.key == "--contact-stiffness" else "name"
+                    field = _stiffness_field(entry) if error.key == "--contact-stiffness" else "name"
                     raise _error(self.file, f"contact_laws[{index}].{field}", error.value,
                                  f"{error.reason} (scene {scene_file})") from None
             if law in laws:
                 raise _error(self.file, f"contact_laws[{index}]", _text(entry), "given twice")
             laws.append(law)
         return laws
+
+    def _law_stiffness(self, index, entry):
+        """The entry's stiffness, given under the law's own key (its unit: kN/m or kN/m^1.5)."""
+        field = _stiffness_field(entry)
+        if field is None:
+            return None
+        stiffness = entry[field]
+        try:
+            expected = pounding._pounding.contact_law_stiffness_key(entry["name"])
+        except InputError as error:
+            raise _error(self.file, f"contact_laws[{index}].name", error.value, error.reason) from None
+        if field != expected:
+            raise _error(self.file, f"contact_laws[{index}].{field}", _text(stiffness),
+                         f"not a stiffness of {entry['name']}" + (f" (its key is {expected})" if expected else ""))
+        if not _is_number(stiffness):
+            raise _error(self.file, f"contact_laws[{index}].{field}", _text(stiffness), "expected a number")
+        return float(stiffness)
 
     def _methods(self):
         if "methods" not in self.document:
@@ -295,7 +310,7 @@ class Sweep:
         for scene_file in self.scene_files:
             for law_index, law in enumerate(self.laws):
                 scene = pounding.load_scene(self._resolve(scene_file), contact_law=law["name"],
-                                            contact_stiffness_kN_per_m=law["stiffness_kN_per_m"])
+                                            contact_stiffness=law["stiffness"])
                 for method_index, method in enumerate(self.methods):
                     try:
                         scene.with_method(method["name"], **method["settings"])
@@ -325,11 +340,11 @@ class Sweep:
                "gap_m": scene.gap_m if gap_m is None else gap_m,
                "restitution": scene.restitution if restitution is None else restitution,
                "contact_law": law["name"] or scene.contact_law,
-               "contact_stiffness_kN_per_m": law["stiffness_kN_per_m"],
+               "contact_stiffness": law["stiffness"],
                "method": method["name"] or scene.method}
         row.update({key: method["settings"].get(key) for key in self.setting_keys})
         task = {"scene_file": self._resolve(scene_file), "gap_m": gap_m, "restitution": restitution,
-                "contact_law": law["name"], "contact_stiffness_kN_per_m": law["stiffness_kN_per_m"],
+                "contact_law": law["name"], "contact_stiffness": law["stiffness"],
                 "record": _record_keywords(record), "method": method["name"], "settings": method["settings"],
                 "max_wall_time_s": self.max_wall_time_s}
         return row, task
@@ -340,6 +355,12 @@ class Sweep:
                                                         self.records],
                 "gaps_m": self.gaps_m, "restitutions": self.restitutions, "contact_laws": self.laws,
                 "methods": self.methods, "needed_gap": self.needed_gap, "max_wall_time_s": self.max_wall_time_s}
+
+
+def _stiffness_field(entry):
+    """Which stiffness key a contact_laws entry gives, or None."""
+    given = [key for key in STIFFNESS_KEYS if key in entry]
+    return given[0] if given else None
 
 
 def _is_number(value):
@@ -357,7 +378,7 @@ def _record_keywords(record):
 def _scene(task):
     scene = pounding.load_scene(task["scene_file"], gap=task.get("gap_m"), restitution=task.get("restitution"),
                                 contact_law=task.get("contact_law"),
-                                contact_stiffness_kN_per_m=task.get("contact_stiffness_kN_per_m"))
+                                contact_stiffness=task.get("contact_stiffness"))
     if task["record"] is not None:
         scene = scene.with_record(**task["record"])
     return scene

@@ -6,12 +6,14 @@
 #include <fmt/ranges.h>
 
 #include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/dynamics/modal_system.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/model/modal.hpp"
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/exact_integrator.hpp"
 #include "pounding/solvers/modal_exact_integrator.hpp"
+#include "pounding/solvers/modal_integrator.hpp"
 
 namespace pounding::analysis {
 namespace {
@@ -28,6 +30,7 @@ constexpr Range kHhtStep{0.0, 0.1, "s", true};             // published 0.05 s
 constexpr Range kHhtContactTolerance{0.0, 0.01, "m", true};
 constexpr int kMaxHalvings = 60;                           // 0.05 s / 2⁶⁰ is below round-off of t
 const std::vector<std::string> kNewtonSolvers{"reduced", "dense"};
+const std::vector<std::string> kForms{"physical", "modal"};
 const std::vector<std::string> kEventLocations{"halving", "end-of-step", "interpolate"};
 // Root bracketing of the exact path: a subdivision fine against the shortest period that moves a gap.
 constexpr double kExactSubdivisionsPerPeriod = 16.0;
@@ -38,6 +41,8 @@ constexpr SettingSpec kSpecs[] = {
     {Setting::atol, "atol", "--atol",
      "absolute tolerance of the slab displacements (m); rotations and rates derive from it"},
     {Setting::newton, "newton", "--newton", "Newton linear solver: reduced (n x n) or dense (2n x 2n LU)"},
+    {Setting::form, "form", "--form",
+     "state integrated: physical (q, q') or modal (each building's modal coordinates)"},
     {Setting::hold_rtol, "hold_rtol", "--hold-rtol", "relative tolerance of held stretches (CVODE BDF)"},
     {Setting::dt_s, "dt_s", "--dt", "fixed time step (s)"},
     {Setting::alpha, "alpha", "--alpha", "HHT alpha in [-1/3, 0]"},
@@ -55,13 +60,38 @@ Eigen::VectorXd atol_vector(const UsedSettings& used, const dynamics::CoupledSys
   return used.atol_components ? used.atol_components->vector(system) : Eigen::VectorXd();
 }
 
+/// `make(functions, settings, t0, y0)` on the physical state, or for form "modal" on the modal
+/// coordinates behind a ModalIntegrator, its atol vector mapped by ModalSystem::atol.
+template <typename Settings, typename Make>
+solvers::IntegratorFactory in_form(const UsedSettings& used, const dynamics::CoupledSystem& system, Settings settings,
+                                   Make make) {
+  std::shared_ptr<const dynamics::ModalSystem> modes;
+  if (used.form == "modal") {
+    modes = std::make_shared<const dynamics::ModalSystem>(system);
+    const Eigen::VectorXd physical_atol = settings.atol_vector.size()
+                                              ? settings.atol_vector
+                                              : Eigen::VectorXd::Constant(system.state_size(), settings.atol);
+    settings.atol_vector = modes->atol(physical_atol);
+  }
+  solvers::IntegratorFactory inner = [settings, make](solvers::OdeFunctions& functions, double t0,
+                                                      const Eigen::VectorXd& y0) -> IntegratorPtr {
+    return make(functions, settings, t0, y0);
+  };
+  if (!modes) return inner;
+  return [modes, inner](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
+    return std::make_unique<solvers::ModalIntegrator>(*modes, functions, inner, t0, y0);
+  };
+}
+
 template <solvers::CvodeMethod kMethod>
 solvers::IntegratorFactory cvode_factory(const UsedSettings& used, const dynamics::CoupledSystem& system) {
   const solvers::CvodeSettings settings{.method = kMethod, .rtol = used.rtol, .atol = used.atol,
                                         .newton_solver = newton_solver(used), .atol_vector = atol_vector(used, system)};
-  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
-    return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
-  };
+  return in_form(used, system, settings,
+                 [](solvers::OdeFunctions& functions, const solvers::CvodeSettings& s, double t0,
+                    const Eigen::VectorXd& y0) -> IntegratorPtr {
+                   return std::make_unique<solvers::CvodeIntegrator>(functions, s, t0, y0);
+                 });
 }
 
 template <solvers::ArkodeMethod kMethod>
@@ -69,9 +99,9 @@ solvers::IntegratorFactory arkode_factory(const UsedSettings& used, const dynami
   const solvers::ArkodeSettings settings{.method = kMethod, .rtol = used.rtol, .atol = used.atol,
                                          .order = used.order, .newton_solver = newton_solver(used),
                                          .atol_vector = atol_vector(used, system)};
-  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) {
-    return solvers::make_arkode_integrator(functions, settings, t0, y0);
-  };
+  return in_form(used, system, settings,
+                 [](solvers::OdeFunctions& functions, const solvers::ArkodeSettings& s, double t0,
+                    const Eigen::VectorXd& y0) { return solvers::make_arkode_integrator(functions, s, t0, y0); });
 }
 
 solvers::IntegratorFactory exact_factory(const UsedSettings& used, const dynamics::CoupledSystem& system) {
@@ -90,26 +120,26 @@ using enum Setting;
 const std::vector<MethodInfo> kMethods = {
     {.name = "cvode-bdf",
      .description = "CVODE BDF (orders 1-5), event-driven: stiff-safe, the default",
-     .settings = {rtol, atol, newton},
+     .settings = {rtol, atol, newton, form},
      .factory = cvode_factory<solvers::CvodeMethod::bdf>,
      .ladder = kRtolLadder, .quick_ladder = kQuickRtolLadder,
      .series = {{"cvode-bdf", "", {"tab:blue", "o"}}}},
     {.name = "cvode-adams",
      .description = "CVODE Adams-Moulton (orders 1-12) with Newton iterations, event-driven",
-     .settings = {rtol, atol, newton},
+     .settings = {rtol, atol, newton, form},
      .factory = cvode_factory<solvers::CvodeMethod::adams>,
      .ladder = kRtolLadder, .quick_ladder = kQuickRtolLadder,
      .series = {{"cvode-adams", "", {"tab:cyan", "s"}}}},
     {.name = "arkode-erk",
      .description = "ARKODE explicit Runge-Kutta, Dormand-Prince 5(4), event-driven: no linear algebra",
-     .settings = {order, rtol, atol},
+     .settings = {order, rtol, atol, form},
      .orders = {5},
      .factory = arkode_factory<solvers::ArkodeMethod::erk>,
      .ladder = kRtolLadder, .quick_ladder = kQuickRtolLadder,
      .series = {{"arkode-erk", "", {"tab:green", "^"}}}},
     {.name = "arkode-dirk",
      .description = "ARKODE diagonally implicit Runge-Kutta, SDIRK 5-3-4 or Kvaerno 4-2-3, event-driven",
-     .settings = {order, rtol, atol, newton},
+     .settings = {order, rtol, atol, newton, form},
      .orders = {4, 3},
      .factory = arkode_factory<solvers::ArkodeMethod::dirk>,
      .ladder = kRtolLadder, .quick_ladder = kQuickRtolLadder,
@@ -147,6 +177,7 @@ std::optional<SettingValue> given_value(const SolverSettings& given, Setting set
     case rtol: return value(given.rtol);
     case atol: return value(given.atol);
     case newton: return value(given.newton);
+    case form: return value(given.form);
     case hold_rtol: return value(given.hold_rtol);
     case dt_s: return value(given.dt_s);
     case alpha: return value(given.alpha);
@@ -163,6 +194,7 @@ SettingValue used_value(const UsedSettings& used, Setting setting) {
     case rtol: return used.rtol;
     case atol: return used.atol;
     case newton: return used.newton;
+    case form: return used.form;
     case hold_rtol: return used.hold_rtol;
     case dt_s: return used.dt_s;
     case alpha: return used.alpha;
@@ -179,6 +211,7 @@ void clear(SolverSettings& given, Setting setting) {
     case rtol: given.rtol.reset(); break;
     case atol: given.atol.reset(); break;
     case newton: given.newton.reset(); break;
+    case form: given.form.reset(); break;
     case hold_rtol: given.hold_rtol.reset(); break;
     case dt_s: given.dt_s.reset(); break;
     case alpha: given.alpha.reset(); break;
@@ -221,6 +254,7 @@ void validate_value(const MethodInfo& info, const SolverSettings& given, Setting
     case rtol: return require_range(key_of(rtol), *given.rtol, kRtol);
     case atol: return require_range(key_of(atol), *given.atol, kAtol);
     case newton: return require_one_of(newton, *given.newton, kNewtonSolvers);
+    case form: return require_one_of(form, *given.form, kForms);
     case hold_rtol: return require_range(key_of(hold_rtol), *given.hold_rtol, kHoldRtol);
     case dt_s: return require_range(key_of(dt_s), *given.dt_s, kHhtStep);
     case alpha:
@@ -313,6 +347,7 @@ UsedSettings resolve(const SolverSettings& given, const dynamics::CoupledSystem*
   used.rtol = given.rtol.value_or(used.rtol);
   used.atol = given.atol.value_or(used.atol);
   used.newton = given.newton.value_or(used.newton);
+  used.form = given.form.value_or(used.form);
   used.hold_rtol = given.hold_rtol.value_or(used.hold_rtol);
   used.dt_s = given.dt_s.value_or(used.dt_s);
   used.alpha = given.alpha.value_or(used.alpha);

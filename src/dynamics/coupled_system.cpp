@@ -34,11 +34,15 @@ CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
   const VectorXd inverse_mass = mass_.cwiseInverse();
   a_matrix_.bottomLeftCorner(dof_, dof_) = -(inverse_mass.asDiagonal() * stiffness_);
   a_matrix_.bottomRightCorner(dof_, dof_) = -(inverse_mass.asDiagonal() * damping_);
+  stiffness_sparse_ = stiffness_.sparseView();
+  damping_sparse_ = damping_.sparseView();
 }
 
 void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) const {
-  y_dot.noalias() = a_matrix_ * y;
-  y_dot.tail(dof_) -= influence_ * ground_motion_.accel_at(t);
+  // q̈ = −M⁻¹(K q + C q̇) − r a_g; the accelerations first, in case y_dot aliases y.
+  y_dot.tail(dof_) = -((stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.tail(dof_)).cwiseQuotient(mass_) +
+                       influence_ * ground_motion_.accel_at(t));
+  y_dot.head(dof_) = y.tail(dof_);
 }
 
 void CoupledSystem::external_force(double t, Eigen::Ref<VectorXd> force) const {
@@ -183,11 +187,11 @@ double CoupledSystem::kinetic_energy(ConstVectorRef y) const {
 }
 
 double CoupledSystem::strain_energy(ConstVectorRef y) const {
-  return 0.5 * y.head(dof_).dot(stiffness_ * y.head(dof_));
+  return 0.5 * y.head(dof_).dot(stiffness_sparse_ * y.head(dof_));
 }
 
 double CoupledSystem::damping_power(ConstVectorRef y) const {
-  return y.tail(dof_).dot(damping_ * y.tail(dof_));
+  return y.tail(dof_).dot(damping_sparse_ * y.tail(dof_));
 }
 
 double CoupledSystem::input_power(double t, ConstVectorRef y) const {

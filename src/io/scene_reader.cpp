@@ -460,6 +460,7 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   solver.rtol = table->optional_number("rtol");
   solver.atol = table->optional_number("atol");
   solver.newton = table->optional_string("newton");
+  solver.form = table->optional_string("form");
   solver.hold_rtol = table->optional_number("hold_rtol");
   solver.dt_s = table->optional_number("dt_s");
   solver.alpha = table->optional_number("alpha");

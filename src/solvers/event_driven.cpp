@@ -108,7 +108,8 @@ class EventDrivenRun final : public OdeFunctions {
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(3 * count_); }
-  bool is_linear() const override { return held_.empty() && active_.empty(); }
+  bool is_linear() const override { return is_free_motion(); }
+  bool is_free_motion() const override { return held_.empty() && active_.empty(); }
 
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
     forces_.resize(static_cast<Eigen::Index>(held_.size()));

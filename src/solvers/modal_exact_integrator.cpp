@@ -48,7 +48,9 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
 
 void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   counters_ = {};  // like CVODE's, the counters run from the last restart
-  held_phase_ = !functions_.is_linear();
+  // Only the system's own free motion decouples into its modes; anything else (a held contact)
+  // goes to the numerical integrator.
+  held_phase_ = !functions_.is_free_motion();
   if (held_phase_) {
     if (held_) {
       held_->restart(t, y);

@@ -12,6 +12,15 @@ Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
 
 constexpr double kGammaTolerance = 0.2;
 
+bool is_diagonal(const Eigen::Ref<const Eigen::MatrixXd>& block) {
+  for (Eigen::Index col = 0; col < block.cols(); ++col) {
+    for (Eigen::Index row = 0; row < block.rows(); ++row) {
+      if (row != col && block(row, col) != 0.0) return false;
+    }
+  }
+  return true;
+}
+
 SecondOrderLinearSolver* self(SUNLinearSolver solver) {
   return static_cast<SecondOrderLinearSolver*>(solver->content);
 }
@@ -47,9 +56,16 @@ int SecondOrderLinearSolver::setup(SUNLinearSolver solver, SUNMatrix) {
 void SecondOrderLinearSolver::factor(const NewtonData& data) {
   functions_.jacobian(data.t_s, view(data.prediction), jacobian_);
   const double g = data.gamma;
-  Eigen::MatrixXd reduced = -g * jacobian_.bottomRightCorner(n_, n_) - g * g * jacobian_.bottomLeftCorner(n_, n_);
-  reduced.diagonal().array() += 1.0;
-  reduced_.compute(reduced);
+  const auto a21 = jacobian_.bottomLeftCorner(n_, n_), a22 = jacobian_.bottomRightCorner(n_, n_);
+  diagonal_ = is_diagonal(a21) && is_diagonal(a22);
+  if (diagonal_) {
+    a21_diagonal_ = a21.diagonal();
+    reduced_diagonal_ = 1.0 - g * a22.diagonal().array() - g * g * a21_diagonal_.array();
+  } else {
+    Eigen::MatrixXd reduced = -g * a22 - g * g * a21;
+    reduced.diagonal().array() += 1.0;
+    reduced_.compute(reduced);
+  }
   gamma_ = g;
   stale_ = false;
   ++factorizations_;
@@ -67,6 +83,13 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
     const auto rhs = view(b);
     auto out = view(x);
     const double g = me->gamma_;  // solve the system that was factored, consistently
+    if (me->diagonal_) {
+      // x may alias b: x₂ first from b, then x₁ from b₁ and x₂.
+      out.tail(n) = (rhs.tail(n).array() + g * me->a21_diagonal_.array() * rhs.head(n).array()) /
+                    me->reduced_diagonal_.array();
+      out.head(n) = rhs.head(n) + g * out.tail(n);
+      return SUNLS_SUCCESS;
+    }
     const Eigen::VectorXd x2 = me->reduced_.solve(rhs.tail(n) + g * (me->jacobian_.bottomLeftCorner(n, n) * rhs.head(n)));
     out.head(n) = rhs.head(n) + g * x2;
     out.tail(n) = x2;

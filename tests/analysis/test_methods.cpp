@@ -25,6 +25,7 @@ void give(analysis::SolverSettings& s, const analysis::MethodInfo& method, Setti
     case Setting::rtol: s.rtol = 1e-6; break;
     case Setting::atol: s.atol = 1e-9; break;
     case Setting::newton: s.newton = "dense"; break;
+    case Setting::form: s.form = "modal"; break;
     case Setting::hold_rtol: s.hold_rtol = 1e-10; break;
     case Setting::dt_s: s.dt_s = 0.01; break;
     case Setting::alpha: s.alpha = -0.1; break;
@@ -141,14 +142,20 @@ BOOST_AUTO_TEST_CASE(UsedSettingsAreTheRealOnes) {
   BOOST_TEST(erk.order == 5);
   std::set<std::string_view> keys;
   for (const auto& entry : analysis::used_entries(erk)) keys.insert(entry.key);
-  BOOST_TEST((keys == std::set<std::string_view>{"order", "rtol", "atol"}));  // no Newton iterations
+  BOOST_TEST((keys == std::set<std::string_view>{"order", "rtol", "atol", "form"}));  // no Newton iterations
   s = {};
   s.newton = "dense";
   const analysis::UsedSettings bdf = analysis::resolve(s);
   BOOST_TEST(bdf.newton == "dense");
   BOOST_TEST(bdf.order == 0);
-  BOOST_TEST(analysis::describe_used_settings(bdf) == "rtol 1e-08, atol 1e-10, newton dense");
+  BOOST_TEST(analysis::describe_used_settings(bdf) == "rtol 1e-08, atol 1e-10, newton dense, form physical");
   BOOST_TEST(analysis::given_entries(s).size() == 1u);
+  s.form = "modal";
+  BOOST_TEST(analysis::resolve(s).form == "modal");
+  s.form = "eigen";
+  std::string key;
+  BOOST_TEST(reason_of(s, &key) == "expected physical or modal");
+  BOOST_TEST(key == "solver.form");
 }
 
 BOOST_AUTO_TEST_CASE(AnotherMethodKeepsTheSettingsItUsesAndListsTheRestAsNotUsed) {

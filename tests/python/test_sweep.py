@@ -149,6 +149,8 @@ def test_a_failed_run_is_a_row(folder):
     ('methods = ["hht"]\ncontact_laws = ["kelvin"]', "methods[0]", '"hht"', "(contact_laws[0], scene"),
     ('contact_laws = [{name = "kelvin", stiffness_kN_per_m = -1.0}]', "contact_laws[0].stiffness_kN_per_m", "-1",
      "must lie in"),
+    ('contact_laws = [{name = "hertzdamp", stiffness_kN_per_m = 1e7}]', "contact_laws[0].stiffness_kN_per_m", "10000000.0",
+     "not a stiffness of hertzdamp (its key is stiffness_kN_per_m1_5)"),
     ('records = ["pulse_a.txt", {file = "pulse_b.txt", units = "furlongs"}]', "records[1].units", "furlongs",
      "expected"),
     ('records = ["nowhere.AT2"]', "records[0].file", "", "no such"),

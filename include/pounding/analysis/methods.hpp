@@ -28,7 +28,7 @@ class CoupledSystem;
 namespace pounding::analysis {
 
 /// The keys of [solver] (docs/scene-format.md), in the order they are listed and written.
-enum class Setting { order, rtol, atol, newton, hold_rtol, dt_s, alpha, contact_tolerance_m, max_halvings, event_location };
+enum class Setting { order, rtol, atol, newton, form, hold_rtol, dt_s, alpha, contact_tolerance_m, max_halvings, event_location };
 
 struct SettingSpec {
   Setting id;
@@ -49,6 +49,7 @@ struct SolverSettings {
   std::optional<double> rtol;
   std::optional<double> atol;        // m: the slab displacements; rotations and rates derive from it (ComponentAtol)
   std::optional<std::string> newton; // reduced | dense
+  std::optional<std::string> form;   // physical | modal: the state the SUNDIALS methods integrate
   std::optional<double> hold_rtol;   // exact: held stretches
   std::optional<double> dt_s;        // hht
   std::optional<double> alpha;
@@ -96,6 +97,7 @@ struct UsedSettings {
   double rtol = 1e-8;
   double atol = 1e-10;                  // m (ComponentAtol derives the rest)
   std::string newton = "reduced";
+  std::string form = "physical";        // (q, q̇), or (η, η̇) per building's modes (ModalSystem)
   double hold_rtol = 1e-12;             // exact; the held stretches' atol is hold_rtol / 100 (m)
   double dt_s = 0.05;                   // s, the published value
   double alpha = -0.05;

@@ -4,6 +4,7 @@
 // with q_b ordered floor by floor (u, v, φ). Units: m, rad, s, t, kN.
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <array>
 #include <vector>
 
@@ -121,6 +122,9 @@ class CoupledSystem {
   MatrixXd damping_;       // block-diagonal C
   VectorXd influence_;     // r: (cos β, sin β, 0) per floor
   MatrixXd a_matrix_;      // A
+  // K and C couple only a storey's two floors: the free motion and the energies use them sparse,
+  // O(n) instead of the dense A's O(n²).
+  Eigen::SparseMatrix<double> stiffness_sparse_, damping_sparse_;
 };
 
 }  // namespace pounding::dynamics

@@ -22,6 +22,9 @@ class OdeFunctions {
   /// True when rhs is affine in y with a constant jacobian() (free flight); false when it may
   /// depend on y nonlinearly (a held contact's rotating geometry).
   virtual bool is_linear() const { return false; }
+  /// True when rhs is the coupled system's free motion ẏ = A y + B a_g(t) (no contact force
+  /// acts): a modal form may then step it mode by mode without calling rhs (ModalIntegrator).
+  virtual bool is_free_motion() const { return false; }
 };
 
 enum class StepKind { step, root, stop_time, failure };

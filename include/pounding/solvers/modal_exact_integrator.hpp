@@ -35,9 +35,9 @@ namespace pounding::solvers {
 
 class ModalExactIntegrator final : public Integrator {
  public:
-  /// `functions` is the event loop of `system` (run_event_driven's): in free flight
-  /// (is_linear()) its motion is the system's free motion, and its root functions read y only at
-  /// the candidates' floors. Both must outlive the integrator.
+  /// `functions` is the event loop of `system` (run_event_driven's): it is advanced in modal form
+  /// while is_free_motion(), by CVODE BDF otherwise; in free motion its root functions must read
+  /// y only at the candidates' floors. Both must outlive the integrator.
   /// @throws std::runtime_error if a building's damping is not classical (model::modal_basis), or
   ///   (from roots) if a root function reads a state component outside the contact floors.
   ModalExactIntegrator(OdeFunctions& functions, const dynamics::CoupledSystem& system, double t0,
