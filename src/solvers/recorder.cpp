@@ -122,15 +122,23 @@ void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const dynamics::V
 }
 
 void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_b,
-                            const std::function<dynamics::VectorXd(double)>& at) {
+                            const std::function<dynamics::VectorXd(double)>& at, const ComponentsAt& components_at) {
   const dynamics::VectorXd y_a = at(t_a);  // the stretch's own start (after an impact there)
   const int n = system_.dof();
+  dynamics::VectorXd partial = y_b;
+  auto reading = [&](std::vector<int> indices) -> std::function<dynamics::VectorXd(double)> {
+    if (!components_at) return at;
+    return [&, indices](double t) {
+      components_at(t, indices, partial);
+      return partial;
+    };
+  };
   for (int b = 0; b < 2; ++b) {
     const model::Point2 centre = system_.building(b).definition.centre_of_mass;
     for (FloorPeaks& floor : peaks_[b].floors) {
       const int i = system_.floor_index(b, floor.floor);
       auto coordinate = [&](Peak& peak, int k) {
-        locate_peak(peak, t_a, t_b, y_a, y_b, at, [&](const dynamics::VectorXd& y) { return y[i + k]; },
+        locate_peak(peak, t_a, t_b, y_a, y_b, reading({i + k, n + i + k}), [&](const dynamics::VectorXd& y) { return y[i + k]; },
                     [&](const dynamics::VectorXd& y) { return y[n + i + k]; });
       };
       coordinate(floor.u_m, 0);
@@ -139,7 +147,7 @@ void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_
       for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
         const model::Point2& vertex = vertices_[b][k];
         locate_peak(
-            floor.vertex_dx_m[k], t_a, t_b, y_a, y_b, at,
+            floor.vertex_dx_m[k], t_a, t_b, y_a, y_b, reading({i, i + 2, n + i, n + i + 2}),
             [&](const dynamics::VectorXd& y) { return vertex_dx(vertex, centre, y[i], y[i + 2]); },
             [&](const dynamics::VectorXd& y) { return vertex_dx_rate(vertex, centre, y[i + 2], y[n + i], y[n + i + 2]); });
       }
@@ -179,14 +187,19 @@ void Recorder::sample(double t, const dynamics::VectorXd& y) {
 
 void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                        const std::function<dynamics::VectorXd(double)>& at,
-                       const std::function<double(double, const dynamics::VectorXd&)>& constraint_power) {
+                       const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
+                       const std::optional<StretchEnergy>& closed_form, const ComponentsAt& components_at) {
   if (!(t_b > t_a)) return;
+  if (closed_form) {
+    energy_.input_kJ += closed_form->input_kJ;
+    energy_.damping_kJ += closed_form->damping_kJ;
+  }
   // 3-point Gauss–Legendre on [t_a, t_b]: exact for the input power of a degree-5 interpolant
   // times the linear a_g of one record interval.
   static constexpr double kNodes[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
   static constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   const double half = 0.5 * (t_b - t_a), mid = 0.5 * (t_a + t_b);
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < (closed_form ? 0 : 3); ++k) {
     const double t = mid + half * kNodes[k];
     const dynamics::VectorXd y = at(t);
     energy_.input_kJ += half * kWeights[k] * system_.input_power(t, y);
@@ -198,7 +211,7 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     next_sample_s_ = system_.ground_motion().start_s() +
                      interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
   }
-  locate_peaks(t_a, t_b, y_b, at);
+  locate_peaks(t_a, t_b, y_b, at, components_at);
   observe(t_b, y_b);
 }
 
