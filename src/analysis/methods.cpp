@@ -12,6 +12,7 @@
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/exact_integrator.hpp"
+#include "pounding/solvers/modal_exact_integrator.hpp"
 #include "pounding/solvers/modal_integrator.hpp"
 
 namespace pounding::analysis {
@@ -106,8 +107,9 @@ solvers::IntegratorFactory arkode_factory(const UsedSettings& used, const dynami
 solvers::IntegratorFactory exact_factory(const UsedSettings& used, const dynamics::CoupledSystem& system) {
   const solvers::ExactSettings settings{.hold_rtol = used.hold_rtol, .hold_atol = used.hold_rtol / 100,
                                         .hold_atol_vector = atol_vector(used, system)};
-  return [settings](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
-    return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, settings);
+  // Rayleigh damping is classical, so free flight runs in modal form (ModalExactIntegrator).
+  return [settings, &system](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
+    return std::make_unique<solvers::ModalExactIntegrator>(functions, system, t0, y0, settings);
   };
 }
 
@@ -151,7 +153,7 @@ const std::vector<MethodInfo> kMethods = {
                 {"hht-end-of-step", "end-of-step", {"tab:orange", "x"}},
                 {"hht-interpolate", "interpolate", {"tab:purple", "P"}}}},
     {.name = "exact",
-     .description = "exact propagator of free flight, held contacts by CVODE BDF: the ground truth",
+     .description = "exact propagator of free flight in modal form, held contacts by CVODE BDF: the ground truth",
      .settings = {hold_rtol},
      .factory = exact_factory,
      .steps_per_period = kExactSubdivisionsPerPeriod,

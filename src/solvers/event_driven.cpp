@@ -70,6 +70,21 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // slabs still overlap; they fly apart until the gap opens (or the force would push again).
 enum class Mode { armed, masked, held, compliant, released };
 
+/// Per candidate, the components of y its gap reads: (u, v, φ) of its two floors and their rates.
+std::vector<std::vector<int>> gap_components(const dynamics::CoupledSystem& system) {
+  std::vector<std::vector<int>> components;
+  for (const contact::Candidate& c : system.candidates()) {
+    std::vector<int>& own = components.emplace_back();
+    for (int b = 0; b < 2; ++b) {
+      for (int k = 0; k < 3; ++k) {
+        own.push_back(system.floor_index(b, c.floors[b]) + k);
+        own.push_back(system.dof() + system.floor_index(b, c.floors[b]) + k);
+      }
+    }
+  }
+  return components;
+}
+
 /// A compliant contact in progress: its law, its record and the integrals over it.
 struct OpenContact {
   contact::CompliantContact law;
@@ -88,6 +103,7 @@ class EventDrivenRun final : public OdeFunctions {
         mask_floor_m_(count_, -options.overlap_allowance_m),
         hold_record_(count_, -1),
         open_(count_),
+        gap_components_(gap_components(system)),
         recorder_(system, recorded_dynamics(), options.history_floors, options.history_interval_s, options.sink) {}
 
   int state_size() const override { return system_.state_size(); }
@@ -258,6 +274,7 @@ class EventDrivenRun final : public OdeFunctions {
   std::vector<int> hold_record_;  // index into result_.sustained_contacts while held
   std::vector<std::optional<OpenContact>> open_;  // compliant contacts: set from onset until the gap opens
   std::vector<std::size_t> active_;                // compliant contacts whose force acts
+  std::vector<std::vector<int>> gap_components_;   // per candidate, the components of y its gap reads
   VectorXd forces_;
   Recorder recorder_;
   RunResult result_;
@@ -615,7 +632,7 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
     if (modes_[i] != Mode::armed) continue;
     if (!(s0.gap_m > 0.0 && s1.gap_m > 0.0 && s0.gap_rate_mps < 0.0 && s1.gap_rate_mps > 0.0)) continue;
     auto state_at = [&](double time) {
-      integrator_->interpolate(time, at);
+      integrator_->interpolate_components(time, gap_components_[i], at);
       return system_.gap(at, i);
     };
     const double t_min = find_root([&](double time) { return state_at(time).gap_rate_mps; }, prev_t_, t,
@@ -646,7 +663,7 @@ std::optional<double> EventDrivenRun::reclosure(std::size_t i, double t, const c
   if (!end.on_segment() || !(end.gap_m < 0.0 && end.gap_rate_mps < 0.0)) return std::nullopt;
   VectorXd at(system_.state_size());
   auto state_at = [&](double time) {
-    integrator_->interpolate(time, at);
+    integrator_->interpolate_components(time, gap_components_[i], at);
     return system_.gap(at, i);
   };
   constexpr int kSamples = 32;
@@ -760,11 +777,15 @@ bool EventDrivenRun::step_once() {
     return state;
   };
   auto power = [&](double time, const VectorXd& state) { return constraint_power(time, state); };
+  auto components = [&](double time, const std::vector<int>& indices, VectorXd& state) {
+    integrator_->interpolate_components(time, indices, state);
+  };
 
   if (const std::optional<Hidden> hidden = hidden_contact(t, y)) {
     ++result_.statistics.interpolant_events;
     VectorXd y_event = interpolated(hidden->t_s);
-    recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power);
+    recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power,
+                      integrator_->energy_between(prev_t_, hidden->t_s), components);
     integrate_contacts(prev_t_, hidden->t_s, y_event);
     if (compliant()) {
       handle_compliant_event(hidden->t_s, y_event, {hidden->candidate}, {}, {});
@@ -774,7 +795,7 @@ bool EventDrivenRun::step_once() {
     restart(hidden->t_s, y_event);
     return !stop_;
   }
-  recorder_.advance(prev_t_, t, y, interpolated, power);
+  recorder_.advance(prev_t_, t, y, interpolated, power, integrator_->energy_between(prev_t_, t), components);
   integrate_contacts(prev_t_, t, y);
 
   if (outcome.kind == StepKind::root) {

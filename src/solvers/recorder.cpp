@@ -311,14 +311,22 @@ void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const dynamics::V
 }
 
 void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
-                            const std::function<dynamics::VectorXd(double)>& at) {
+                            const std::function<dynamics::VectorXd(double)>& at, const ComponentsAt& components_at) {
   const int n = system_.dof();
+  dynamics::VectorXd partial = y_b;
+  auto reading = [&](std::vector<int> indices) -> std::function<dynamics::VectorXd(double)> {
+    if (!components_at) return at;
+    return [&, indices](double t) {
+      components_at(t, indices, partial);
+      return partial;
+    };
+  };
   for (int b = 0; b < 2; ++b) {
     const model::Point2 centre = system_.building(b).definition.centre_of_mass;
     for (FloorPeaks& floor : peaks_[b].floors) {
       const int i = system_.floor_index(b, floor.floor);
       auto coordinate = [&](Peak& peak, int k) {
-        locate_peak(peak, t_a, t_b, y_a, y_b, at, [&](const dynamics::VectorXd& y) { return y[i + k]; },
+        locate_peak(peak, t_a, t_b, y_a, y_b, reading({i + k, n + i + k}), [&](const dynamics::VectorXd& y) { return y[i + k]; },
                     [&](const dynamics::VectorXd& y) { return y[n + i + k]; });
       };
       coordinate(floor.u_m, 0);
@@ -327,7 +335,7 @@ void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_
       for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
         const model::Point2& vertex = vertices_[b][k];
         locate_peak(
-            floor.vertex_dx_m[k], t_a, t_b, y_a, y_b, at,
+            floor.vertex_dx_m[k], t_a, t_b, y_a, y_b, reading({i, i + 2, n + i, n + i + 2}),
             [&](const dynamics::VectorXd& y) { return vertex_dx(vertex, centre, y[i], y[i + 2]); },
             [&](const dynamics::VectorXd& y) { return vertex_dx_rate(vertex, centre, y[i + 2], y[n + i], y[n + i + 2]); });
       }
@@ -336,9 +344,23 @@ void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_
 }
 
 void Recorder::locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, const Drifts& d_b,
-                                  const std::function<dynamics::VectorXd(double)>& at) {
+                                  const dynamics::VectorXd& y_b, const std::function<dynamics::VectorXd(double)>& at,
+                                  const ComponentsAt& components_at) {
+  const int n = system_.dof();
+  dynamics::VectorXd partial = y_b;
   for (int b = 0; b < 2; ++b) {
     for (FloorPeaks& floor : peaks_[b].floors) {
+      // A drift reads the (u, v, φ) and rates of its floor and the floor below.
+      std::vector<int> indices;
+      for (int f = std::max(1, floor.floor - 1); f <= floor.floor; ++f) {
+        const int i = system_.floor_index(b, f);
+        for (int k = 0; k < 3; ++k) indices.insert(indices.end(), {i + k, n + i + k});
+      }
+      auto state_at = [&](double t) -> dynamics::VectorXd {
+        if (!components_at) return at(t);
+        components_at(t, indices, partial);
+        return partial;
+      };
       for (std::size_t slot = 0; slot < drift_slots(b); ++slot) {
         const auto j = static_cast<Eigen::Index>(drift_index(b, floor.floor, slot));
         Peak& peak = drift_peak(floor, slot);
@@ -347,9 +369,9 @@ void Recorder::locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, con
         const double bound = std::max(std::abs(d_a.value[j]), std::abs(d_b.value[j])) +
                              2.0 * (t_b - t_a) * std::max(std::abs(d_a.rate[j]), std::abs(d_b.rate[j]));
         if (bound <= std::abs(peak.value)) continue;
-        const double t = find_root([&](double t_s) { return storey_drift(at(t_s), b, floor.floor, slot).rate; }, t_a,
-                                   t_b, d_a.rate[j], d_b.rate[j], peak_time_width(t_a, t_b));
-        peak.update(storey_drift(at(t), b, floor.floor, slot).value, t);
+        const double t = find_root([&](double t_s) { return storey_drift(state_at(t_s), b, floor.floor, slot).rate; },
+                                   t_a, t_b, d_a.rate[j], d_b.rate[j], peak_time_width(t_a, t_b));
+        peak.update(storey_drift(state_at(t), b, floor.floor, slot).value, t);
       }
     }
   }
@@ -411,18 +433,23 @@ void Recorder::sample(double t, const dynamics::VectorXd& y) {
 
 void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                        const std::function<dynamics::VectorXd(double)>& at,
-                       const std::function<double(double, const dynamics::VectorXd&)>& constraint_power) {
+                       const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
+                       const std::optional<StretchEnergy>& closed_form, const ComponentsAt& components_at) {
   if (!(t_b > t_a)) return;
   const dynamics::VectorXd y_a = at(t_a);  // the stretch's own start (after an impact there)
   // The last state observed at t_a is where this stretch starts: the step end before it, or an
   // event's state after the event, with the dynamics that go on from there.
   const dynamics::VectorXd a_a = observed_t_s_ == t_a ? observed_accel_ : absolute_accelerations(t_a, y_a);
+  if (closed_form) {
+    energy_.input_kJ += closed_form->input_kJ;
+    energy_.damping_kJ += closed_form->damping_kJ;
+  }
   // 3-point Gauss–Legendre on [t_a, t_b]: exact for the input power of a degree-5 interpolant
   // times the linear a_g of one record interval.
   static constexpr double kNodes[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
   static constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   const double half = 0.5 * (t_b - t_a), mid = 0.5 * (t_a + t_b);
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < (closed_form ? 0 : 3); ++k) {
     const double t = mid + half * kNodes[k];
     const dynamics::VectorXd y = at(t);
     energy_.input_kJ += half * kWeights[k] * system_.input_power(t, y);
@@ -436,8 +463,8 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
   }
   const dynamics::VectorXd a_b = absolute_accelerations(t_b, y_b);
   const Drifts d_a = storey_drifts(y_a), d_b = storey_drifts(y_b);
-  locate_peaks(t_a, t_b, y_a, y_b, at);
-  locate_drift_peaks(t_a, t_b, d_a, d_b, at);
+  locate_peaks(t_a, t_b, y_a, y_b, at, components_at);
+  locate_drift_peaks(t_a, t_b, d_a, d_b, y_b, at, components_at);
   locate_acceleration_peaks(t_a, t_b, y_a, y_b, a_a, a_b, at);
   observe(t_b, y_b, a_b, d_b);
 }

@@ -12,6 +12,7 @@
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/exact_integrator.hpp"
+#include "pounding/solvers/modal_exact_integrator.hpp"
 
 namespace pounding::testing {
 
@@ -69,6 +70,15 @@ inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Poly
 inline solvers::IntegratorFactory exact(solvers::ExactSettings settings = {}) {
   return [=](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
     return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, settings);
+  };
+}
+
+/// The exact path in modal form on `system` (must outlive the factory's integrators).
+inline solvers::IntegratorFactory modal_exact(const dynamics::CoupledSystem& system,
+                                              solvers::ExactSettings settings = {}) {
+  return [&system, settings](solvers::OdeFunctions& functions, double t0,
+                             const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+    return std::make_unique<solvers::ModalExactIntegrator>(functions, system, t0, y0, settings);
   };
 }
 

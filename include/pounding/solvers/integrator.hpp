@@ -3,6 +3,7 @@
 // the functions of the current contact phase; the integrator steps, finds roots, interpolates.
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,12 @@ struct IntegratorCounters {
        error_test_failures = 0;
 };
 
+/// Work on the relative motion over a stretch of a step (kJ).
+struct StretchEnergy {
+  double input_kJ = 0.0;    // ∫ −q̇ᵀ M r a_g dt
+  double damping_kJ = 0.0;  // ∫ q̇ᵀ C q̇ dt
+};
+
 /// The contract below is checked for every implementation by tests/solvers/
 /// test_integrator_conformance.cpp.
 class Integrator {
@@ -61,6 +68,12 @@ class Integrator {
   /// end it is state(). @pre t within the last step: outside it CVODE and ARKODE throw
   /// std::runtime_error (their BAD_T flag), the exact path's free flight extends its closed form.
   virtual void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) = 0;
+  /// interpolate() where only the components `indices` of y are needed (the others may be
+  /// overwritten or left as they are). An integrator that evaluates part of its state for less
+  /// overrides it (the exact path: O(modes) a component instead of O(n²) for the whole state).
+  virtual void interpolate_components(double t, const std::vector<int>& /*indices*/, Eigen::Ref<Eigen::VectorXd> y) {
+    interpolate(t, y);
+  }
   /// Per root component: −1 if it went from > 0 to ≤ 0 at the last root return, else 0. Only
   /// such closing crossings end a step (an opening one never does). Crossings are listed
   /// together only when they coincide to the root finder's round-off; two that coincide only
@@ -71,6 +84,10 @@ class Integrator {
   /// evaluated (the exact path diagonalises J and evaluates the forcing there): right after
   /// restart() no step and no error test failure is counted.
   virtual IntegratorCounters counters() = 0;
+  /// The ground motion's input and the damping's dissipation over [t_a, t_b] within the last
+  /// step, where the integrator has them in closed form (the exact path's free flight, in which
+  /// no contact force acts); empty: the caller integrates them on the interpolant.
+  virtual std::optional<StretchEnergy> energy_between(double /*t_a*/, double /*t_b*/) { return std::nullopt; }
 };
 
 }  // namespace pounding::solvers

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/run_result.hpp"
 #include "pounding/solvers/run_sink.hpp"
 
@@ -44,6 +45,10 @@ std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, 
 
 class Recorder {
  public:
+  /// Writes the components `indices` of the state at t into y (others may be left stale): a
+  /// cheaper `at` for the peaks, which read two to four components each.
+  using ComponentsAt = std::function<void(double t, const std::vector<int>& indices, dynamics::VectorXd& y)>;
+
   /// History of the levels `history_levels` (1-based indices into system.levels(); empty: every
   /// level), each as building 1's floor then building 2's. `sink` (may be null; must outlive the
   /// recorder) receives the columns at the first row, then every row, contact force and impact;
@@ -60,12 +65,15 @@ class Recorder {
   /// state is `y_b`: history samples that fall inside, the peaks (turning points inside located
   /// on `at` to round-off, so a peak does not depend on where the steps end; for accelerations
   /// the rate is exact in free motion and a central difference on `at` while contact forces
-  /// act), and the energy
-  /// integrals (3-point Gauss–Legendre). `constraint_power(t, y)` is the power of
-  /// sustained-contact forces (kW).
+  /// act), and the energy integrals (3-point Gauss–Legendre, or `closed_form` when given: the
+  /// integrator's own, for a stretch without contact forces). `constraint_power(t, y)` is the
+  /// power of sustained-contact forces (kW). `components_at`, when given, locates the peaks of
+  /// displacements and drifts instead of `at` (accelerations need the whole state).
   void advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                const std::function<dynamics::VectorXd(double)>& at,
-               const std::function<double(double, const dynamics::VectorXd&)>& constraint_power);
+               const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
+               const std::optional<StretchEnergy>& closed_form = std::nullopt,
+               const ComponentsAt& components_at = {});
   void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
   /// Passes the impacts appended to `impacts` since the last call to the sink (if any). Call it
   /// once an event's records are final.
@@ -101,11 +109,11 @@ class Recorder {
   Drift storey_drift(const dynamics::VectorXd& y, int building, int floor, std::size_t slot) const;
   std::size_t drift_slots(int building) const;
   std::size_t drift_index(int building, int floor, std::size_t slot) const;
-  void locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, const Drifts& d_b,
-                          const std::function<dynamics::VectorXd(double)>& at);
+  void locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, const Drifts& d_b, const dynamics::VectorXd& y_b,
+                          const std::function<dynamics::VectorXd(double)>& at, const ComponentsAt& components_at);
   void observe(double t, const dynamics::VectorXd& y, const dynamics::VectorXd& accel, const Drifts& drifts);
   void locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
-                    const std::function<dynamics::VectorXd(double)>& at);
+                    const std::function<dynamics::VectorXd(double)>& at, const ComponentsAt& components_at);
   /// Updates `peak` at the turning point of `value` inside (t_a, t_b), if its rate changes sign
   /// there and it can beat the peak.
   template <class Value, class Rate>

@@ -1,0 +1,35 @@
+#pragma once
+// One building's motion in real modal coordinates. With classical damping (Rayleigh,
+// C = a0 M + a1 K) the equations M q̈ + C q̇ + K q = −M r a_g(t) decouple into one damped
+// oscillator per mode:
+//   η̈_k + 2 ζ_k ω_k η̇_k + ω_k² η_k = −Γ_k a_g(t),   q = Φ η,   η = Φᵀ M q,
+// Φ mass-normalised (Φᵀ M Φ = I), Γ = Φᵀ M r, ζ_k = a0/(2ω_k) + a1 ω_k/2.
+
+#include <Eigen/Core>
+
+#include "pounding/model/building.hpp"
+
+namespace pounding::model {
+
+struct ModalBasis {
+  Eigen::VectorXd omega_rad_s;    // ascending (longest period first), all > 0 (K is SPD)
+  Eigen::VectorXd damping_ratio;  // ζ ≥ 0; above 1 the mode is overdamped (no oscillation)
+  Eigen::MatrixXd shapes;         // Φ (3N × 3N), columns mass-normalised
+  Eigen::MatrixXd projection;     // Φᵀ M: η = projection · q (and η̇ = projection · q̇)
+  Eigen::VectorXd participation;  // Γ = Φᵀ M r (t^½ per unit of r)
+
+  int size() const { return static_cast<int>(omega_rad_s.size()); }
+};
+
+/// Largest departure of Φᵀ C Φ from diag(2ζω), relative to its largest diagonal entry, that still
+/// counts as the Rayleigh damping the modes decouple (round-off leaves ~1e-14).
+inline constexpr double kClassicalDampingTolerance = 1e-9;
+
+/// The modal basis of `building` under ground motion along `influence` (r over the building's
+/// DOFs, (cos β, sin β, 0) per floor). @pre influence.size() == building.dof().
+/// @throws std::runtime_error if the eigensolver fails or building.damping is not
+///   a0 M + a1 K (Φᵀ C Φ ≠ diag(2ζω) within kClassicalDampingTolerance): the modes would not
+///   decouple it.
+ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::VectorXd>& influence);
+
+}  // namespace pounding::model

@@ -1,0 +1,119 @@
+#pragma once
+// The exact path in modal form: free flight advanced as the buildings' real modal oscillators.
+//
+// Each building alone is classically damped (Rayleigh), so in free flight its 3N coordinates
+// decouple into damped oscillators under the piecewise-linear ground acceleration
+// (model/modal_basis.hpp). Over a step inside one record interval each oscillator moves by the
+// exact 2×2 recurrence of modal_propagator.hpp, kept per step length (the common lengths repeat:
+// the loop's step bound, the record's Δt and the recorder's Gauss points within them). No
+// eigendecomposition at restarts and no complex arithmetic.
+//
+// The physical state is built on demand: in full (Φη) at step ends and on interpolate(), and for
+// the root functions only at the contact floors (their rows of Φ), so locating a crossing costs
+// O(modes × contact floors) per evaluation, not O(n²). Roots are found as by ExactIntegrator: a
+// sign change over each step (the loop bounds steps to a fraction of the shortest period that
+// moves a gap, and examines every interior minimum through interpolate()) polished to round-off.
+//
+// Held stretches are integrated by CVODE BDF at ExactSettings' tolerances, as in ExactIntegrator
+// (exact_integrator.hpp says why); ExactIntegrator remains the path for ODEs that are not a
+// CoupledSystem's free flight.
+
+#include <Eigen/Core>
+#include <array>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/model/modal_basis.hpp"
+#include "pounding/solvers/exact_integrator.hpp"
+#include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/modal_propagator.hpp"
+
+namespace pounding::solvers {
+
+class ModalExactIntegrator final : public Integrator {
+ public:
+  /// `functions` is the event loop of `system` (run_event_driven's): it is advanced in modal form
+  /// while is_free_motion(), by CVODE BDF otherwise; in free motion its root functions must read
+  /// y only at the candidates' floors. Both must outlive the integrator.
+  /// @throws std::runtime_error if a building's damping is not classical (model::modal_basis), or
+  ///   (from roots) if a root function reads a state component outside the contact floors.
+  ModalExactIntegrator(OdeFunctions& functions, const dynamics::CoupledSystem& system, double t0,
+                       const Eigen::VectorXd& y0, ExactSettings settings = {});
+
+  void restart(double t, const Eigen::VectorXd& y) override;
+  void set_max_step(double h_s) override;
+  void set_stop_time(double t_s) override;
+  StepOutcome step(double t_final) override;
+  const Eigen::VectorXd& state() const override { return held_phase_ ? held_->state() : state_; }
+  void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
+  void interpolate_components(double t, const std::vector<int>& indices, Eigen::Ref<Eigen::VectorXd> y) override;
+  std::vector<int> roots_found() override { return held_phase_ ? held_->roots_found() : roots_found_; }
+  IntegratorCounters counters() override { return held_phase_ ? held_->counters() : counters_; }
+  /// Free flight: per mode, with the load p = −Γ a_g linear in t, the input ∫p η̇ dt =
+  /// [p η] − ṗ ∫η dt, where ∫η dt follows from the oscillator's equation, and the damping's
+  /// dissipation is the input less the change of ½(η̇² + ω²η²): exact, no quadrature.
+  /// Held stretches: empty. @pre t_a ≤ t_b within the last step.
+  std::optional<StretchEnergy> energy_between(double t_a, double t_b) override;
+
+ private:
+  /// Modal displacements and rates of both buildings (building 1's modes first).
+  struct ModalState {
+    Eigen::VectorXd eta, eta_rate;
+  };
+  /// The current step: its start, the modal state there, and a_g = accel + slope·τ over it.
+  struct Segment {
+    double t_start_s = 0.0;
+    ModalState start;
+    double accel_mps2 = 0.0, slope_mps3 = 0.0;
+  };
+  /// Every mode's OscillatorStep over one τ, filled per building as asked for.
+  struct CachedSteps {
+    double tau_s = -1.0;
+    std::array<bool, 2> filled{false, false};
+    std::vector<OscillatorStep> steps;
+  };
+  using Buildings = std::array<bool, 2>;  // which buildings' modes to evaluate
+
+  void begin_segment(double t, double t_end);
+  const std::vector<OscillatorStep>& steps_over(double tau_s, Buildings buildings);
+  /// The modes of `buildings` at t within the current step (the others NaN).
+  ModalState modal_at(double t, Buildings buildings = {true, true});
+  /// modal_at, reusing the step's start and end states.
+  ModalState modal_in_step(double t);
+  void physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const;
+  /// y at the contact floors only (the other components NaN), for the root functions.
+  const Eigen::VectorXd& contact_state(const ModalState& modal);
+  Eigen::VectorXd roots_at(double t, const Eigen::VectorXd& y);
+
+  OdeFunctions& functions_;
+  const dynamics::CoupledSystem& system_;
+  ExactSettings settings_;
+  std::unique_ptr<Integrator> held_;  // integrates the held stretches
+  bool held_phase_ = false;
+
+  std::array<model::ModalBasis, 2> bases_;
+  std::array<int, 2> mode_offset_{0, 0};  // first mode of each building in ModalState
+  std::array<int, 2> dof_offset_{0, 0};   // first DOF of each building in q
+  Eigen::VectorXd omega_, damping_ratio_, participation_;  // every mode, building 1's first
+  // Contact floors' DOFs: per building, the local DOF indices and the matching rows of Φ.
+  std::array<std::vector<int>, 2> contact_dofs_;
+  std::array<Eigen::MatrixXd, 2> contact_shapes_;
+  Eigen::VectorXd contact_y_;  // NaN outside the contact floors
+  std::array<CachedSteps, 8> cache_;  // most recently used first
+
+  Segment segment_;
+  ModalState end_;                    // the modal state at the last step's end ...
+  double end_t_s_ = std::numeric_limits<double>::quiet_NaN();  // ... at this time (NaN: none)
+  Eigen::VectorXd state_;
+  Eigen::VectorXd roots_start_;
+  std::vector<int> roots_found_;
+  double t_s_ = 0.0;
+  double max_step_s_ = 0.01;
+  double stop_time_s_ = std::numeric_limits<double>::infinity();
+  IntegratorCounters counters_;
+};
+
+}  // namespace pounding::solvers

@@ -1,0 +1,281 @@
+#include "pounding/solvers/modal_exact_integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "pounding/solvers/cvode_integrator.hpp"
+#include "pounding/solvers/root_finding.hpp"
+
+namespace pounding::solvers {
+
+ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynamics::CoupledSystem& system, double t0,
+                                           const Eigen::VectorXd& y0, ExactSettings settings)
+    : functions_(functions), system_(system), settings_(std::move(settings)) {
+  const int modes = system.dof();
+  omega_.resize(modes);
+  damping_ratio_.resize(modes);
+  participation_.resize(modes);
+  int offset = 0;
+  for (int b = 0; b < 2; ++b) {
+    const int n = system.building(b).dof();
+    dof_offset_[b] = system.floor_index(b, 1);
+    mode_offset_[b] = offset;
+    bases_[b] = model::modal_basis(system.building(b), system.influence().segment(dof_offset_[b], n));
+    omega_.segment(offset, n) = bases_[b].omega_rad_s;
+    damping_ratio_.segment(offset, n) = bases_[b].damping_ratio;
+    participation_.segment(offset, n) = bases_[b].participation;
+    offset += n;
+  }
+  for (const contact::Candidate& c : system.candidates()) {
+    for (int b = 0; b < 2; ++b) {
+      for (int k = 0; k < 3; ++k) contact_dofs_[b].push_back(3 * (c.floors[b] - 1) + k);
+    }
+  }
+  for (int b = 0; b < 2; ++b) {
+    std::vector<int>& dofs = contact_dofs_[b];
+    std::sort(dofs.begin(), dofs.end());
+    dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+    contact_shapes_[b].resize(static_cast<Eigen::Index>(dofs.size()), bases_[b].size());
+    for (std::size_t r = 0; r < dofs.size(); ++r) {
+      contact_shapes_[b].row(static_cast<Eigen::Index>(r)) = bases_[b].shapes.row(dofs[r]);
+    }
+  }
+  contact_y_ = Eigen::VectorXd::Constant(system.state_size(), std::numeric_limits<double>::quiet_NaN());
+  restart(t0, y0);
+}
+
+void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
+  counters_ = {};  // like CVODE's, the counters run from the last restart
+  // Only the system's own free motion decouples into its modes; anything else (a held contact)
+  // goes to the numerical integrator.
+  held_phase_ = !functions_.is_free_motion();
+  if (held_phase_) {
+    if (held_) {
+      held_->restart(t, y);
+    } else {
+      CvodeSettings tight;
+      tight.method = CvodeMethod::bdf;
+      tight.rtol = settings_.hold_rtol;
+      tight.atol = settings_.hold_atol;
+      tight.atol_vector = settings_.hold_atol_vector;
+      held_ = std::make_unique<CvodeIntegrator>(functions_, tight, t, y);
+    }
+    held_->set_max_step(max_step_s_);
+    return;
+  }
+  const int n = system_.dof();
+  ModalState modal{Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  for (int b = 0; b < 2; ++b) {
+    const int size = bases_[b].size();
+    modal.eta.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(dof_offset_[b], size);
+    modal.eta_rate.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(n + dof_offset_[b], size);
+  }
+  segment_.t_start_s = t;
+  segment_.start = std::move(modal);
+  end_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  state_ = y;
+  t_s_ = t;
+  roots_start_ = roots_at(t, y);
+}
+
+void ModalExactIntegrator::set_max_step(double h_s) {
+  max_step_s_ = h_s;
+  if (held_phase_) held_->set_max_step(h_s);
+}
+
+void ModalExactIntegrator::set_stop_time(double t_s) {
+  stop_time_s_ = t_s;
+  if (held_phase_) held_->set_stop_time(t_s);
+}
+
+void ModalExactIntegrator::begin_segment(double t, double t_end) {
+  // No step crosses a record sample (they are stop times), so a_g is one straight piece over the
+  // step: the one of the record interval holding the step's middle, taken from the samples.
+  if (t == end_t_s_) {
+    segment_.start = end_;  // the last step's end, already evaluated
+  } else if (t != segment_.t_start_s) {
+    segment_.start = modal_at(t);  // on the last segment's load
+  }
+  segment_.t_start_s = t;
+  const auto& times = system_.ground_motion().time_s();
+  const auto& accel = system_.ground_motion().accel_mps2();
+  const double middle = 0.5 * (t + t_end);
+  const auto after = std::upper_bound(times.begin(), times.end(), middle);
+  segment_.slope_mps3 = 0.0;
+  if (after != times.begin() && after != times.end()) {
+    const auto k = static_cast<std::size_t>(after - times.begin()) - 1;
+    segment_.slope_mps3 = (accel[k + 1] - accel[k]) / (times[k + 1] - times[k]);
+  }
+  segment_.accel_mps2 = system_.ground_motion().accel_at(t);
+}
+
+const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(double tau_s, Buildings buildings) {
+  // Most recently used first: the step length, then the recorder's Gauss points inside it.
+  auto slot = std::find_if(cache_.begin(), cache_.end(), [&](const CachedSteps& c) { return c.tau_s == tau_s; });
+  if (slot == cache_.end()) {
+    slot = cache_.end() - 1;  // the least recently used
+    slot->tau_s = tau_s;
+    slot->filled = {false, false};
+    slot->steps.resize(static_cast<std::size_t>(omega_.size()));
+  }
+  std::rotate(cache_.begin(), slot, slot + 1);
+  CachedSteps& entry = cache_.front();
+  for (int b = 0; b < 2; ++b) {
+    if (!buildings[b] || entry.filled[b]) continue;
+    for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
+      entry.steps[static_cast<std::size_t>(k)] = oscillator_step(omega_[k], damping_ratio_[k], tau_s);
+    }
+    entry.filled[b] = true;
+  }
+  return entry.steps;
+}
+
+ModalExactIntegrator::ModalState ModalExactIntegrator::modal_at(double t, Buildings buildings) {
+  const double tau = t - segment_.t_start_s;
+  const std::vector<OscillatorStep>& steps = steps_over(tau, buildings);
+  const Eigen::Index n = omega_.size();
+  ModalState modal{Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN()),
+                   Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN())};
+  for (int b = 0; b < 2; ++b) {
+    if (!buildings[b]) continue;
+    for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
+      const OscillatorStep& s = steps[static_cast<std::size_t>(k)];
+      // The modal load is −Γ a_g(t) = −Γ (accel + slope τ).
+      const Eigen::Vector2d x = s.free * Eigen::Vector2d(segment_.start.eta[k], segment_.start.eta_rate[k]) -
+                                participation_[k] * (s.start * segment_.accel_mps2 + s.slope * segment_.slope_mps3);
+      modal.eta[k] = x[0];
+      modal.eta_rate[k] = x[1];
+    }
+  }
+  return modal;
+}
+
+void ModalExactIntegrator::physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const {
+  const int n = system_.dof();
+  for (int b = 0; b < 2; ++b) {
+    const int size = bases_[b].size();
+    y.segment(dof_offset_[b], size).noalias() = bases_[b].shapes * modal.eta.segment(mode_offset_[b], size);
+    y.segment(n + dof_offset_[b], size).noalias() = bases_[b].shapes * modal.eta_rate.segment(mode_offset_[b], size);
+  }
+}
+
+const Eigen::VectorXd& ModalExactIntegrator::contact_state(const ModalState& modal) {
+  const int n = system_.dof();
+  for (int b = 0; b < 2; ++b) {
+    const int size = bases_[b].size();
+    const Eigen::VectorXd q = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
+    const Eigen::VectorXd q_rate = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size);
+    for (std::size_t r = 0; r < contact_dofs_[b].size(); ++r) {
+      const int i = dof_offset_[b] + contact_dofs_[b][r];
+      contact_y_[i] = q[static_cast<Eigen::Index>(r)];
+      contact_y_[n + i] = q_rate[static_cast<Eigen::Index>(r)];
+    }
+  }
+  return contact_y_;
+}
+
+Eigen::VectorXd ModalExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
+  Eigen::VectorXd g(functions_.root_count());
+  functions_.roots(t, y, g);
+  ++counters_.root_evaluations;
+  if (!g.allFinite()) throw std::logic_error("exact path: a root function reads the state outside the contact floors");
+  return g;
+}
+
+StepOutcome ModalExactIntegrator::step(double t_final) {
+  if (held_phase_) return held_->step(t_final);
+  const double t_end = std::min({t_s_ + max_step_s_, stop_time_s_, t_final});
+  begin_segment(t_s_, t_end);
+  ++counters_.steps;
+
+  end_ = modal_at(t_end);
+  end_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  const ModalState& end = end_;
+  const Eigen::VectorXd roots_end = roots_at(t_end, contact_state(end));
+  // Closing crossings (+ to − or onto 0), the direction the loop asks for.
+  double t_root = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < roots_end.size(); ++i) {
+    if (!(roots_start_[i] > 0.0 && roots_end[i] <= 0.0)) continue;
+    const double b = find_root([&](double t) { return roots_at(t, contact_state(modal_at(t)))[i]; }, t_s_, t_end,
+                               roots_start_[i], roots_end[i]);
+    t_root = std::min(t_root, b);  // the root function has reached ≤ 0 there
+  }
+
+  roots_found_.assign(static_cast<std::size_t>(roots_end.size()), 0);
+  if (t_root < std::numeric_limits<double>::infinity()) {
+    physical(modal_at(t_root), state_);
+    const Eigen::VectorXd roots_here = roots_at(t_root, state_);
+    for (Eigen::Index i = 0; i < roots_here.size(); ++i) {
+      if (roots_start_[i] > 0.0 && roots_here[i] <= 0.0) roots_found_[static_cast<std::size_t>(i)] = -1;
+    }
+    t_s_ = t_root;
+    roots_start_ = roots_here;
+    return {StepKind::root, t_root, {}};
+  }
+  physical(end, state_);
+  end_t_s_ = t_end;
+  t_s_ = t_end;
+  roots_start_ = roots_end;
+  if (t_end != stop_time_s_) return {StepKind::step, t_end, {}};
+  // Like SUNDIALS', a stop time applies once: kept, it would make every later step empty.
+  stop_time_s_ = std::numeric_limits<double>::infinity();
+  return {StepKind::stop_time, t_end, {}};
+}
+
+ModalExactIntegrator::ModalState ModalExactIntegrator::modal_in_step(double t) {
+  if (t == segment_.t_start_s) return segment_.start;
+  if (t == end_t_s_) return end_;
+  return modal_at(t);
+}
+
+std::optional<StretchEnergy> ModalExactIntegrator::energy_between(double t_a, double t_b) {
+  if (held_phase_) return std::nullopt;
+  const ModalState a = modal_in_step(t_a), b = modal_in_step(t_b);
+  const double accel_a = segment_.accel_mps2 + segment_.slope_mps3 * (t_a - segment_.t_start_s);
+  const double accel_b = segment_.accel_mps2 + segment_.slope_mps3 * (t_b - segment_.t_start_s);
+  StretchEnergy energy;
+  for (Eigen::Index k = 0; k < omega_.size(); ++k) {
+    const double w = omega_[k], gamma = participation_[k];
+    const double load_a = -gamma * accel_a, load_b = -gamma * accel_b, load_rate = -gamma * segment_.slope_mps3;
+    const double d_eta = b.eta[k] - a.eta[k], d_rate = b.eta_rate[k] - a.eta_rate[k];
+    // ω² ∫η = ∫p − Δη̇ − 2ζω Δη, from integrating η̈ + 2ζω η̇ + ω² η = p over the stretch.
+    const double eta_integral =
+        (0.5 * (load_a + load_b) * (t_b - t_a) - d_rate - 2.0 * damping_ratio_[k] * w * d_eta) / (w * w);
+    const double input = load_b * b.eta[k] - load_a * a.eta[k] - load_rate * eta_integral;
+    const double stored_change = 0.5 * (b.eta_rate[k] * b.eta_rate[k] - a.eta_rate[k] * a.eta_rate[k]) +
+                                 0.5 * w * w * (b.eta[k] * b.eta[k] - a.eta[k] * a.eta[k]);
+    energy.input_kJ += input;
+    energy.damping_kJ += input - stored_change;
+  }
+  return energy;
+}
+
+void ModalExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
+  if (held_phase_) {
+    held_->interpolate(t, y);
+  } else {
+    physical(modal_at(t), y);
+  }
+}
+
+
+void ModalExactIntegrator::interpolate_components(double t, const std::vector<int>& indices,
+                                                  Eigen::Ref<Eigen::VectorXd> y) {
+  if (held_phase_) return held_->interpolate(t, y);
+  const int n = system_.dof();
+  Buildings needed{false, false};  // a floor's peak needs its own building's modes only
+  for (int index : indices) needed[(index >= n ? index - n : index) >= dof_offset_[1] ? 1 : 0] = true;
+  const ModalState modal = modal_at(t, needed);
+  for (int index : indices) {
+    const bool rate = index >= n;
+    const int dof = rate ? index - n : index;
+    const int b = dof >= dof_offset_[1] ? 1 : 0;
+    const int size = bases_[b].size();
+    const Eigen::VectorXd& coordinates = rate ? modal.eta_rate : modal.eta;
+    y[index] = bases_[b].shapes.row(dof - dof_offset_[b]).dot(coordinates.segment(mode_offset_[b], size));
+  }
+}
+
+}  // namespace pounding::solvers
