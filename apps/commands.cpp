@@ -184,7 +184,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
   }
   files.finish(*report, provenance);
   fmt::print("{}", io::full_report(*report));
-  fmt::print("Wrote {}/summary.json, impacts.csv, history.csv\n", folder.string());
+  fmt::print("Wrote {}/summary.json, impacts.csv, history.csv, contacts_history.csv\n", folder.string());
   return report->result.status == solvers::RunStatus::completed ? 0 : 3;
 }
 
@@ -330,6 +330,37 @@ int run_methods(const MethodsCommand& command) {
     const std::string runs = law.methods.empty() ? "every method" : fmt::format("{}", fmt::join(law.methods, ", "));
     fmt::print("{:<12} {}\n{:<12} uses {}; runs on {}\n", law.name, law.description, "", keys, runs);
   }
+  return 0;
+}
+
+int run_laws(const LawsCommand& command) {
+  if (!(command.restitution >= 0.0 && command.restitution <= 1.0)) {
+    throw InputError("--restitution", fmt::format("{}", command.restitution), "must lie in [0, 1]");
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
+    const nlohmann::json rebound = law.rebound ? nlohmann::json(law.rebound(command.restitution)) : nlohmann::json(nullptr);
+    if (!command.json) {
+      const std::string stiffness =
+          law.stiffness_key.empty() ? "no stiffness"
+                                    : fmt::format("default {} = {:g} {} ({})", law.stiffness_key, law.default_stiffness,
+                                                  law.stiffness_unit, law.stiffness_source);
+      fmt::print("{:<12} {}\n{:<12} {}; rebound at e = {}: {}\n", law.name, law.description, "", stiffness,
+                 command.restitution, rebound.dump());
+      continue;
+    }
+    const auto or_null = [](std::string_view text) { return text.empty() ? nlohmann::json(nullptr) : nlohmann::json(text); };
+    list.push_back({{"name", law.name},
+                    {"description", law.description},
+                    {"stiffness_key", or_null(law.stiffness_key)},
+                    {"stiffness_unit", or_null(law.stiffness_unit)},
+                    {"default_stiffness", law.default_stiffness},
+                    {"stiffness_source", law.stiffness_source},
+                    {"methods", law.methods},
+                    {"restitution", command.restitution},
+                    {"rebound", rebound}});
+  }
+  if (command.json) fmt::print("{}\n", list.dump(2));
   return 0;
 }
 

@@ -20,6 +20,11 @@ struct MethodsCommand {
   bool json = false;  // the registry as JSON on stdout (for scripts)
 };
 
+struct LawsCommand {
+  bool json = false;          // the contact-law registry as JSON on stdout (for scripts)
+  double restitution = 0.5;   // e for each law's closed-form rebound
+};
+
 struct CheckCommand {
   std::string scene;
   std::optional<double> gap_m;
@@ -93,5 +98,8 @@ int run_study(const StudyCommand& command, const std::string& command_line);
 int run_run(const RunCommand& command, const std::string& command_line);
 int run_check(const CheckCommand& command);
 int run_methods(const MethodsCommand& command);
+/// The contact laws: name, description, keys, default stiffness and its source, methods, and the
+/// rebound a lone contact achieves at the given restitution.
+int run_laws(const LawsCommand& command);
 
 }  // namespace pounding::cli

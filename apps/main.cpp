@@ -60,6 +60,12 @@ int main(int argc, char** argv) {
   CLI::App* methods_app = app.add_subcommand("methods", "The solution paths and the settings each uses");
   methods_app->add_flag("--json", methods.json, "As JSON (name, description, settings, study ladder and plot styles)");
 
+  pounding::cli::LawsCommand laws;
+  CLI::App* laws_app = app.add_subcommand("laws", "The contact laws, their default stiffness and the rebound each achieves");
+  laws_app->add_flag("--json", laws.json, "As JSON (name, description, keys, default stiffness, methods, rebound)");
+  laws_app->add_option("--restitution", laws.restitution, "Restitution e at which to give each law's rebound")
+      ->capture_default_str();
+
   pounding::cli::CheckCommand check;
   CLI::App* check_app = app.add_subcommand("check", "Validate a scene and print what it describes");
   add_scene_argument(*check_app, check.scene);
@@ -154,6 +160,7 @@ int main(int argc, char** argv) {
     if (*modes_app) return pounding::cli::run_modes(modes);
     if (*check_app) return pounding::cli::run_check(check);
     if (*methods_app) return pounding::cli::run_methods(methods);
+    if (*laws_app) return pounding::cli::run_laws(laws);
     if (*run_app) return pounding::cli::run_run(run, command_line);
     if (*study_app) return pounding::cli::run_study(study, command_line);
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);

@@ -209,6 +209,20 @@ py::array_t<double> history_table(const Run& run) {
   });
 }
 
+/// contacts_history.csv's columns, in its order, and its rows (one per contact and instant).
+const std::vector<std::string> kContactForceColumns{"t_s",         "candidate", "level",        "striking_building", "vertex",
+                                                   "struck_edge", "gap_m",     "gap_rate_mps", "force_kN"};
+py::array_t<double> contact_force_table(const Run& run) {
+  const auto& samples = run.report.result.history.contact_forces;
+  return matrix(samples.size(), kContactForceColumns.size(), [&](std::size_t r, std::size_t c) {
+    const pounding::solvers::ContactForceSample& f = samples[r];
+    const double values[] = {f.t_s,    static_cast<double>(f.candidate), static_cast<double>(f.level),
+                             static_cast<double>(f.striking_building), static_cast<double>(f.vertex),
+                             static_cast<double>(f.struck_edge), f.gap_m, f.gap_rate_mps, f.force_kN};
+    return values[c];
+  });
+}
+
 Gap find_needed_gap(const Scene& scene, const pounding::solvers::RunBudget& budget) {
   Gap result{scene.name, {}};
   py::gil_scoped_release unlocked;
@@ -334,7 +348,9 @@ PYBIND11_MODULE(_pounding, m) {
       .def("brief_report", [](const Run& r) { return pounding::io::brief_report(r.report); })
       .def("impact_table", &impact_table)
       .def("history_columns", [](const Run& r) { return r.report.result.history.columns; })
-      .def("history_table", &history_table);
+      .def("history_table", &history_table)
+      .def("contact_force_columns", [](const Run&) { return kContactForceColumns; })
+      .def("contact_force_table", &contact_force_table);
   m.def("run", &run, py::arg("scene"), py::arg("method"), py::arg("settings"), py::arg("limits"));
 
   py::class_<Gap>(m, "Gap")

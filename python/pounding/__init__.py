@@ -135,7 +135,8 @@ class RunResult:
     """One run (`pounding run`), kept in memory. summary is summary.json's document (the same keys
     and values; its provenance has no command line); impacts, touches, sustained_contacts, peaks,
     energy and statistics are its entries; impacts_array is impacts.csv as a numpy structured
-    array; history maps history.csv's columns (t_s first) to numpy arrays."""
+    array; history maps history.csv's columns (t_s first) to numpy arrays, contact_forces
+    contacts_history.csv's (one entry per contact carrying a force at a history instant)."""
 
     def __init__(self, run):
         self._run = run
@@ -145,6 +146,7 @@ class RunResult:
             setattr(self, key, self.summary[key])
         self._impacts_array = None
         self._history = None
+        self._contact_forces = None
 
     @property
     def impacts_array(self):
@@ -163,6 +165,13 @@ class RunResult:
             table = self._run.history_table()
             self._history = {name: table[:, c].copy() for c, name in enumerate(self._run.history_columns())}
         return self._history
+
+    @property
+    def contact_forces(self):
+        if self._contact_forces is None:
+            table = self._run.contact_force_table()
+            self._contact_forces = {name: table[:, c].copy() for c, name in enumerate(self._run.contact_force_columns())}
+        return self._contact_forces
 
     @property
     def time_s(self):

@@ -19,6 +19,11 @@ constexpr double kInchInMetres = 0.0254;
 
 const std::vector<std::string_view> kEventDrivenIntegrators{"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk"};
 
+double impulse_rebound(double restitution) { return restitution; }
+double kelvin_rebound(double restitution) {
+  return contact::kelvin_release(contact::kelvin_damping_ratio(restitution)).rebound;
+}
+
 const std::vector<ContactLawInfo> kLaws = {
     {.name = "impulse",
      .description = "rigid impact with Newton's restitution, sustained contacts held: the paper's law",
@@ -28,7 +33,8 @@ const std::vector<ContactLawInfo> kLaws = {
      .default_stiffness = 0.0,
      .stiffness_source = "",
      .damping_key = "",
-     .methods = {}},
+     .methods = {},
+     .rebound = impulse_rebound},
     {.name = "kelvin",
      .description = "Kelvin-Voigt element F = k delta + c delta_dot while overlapping, c from restitution "
                     "(Anagnostopoulos 1988)",
@@ -40,7 +46,8 @@ const std::vector<ContactLawInfo> kLaws = {
      .default_stiffness = 93.5e3,
      .stiffness_source = "Jankowski 2005, linear viscoelastic fit to concrete impact tests (93.5 kN/mm)",
      .damping_key = "damping_ratio",
-     .methods = kEventDrivenIntegrators},
+     .methods = kEventDrivenIntegrators,
+     .rebound = kelvin_rebound},
     {.name = "hertzdamp",
      .description = "Hertz contact with nonlinear damping F = k_h delta^1.5 (1 + 3(1-e^2)/4 delta_dot/v0) "
                     "(Muthukumar & DesRoches 2006)",

@@ -78,11 +78,7 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   estimate.dof = system.dof();
   estimate.duration_s = system.ground_motion().end_s() - system.ground_motion().start_s();
   estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
-  const double levels = scene.output.history_floors.empty() ? static_cast<double>(system.levels().size())
-                                                            : static_cast<double>(scene.output.history_floors.size());
-  double per_level = 0.0;  // u, v, φ and the contact vertices' dx of both buildings' slabs
-  for (int b = 0; b < 2; ++b) per_level += 3.0 + static_cast<double>(solvers::contact_vertices(system.candidates(), b).size());
-  estimate.history_columns = 1.0 + levels * per_level;
+  estimate.history_columns = static_cast<double>(solvers::history_columns(system, scene.output.history_floors).size());
   const UsedSettings used = resolve(scene.solver);
   if (!used.method->event_driven) {
     estimate.min_steps = std::ceil(estimate.duration_s / used.dt_s);
@@ -125,6 +121,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.contact_law = law.name;
+  report.g_mps2 = scene.excitation.g_mps2;
   report.contact_stiffness = scene.contact.used_stiffness();
   report.contact_damping = contact_damping(law, scene.contact.restitution);
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};

@@ -1,5 +1,5 @@
 #pragma once
-// The lines of history.csv and impacts.csv, shared by the writer that writes a finished run and
+// The lines of history.csv, contacts_history.csv and impacts.csv, shared by the writer that writes a finished run and
 // the one that streams a run as it goes, so both produce the same bytes. Impact rows follow
 // impact_schema.hpp, the list summary.json's impacts follow too.
 
@@ -17,5 +17,10 @@ void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out);
 /// One header line: the columns, comma-separated.
 void write_csv_header(const std::vector<std::string>& columns, std::ostream& out);
 void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& out);
+/// contacts_history.csv: one row per contact carrying a force at a history instant (tidy, long
+/// form: a column per candidate would mostly hold zeros). t_s, candidate (0-based, as in
+/// summary.json's list), level, striking_building, vertex, struck_edge, gap_m, gap_rate_mps, force_kN.
+void write_contact_forces_header(std::ostream& out);
+void write_contact_force_row(const solvers::ContactForceSample& sample, std::ostream& out);
 
 }  // namespace pounding::io

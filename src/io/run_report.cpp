@@ -51,6 +51,27 @@ void append_contacts(const analysis::RunReport& report, std::string& text) {
   }
 }
 
+/// Per floor: the peak absolute accelerations (m/s² and g) and the drift ratios of the storey
+/// below it (%, at the CM and at the worst corner), each with its instant.
+void append_design_peaks(const analysis::RunReport& report, std::string& text) {
+  auto out = std::back_inserter(text);
+  const double g = report.g_mps2;
+  const char* part = report.contact_law == "impulse" ? "smooth part: each impact adds an impulse (impacts)" : "contact forces included";
+  for (const auto& building : report.result.peaks) {
+    fmt::format_to(out, "Accelerations and storey drifts of {} (absolute accelerations, {}):\n", building.name, part);
+    for (const auto& f : building.floors) {
+      const solvers::WorstCornerDrift corner = solvers::worst_corner_drift(f);
+      fmt::format_to(out,
+                     "  floor {}: |ax| {:.3f} m/s² = {:.3f} g at {:.3f} s, |ay| {:.3f} m/s² = {:.3f} g at {:.3f} s; "
+                     "drift x {:.3f} % at {:.3f} s, y {:.3f} % at {:.3f} s, corner {} {} {:.3f} % at {:.3f} s\n",
+                     f.floor, std::abs(f.ax_abs_mps2.value), std::abs(f.ax_abs_mps2.value) / g, f.ax_abs_mps2.t_s,
+                     std::abs(f.ay_abs_mps2.value), std::abs(f.ay_abs_mps2.value) / g, f.ay_abs_mps2.t_s,
+                     100 * std::abs(f.drift_x.value), f.drift_x.t_s, 100 * std::abs(f.drift_y.value), f.drift_y.t_s,
+                     corner.corner, corner.axis, 100 * std::abs(corner.peak.value), corner.peak.t_s);
+    }
+  }
+}
+
 void append_response(const analysis::RunReport& report, std::string& text) {
   const solvers::RunResult& r = report.result;
   auto out = std::back_inserter(text);
@@ -62,6 +83,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
                    building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
                    top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
   }
+  append_design_peaks(report, text);
   const auto& st = r.statistics;
   if (st.max_interpenetration_candidate >= 0) {
     fmt::format_to(out, "Largest overlap: {:.3e} m at {:.6f} s, {}\n", st.max_interpenetration_m,

@@ -23,11 +23,14 @@ void StreamedRunFiles::history_columns(const std::vector<std::string>& columns) 
   // A summary.json vouches for the files beside it; from here on they are this run's, unfinished.
   std::filesystem::remove(folder_ / "summary.json");
   history_.open(partial("history.csv"), std::ios::binary | std::ios::trunc);
+  contacts_.open(partial("contacts_history.csv"), std::ios::binary | std::ios::trunc);
   impacts_.open(partial("impacts.csv"), std::ios::binary | std::ios::trunc);
   opened_ = true;
   write_csv_header(columns, history_);
+  write_contact_forces_header(contacts_);
   write_impacts_header(impacts_);
   history_.flush();
+  contacts_.flush();
   impacts_.flush();
   last_flush_ = std::chrono::steady_clock::now();
 }
@@ -35,6 +38,10 @@ void StreamedRunFiles::history_columns(const std::vector<std::string>& columns) 
 void StreamedRunFiles::history_row(double t_s, const Eigen::VectorXd& values) {
   write_history_row(t_s, values, history_);
   flush_history_if_due();
+}
+
+void StreamedRunFiles::contact_force(const solvers::ContactForceSample& sample) {
+  write_contact_force_row(sample, contacts_);  // follows its history row, whose flush is due-checked
 }
 
 void StreamedRunFiles::impact(const solvers::ImpactRecord& impact) {
@@ -48,6 +55,7 @@ void StreamedRunFiles::flush_history_if_due() {
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ < flush_interval_) return;
   history_.flush();
+  contacts_.flush();
   last_flush_ = now;
 }
 
@@ -62,6 +70,7 @@ void StreamedRunFiles::close_checked(std::ofstream& out, const char* name) {
 void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenance& provenance) {
   if (!opened_) throw std::logic_error("StreamedRunFiles::finish before the run named its history columns");
   close_checked(history_, "history.csv");
+  close_checked(contacts_, "contacts_history.csv");
   close_checked(impacts_, "impacts.csv");
   write_json(run_json(report, provenance), folder_ / "summary.json");
 }
@@ -69,9 +78,11 @@ void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenanc
 void StreamedRunFiles::abandon() {
   if (!opened_) return;
   history_.close();
+  contacts_.close();
   impacts_.close();
   std::error_code ignored;  // nothing to report: the run is being refused for its own reason
   std::filesystem::remove(partial("history.csv"), ignored);
+  std::filesystem::remove(partial("contacts_history.csv"), ignored);
   std::filesystem::remove(partial("impacts.csv"), ignored);
   opened_ = false;
 }

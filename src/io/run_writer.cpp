@@ -54,16 +54,41 @@ json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
   return list;
 }
 
-json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks) {
+/// An acceleration peak (m/s²) also in g.
+json peak_in_g(const solvers::Peak& p, double g_mps2) {
+  return {{"value", p.value}, {"value_g", p.value / g_mps2}, {"t_s", p.t_s}};
+}
+
+json peak_list(const std::vector<solvers::Peak>& peaks) {
+  json list = json::array();
+  for (const auto& p : peaks) list.push_back(peak(p));
+  return list;
+}
+
+json worst_corner_json(const solvers::FloorPeaks& f) {
+  const solvers::WorstCornerDrift w = solvers::worst_corner_drift(f);
+  return {{"corner", w.corner}, {"axis", std::string(1, w.axis)}, {"value", w.peak.value}, {"t_s", w.peak.t_s}};
+}
+
+json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, double g_mps2) {
   json list = json::array();
   for (const auto& building : peaks) {
     json vertices = json::array(), floors = json::array();
     for (const auto& v : building.contact_vertices_rest) vertices.push_back(point(v));
     for (const auto& f : building.floors) {
-      json dx = json::array();
-      for (const auto& p : f.vertex_dx_m) dx.push_back(peak(p));
-      floors.push_back({{"floor", f.floor}, {"u_m", peak(f.u_m)}, {"v_m", peak(f.v_m)},
-                        {"phi_rad", peak(f.phi_rad)}, {"vertex_dx_m", dx}});
+      floors.push_back({{"floor", f.floor},
+                        {"u_m", peak(f.u_m)},
+                        {"v_m", peak(f.v_m)},
+                        {"phi_rad", peak(f.phi_rad)},
+                        {"vertex_dx_m", peak_list(f.vertex_dx_m)},
+                        {"ax_abs_mps2", peak_in_g(f.ax_abs_mps2, g_mps2)},
+                        {"ay_abs_mps2", peak_in_g(f.ay_abs_mps2, g_mps2)},
+                        {"phi_ddot_radps2", peak(f.phi_ddot_radps2)},
+                        {"drift_x", peak(f.drift_x)},
+                        {"drift_y", peak(f.drift_y)},
+                        {"corner_drift_x", peak_list(f.corner_drift_x)},
+                        {"corner_drift_y", peak_list(f.corner_drift_y)},
+                        {"worst_corner_drift", worst_corner_json(f)}});
     }
     list.push_back({{"building", building.name}, {"contact_vertices", building.contact_vertices},
                     {"contact_vertices_rest", vertices}, {"floors", floors}});
@@ -114,6 +139,19 @@ json contact_law_json(const analysis::RunReport& report) {
     law[std::string(info.damping_key)] = report.contact_damping;
   }
   return law;
+}
+
+/// What the acceleration outputs hold, and where the peaks were found.
+json accelerations_json(const analysis::RunReport& report) {
+  const bool impulse = report.contact_law == "impulse";
+  return {{"content", impulse ? "smooth part" : "complete"},
+          {"note", impulse ? "the impulse law's impacts add Dirac parts to both slabs' accelerations, left out here; "
+                             "their impulses are in impacts (impulse_kNs)"
+                           : "the contact forces are part of the accelerations"},
+          {"g_mps2", report.g_mps2},
+          {"peaks_located", "on the dense output: turning points of the rate (exact in free motion, a central "
+                            "difference while contact forces act), and every step end, event and sample"},
+          {"drift_peaks_located", "on the dense output: turning points, and every step end, event and sample"}};
 }
 
 json setting_json(const analysis::SettingValue& value) {
@@ -173,7 +211,8 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
           {"impacts", impacts_json(r.impacts)},
           {"touches", touches},
           {"sustained_contacts", sustained},
-          {"peaks", peaks_json(r.peaks)},
+          {"accelerations", accelerations_json(report)},
+          {"peaks", peaks_json(r.peaks, report.g_mps2)},
           {"energy", energy_json(r.energy)},
           {"statistics", statistics_json(r.statistics, report.candidates)},
           {"provenance", provenance_json(provenance)}};
@@ -194,6 +233,17 @@ void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& 
   out << '\n';
 }
 
+void write_contact_forces_header(std::ostream& out) {
+  write_csv_header({"t_s", "candidate", "level", "striking_building", "vertex", "struck_edge", "gap_m", "gap_rate_mps",
+                    "force_kN"},
+                   out);
+}
+
+void write_contact_force_row(const solvers::ContactForceSample& f, std::ostream& out) {
+  out << fmt::format("{},{},{},{},{},{},{},{},{}\n", f.t_s, f.candidate, f.level, f.striking_building, f.vertex,
+                     f.struck_edge, f.gap_m, f.gap_rate_mps, f.force_kN);
+}
+
 void write_run(const analysis::RunReport& report, const Provenance& provenance, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
   // summary.json goes last and an earlier run's goes first: whatever happens in between, a
@@ -203,6 +253,10 @@ void write_run(const analysis::RunReport& report, const Provenance& provenance, 
   write_atomically(folder / "history.csv", [&](std::ostream& out) {
     write_csv_header(r.history.columns, out);
     for (std::size_t k = 0; k < r.history.time_s.size(); ++k) write_history_row(r.history.time_s[k], r.history.rows[k], out);
+  });
+  write_atomically(folder / "contacts_history.csv", [&](std::ostream& out) {
+    write_contact_forces_header(out);
+    for (const solvers::ContactForceSample& f : r.history.contact_forces) write_contact_force_row(f, out);
   });
   write_atomically(folder / "impacts.csv", [&](std::ostream& out) {
     write_impacts_header(out);

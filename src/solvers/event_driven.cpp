@@ -104,7 +104,7 @@ class EventDrivenRun final : public OdeFunctions {
         hold_record_(count_, -1),
         open_(count_),
         gap_components_(gap_components(system)),
-        recorder_(system, options.history_floors, options.history_interval_s, options.sink) {}
+        recorder_(system, recorded_dynamics(), options.history_floors, options.history_interval_s, options.sink) {}
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(3 * count_); }
@@ -186,6 +186,20 @@ class EventDrivenRun final : public OdeFunctions {
     rhs(t, y, y_dot);
     const contact::GapState s = system_.gap(y, i);
     return open_[i]->law.switch_rate(-s.gap_m, -s.gap_rate_mps, -system_.gap_acceleration(y, y_dot, i));
+  }
+  /// For the recorder: this rhs, the forces of the acting compliant contacts and the held ones,
+  /// and whether none acts (is_free_motion).
+  RecordedDynamics recorded_dynamics() {
+    return {.derivative = [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); },
+            .contact_forces = [this](double t, const VectorXd& y) {
+              std::vector<ContactForce> forces;
+              for (std::size_t i : active_) forces.push_back({i, compliant_force(i, y)});
+              if (held_.empty()) return forces;
+              const VectorXd held_forces = hold_forces(t, y);
+              for (std::size_t r = 0; r < held_.size(); ++r) forces.push_back({held_[r], held_forces[static_cast<Eigen::Index>(r)]});
+              return forces;
+            },
+            .free_motion = [this] { return is_free_motion(); }};
   }
   double constraint_power(double t, const VectorXd& y) const {
     if (held_.empty()) return 0.0;

@@ -5,10 +5,10 @@
 
 namespace pounding::solvers {
 
-double find_root(const std::function<double(double)>& f, double a, double b, double fa, double fb) {
+double find_root(const std::function<double(double)>& f, double a, double b, double fa, double fb, double width) {
   int side = 0;
   for (int iteration = 0; iteration < 200; ++iteration) {
-    if (b - a <= 4e-16 * std::max(1.0, std::abs(b))) break;
+    if (b - a <= std::max(width, 4e-16 * std::max(1.0, std::abs(b)))) break;
     double c = (a * fb - b * fa) / (fb - fa);
     if (!(c > a && c < b)) c = 0.5 * (a + b);
     const double fc = f(c);

@@ -110,6 +110,13 @@ def test_arrays_match_cli_csv(paper_pair):
     assert array["level"].dtype == np.int64 and array["starts_sustained_contact"].dtype == np.bool_
     assert np.array_equal(array["t_s"], [i["t_s"] for i in result.impacts])
 
+    with open(folder / "contacts_history.csv") as f:
+        rows = list(csv.reader(f))
+    assert list(result.contact_forces) == rows[0] and len(rows) > 10  # the paper scene holds contacts
+    table = np.array([[float(x) for x in row] for row in rows[1:]])
+    for c, name in enumerate(rows[0]):
+        assert np.array_equal(bits(result.contact_forces[name]), bits(table[:, c])), name
+
 
 def test_method_settings_and_record_match_cli(tmp_path):
     """Another method with a setting, under another record scaled to a PGA: the keywords do what

@@ -26,6 +26,10 @@ struct ContactLawInfo {
   /// "normalised_damping" (hertzdamp's ξδ̇₀/k_h); empty for impulse.
   std::string_view damping_key;
   std::vector<std::string_view> methods{};  // names of the methods that run it; empty: every method
+  /// The ratio of separation to approach speed a lone contact of this law achieves for the
+  /// scene's restitution e (closed form, as the law releases a contact; the stiff limit for
+  /// laws whose ratio depends on the stiffness); null when no closed form is known.
+  double (*rebound)(double restitution) = nullptr;
 };
 
 /// Every law, the default (impulse) first.

@@ -65,6 +65,7 @@ struct RunReport {
   double contact_stiffness = 0.0;  // used by compliant laws, in the law's unit; 0 for impulse
   /// The law's damping from the restitution (contact_damping() in contact_laws.hpp); 0 for impulse.
   double contact_damping = 0.0;
+  double g_mps2 = 9.81;                     // the scene's gravity: accelerations are also reported in g
 };
 
 /// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and

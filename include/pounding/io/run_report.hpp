@@ -14,7 +14,8 @@ namespace pounding::io {
 std::string brief_report(const analysis::RunReport& report);
 
 /// Several lines, each ending in a newline: the run and its settings, impacts per level and the
-/// first one, touches, sustained contacts, peaks at the top level, the largest overlap, the
+/// first one, touches, sustained contacts, peaks at the top level, per floor the peak absolute
+/// accelerations and storey drift ratios, the largest overlap, the
 /// energy balance and the solver's statistics.
 std::string full_report(const analysis::RunReport& report);
 

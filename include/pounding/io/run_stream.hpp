@@ -1,5 +1,5 @@
 #pragma once
-// Streams a run's history.csv and impacts.csv into its output folder while it runs, so a run that
+// Streams a run's history.csv, contacts_history.csv and impacts.csv into its output folder while it runs, so a run that
 // is killed (SIGKILL, out of memory, a crash) leaves every row computed up to shortly before.
 
 #include <chrono>
@@ -12,11 +12,12 @@
 
 namespace pounding::io {
 
-/// While the run goes, rows go to `history.csv.partial` and `impacts.csv.partial` (each with its
-/// header): impacts flushed at every row, history at least every `flush_interval_s` of wall time.
+/// While the run goes, rows go to `history.csv.partial`, `contacts_history.csv.partial` and
+/// `impacts.csv.partial` (each with its header): impacts flushed at every row, the histories at
+/// least every `flush_interval_s` of wall time.
 /// The files open, and an earlier run's summary.json is removed, when the run names its columns
 /// (just before its first row, once it has passed its checks). finish() renames both and writes summary.json last,
-/// the same three files write_run() writes for the same run, byte for byte in the CSVs.
+/// the same four files write_run() writes for the same run, byte for byte in the CSVs.
 class StreamedRunFiles final : public solvers::RunSink {
  public:
   explicit StreamedRunFiles(std::filesystem::path folder, double flush_interval_s = 1.0);
@@ -24,8 +25,10 @@ class StreamedRunFiles final : public solvers::RunSink {
   void history_columns(const std::vector<std::string>& columns) override;
   void history_row(double t_s, const Eigen::VectorXd& values) override;
   void impact(const solvers::ImpactRecord& impact) override;
+  void contact_force(const solvers::ContactForceSample& sample) override;
 
-  /// Renames the streamed files to history.csv and impacts.csv, then writes summary.json.
+  /// Renames the streamed files to history.csv, contacts_history.csv and impacts.csv, then
+  /// writes summary.json.
   /// @throws std::runtime_error naming a file that could not be written (disk full, ...).
   void finish(const analysis::RunReport& report, const Provenance& provenance);
   /// Closes and removes the streamed files: the run was refused after all and leaves nothing.
@@ -39,7 +42,7 @@ class StreamedRunFiles final : public solvers::RunSink {
   std::filesystem::path folder_;
   std::chrono::duration<double> flush_interval_;
   std::chrono::steady_clock::time_point last_flush_;
-  std::ofstream history_, impacts_;
+  std::ofstream history_, contacts_, impacts_;
   bool opened_ = false;
 };
 

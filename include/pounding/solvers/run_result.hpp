@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -88,7 +90,32 @@ struct FloorPeaks {
   int floor = 0;
   Peak u_m, v_m, phi_rad;
   std::vector<Peak> vertex_dx_m;  // x-displacement of each contact vertex of the building
+  /// Absolute acceleration of the CM, q̈ + r a_g (m/s², rad/s²), the solver's own rhs with every
+  /// contact force in it. The impulse law's impacts add Dirac parts that this smooth part leaves
+  /// out (their impulses are in the impacts).
+  Peak ax_abs_mps2, ay_abs_mps2, phi_ddot_radps2;
+  /// Drift ratio of the storey below this floor: displacement of floor j minus floor j − 1 (the
+  /// ground for j = 1) over the storey height, along x and y, at the CM ...
+  Peak drift_x, drift_y;
+  /// ... and at each slab corner, in outline order.
+  std::vector<Peak> corner_drift_x, corner_drift_y;
 };
+
+/// The corner drift peak of largest magnitude over the slab's corners and both axes.
+struct WorstCornerDrift {
+  std::size_t corner = 0;  // 1-based, in the slab outline
+  char axis = 'x';
+  Peak peak;
+};
+inline WorstCornerDrift worst_corner_drift(const FloorPeaks& floor) {
+  WorstCornerDrift worst;
+  for (std::size_t k = 0; k < floor.corner_drift_x.size(); ++k) {
+    for (const auto& [axis, peak] : {std::pair{'x', floor.corner_drift_x[k]}, std::pair{'y', floor.corner_drift_y[k]}}) {
+      if (worst.corner == 0 || std::abs(peak.value) > std::abs(worst.peak.value)) worst = {k + 1, axis, peak};
+    }
+  }
+  return worst;
+}
 
 struct BuildingPeaks {
   std::string name;
@@ -139,6 +166,21 @@ struct SolverStatistics {
   double wall_time_s = 0.0;
 };
 
+/// The normal force of one contact at a history sample (contacts_history.csv): a compliant law's
+/// force, or for the impulse law the force λ holding a sustained contact. Contacts without force
+/// at that instant have no sample.
+struct ContactForceSample {
+  double t_s = 0.0;
+  std::size_t candidate = 0;        // index into the candidate list
+  int level = 0;                    // as in ImpactRecord
+  int striking_building = 0;        // 1 or 2
+  std::size_t vertex = 0;           // 1-based, in the striking slab's outline
+  std::size_t struck_edge = 0;      // 1-based, of the struck slab
+  double gap_m = 0.0;               // signed gap g (< 0: overlap)
+  double gap_rate_mps = 0.0;        // ġ
+  double force_kN = 0.0;            // > 0 pushes the slabs apart
+};
+
 /// Sampled time history: one row per sample, columns named in `columns` (units in the name).
 struct History {
   double interval_s = 0.0;  // regular sampling interval; event rows fall between
@@ -146,6 +188,7 @@ struct History {
   std::vector<std::string> columns;
   std::vector<double> time_s;
   std::vector<Eigen::VectorXd> rows;
+  std::vector<ContactForceSample> contact_forces;  // at the same instants, in time order
 };
 
 struct RunResult {

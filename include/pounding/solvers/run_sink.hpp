@@ -20,6 +20,8 @@ class RunSink {
   virtual void history_row(double t_s, const Eigen::VectorXd& values) = 0;
   /// One impact, in the order RunResult::impacts lists them, once nothing will change it.
   virtual void impact(const ImpactRecord& impact) = 0;
+  /// One contact's force at a history row's instant, after that row.
+  virtual void contact_force(const ContactForceSample& sample) = 0;
 };
 
 }  // namespace pounding::solvers
