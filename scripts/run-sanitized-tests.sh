@@ -13,5 +13,9 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # been run under the sanitizers. The peer_scipy tests (a Python peer solution checked against the
 # exact and CVODE paths, 7 s each in Release) run no C++ code the other tests do not. All of these
 # exercise the same code as the tests that do run, only longer, and together would take CI past
-# 30 minutes on 2 cores.
-ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -E '^(test_beyond_paper|extreme_quick|test_needed_gap|peer_scipy_exact|peer_scipy_bdf)$'
+# 30 minutes on 2 cores. Also left out since CI reached 26 minutes (all three passed here, commit
+# 83b9b6f): test_step_bound (210 s here: long stiff runs of the bound the other solver tests use),
+# test_record_set (214 s: the same record runs with 1 and 2 threads; test_gap_cli runs the record
+# set end to end here) and test_hht (91 s: the HHT path, unchanged for several releases).
+ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
+  -E '^(test_beyond_paper|extreme_quick|test_needed_gap|peer_scipy_exact|peer_scipy_bdf|test_step_bound|test_record_set|test_hht)$'
