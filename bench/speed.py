@@ -30,22 +30,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "bench/peers"))
 import scipy_paper  # noqa: E402  (the independent peer)
+from machine import commit, cpu_model  # noqa: E402
 
 PAPER = ROOT / "examples/paper/paper.toml"
 SIZES = [10, 20, 40, 60]  # storeys of each building in the size ladder
 SIZE_METHODS = ["cvode-bdf", "cvode-bdf/modal", "exact"]
-
-
-def cpu_model():
-    for line in Path("/proc/cpuinfo").read_text().splitlines():
-        if line.startswith("model name"):
-            return line.split(":", 1)[1].strip()
-    return platform.processor() or "unknown CPU"
-
-
-def commit():
-    done = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    return done.stdout.strip() or "unknown"
 
 
 def timed_run(pounding, scene, out, *extra):

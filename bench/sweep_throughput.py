@@ -16,29 +16,16 @@ import datetime
 import json
 import os
 import pathlib
-import platform
-import subprocess
 import tempfile
 import time
 
 import pounding
+from machine import commit, cpu_model
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PAPER = ROOT / "examples" / "paper" / "paper.toml"
 GAPS_M = [round(0.02 * k, 2) for k in range(1, 13)]  # 0.02 … 0.24 m: most runs pound
 RESTITUTIONS = [0.5, 0.7]
-
-
-def cpu_model():
-    for line in pathlib.Path("/proc/cpuinfo").read_text().splitlines():
-        if line.startswith("model name"):
-            return line.split(":", 1)[1].strip()
-    return platform.processor() or "unknown CPU"
-
-
-def commit():
-    done = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
-    return done.stdout.strip() or "unknown"
 
 
 def cluster_start_s(workers):

@@ -131,6 +131,11 @@ def modes(scene):
 _IMPACT_DTYPES = {"real": np.float64, "integer": np.int64, "flag": np.bool_}
 
 
+def _columns(table, names):
+    """A table's columns as a dict of arrays, by column name."""
+    return {name: table[:, c].copy() for c, name in enumerate(names)}
+
+
 class RunResult:
     """One run (`pounding run`), kept in memory. summary is summary.json's document (the same keys
     and values; its provenance has no command line); impacts, touches, sustained_contacts, peaks,
@@ -163,14 +168,14 @@ class RunResult:
     def history(self):
         if self._history is None:
             table = self._run.history_table()
-            self._history = {name: table[:, c].copy() for c, name in enumerate(self._run.history_columns())}
+            self._history = _columns(table, self._run.history_columns())
         return self._history
 
     @property
     def contact_forces(self):
         if self._contact_forces is None:
             table = self._run.contact_force_table()
-            self._contact_forces = {name: table[:, c].copy() for c, name in enumerate(self._run.contact_force_columns())}
+            self._contact_forces = _columns(table, self._run.contact_force_columns())
         return self._contact_forces
 
     @property

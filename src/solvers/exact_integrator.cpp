@@ -31,6 +31,21 @@ std::pair<Complex, Complex> phi_functions(Complex z) {
 
 }  // namespace
 
+void start_held_stretch(std::unique_ptr<Integrator>& held, OdeFunctions& functions, const ExactSettings& settings,
+                        double t, const Eigen::VectorXd& y, double max_step_s) {
+  if (held) {
+    held->restart(t, y);
+  } else {
+    CvodeSettings tight;
+    tight.method = CvodeMethod::bdf;  // a stiff storey makes Adams crawl
+    tight.rtol = settings.hold_rtol;
+    tight.atol = settings.hold_atol;
+    tight.atol_vector = settings.hold_atol_vector;
+    held = std::make_unique<CvodeIntegrator>(functions, tight, t, y);
+  }
+  held->set_max_step(max_step_s);
+}
+
 ExactIntegrator::ExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0, ExactSettings settings)
     : functions_(functions), settings_(settings), jacobian_(functions.state_size(), functions.state_size()) {
   restart(t0, y0);
@@ -40,17 +55,7 @@ void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   counters_ = {};  // like CVODE's, the counters run from the last restart
   held_phase_ = !functions_.is_linear();
   if (held_phase_) {
-    if (held_) {
-      held_->restart(t, y);
-    } else {
-      CvodeSettings tight;
-      tight.method = CvodeMethod::bdf;
-      tight.rtol = settings_.hold_rtol;
-      tight.atol = settings_.hold_atol;
-      tight.atol_vector = settings_.hold_atol_vector;
-      held_ = std::make_unique<CvodeIntegrator>(functions_, tight, t, y);
-    }
-    held_->set_max_step(max_step_s_);
+    start_held_stretch(held_, functions_, settings_, t, y, max_step_s_);
     return;
   }
   freeze_phase(t, y);

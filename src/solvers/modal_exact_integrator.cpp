@@ -52,17 +52,7 @@ void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   // goes to the numerical integrator.
   held_phase_ = !functions_.is_free_motion();
   if (held_phase_) {
-    if (held_) {
-      held_->restart(t, y);
-    } else {
-      CvodeSettings tight;
-      tight.method = CvodeMethod::bdf;
-      tight.rtol = settings_.hold_rtol;
-      tight.atol = settings_.hold_atol;
-      tight.atol_vector = settings_.hold_atol_vector;
-      held_ = std::make_unique<CvodeIntegrator>(functions_, tight, t, y);
-    }
-    held_->set_max_step(max_step_s_);
+    start_held_stretch(held_, functions_, settings_, t, y, max_step_s_);
     return;
   }
   const int n = system_.dof();

@@ -36,6 +36,11 @@ struct ExactSettings {
   Eigen::VectorXd hold_atol_vector{};  // per state component; empty: hold_atol for every one
 };
 
+/// Starts a held stretch at (t, y) with at most `max_step_s` per step: restarts `held`, or first
+/// creates it as CVODE BDF at `settings`' tolerances. Both forms of the exact path call it.
+void start_held_stretch(std::unique_ptr<Integrator>& held, OdeFunctions& functions, const ExactSettings& settings,
+                        double t, const Eigen::VectorXd& y, double max_step_s);
+
 class ExactIntegrator final : public Integrator {
  public:
   /// `functions` must outlive the integrator.
