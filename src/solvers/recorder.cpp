@@ -513,7 +513,9 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     std::swap(start_, last_);
     if (start_.t_s != t_a) measure(t_a, at(t_a), outputs_.acceleration_peaks, outputs_.drift_peaks, start_);
   }
-  if (outputs_.history) {
+  // The peaks see the sample instants whether or not rows are written, so they do not depend on
+  // the history (on HHT's Hermite interpolant a sample can beat the located turning points).
+  if (outputs_.history || peaks) {
     while (next_sample_s_ <= t_b) {
       if (next_sample_s_ > t_a) sample(next_sample_s_, at(next_sample_s_));
       next_sample_s_ = system_.ground_motion().start_s() +

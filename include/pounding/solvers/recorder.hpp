@@ -58,7 +58,7 @@ class Recorder {
   Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics, const std::vector<int>& history_levels,
            double history_interval_s, const OutputSelection& outputs, RunSink* sink = nullptr);
 
-  /// Writes a history row at t (once per instant) and updates the peaks at the state y, which the
+  /// Writes a history row at t (once per instant, with history) and updates the peaks at the state y, which the
   /// next stretch starts from (the run's start, or an event's state after the event, with the
   /// dynamics that go on from there).
   void sample(double t, const dynamics::VectorXd& y);
