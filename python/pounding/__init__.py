@@ -143,8 +143,8 @@ class RunResult:
     energy and statistics are its entries; impacts_array is impacts.csv as a numpy structured
     array; history maps history.csv's columns (t_s first) to numpy arrays, contact_forces
     contacts_history.csv's (one entry per contact carrying a force at a history instant). The
-    scene's [output] decides what there is: without history both are empty dicts, and peaks holds
-    the groups summary["outputs"]["peaks"] lists (an empty list for none)."""
+    scene's [output] decides what there is: without history both are empty dicts, and each floor
+    of peaks holds the groups summary["outputs"]["peaks"] lists."""
 
     def __init__(self, run):
         self._run = run

@@ -71,7 +71,7 @@ json worst_corner_json(const solvers::FloorPeaks& f) {
   return {{"corner", w.corner}, {"axis", std::string(1, w.axis)}, {"value", w.peak.value}, {"t_s", w.peak.t_s}};
 }
 
-/// Per building and floor, the peak groups `outputs` asked for; an empty list for none.
+/// Per building (with its contact vertices) and floor, the peak groups `outputs` asked for.
 json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers::OutputSelection& outputs, double g_mps2) {
   json list = json::array();
   for (const auto& building : peaks) {

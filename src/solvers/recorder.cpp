@@ -541,7 +541,7 @@ void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result) 
   energy_.strain_kJ = system_.strain_energy(final_state);
   result.energy = energy_;
   result.outputs = outputs_;
-  if (outputs_.any_peaks()) result.peaks = std::move(peaks_);
+  result.peaks = std::move(peaks_);
   result.history = std::move(history_);
 }
 

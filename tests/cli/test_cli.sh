@@ -267,6 +267,9 @@ for b_full, b_sel in zip(full["peaks"], selected["peaks"]):
         assert set(f_sel) == {"floor", "drift_x", "drift_y", "corner_drift_x", "corner_drift_y", "worst_corner_drift"}, f_sel
         assert all(f_sel[key] == f_full[key] for key in f_sel), f_sel
 PY
+/usr/bin/python3 "$source_dir/tools/compare_runs.py" "$work/d20" "$work/selected" > /dev/null 2> "$work/compare-selected.txt" \
+    && fail "compare_runs.py accepted a run without history"
+grep -q "run it again with --history on" "$work/compare-selected.txt" || fail "compare_runs.py on a run without history: $(cat "$work/compare-selected.txt")"
 
 # Issue 15: absurd options are refused naming the option, the value and the range.
 expect_refusal "--gap = 1e+17: must lie in \[0, 10\] m" run "$scene" --gap 1e17 --out "$work/bad"

@@ -210,7 +210,7 @@ struct RunResult {
   std::vector<ImpactRecord> impacts;
   std::vector<TouchRecord> touches;
   std::vector<SustainedContactRecord> sustained_contacts;
-  OutputSelection outputs;  // what was recorded: peaks of groups left out stay 0, and no peaks at all leave `peaks` empty
+  OutputSelection outputs;  // what was recorded; the peaks of groups left out stay 0
   std::vector<BuildingPeaks> peaks;
   EnergyAudit energy;
   SolverStatistics statistics;
