@@ -1,7 +1,8 @@
 #pragma once
-// Collects what a run reports from its states: peaks, the sampled history and the energy
-// integrals. Shared by every solution path so their outputs compare column for column. With a
-// RunSink the history rows and impacts go to the sink as they come and the history is not kept.
+// Collects what a run reports from its states: the peaks and the sampled history that its
+// OutputSelection asks for, and the energy integrals (always). Shared by every solution path so
+// their outputs compare column for column. With a RunSink the history rows and impacts go to the
+// sink as they come and the history is not kept.
 
 #include <functional>
 #include <optional>
@@ -58,9 +59,9 @@ class Recorder {
   Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics, const std::vector<int>& history_levels,
            double history_interval_s, const OutputSelection& outputs, RunSink* sink = nullptr);
 
-  /// Writes a history row at t (once per instant, with history) and updates the peaks at the state y, which the
-  /// next stretch starts from (the run's start, or an event's state after the event, with the
-  /// dynamics that go on from there).
+  /// Writes a history row at t (once per instant, with history) and updates the peaks at the
+  /// state y, which the next stretch starts from (the run's start, or an event's state after the
+  /// event, with the dynamics that go on from there).
   void sample(double t, const dynamics::VectorXd& y);
   /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns and whose end
   /// state is `y_b`: history samples that fall inside, the peaks (turning points inside located
@@ -156,8 +157,9 @@ class Recorder {
   std::optional<double> last_row_t_s_;  // a row is written once per instant
   Instant start_, last_;  // the stretch being advanced starts at start_; last_: the latest instant
   // Scratch space of the hot path, sized once (no allocation per step).
-  mutable dynamics::VectorXd y_dot_, y_ddot_, partial_, accel_lo_, accel_hi_;
-  mutable std::vector<model::Point2> below_, below_rate_;
+  mutable dynamics::VectorXd y_dot_, y_ddot_;                // absolute_accelerations, free_acceleration_rates
+  mutable std::vector<model::Point2> below_, below_rate_;  // storey_drifts
+  dynamics::VectorXd partial_, accel_lo_, accel_hi_;        // states and accelerations inside a stretch
   Eigen::VectorXd row_;
   std::size_t impacts_streamed_ = 0;
 };
