@@ -52,6 +52,7 @@ struct RunCommand {
   std::optional<std::string> halving;         // on | off
   std::optional<std::string> event_location;  // halving | interpolate
   std::optional<double> hold_rtol;
+  std::optional<double> modes_cutoff_hz;
   std::string out_dir;  // empty: out/<scene name, made safe as a folder name>
   // Limits of the run (analysis::RunLimits); unset: its defaults.
   std::optional<long> max_steps;
