@@ -68,7 +68,6 @@ void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
     modal.eta.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(dof_offset_[b], dofs);
     modal.eta_rate.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(n + dof_offset_[b], dofs);
   }
-  modal.accel_mps2 = system_.ground_motion().accel_at(t);
   segment_.t_start_s = t;
   segment_.start = std::move(modal);
   end_t_s_ = std::numeric_limits<double>::quiet_NaN();
@@ -166,10 +165,12 @@ const Eigen::VectorXd& ModalExactIntegrator::contact_state(const ModalState& mod
   const int n = system_.dof();
   for (int b = 0; b < 2; ++b) {
     const int size = bases_[b].size();
-    const Eigen::VectorXd q = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size) +
-                              modal.accel_mps2 * contact_static_[b];
-    const Eigen::VectorXd q_rate = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size) +
-                                   modal.accel_rate_mps3 * contact_static_[b];
+    Eigen::VectorXd q = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
+    Eigen::VectorXd q_rate = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size);
+    if (truncated_) {
+      q += modal.accel_mps2 * contact_static_[b];
+      q_rate += modal.accel_rate_mps3 * contact_static_[b];
+    }
     for (std::size_t r = 0; r < contact_dofs_[b].size(); ++r) {
       const int i = dof_offset_[b] + contact_dofs_[b][r];
       contact_y_[i] = q[static_cast<Eigen::Index>(r)];
@@ -277,8 +278,10 @@ void ModalExactIntegrator::interpolate_components(double t, const std::vector<in
     const int b = dof >= dof_offset_[1] ? 1 : 0;
     const int size = bases_[b].size();
     const Eigen::VectorXd& coordinates = rate ? modal.eta_rate : modal.eta;
-    y[index] = bases_[b].shapes.row(dof - dof_offset_[b]).dot(coordinates.segment(mode_offset_[b], size)) +
-               (rate ? modal.accel_rate_mps3 : modal.accel_mps2) * bases_[b].dropped_static_s2[dof - dof_offset_[b]];
+    y[index] = bases_[b].shapes.row(dof - dof_offset_[b]).dot(coordinates.segment(mode_offset_[b], size));
+    if (truncated_) {
+      y[index] += (rate ? modal.accel_rate_mps3 : modal.accel_mps2) * bases_[b].dropped_static_s2[dof - dof_offset_[b]];
+    }
   }
 }
 

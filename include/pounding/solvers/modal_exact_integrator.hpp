@@ -71,7 +71,9 @@ class ModalExactIntegrator final : public Integrator {
   /// Modal displacements and rates of both buildings (building 1's modes first).
   struct ModalState {
     Eigen::VectorXd eta, eta_rate;
-    double accel_mps2 = 0.0, accel_rate_mps3 = 0.0;  // a_g and ȧ_g there (the static correction's)
+    /// a_g and ȧ_g there, for the static correction: set by modal_at (a restart's state is never
+    /// formed back into a physical one: the loop's y is kept as it is).
+    double accel_mps2 = 0.0, accel_rate_mps3 = 0.0;
   };
   /// The current step: its start, the modal state there, and a_g = accel + slope·τ over it.
   struct Segment {
