@@ -112,6 +112,7 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
   if (command.max_halvings) solver.max_halvings = *command.max_halvings;
   if (command.event_location) solver.event_location = *command.event_location;
   if (command.hold_rtol) solver.hold_rtol = *command.hold_rtol;
+  if (command.modes_cutoff_hz) solver.modes_cutoff_hz = *command.modes_cutoff_hz;
   if (command.halving) {
     if (!analysis::applies(analysis::method_info(solver.method), analysis::Setting::event_location)) {
       throw InputError("--halving", *command.halving, fmt::format("does not apply to method {}", solver.method));
@@ -258,13 +259,29 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
   const InterruptRequests interrupts;
   const analysis::StudyResult study = analysis::run_study(scene, options, print_row, print_stiffness_row);
   io::write_study(study, provenance, folder);
+  if (!study.truncation_rows.empty()) {
+    fmt::print("Truncation ladder: the exact path keeping the modes below a cut-off, the rest static, against the "
+               "full one\n");
+    fmt::print("{:>11} {:>7} {:>9} {:>8} {:>7} {:>4} {:>5} {:>13} {:>11} {:>11} {:>11}\n", "cutoff[Hz]", "modes",
+               "run [s]", "steps", "impacts", "miss", "extra", "pre-hold [s]", "all [s]", "u err [m]", "peak u [m]");
+    for (const analysis::TruncationRow& r : study.truncation_rows) {
+      const analysis::RunErrors& e = r.errors;
+      fmt::print("{:>11} {:>7} {:>9.4f} {:>8} {:>7} {:>4} {:>5} {:>13.3e} {:>11.3e} {:>11.3e} {:>11.3e}{}\n",
+                 r.cutoff_hz > 0.0 ? fmt::format("{:g}", r.cutoff_hz) : std::string("full"),
+                 fmt::format("{}/{}", r.modes_kept, r.modes_total), r.run_time_s, r.steps, r.impacts, e.missing,
+                 e.extra, e.impact_time_before_hold_s, e.impact_time_all_s, e.history_u_m, e.peak_u_m,
+                 r.status == "completed" ? "" : "  " + r.status);
+    }
+  }
   if (study.interrupted) {
-    fmt::print("Interrupted after {} of the study's runs; wrote them to {}/study.csv, stiffness.csv and study.json\n",
-               study.rows.size() + study.stiffness_rows.size(), folder);
+    fmt::print("Interrupted after {} of the study's runs; wrote them to {}/study.csv, stiffness.csv, truncation.csv "
+               "and study.json\n",
+               study.rows.size() + study.stiffness_rows.size() + study.truncation_rows.size(), folder);
     return 3;
   }
   fmt::print("Reference: exact path, {} impacts, {:.3f} s; its own error estimate (against held stretches at "
-             "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv, stiffness.csv and study.json; "
+             "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv, stiffness.csv, truncation.csv and "
+             "study.json; "
              "draw them with tools/plot_study.py {}\n",
              study.reference.impacts.size(), study.reference_run_time_s, study.reference_error.impact_time_all_s,
              study.reference_error.history_u_m, folder, folder);

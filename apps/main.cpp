@@ -102,6 +102,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--peaks", run.peaks,
                       "Peak groups in summary.json: none, all or a comma-separated list of displacements, accelerations, "
                       "drifts (replaces output.peaks)");
+  run_app->add_option("--modes-cutoff", run.modes_cutoff_hz, option_help(Setting::modes_cutoff_hz));
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
   run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");

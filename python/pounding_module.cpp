@@ -143,6 +143,7 @@ void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis:
     case Setting::newton: solver.newton = text(); return;
     case Setting::form: solver.form = text(); return;
     case Setting::hold_rtol: solver.hold_rtol = real(); return;
+    case Setting::modes_cutoff_hz: solver.modes_cutoff_hz = real(); return;
     case Setting::dt_s: solver.dt_s = real(); return;
     case Setting::alpha: solver.alpha = real(); return;
     case Setting::contact_tolerance_m: solver.contact_tolerance_m = real(); return;

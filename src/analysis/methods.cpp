@@ -26,6 +26,8 @@ constexpr Range kAtol{1e-16, 1e-3, "m"};
 // Held stretches of the exact path: tighter than 1e-14 is under round-off; looser than 1e-6
 // would make the ground truth less accurate than the paths it judges.
 constexpr Range kHoldRtol{1e-14, 1e-6};
+// Modal truncation of the exact path: 0 is off; above 1e4 Hz no building model has modes to drop.
+constexpr Range kModesCutoff{0.0, 1e4, "Hz"};
 constexpr Range kHhtStep{0.0, 0.1, "s", true};             // published 0.05 s
 constexpr Range kHhtContactTolerance{0.0, 0.01, "m", true};
 constexpr int kMaxHalvings = 60;                           // 0.05 s / 2⁶⁰ is below round-off of t
@@ -44,6 +46,8 @@ constexpr SettingSpec kSpecs[] = {
     {Setting::form, "form", "--form",
      "state integrated: physical (q, q') or modal (each building's modal coordinates)"},
     {Setting::hold_rtol, "hold_rtol", "--hold-rtol", "relative tolerance of held stretches (CVODE BDF)"},
+    {Setting::modes_cutoff_hz, "modes_cutoff_hz", "--modes-cutoff",
+     "keep each building's modes below this frequency (Hz), the rest as their static response; 0: every mode"},
     {Setting::dt_s, "dt_s", "--dt", "fixed time step (s)"},
     {Setting::alpha, "alpha", "--alpha", "HHT alpha in [-1/3, 0]"},
     {Setting::contact_tolerance_m, "contact_tolerance_m", "--contact-tol", "gap that counts as contact (m)"},
@@ -106,7 +110,8 @@ solvers::IntegratorFactory arkode_factory(const UsedSettings& used, const dynami
 
 solvers::IntegratorFactory exact_factory(const UsedSettings& used, const dynamics::CoupledSystem& system) {
   const solvers::ExactSettings settings{.hold_rtol = used.hold_rtol, .hold_atol = used.hold_rtol / 100,
-                                        .hold_atol_vector = atol_vector(used, system)};
+                                        .hold_atol_vector = atol_vector(used, system),
+                                        .modes_cutoff_hz = used.modes_cutoff_hz};
   // Rayleigh damping is classical, so free flight runs in modal form (ModalExactIntegrator).
   return [settings, &system](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
     return std::make_unique<solvers::ModalExactIntegrator>(functions, system, t0, y0, settings);
@@ -154,7 +159,7 @@ const std::vector<MethodInfo> kMethods = {
                 {"hht-interpolate", "interpolate", {"tab:purple", "P"}}}},
     {.name = "exact",
      .description = "exact propagator of free flight in modal form, held contacts by CVODE BDF: the ground truth",
-     .settings = {hold_rtol},
+     .settings = {hold_rtol, modes_cutoff_hz},
      .factory = exact_factory,
      .steps_per_period = kExactSubdivisionsPerPeriod,
      .reference = true},
@@ -179,6 +184,7 @@ std::optional<SettingValue> given_value(const SolverSettings& given, Setting set
     case newton: return value(given.newton);
     case form: return value(given.form);
     case hold_rtol: return value(given.hold_rtol);
+    case modes_cutoff_hz: return value(given.modes_cutoff_hz);
     case dt_s: return value(given.dt_s);
     case alpha: return value(given.alpha);
     case contact_tolerance_m: return value(given.contact_tolerance_m);
@@ -196,6 +202,7 @@ SettingValue used_value(const UsedSettings& used, Setting setting) {
     case newton: return used.newton;
     case form: return used.form;
     case hold_rtol: return used.hold_rtol;
+    case modes_cutoff_hz: return used.modes_cutoff_hz;
     case dt_s: return used.dt_s;
     case alpha: return used.alpha;
     case contact_tolerance_m: return used.contact_tolerance_m;
@@ -213,6 +220,7 @@ void clear(SolverSettings& given, Setting setting) {
     case newton: given.newton.reset(); break;
     case form: given.form.reset(); break;
     case hold_rtol: given.hold_rtol.reset(); break;
+    case modes_cutoff_hz: given.modes_cutoff_hz.reset(); break;
     case dt_s: given.dt_s.reset(); break;
     case alpha: given.alpha.reset(); break;
     case contact_tolerance_m: given.contact_tolerance_m.reset(); break;
@@ -256,6 +264,7 @@ void validate_value(const MethodInfo& info, const SolverSettings& given, Setting
     case newton: return require_one_of(newton, *given.newton, kNewtonSolvers);
     case form: return require_one_of(form, *given.form, kForms);
     case hold_rtol: return require_range(key_of(hold_rtol), *given.hold_rtol, kHoldRtol);
+    case modes_cutoff_hz: return require_range(key_of(modes_cutoff_hz), *given.modes_cutoff_hz, kModesCutoff);
     case dt_s: return require_range(key_of(dt_s), *given.dt_s, kHhtStep);
     case alpha:
       if (!(*given.alpha >= -1.0 / 3.0 && *given.alpha <= 0.0)) {
@@ -349,6 +358,7 @@ UsedSettings resolve(const SolverSettings& given, const dynamics::CoupledSystem*
   used.newton = given.newton.value_or(used.newton);
   used.form = given.form.value_or(used.form);
   used.hold_rtol = given.hold_rtol.value_or(used.hold_rtol);
+  used.modes_cutoff_hz = given.modes_cutoff_hz.value_or(used.modes_cutoff_hz);
   used.dt_s = given.dt_s.value_or(used.dt_s);
   used.alpha = given.alpha.value_or(used.alpha);
   used.contact_tolerance_m = given.contact_tolerance_m.value_or(used.contact_tolerance_m);

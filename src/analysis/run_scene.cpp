@@ -1,10 +1,12 @@
 #include "pounding/analysis/run_scene.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <fmt/format.h>
 
 #include "pounding/analysis/contact_laws.hpp"
 #include "pounding/input_error.hpp"
+#include "pounding/model/modal.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
 #include "pounding/solvers/hht.hpp"
@@ -50,7 +52,8 @@ solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used) {
 
 namespace {
 
-solvers::EventOptions event_options(const Scene& scene, const MethodInfo& method) {
+solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used) {
+  const MethodInfo& method = *used.method;
   solvers::EventOptions options;
   options.restitution = scene.contact.restitution;
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
@@ -60,7 +63,22 @@ solvers::EventOptions event_options(const Scene& scene, const MethodInfo& method
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
+  options.modes_cutoff_hz = used.modes_cutoff_hz;
   return options;
+}
+
+/// A truncation must keep some mode of each building: below the first, nothing would move but
+/// the static response. @throws InputError naming solver.modes_cutoff_hz.
+void check_modes_kept(const Scene& scene, const UsedSettings& used, const dynamics::CoupledSystem& system) {
+  if (used.modes_cutoff_hz == 0.0) return;
+  for (int b = 0; b < 2; ++b) {
+    const double first_hz = model::modal_analysis(system.building(b)).front().omega_rad_s / (2.0 * std::numbers::pi);
+    if (first_hz < used.modes_cutoff_hz) continue;
+    throw InputError("solver.modes_cutoff_hz", format_value(used.modes_cutoff_hz),
+                     fmt::format("keeps no mode of {} (its first mode is at {:.4g} Hz)",
+                                 system.building(b).definition.name, first_hz),
+                     scene.file.string());
+  }
 }
 
 }  // namespace
@@ -88,8 +106,9 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
     estimate.min_steps = std::ceil(estimate.duration_s / used.dt_s);
   } else {
     // The automatic step bound is longest at rest (motion only adds modal amplitude).
-    const solvers::EventOptions options = event_options(scene, *used.method);
-    const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period);
+    const solvers::EventOptions options = event_options(scene, used);
+    const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period,
+                                      options.modes_cutoff_hz);
     estimate.min_steps =
         std::ceil(estimate.duration_s / bound.max_step_s(Eigen::VectorXd::Zero(system.state_size())));
   }
@@ -122,6 +141,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   const dynamics::CoupledSystem system = build_system(scene);
   check_work(estimate_work(scene, system), limits);
   const UsedSettings used = resolve(scene.solver, &system);
+  check_modes_kept(scene, used, system);
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.contact_law = law.name;
@@ -131,7 +151,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
   const std::string method(used.method->name);
   if (used.method->factory) {
-    solvers::EventOptions options = event_options(scene, *used.method);
+    solvers::EventOptions options = event_options(scene, used);
     options.max_steps = limits.max_steps;
     options.budget = budget;
     options.sink = sink;

@@ -1,11 +1,14 @@
 #include "pounding/analysis/study.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <map>
 
 #include "pounding/analysis/run_scene.hpp"
+#include "pounding/model/modal.hpp"
 #include "pounding/solvers/run_budget.hpp"
 #include "pounding/input_error.hpp"
 
@@ -156,7 +159,46 @@ void add_stiffness_ladder(const Scene& scene, const StudyOptions& options, Study
   }
 }
 
+/// The truncation ladder: the reference method at each cut-off, its error against the reference.
+template <class Timed>
+void add_truncation_ladder(const Scene& scene, StudyResult& study, Timed& timed, double match_window_s) {
+  Scene exact = scene;
+  exact.solver = with_method(scene.solver, reference_method().name);
+  exact.solver.not_used.clear();
+  const dynamics::CoupledSystem system = build_system(exact);
+  std::array<std::vector<model::Mode>, 2> modes{model::modal_analysis(system.building(0)),
+                                                model::modal_analysis(system.building(1))};
+  for (double cutoff_hz : truncation_ladder()) {
+    if (solvers::interrupt_requested()) {
+      study.interrupted = true;
+      return;
+    }
+    TruncationRow row;
+    row.cutoff_hz = cutoff_hz;
+    std::array<int, 2> kept{0, 0};
+    for (int b = 0; b < 2; ++b) {
+      for (const model::Mode& mode : modes[b]) {
+        const bool keep = cutoff_hz == 0.0 || mode.omega_rad_s / (2.0 * std::numbers::pi) < cutoff_hz;
+        kept[b] += keep ? 1 : 0;
+        ++row.modes_total;
+      }
+    }
+    if (kept[0] == 0 || kept[1] == 0) continue;  // refused by run_scene: no mode of a building left
+    row.modes_kept = kept[0] + kept[1];
+    Scene variant = exact;
+    if (cutoff_hz > 0.0) variant.solver.modes_cutoff_hz = cutoff_hz;
+    const solvers::RunResult result = timed(variant, row.run_time_s);
+    row.status = std::string(solvers::to_string(result.status));
+    row.steps = result.statistics.steps;
+    row.impacts = result.impacts.size();
+    row.errors = compare_runs(study.reference, result, match_window_s);
+    study.truncation_rows.push_back(std::move(row));
+  }
+}
+
 }  // namespace
+
+std::vector<double> truncation_ladder() { return {2.0, 5.0, 10.0, 15.0, 0.0}; }
 
 StudyResult run_study(const Scene& given, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress,
@@ -233,6 +275,7 @@ StudyResult run_study(const Scene& given, const StudyOptions& options,
     }
   }
   add_stiffness_ladder(scene, options, study, timed, stiffness_progress);
+  add_truncation_ladder(scene, study, timed, options.match_window_s);
   return study;
 }
 

@@ -462,6 +462,7 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   solver.newton = table->optional_string("newton");
   solver.form = table->optional_string("form");
   solver.hold_rtol = table->optional_number("hold_rtol");
+  solver.modes_cutoff_hz = table->optional_number("modes_cutoff_hz");
   solver.dt_s = table->optional_number("dt_s");
   solver.alpha = table->optional_number("alpha");
   solver.contact_tolerance_m = table->optional_number("contact_tolerance_m");

@@ -63,6 +63,34 @@ void write_stiffness_csv(const analysis::StudyResult& study, std::ostream& out) 
   }
 }
 
+const char* kTruncationCsvHeader =
+    "modes_cutoff_hz,modes_kept,modes_total,status,run_time_s,steps,impacts,matched,missing,extra,"
+    "impact_time_error_s,impact_time_error_all_s,impact_time_error_before_hold_s,impulse_relative_error,"
+    "history_u_error_m,history_v_error_m,history_phi_error_rad,peak_u_error_m,peak_v_error_m,peak_phi_error_rad\n";
+
+nlohmann::json truncation_row_json(const analysis::TruncationRow& row) {
+  const analysis::RunErrors& e = row.errors;
+  return {{"modes_cutoff_hz", row.cutoff_hz}, {"modes_kept", row.modes_kept}, {"modes_total", row.modes_total},
+          {"status", row.status}, {"run_time_s", row.run_time_s}, {"steps", row.steps}, {"impacts", row.impacts},
+          {"matched", e.matched}, {"missing", e.missing}, {"extra", e.extra},
+          {"impact_time_error_s", e.impact_time_s}, {"impact_time_error_all_s", e.impact_time_all_s},
+          {"impact_time_error_before_hold_s", e.impact_time_before_hold_s},
+          {"impulse_relative_error", e.impulse_relative}, {"history_u_error_m", e.history_u_m},
+          {"history_v_error_m", e.history_v_m}, {"history_phi_error_rad", e.history_phi_rad},
+          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad}};
+}
+
+void write_truncation_csv(const analysis::StudyResult& study, std::ostream& out) {
+  out << kTruncationCsvHeader;
+  for (const auto& r : study.truncation_rows) {
+    const analysis::RunErrors& e = r.errors;
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.cutoff_hz, r.modes_kept,
+                       r.modes_total, r.status, r.run_time_s, r.steps, r.impacts, e.matched, e.missing, e.extra,
+                       e.impact_time_s, e.impact_time_all_s, e.impact_time_before_hold_s, e.impulse_relative,
+                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad);
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -85,6 +113,8 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
   for (const auto& row : study.rows) rows.push_back(row_json(row));
   nlohmann::json stiffness_rows = nlohmann::json::array();
   for (const auto& row : study.stiffness_rows) stiffness_rows.push_back(stiffness_row_json(row));
+  nlohmann::json truncation_rows = nlohmann::json::array();
+  for (const auto& row : study.truncation_rows) truncation_rows.push_back(truncation_row_json(row));
   return {{"scene", study.scene},
           {"gap_m", study.gap_m},
           {"interrupted", study.interrupted},
@@ -99,6 +129,7 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
                                              {"extra", study.reference_error.extra}}}}},
           {"rows", rows},
           {"stiffness_ladder", stiffness_rows},
+          {"truncation_ladder", truncation_rows},
           {"styles", styles_json()}};
 }
 
@@ -109,6 +140,7 @@ void write_study(const analysis::StudyResult& study, const Provenance& provenanc
   write_json(document, folder / "study.json");
   write_atomically(folder / "study.csv", [&](std::ostream& out) { write_study_csv(study, out); });
   write_atomically(folder / "stiffness.csv", [&](std::ostream& out) { write_stiffness_csv(study, out); });
+  write_atomically(folder / "truncation.csv", [&](std::ostream& out) { write_truncation_csv(study, out); });
 }
 
 }  // namespace pounding::io

@@ -1,5 +1,6 @@
 #include "pounding/model/modal_basis.hpp"
 
+#include <numbers>
 #include <stdexcept>
 
 #include "pounding/model/modal.hpp"
@@ -18,6 +19,7 @@ ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::V
   }
   basis.projection = basis.shapes.transpose() * building.mass_diagonal.asDiagonal();
   basis.participation = basis.projection * influence;
+  basis.dropped_static_s2 = Eigen::VectorXd::Zero(n);
   // ζ from the Rayleigh coefficients themselves (exact for the model as defined); Φᵀ C Φ only
   // checks that C is what they say and that the modes decouple it, rather than drop its
   // coupling terms silently.
@@ -30,6 +32,24 @@ ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::V
     throw std::runtime_error("modal basis of " + building.definition.name +
                              ": the damping is not the classical a0 M + a1 K the modes decouple");
   }
+  return basis;
+}
+
+ModalBasis keep_modes_below(const ModalBasis& full, double cutoff_hz) {
+  if (cutoff_hz == 0.0) return full;
+  Eigen::Index kept = 0;  // ascending ω: the kept modes are the first ones
+  while (kept < full.size() && full.omega_rad_s[kept] / (2.0 * std::numbers::pi) < cutoff_hz) ++kept;
+  ModalBasis basis;
+  basis.omega_rad_s = full.omega_rad_s.head(kept);
+  basis.damping_ratio = full.damping_ratio.head(kept);
+  basis.shapes = full.shapes.leftCols(kept);
+  basis.projection = full.projection.topRows(kept);
+  basis.participation = full.participation.head(kept);
+  const Eigen::Index dropped = full.size() - kept;
+  // η_s = −Γ a_g / ω² solves each dropped oscillator with η̈ and η̇ neglected.
+  basis.dropped_static_s2 =
+      -full.shapes.rightCols(dropped) *
+      (full.participation.tail(dropped).array() / full.omega_rad_s.tail(dropped).array().square()).matrix();
   return basis;
 }
 

@@ -47,6 +47,9 @@ void EventOptions::validate() const {
   positive(max_events_per_s, "max_events_per_s");
   positive(history_interval_s, "history_interval_s");
   if (max_step_s < 0.0) throw InputError("max_step_s", format_value(max_step_s), "must be zero (automatic) or positive");
+  if (!(modes_cutoff_hz >= 0.0) || !std::isfinite(modes_cutoff_hz)) {
+    throw InputError("modes_cutoff_hz", format_value(modes_cutoff_hz), "must be zero (every mode) or positive");
+  }
   if (!(steps_per_period >= 1.0) || !std::isfinite(steps_per_period)) {
     throw InputError("steps_per_period", format_value(steps_per_period), "must be at least 1");
   }
@@ -835,7 +838,9 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   const double t0 = system_.ground_motion().start_s();
   result_.start_s = t0;
   VectorXd y = options_.initial_state.size() ? options_.initial_state : VectorXd::Zero(system_.state_size());
-  if (options_.max_step_s == 0.0) mode_bound_.emplace(system_, options_.overlap_allowance_m, options_.steps_per_period);
+  if (options_.max_step_s == 0.0) {
+    mode_bound_.emplace(system_, options_.overlap_allowance_m, options_.steps_per_period, options_.modes_cutoff_hz);
+  }
 
   recorder_.sample(t0, y);
   start(t0, y);

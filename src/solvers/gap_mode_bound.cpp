@@ -44,7 +44,8 @@ double gap_per_unit(const RestRows& rest, int b, const Eigen::VectorXd& shape) {
 
 }  // namespace
 
-GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period)
+GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period,
+                           double modes_cutoff_hz)
     : resolution_m_(resolution_m), steps_per_period_(steps_per_period) {
   const double peak_accel_mps2 = system.ground_motion().peak_mps2();
   const RestRows rest = rest_rows(system);
@@ -57,6 +58,8 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
     for (const model::Mode& mode : model::modal_analysis(building)) {
       longest_period_s = std::max(longest_period_s, mode.period_s);
       const double omega = mode.omega_rad_s;
+      // A mode left out follows a_g quasi-statically, linear within a step: it cannot hide a minimum.
+      if (modes_cutoff_hz > 0.0 && omega / (2.0 * std::numbers::pi) >= modes_cutoff_hz) continue;
       const double zeta = mode.shape.dot(building.damping * mode.shape) / (2.0 * omega);
       if (zeta >= 1.0) continue;  // overdamped: its free response has at most one extremum
       OscillatingMode m;

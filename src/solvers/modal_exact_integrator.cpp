@@ -13,20 +13,24 @@ namespace pounding::solvers {
 ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynamics::CoupledSystem& system, double t0,
                                            const Eigen::VectorXd& y0, ExactSettings settings)
     : functions_(functions), system_(system), settings_(std::move(settings)) {
-  const int modes = system.dof();
-  omega_.resize(modes);
-  damping_ratio_.resize(modes);
-  participation_.resize(modes);
-  int offset = 0;
+  int modes = 0;
   for (int b = 0; b < 2; ++b) {
     const int n = system.building(b).dof();
     dof_offset_[b] = system.floor_index(b, 1);
-    mode_offset_[b] = offset;
-    bases_[b] = model::modal_basis(system.building(b), system.influence().segment(dof_offset_[b], n));
-    omega_.segment(offset, n) = bases_[b].omega_rad_s;
-    damping_ratio_.segment(offset, n) = bases_[b].damping_ratio;
-    participation_.segment(offset, n) = bases_[b].participation;
-    offset += n;
+    mode_offset_[b] = modes;
+    bases_[b] = model::keep_modes_below(
+        model::modal_basis(system.building(b), system.influence().segment(dof_offset_[b], n)),
+        settings_.modes_cutoff_hz);
+    modes += bases_[b].size();
+    truncated_ = truncated_ || bases_[b].size() < n;
+  }
+  omega_.resize(modes);
+  damping_ratio_.resize(modes);
+  participation_.resize(modes);
+  for (int b = 0; b < 2; ++b) {
+    omega_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].omega_rad_s;
+    damping_ratio_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].damping_ratio;
+    participation_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].participation;
   }
   for (const contact::Candidate& c : system.candidates()) {
     for (int b = 0; b < 2; ++b) {
@@ -38,8 +42,10 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
     std::sort(dofs.begin(), dofs.end());
     dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
     contact_shapes_[b].resize(static_cast<Eigen::Index>(dofs.size()), bases_[b].size());
+    contact_static_[b].resize(static_cast<Eigen::Index>(dofs.size()));
     for (std::size_t r = 0; r < dofs.size(); ++r) {
       contact_shapes_[b].row(static_cast<Eigen::Index>(r)) = bases_[b].shapes.row(dofs[r]);
+      contact_static_[b][static_cast<Eigen::Index>(r)] = bases_[b].dropped_static_s2[dofs[r]];
     }
   }
   contact_y_ = Eigen::VectorXd::Constant(system.state_size(), std::numeric_limits<double>::quiet_NaN());
@@ -56,11 +62,11 @@ void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
     return;
   }
   const int n = system_.dof();
-  ModalState modal{Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  ModalState modal{Eigen::VectorXd(omega_.size()), Eigen::VectorXd(omega_.size())};
   for (int b = 0; b < 2; ++b) {
-    const int size = bases_[b].size();
-    modal.eta.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(dof_offset_[b], size);
-    modal.eta_rate.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(n + dof_offset_[b], size);
+    const int size = bases_[b].size(), dofs = system_.building(b).dof();
+    modal.eta.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(dof_offset_[b], dofs);
+    modal.eta_rate.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(n + dof_offset_[b], dofs);
   }
   segment_.t_start_s = t;
   segment_.start = std::move(modal);
@@ -127,7 +133,8 @@ ModalExactIntegrator::ModalState ModalExactIntegrator::modal_at(double t, Buildi
   const std::vector<OscillatorStep>& steps = steps_over(tau, buildings);
   const Eigen::Index n = omega_.size();
   ModalState modal{Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN()),
-                   Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN())};
+                   Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN()),
+                   segment_.accel_mps2 + segment_.slope_mps3 * tau, segment_.slope_mps3};
   for (int b = 0; b < 2; ++b) {
     if (!buildings[b]) continue;
     for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
@@ -145,9 +152,12 @@ ModalExactIntegrator::ModalState ModalExactIntegrator::modal_at(double t, Buildi
 void ModalExactIntegrator::physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const {
   const int n = system_.dof();
   for (int b = 0; b < 2; ++b) {
-    const int size = bases_[b].size();
-    y.segment(dof_offset_[b], size).noalias() = bases_[b].shapes * modal.eta.segment(mode_offset_[b], size);
-    y.segment(n + dof_offset_[b], size).noalias() = bases_[b].shapes * modal.eta_rate.segment(mode_offset_[b], size);
+    const int size = bases_[b].size(), dofs = system_.building(b).dof();
+    y.segment(dof_offset_[b], dofs).noalias() = bases_[b].shapes * modal.eta.segment(mode_offset_[b], size);
+    y.segment(n + dof_offset_[b], dofs).noalias() = bases_[b].shapes * modal.eta_rate.segment(mode_offset_[b], size);
+    if (!truncated_) continue;
+    y.segment(dof_offset_[b], dofs) += modal.accel_mps2 * bases_[b].dropped_static_s2;
+    y.segment(n + dof_offset_[b], dofs) += modal.accel_rate_mps3 * bases_[b].dropped_static_s2;
   }
 }
 
@@ -155,8 +165,12 @@ const Eigen::VectorXd& ModalExactIntegrator::contact_state(const ModalState& mod
   const int n = system_.dof();
   for (int b = 0; b < 2; ++b) {
     const int size = bases_[b].size();
-    const Eigen::VectorXd q = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
-    const Eigen::VectorXd q_rate = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size);
+    Eigen::VectorXd q = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
+    Eigen::VectorXd q_rate = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size);
+    if (truncated_) {
+      q += modal.accel_mps2 * contact_static_[b];
+      q_rate += modal.accel_rate_mps3 * contact_static_[b];
+    }
     for (std::size_t r = 0; r < contact_dofs_[b].size(); ++r) {
       const int i = dof_offset_[b] + contact_dofs_[b][r];
       contact_y_[i] = q[static_cast<Eigen::Index>(r)];
@@ -221,7 +235,7 @@ ModalExactIntegrator::ModalState ModalExactIntegrator::modal_in_step(double t) {
 }
 
 std::optional<StretchEnergy> ModalExactIntegrator::energy_between(double t_a, double t_b) {
-  if (held_phase_) return std::nullopt;
+  if (held_phase_ || truncated_) return std::nullopt;
   const ModalState a = modal_in_step(t_a), b = modal_in_step(t_b);
   const double accel_a = segment_.accel_mps2 + segment_.slope_mps3 * (t_a - segment_.t_start_s);
   const double accel_b = segment_.accel_mps2 + segment_.slope_mps3 * (t_b - segment_.t_start_s);
@@ -265,6 +279,9 @@ void ModalExactIntegrator::interpolate_components(double t, const std::vector<in
     const int size = bases_[b].size();
     const Eigen::VectorXd& coordinates = rate ? modal.eta_rate : modal.eta;
     y[index] = bases_[b].shapes.row(dof - dof_offset_[b]).dot(coordinates.segment(mode_offset_[b], size));
+    if (truncated_) {
+      y[index] += (rate ? modal.accel_rate_mps3 : modal.accel_mps2) * bases_[b].dropped_static_s2[dof - dof_offset_[b]];
+    }
   }
 }
 

@@ -27,6 +27,7 @@ void give(analysis::SolverSettings& s, const analysis::MethodInfo& method, Setti
     case Setting::newton: s.newton = "dense"; break;
     case Setting::form: s.form = "modal"; break;
     case Setting::hold_rtol: s.hold_rtol = 1e-10; break;
+    case Setting::modes_cutoff_hz: s.modes_cutoff_hz = 20.0; break;
     case Setting::dt_s: s.dt_s = 0.01; break;
     case Setting::alpha: s.alpha = -0.1; break;
     case Setting::contact_tolerance_m: s.contact_tolerance_m = 1e-3; break;

@@ -278,6 +278,9 @@ expect_refusal "--rtol = 1e-300: must lie in \[1e-14, 0.1\]" run "$scene" --rtol
 expect_refusal "--atol = 1e+300: must lie in \[1e-16, 0.001\]" run "$scene" --atol 1e300 --out "$work/bad"
 expect_refusal "--contact-tol = 10: must lie in (0, 0.01\] m" run "$scene" --method hht --contact-tol 10 --out "$work/bad"
 expect_refusal "--hold-rtol = 0.001: must lie in \[1e-14, 1e-06\]" run "$scene" --method exact --hold-rtol 1e-3 --out "$work/bad"
+expect_refusal "--modes-cutoff = -1: must lie in \[0, 10000\] Hz" run "$scene" --method exact --modes-cutoff -1 --out "$work/bad"
+expect_refusal "--modes-cutoff = 0.01: keeps no mode of" run "$scene" --method exact --modes-cutoff 0.01 --out "$work/bad"
+expect_refusal "--modes-cutoff = 5: does not apply to method cvode-bdf" run "$scene" --modes-cutoff 5 --out "$work/bad"
 # Work beyond the limits is refused before the run, with the estimate; the option lifts it.
 # A setting the method run does not use is refused, naming the option and the method.
 expect_refusal "--rtol = 1e-12: does not apply to method hht" run "$scene" --method hht --rtol 1e-12 --out "$work/bad"

@@ -5,7 +5,7 @@ figures, next to what the paper reports (docs/paper-example.md).
 
     validation/paper/make_report.py [--pounding build/apps/pounding] [--repeat 3]
 
-Runs go to out/validation/; only the report and its figures are committed.
+Runs go to out/validation/; only the report, its figures, study.csv and truncation.csv are committed.
 """
 import argparse
 import json
@@ -117,6 +117,7 @@ def main():
     subprocess.run([PY, ROOT / "tools/plot_study.py", OUT / "study", "--out", figures / "work-precision.png"],
                    check=True, stdout=subprocess.DEVNULL)
     shutil.copy(OUT / "study/study.csv", HERE / "study.csv")
+    shutil.copy(OUT / "study/truncation.csv", HERE / "truncation.csv")
     study = json.loads((OUT / "study/study.json").read_text())
 
     lines = [

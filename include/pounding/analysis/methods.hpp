@@ -28,7 +28,7 @@ class CoupledSystem;
 namespace pounding::analysis {
 
 /// The keys of [solver] (docs/scene-format.md), in the order they are listed and written.
-enum class Setting { order, rtol, atol, newton, form, hold_rtol, dt_s, alpha, contact_tolerance_m, max_halvings, event_location };
+enum class Setting { order, rtol, atol, newton, form, hold_rtol, modes_cutoff_hz, dt_s, alpha, contact_tolerance_m, max_halvings, event_location };
 
 struct SettingSpec {
   Setting id;
@@ -51,6 +51,7 @@ struct SolverSettings {
   std::optional<std::string> newton; // reduced | dense
   std::optional<std::string> form;   // physical | modal: the state the SUNDIALS methods integrate
   std::optional<double> hold_rtol;   // exact: held stretches
+  std::optional<double> modes_cutoff_hz;  // exact: keep modes below this (Hz), the rest quasi-static
   std::optional<double> dt_s;        // hht
   std::optional<double> alpha;
   std::optional<double> contact_tolerance_m;
@@ -99,6 +100,7 @@ struct UsedSettings {
   std::string newton = "reduced";
   std::string form = "physical";        // (q, q̇), or (η, η̇) per building's modes (ModalSystem)
   double hold_rtol = 1e-12;             // exact; the held stretches' atol is hold_rtol / 100 (m)
+  double modes_cutoff_hz = 0.0;         // exact; 0: every mode (no truncation)
   double dt_s = 0.05;                   // s, the published value
   double alpha = -0.05;
   double contact_tolerance_m = 1e-4;

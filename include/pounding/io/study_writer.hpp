@@ -1,5 +1,5 @@
 #pragma once
-// Writes a work–precision study: study.csv (one row a run) and study.json.
+// Writes a work–precision study: study.csv (one row a run), stiffness.csv, truncation.csv and study.json.
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -11,7 +11,7 @@ namespace pounding::io {
 
 nlohmann::json study_json(const analysis::StudyResult& study);
 
-/// Writes study.csv and study.json (study_json() plus "provenance") into `folder` (created if missing).
+/// Writes study.csv, stiffness.csv, truncation.csv and study.json (study_json() plus "provenance") into `folder` (created if missing).
 /// @throws std::runtime_error naming a file that cannot be written.
 void write_study(const analysis::StudyResult& study, const Provenance& provenance, const std::filesystem::path& folder);
 

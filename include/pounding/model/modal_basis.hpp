@@ -17,6 +17,10 @@ struct ModalBasis {
   Eigen::MatrixXd shapes;         // Φ (3N × 3N), columns mass-normalised
   Eigen::MatrixXd projection;     // Φᵀ M: η = projection · q (and η̇ = projection · q̇)
   Eigen::VectorXd participation;  // Γ = Φᵀ M r (t^½ per unit of r)
+  /// The quasi-static response of the modes left out (keep_modes_below) to a unit ground
+  /// acceleration, R = −Σ_dropped φᵢ Γᵢ / ωᵢ² over the DOFs (m per m/s², i.e. s²): the building
+  /// moves as Φ η + R a_g(t). Zero when every mode is kept.
+  Eigen::VectorXd dropped_static_s2;
 
   int size() const { return static_cast<int>(omega_rad_s.size()); }
 };
@@ -31,5 +35,13 @@ inline constexpr double kClassicalDampingTolerance = 1e-9;
 ///   a0 M + a1 K (Φᵀ C Φ ≠ diag(2ζω) within kClassicalDampingTolerance): the modes would not
 ///   decouple it.
 ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::VectorXd>& influence);
+
+/// `full` (a complete basis, modal_basis()) with only its modes of frequency ωᵢ/2π < cutoff_hz;
+/// the others are replaced by their quasi-static response R a_g (dropped_static_s2, residual
+/// flexibility), the rest of what the ground moves them by being their dynamic response to it.
+/// Φ keeps its 3N rows (shapes is 3N × kept, projection kept × 3N). cutoff_hz = 0 keeps every
+/// mode. Since R lies in the span of the dropped modes, Φᵀ M R = 0: projecting a physical state
+/// on the kept modes drops the correction. @pre cutoff_hz ≥ 0, `full` complete.
+ModalBasis keep_modes_below(const ModalBasis& full, double cutoff_hz);
 
 }  // namespace pounding::model

@@ -57,6 +57,10 @@ struct EventOptions {
   /// barely moves sets no bound.
   double max_step_s = 0.0;
   double steps_per_period = 4.0;
+  /// > 0: the integrator keeps only the modes below this frequency (Hz) and takes the rest as
+  /// quasi-static (the exact path's truncation, ExactSettings::modes_cutoff_hz), so the automatic
+  /// step bound counts those modes only. 0: every mode.
+  double modes_cutoff_hz = 0.0;
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
   OutputSelection outputs;             // what the run records besides impacts and energy; default: all
   std::vector<int> history_floors;     // levels (1-based) to write; empty: every level

@@ -29,11 +29,15 @@
 
 namespace pounding::solvers {
 
-/// Tolerances of the held stretches, the part of the exact path that is integrated numerically.
+/// Tolerances of the held stretches, the part of the exact path that is integrated numerically,
+/// and the modal form's truncation.
 struct ExactSettings {
   double hold_rtol = 1e-12;
   double hold_atol = 1e-14;  // every component (m, rad and their rates) unless hold_atol_vector is set
   Eigen::VectorXd hold_atol_vector{};  // per state component; empty: hold_atol for every one
+  /// ModalExactIntegrator only: keep each building's modes below this frequency (Hz), the rest as
+  /// their quasi-static response (model::keep_modes_below). 0: every mode, the exact path.
+  double modes_cutoff_hz = 0.0;
 };
 
 /// Starts a held stretch at (t, y) with at most `max_step_s` per step: restarts `held`, or first

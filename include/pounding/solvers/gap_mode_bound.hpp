@@ -18,8 +18,11 @@ class GapModeBound {
  public:
   /// `resolution_m`: a mode moving no gap by more than this sets no bound (it can hide an
   /// overlap of at most about twice this). `steps_per_period`: the bound is the governing damped
-  /// period divided by this. @pre resolution_m > 0, steps_per_period ≥ 1.
-  GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period);
+  /// period divided by this. `modes_cutoff_hz` > 0: only modes below it count (a truncated run
+  /// takes the others as quasi-static, ExactSettings::modes_cutoff_hz). @pre resolution_m > 0,
+  /// steps_per_period ≥ 1, modes_cutoff_hz ≥ 0.
+  GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period,
+               double modes_cutoff_hz = 0.0);
 
   /// The bound (s) in state y = (q, q̇). Each mode's amplitude is its free-vibration amplitude
   /// √(η² + (η̇/ω)²) plus twice its static response to the record's peak acceleration (the most

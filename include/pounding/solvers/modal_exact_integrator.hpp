@@ -17,6 +17,14 @@
 // Held stretches are integrated by CVODE BDF at ExactSettings' tolerances, as in ExactIntegrator
 // (exact_integrator.hpp says why); ExactIntegrator remains the path for ODEs that are not a
 // CoupledSystem's free flight.
+//
+// Truncation (ExactSettings::modes_cutoff_hz > 0, off by default): only each building's modes
+// below the cut-off are advanced; the others are taken as their quasi-static response R a_g(t)
+// (model::keep_modes_below), added wherever the physical state is formed: q = Φ η + R a_g and
+// q̇ = Φ η̇ + R ȧ_g (ȧ_g the record interval's slope, so q̇ is the derivative of q inside a step
+// and jumps at record samples). A restart projects the loop's state on the kept modes (η = ΦᵀM q,
+// which drops R: ΦᵀM R = 0), so an impulse acts on the kept modes only; held stretches are still
+// integrated in full physical form and projected when they end. Not exact: docs/model.md.
 
 #include <Eigen/Core>
 #include <array>
@@ -55,13 +63,17 @@ class ModalExactIntegrator final : public Integrator {
   /// Free flight: per mode, with the load p = −Γ a_g linear in t, the input ∫p η̇ dt =
   /// [p η] − ṗ ∫η dt, where ∫η dt follows from the oscillator's equation, and the damping's
   /// dissipation is the input less the change of ½(η̇² + ω²η²): exact, no quadrature.
-  /// Held stretches: empty. @pre t_a ≤ t_b within the last step.
+  /// Held stretches and truncated runs (the quasi-static part has no closed form here): empty.
+  /// @pre t_a ≤ t_b within the last step.
   std::optional<StretchEnergy> energy_between(double t_a, double t_b) override;
 
  private:
   /// Modal displacements and rates of both buildings (building 1's modes first).
   struct ModalState {
     Eigen::VectorXd eta, eta_rate;
+    /// a_g and ȧ_g there, for the static correction: set by modal_at (a restart's state is never
+    /// formed back into a physical one: the loop's y is kept as it is).
+    double accel_mps2 = 0.0, accel_rate_mps3 = 0.0;
   };
   /// The current step: its start, the modal state there, and a_g = accel + slope·τ over it.
   struct Segment {
@@ -101,6 +113,8 @@ class ModalExactIntegrator final : public Integrator {
   // Contact floors' DOFs: per building, the local DOF indices and the matching rows of Φ.
   std::array<std::vector<int>, 2> contact_dofs_;
   std::array<Eigen::MatrixXd, 2> contact_shapes_;
+  std::array<Eigen::VectorXd, 2> contact_static_;  // the same rows of the static correction R
+  bool truncated_ = false;                         // some mode is left out
   Eigen::VectorXd contact_y_;  // NaN outside the contact floors
   std::array<CachedSteps, 8> cache_;  // most recently used first
 
