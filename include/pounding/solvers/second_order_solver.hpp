@@ -13,6 +13,7 @@
 #include <Eigen/LU>
 #include <Eigen/SparseLU>
 #include <functional>
+#include <vector>
 
 #include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/sundials_handles.hpp"
@@ -60,6 +61,7 @@ class SecondOrderLinearSolver {
   bool sparse_ = false;                           // the last factorisation took the sparse path
   Eigen::SparseMatrix<double> sparse_rows_;       // [A21, A22], n × 2n
   Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_reduced_;
+  std::vector<int> ordered_outer_, ordered_inner_;  // the pattern sparse_reduced_ was ordered for
   bool diagonal_ = false;              // A21 and A22 diagonal: reduced_diagonal_ holds the matrix
   Eigen::VectorXd reduced_diagonal_;   // 1 − γ diag A22 − γ² diag A21
   Eigen::VectorXd a21_diagonal_;
