@@ -36,6 +36,7 @@ CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
   a_matrix_.bottomRightCorner(dof_, dof_) = -(inverse_mass.asDiagonal() * damping_);
   stiffness_sparse_ = stiffness_.sparseView();
   damping_sparse_ = damping_.sparseView();
+  acceleration_rows_ = a_matrix_.bottomRows(dof_).sparseView();  // every nonzero, bit for bit
 }
 
 void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) const {
@@ -138,20 +139,39 @@ contact::LcpSolution CoupledSystem::hold_complementarity(double t, ConstVectorRe
 
 void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
                                          Eigen::Ref<MatrixXd> jacobian) const {
-  jacobian = a_matrix_;
+  Eigen::SparseMatrix<double> rows;
+  constrained_acceleration_jacobian(y, held, rows);
+  jacobian.topRows(dof_).setZero();
+  jacobian.topRightCorner(dof_, dof_).setIdentity();
+  jacobian.bottomRows(dof_) = rows;
+}
+
+void CoupledSystem::constrained_acceleration_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
+                                                      Eigen::SparseMatrix<double>& rows) const {
+  rows = acceleration_rows_;
   if (held.empty()) return;
-  MatrixXd rows;
+  MatrixXd dense_rows;
   VectorXd bias;
-  constraint_rows(y, held, rows, bias);
-  const VectorXd inverse_mass = mass_.cwiseInverse();
-  const MatrixXd m_inv_gt = inverse_mass.asDiagonal() * rows.transpose();
-  const MatrixXd w = rows * m_inv_gt;
-  const MatrixXd coupling = m_inv_gt * w.completeOrthogonalDecomposition().solve(rows);  // M⁻¹Gᵀ W⁻¹ G
-  jacobian.bottomRows(dof_) -= coupling * a_matrix_.bottomRows(dof_);
-  // The Baumgarte terms depend on y through g ≈ G q and ġ = G q̇ (rows frozen at y).
+  constraint_rows(y, held, dense_rows, bias);
+  const Eigen::SparseMatrix<double> g = dense_rows.sparseView();  // six entries a row
+  const Eigen::SparseMatrix<double> m_inv_gt = mass_.cwiseInverse().asDiagonal() * g.transpose();
+  const MatrixXd w = g * m_inv_gt;
+  // The projection M⁻¹Gᵀ W⁻¹ G applied to A's lower half and to the Baumgarte terms, which
+  // depend on y through g ≈ G q and ġ = G q̇ (rows frozen at y): M⁻¹Gᵀ W⁻¹ (G A₂ + [2/τ² G, 3/τ G])
+  // with A₂ = acceleration_rows_, associated so that no n × n product is formed. W⁻¹ is the
+  // pseudo-inverse, as constrained_rhs' least-squares forces: dependent contacts share.
   constexpr double tau = hold_time_constant_s;
-  jacobian.bottomLeftCorner(dof_, dof_) -= coupling * (2.0 / (tau * tau));
-  jacobian.bottomRightCorner(dof_, dof_) -= coupling * (3.0 / tau);
+  std::vector<Eigen::Triplet<double>> drift_terms;
+  for (int r = 0; r < g.outerSize(); ++r) {
+    for (Eigen::SparseMatrix<double>::InnerIterator entry(g, r); entry; ++entry) {
+      drift_terms.emplace_back(entry.row(), entry.col(), entry.value() * (2.0 / (tau * tau)));
+      drift_terms.emplace_back(entry.row(), dof_ + entry.col(), entry.value() * (3.0 / tau));
+    }
+  }
+  Eigen::SparseMatrix<double> drift(g.rows(), 2 * dof_);
+  drift.setFromTriplets(drift_terms.begin(), drift_terms.end());
+  const Eigen::SparseMatrix<double> w_inverse = w.completeOrthogonalDecomposition().pseudoInverse().sparseView();
+  rows -= m_inv_gt * (w_inverse * (g * acceleration_rows_ + drift));
 }
 
 Eigen::RowVectorXd CoupledSystem::full_row(ConstVectorRef y, std::size_t index) const {
@@ -174,12 +194,32 @@ void CoupledSystem::add_contact_force(ConstVectorRef y, std::size_t index, doubl
   y_dot.tail(dof_) += (row.transpose() * force_kN).cwiseQuotient(mass_);
 }
 
+Eigen::SparseMatrix<double> CoupledSystem::contact_force_rows(ConstVectorRef y, std::size_t index,
+                                                             double stiffness_kN_per_m,
+                                                             double damping_kNs_per_m) const {
+  const contact::Candidate& c = candidates_[index];
+  const contact::GapState s = gap(y, index);
+  std::array<std::pair<int, double>, 6> row;  // G's entries: (index in q, value)
+  for (int k = 0; k < 3; ++k) {
+    row[k] = {floor_index(c.striking_building, c.floors[c.striking_building]) + k, s.striking_row[k]};
+    row[3 + k] = {floor_index(c.struck_building, c.floors[c.struck_building]) + k, s.struck_row[k]};
+  }
+  std::vector<Eigen::Triplet<double>> terms;
+  for (const auto& [i, g_i] : row) {
+    for (const auto& [j, g_j] : row) {
+      const double coupling = g_i / mass_[i] * g_j;  // (M⁻¹GᵀG)ᵢⱼ
+      terms.emplace_back(i, j, stiffness_kN_per_m * coupling);
+      terms.emplace_back(i, dof_ + j, damping_kNs_per_m * coupling);
+    }
+  }
+  Eigen::SparseMatrix<double> rows(dof_, 2 * dof_);
+  rows.setFromTriplets(terms.begin(), terms.end());
+  return rows;
+}
+
 void CoupledSystem::add_contact_force_jacobian(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
-                                               double damping_kNs_per_m, Eigen::Ref<MatrixXd> jacobian) const {
-  const Eigen::RowVectorXd row = full_row(y, index);
-  const MatrixXd coupling = mass_.cwiseInverse().asDiagonal() * (row.transpose() * row);  // M⁻¹GᵀG
-  jacobian.bottomLeftCorner(dof_, dof_) -= stiffness_kN_per_m * coupling;
-  jacobian.bottomRightCorner(dof_, dof_) -= damping_kNs_per_m * coupling;
+                                               double damping_kNs_per_m, Eigen::SparseMatrix<double>& rows) const {
+  rows -= contact_force_rows(y, index, stiffness_kN_per_m, damping_kNs_per_m);
 }
 
 double CoupledSystem::kinetic_energy(ConstVectorRef y) const {

@@ -121,13 +121,23 @@ class EventDrivenRun final : public OdeFunctions {
     for (std::size_t i : active_) system_.add_contact_force(y, i, compliant_force(i, y), y_dot);
   }
 
-  void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
-    system_.constrained_jacobian(y, held_, jac);
+  void jacobian(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
+    const int n = system_.dof();
+    Eigen::SparseMatrix<double> rows;
+    acceleration_jacobian(t, y, rows);
+    jac.topRows(n).setZero();
+    jac.topRightCorner(n, n).setIdentity();
+    jac.bottomRows(n) = rows;
+  }
+
+  bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
+    system_.constrained_acceleration_jacobian(y, held_, rows);
     for (std::size_t i : active_) {
       const contact::GapState s = system_.gap(y, i);
       const contact::ForceSlopes slopes = open_[i]->law.slopes(-s.gap_m, -s.gap_rate_mps);
-      system_.add_contact_force_jacobian(y, i, slopes.per_overlap_kN_per_m, slopes.per_rate_kNs_per_m, jac);
+      system_.add_contact_force_jacobian(y, i, slopes.per_overlap_kN_per_m, slopes.per_rate_kNs_per_m, rows);
     }
+    return true;
   }
 
   // Root vector: [0, n) gaps of armed candidates, and of masked ones shifted down to their

@@ -76,6 +76,12 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
   longest_period_s_ = longest_period_s;
   std::sort(modes_.begin(), modes_.end(),
             [](const OscillatingMode& a, const OscillatingMode& b) { return a.damped_period_s < b.damped_period_s; });
+  // A mode whose forced amplitude alone moves a gap by more than the resolution sets the bound
+  // in every state: max_step_s never looks past the first such mode, so the rest need not be kept.
+  const auto always = std::find_if(modes_.begin(), modes_.end(), [&](const OscillatingMode& m) {
+    return m.gap_per_unit_m * m.forced_amplitude > resolution_m_;
+  });
+  if (always != modes_.end()) modes_.erase(always + 1, modes_.end());
 }
 
 double GapModeBound::max_step_s(const Eigen::Ref<const Eigen::VectorXd>& y) const {

@@ -1,6 +1,8 @@
 #include "pounding/solvers/second_order_solver.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 
 namespace pounding::solvers {
@@ -41,7 +43,6 @@ SecondOrderLinearSolver::SecondOrderLinearSolver(OdeFunctions& functions, std::f
   solver->ops->solve = solve;
   solver->ops->free = release;
   handle_.reset(solver);
-  jacobian_.resize(2 * n_, 2 * n_);
 }
 
 SUNLinearSolver_Type SecondOrderLinearSolver::type(SUNLinearSolver) { return SUNLINEARSOLVER_MATRIX_EMBEDDED; }
@@ -54,8 +55,40 @@ int SecondOrderLinearSolver::setup(SUNLinearSolver solver, SUNMatrix) {
 }
 
 void SecondOrderLinearSolver::factor(const NewtonData& data) {
-  functions_.jacobian(data.t_s, view(data.prediction), jacobian_);
-  const double g = data.gamma;
+  sparse_ = functions_.acceleration_jacobian(data.t_s, view(data.prediction), sparse_rows_);
+  if (sparse_) {
+    factor_sparse(data.gamma);
+  } else {
+    jacobian_.resize(2 * n_, 2 * n_);
+    functions_.jacobian(data.t_s, view(data.prediction), jacobian_);
+    factor_dense(data.gamma);
+  }
+  gamma_ = data.gamma;
+  stale_ = false;
+  ++factorizations_;
+}
+
+void SecondOrderLinearSolver::factor_sparse(double g) {
+  Eigen::SparseMatrix<double> identity(n_, n_);
+  identity.setIdentity();
+  const Eigen::SparseMatrix<double> reduced =
+      identity - g * sparse_rows_.rightCols(n_) - (g * g) * sparse_rows_.leftCols(n_);
+  // The pattern changes with the contact phase only, and ordering it costs half as much as the
+  // numeric factorisation: order again only when the pattern is not the one ordered.
+  const auto outer = std::span(reduced.outerIndexPtr(), static_cast<std::size_t>(n_ + 1));
+  const auto inner = std::span(reduced.innerIndexPtr(), static_cast<std::size_t>(reduced.nonZeros()));
+  if (!std::ranges::equal(outer, ordered_outer_) || !std::ranges::equal(inner, ordered_inner_)) {
+    sparse_reduced_.analyzePattern(reduced);
+    ordered_outer_.assign(outer.begin(), outer.end());
+    ordered_inner_.assign(inner.begin(), inner.end());
+  }
+  sparse_reduced_.factorize(reduced);
+  if (sparse_reduced_.info() != Eigen::Success) {
+    throw std::runtime_error("sparse LU of the Newton matrix failed: " + sparse_reduced_.lastErrorMessage());
+  }
+}
+
+void SecondOrderLinearSolver::factor_dense(double g) {
   const auto a21 = jacobian_.bottomLeftCorner(n_, n_), a22 = jacobian_.bottomRightCorner(n_, n_);
   diagonal_ = is_diagonal(a21) && is_diagonal(a22);
   if (diagonal_) {
@@ -66,9 +99,6 @@ void SecondOrderLinearSolver::factor(const NewtonData& data) {
     reduced.diagonal().array() += 1.0;
     reduced_.compute(reduced);
   }
-  gamma_ = g;
-  stale_ = false;
-  ++factorizations_;
 }
 
 int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x, N_Vector b, double) {
@@ -83,6 +113,12 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
     const auto rhs = view(b);
     auto out = view(x);
     const double g = me->gamma_;  // solve the system that was factored, consistently
+    if (me->sparse_) {
+      const Eigen::VectorXd x2 = me->sparse_reduced_.solve(rhs.tail(n) + g * (me->sparse_rows_.leftCols(n) * rhs.head(n)));
+      out.head(n) = rhs.head(n) + g * x2;
+      out.tail(n) = x2;
+      return SUNLS_SUCCESS;
+    }
     if (me->diagonal_) {
       // x may alias b: x₂ first from b, then x₁ from b₁ and x₂.
       out.tail(n) = (rhs.tail(n).array() + g * me->a21_diagonal_.array() * rhs.head(n).array()) /

@@ -3,7 +3,8 @@
 // generic_integrator_test: each case is a small hand-made OdeFunctions with a closed form, and
 // each contract of the seam (accuracy, interpolant, stop times, roots, restarts, counters) is
 // checked the same way for CVODE (BDF, Adams), ARKODE (ERK; DIRK orders 4 and 3), both Newton
-// solvers where they apply, and the exact path (free flight, and its held stretch).
+// solvers where they apply (the second-order one also on sparse Jacobian rows), and the exact
+// path (free flight, and its held stretch).
 
 // GCC 12 reports -Wrestrict inside Boost.Test's generated case names (std::string operator+,
 // libstdc++ code inlined into this file): a known false positive, GCC bug 105329.
@@ -83,6 +84,57 @@ Factory arkode(ArkodeMethod method, int order, NewtonSolver newton) {
   };
 }
 
+/// `inner` with OdeFunctions::acceleration_jacobian() provided (the lower half of `inner`'s dense
+/// Jacobian, sparse), so the second-order Newton solver takes its sparse-LU path as it does for
+/// the coupled buildings; the integrator built on it is owned here and every call forwarded.
+class WithSparseRows final : public Integrator {
+ public:
+  WithSparseRows(OdeFunctions& inner, const Factory& make, double t0, const VectorXd& y0)
+      : functions_(inner), integrator_(make(functions_, t0, y0)) {}
+
+  void restart(double t, const VectorXd& y) override { integrator_->restart(t, y); }
+  void set_max_step(double h_s) override { integrator_->set_max_step(h_s); }
+  void set_stop_time(double t_s) override { integrator_->set_stop_time(t_s); }
+  StepOutcome step(double t_final) override { return integrator_->step(t_final); }
+  const VectorXd& state() const override { return integrator_->state(); }
+  void interpolate(double t, Eigen::Ref<VectorXd> y) override { integrator_->interpolate(t, y); }
+  std::vector<int> roots_found() override { return integrator_->roots_found(); }
+  IntegratorCounters counters() override { return integrator_->counters(); }
+
+ private:
+  class Functions final : public OdeFunctions {
+   public:
+    explicit Functions(OdeFunctions& inner) : inner_(inner) {}
+    int state_size() const override { return inner_.state_size(); }
+    int root_count() const override { return inner_.root_count(); }
+    bool is_linear() const override { return inner_.is_linear(); }
+    void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
+      inner_.rhs(t, y, y_dot);
+    }
+    void jacobian(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
+      inner_.jacobian(t, y, jac);
+    }
+    void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override { inner_.roots(t, y, g); }
+    bool acceleration_jacobian(double t, const Eigen::Ref<const VectorXd>& y,
+                               Eigen::SparseMatrix<double>& rows) override {
+      Eigen::MatrixXd dense(state_size(), state_size());
+      inner_.jacobian(t, y, dense);
+      rows = dense.bottomRows(state_size() / 2).sparseView();
+      return true;
+    }
+
+   private:
+    OdeFunctions& inner_;
+  };
+
+  Functions functions_;
+  std::unique_ptr<Integrator> integrator_;
+};
+
+Factory sparse_rows(Factory make) {
+  return [=](OdeFunctions& f, double t0, const VectorXd& y0) { return std::make_unique<WithSparseRows>(f, make, t0, y0); };
+}
+
 Factory exact() {
   return [](OdeFunctions& f, double t0, const VectorXd& y0) { return std::make_unique<ExactIntegrator>(f, t0, y0); };
 }
@@ -92,11 +144,13 @@ std::vector<Method> methods() {
   return {
       {"cvode-bdf/second-order", cvode(CvodeMethod::bdf, NewtonSolver::second_order)},
       {"cvode-bdf/dense", cvode(CvodeMethod::bdf, NewtonSolver::dense)},
+      {"cvode-bdf/sparse", sparse_rows(cvode(CvodeMethod::bdf, NewtonSolver::second_order))},
       {"cvode-adams/second-order", cvode(CvodeMethod::adams, NewtonSolver::second_order)},
       {"cvode-adams/dense", cvode(CvodeMethod::adams, NewtonSolver::dense)},
       {"arkode-erk", arkode(ArkodeMethod::erk, 0, NewtonSolver::second_order), kRtol, kAtol, true, false},
       {"arkode-dirk4/second-order", arkode(ArkodeMethod::dirk, 4, NewtonSolver::second_order)},
       {"arkode-dirk4/dense", arkode(ArkodeMethod::dirk, 4, NewtonSolver::dense)},
+      {"arkode-dirk4/sparse", sparse_rows(arkode(ArkodeMethod::dirk, 4, NewtonSolver::second_order))},
       {"arkode-dirk3/second-order", arkode(ArkodeMethod::dirk, 3, NewtonSolver::second_order)},
       {"arkode-dirk3/dense", arkode(ArkodeMethod::dirk, 3, NewtonSolver::dense)},
       // Round-off of the closed form evaluated through an eigendecomposition.

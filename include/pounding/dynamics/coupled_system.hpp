@@ -82,6 +82,11 @@ class CoupledSystem {
   /// 0.05 rad/s): enough for a Newton matrix (tests/dynamics/test_constrained_jacobian.cpp).
   void constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
                             Eigen::Ref<MatrixXd> jacobian) const;
+  /// The acceleration rows [∂q̈/∂q, ∂q̈/∂q̇] (n × 2n) of constrained_jacobian(), sparse: the same
+  /// terms in O(n + k²) work and storage for k held contacts (K and C couple only a storey's two
+  /// floors; the projection has rank k and touches only the held floors' neighbourhoods).
+  void constrained_acceleration_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
+                                         Eigen::SparseMatrix<double>& rows) const;
 
   /// W = G M⁻¹ Gᵀ (1/t) of candidate `index` in state y: the inverse of the pair's effective mass
   /// along the normal, 1/m₁ + 1/m₂ with each slab's m = 1/(1/m + h²/J), h the lever arm ρ × n.
@@ -90,10 +95,11 @@ class CoupledSystem {
   /// along the struck edge's normal, with its moments about both CMs, to the accelerations of ẏ.
   void add_contact_force(ConstVectorRef y, std::size_t index, double force_kN, Eigen::Ref<VectorXd> y_dot) const;
   /// Adds the Jacobian of the force F = −k g − c ġ of candidate `index` (k kN/m, c kN·s/m) to
-  /// `jacobian`: −M⁻¹GᵀG k in ∂q̈/∂q, −M⁻¹GᵀG c in ∂q̈/∂q̇, with the row G frozen at y (as in
-  /// constrained_jacobian: the turning of G, terms carrying F or q̇, is left out).
+  /// the acceleration rows (n × 2n) of constrained_acceleration_jacobian(): −M⁻¹GᵀG k in ∂q̈/∂q,
+  /// −M⁻¹GᵀG c in ∂q̈/∂q̇, with the row G frozen at y (as in constrained_jacobian: the turning of
+  /// G, terms carrying F or q̇, is left out).
   void add_contact_force_jacobian(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
-                                  double damping_kNs_per_m, Eigen::Ref<MatrixXd> jacobian) const;
+                                  double damping_kNs_per_m, Eigen::SparseMatrix<double>& rows) const;
 
   /// Energies (kJ) and powers (kW) of the relative motion.
   double kinetic_energy(ConstVectorRef y) const;
@@ -110,6 +116,10 @@ class CoupledSystem {
   /// Rows G (one per held contact, over all n velocities) and g̈'s velocity-only part.
   void constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows,
                        VectorXd& bias) const;
+  /// M⁻¹Gᵀ G [k, c] (n × 2n, 36 entries): the acceleration rows of the force −k g − c ġ of
+  /// candidate `index` with its row G frozen at y, to be subtracted.
+  Eigen::SparseMatrix<double> contact_force_rows(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
+                                                 double damping_kNs_per_m) const;
 
   std::array<model::Building, 2> buildings_;
   excitation::GroundMotion ground_motion_;
@@ -125,6 +135,7 @@ class CoupledSystem {
   // K and C couple only a storey's two floors: the free motion and the energies use them sparse,
   // O(n) instead of the dense A's O(n²).
   Eigen::SparseMatrix<double> stiffness_sparse_, damping_sparse_;
+  Eigen::SparseMatrix<double> acceleration_rows_;  // −M⁻¹[K, C]: A's lower half, sparse
 };
 
 }  // namespace pounding::dynamics

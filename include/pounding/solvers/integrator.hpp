@@ -3,6 +3,7 @@
 // the functions of the current contact phase; the integrator steps, finds roots, interpolates.
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,13 @@ class OdeFunctions {
   virtual void rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> y_dot) = 0;
   virtual void jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) = 0;
   virtual void roots(double t, const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> g) = 0;
+  /// For a second-order system, jacobian() = [[0, I], [A21, A22]]: writes its lower half
+  /// [A21, A22] (n × 2n) sparse and returns true, so that a linear solver can use the sparsity;
+  /// false (the default): not available, use jacobian().
+  virtual bool acceleration_jacobian(double /*t*/, const Eigen::Ref<const Eigen::VectorXd>& /*y*/,
+                                     Eigen::SparseMatrix<double>& /*rows*/) {
+    return false;
+  }
   /// True when rhs is affine in y with a constant jacobian() (free flight); false when it may
   /// depend on y nonlinearly (a held contact's rotating geometry).
   virtual bool is_linear() const { return false; }
