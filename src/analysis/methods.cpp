@@ -157,6 +157,7 @@ const std::vector<MethodInfo> kMethods = {
      .settings = {hold_rtol},
      .factory = exact_factory,
      .steps_per_period = kExactSubdivisionsPerPeriod,
+     .clearance_steps = true,
      .reference = true},
 };
 

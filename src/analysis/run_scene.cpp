@@ -58,6 +58,7 @@ solvers::EventOptions event_options(const Scene& scene, const MethodInfo& method
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
+  options.clearance_steps = method.clearance_steps;
   return options;
 }
 
@@ -83,11 +84,16 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   if (!used.method->event_driven) {
     estimate.min_steps = std::ceil(estimate.duration_s / used.dt_s);
   } else {
-    // The automatic step bound is longest at rest (motion only adds modal amplitude).
+    // The automatic step bound is longest at rest (motion only adds modal amplitude); steps that
+    // far from contact span whole record intervals are bounded only by the record's samples.
     const solvers::EventOptions options = event_options(scene, *used.method);
-    const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period);
-    estimate.min_steps =
-        std::ceil(estimate.duration_s / bound.max_step_s(Eigen::VectorXd::Zero(system.state_size())));
+    if (options.clearance_steps) {
+      estimate.min_steps = static_cast<double>(system.ground_motion().time_s().size() - 1);
+    } else {
+      const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period);
+      estimate.min_steps =
+          std::ceil(estimate.duration_s / bound.max_step_s(Eigen::VectorXd::Zero(system.state_size())));
+    }
   }
   return estimate;
 }

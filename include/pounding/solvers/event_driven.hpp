@@ -57,6 +57,13 @@ struct EventOptions {
   /// barely moves sets no bound.
   double max_step_s = 0.0;
   double steps_per_period = 4.0;
+  /// With the automatic bound and the impulse law: in free flight, a step may also reach as far
+  /// as every gap provably stays above contact_tolerance_m (GapClearance, from the modal
+  /// amplitudes), up to the next record sample, so a step far from contact spans a whole record
+  /// interval and no gap can cross, dip below zero or touch unseen inside it. For integrators
+  /// whose energy_between is a closed form (the exact path's): the recorder's Gauss quadrature
+  /// of the energy integrals needs short steps.
+  bool clearance_steps = false;
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
   std::vector<int> history_floors;     // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
