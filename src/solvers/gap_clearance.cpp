@@ -28,6 +28,8 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
       modes.rate_rows.middleRows(static_cast<Eigen::Index>(3 * f), 3) = basis.shapes.middleRows(first, 3).cwiseAbs();
     }
     modes.displacement_rows = modes.rate_rows * basis.omega_rad_s.cwiseInverse().asDiagonal();
+    modes.rate_growth = modes.rate_rows * modes.participation;
+    modes.displacement_growth = modes.displacement_rows * modes.participation;
     amplitude_[b].resize(n);
     eta_[b].resize(n);
     eta_rate_[b].resize(n);
@@ -57,11 +59,10 @@ double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, con
     eta_[b].noalias() = modes.projection * y.segment(modes.offset, n);
     eta_rate_[b].noalias() = modes.projection * y.segment(dof + modes.offset, n);
     amplitude_[b] = (eta_rate_[b].cwiseAbs2() + eta_[b].cwiseProduct(modes.omega_rad_s).cwiseAbs2()).cwiseSqrt();
-    const Eigen::VectorXd& growth = modes.participation;  // Â's rate per unit a
     rate_bound_[b].noalias() = modes.rate_rows * amplitude_[b];
-    rate_growth_[b].noalias() = peak_accel_mps2 * (modes.rate_rows * growth);
+    rate_growth_[b] = peak_accel_mps2 * modes.rate_growth;
     displacement_bound_[b].noalias() = modes.displacement_rows * amplitude_[b];
-    displacement_growth_[b].noalias() = peak_accel_mps2 * (modes.displacement_rows * growth);
+    displacement_growth_[b] = peak_accel_mps2 * modes.displacement_growth;
   }
   double open_s = horizon_s;
   for (std::size_t i = 0; i < pairs_.size(); ++i) {

@@ -45,6 +45,7 @@ class GapClearance {
     std::vector<int> floors;          // contact floors (1-based), in the order of the rows below
     Eigen::MatrixXd rate_rows;        // |Φ_jk| over the contact floors' (u, v, φ): |q̇_j| ≤ rate_rows Â
     Eigen::MatrixXd displacement_rows;  // |Φ_jk| / ω_k: |q_j| ≤ displacement_rows Â
+    Eigen::VectorXd rate_growth, displacement_growth;  // the rows times |Γ|: Â's growth per unit a τ
   };
   struct Pair {
     std::array<int, 2> row{0, 0};  // per building, first bound row of the candidate's floor
