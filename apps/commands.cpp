@@ -123,6 +123,29 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
   }
 }
 
+/// `--history` and `--peaks` replace output.history and output.peaks (checked by Scene::validate).
+void apply_output_options(const RunCommand& command, analysis::OutputSettings& output) {
+  if (command.history) {
+    if (*command.history != "on" && *command.history != "off") {
+      throw InputError("--history", *command.history, "expected on or off");
+    }
+    output.history = *command.history == "on";
+  }
+  if (command.peaks) {
+    output.peaks.clear();
+    if (*command.peaks == "all") {
+      output.peaks.assign(analysis::kPeakGroups.begin(), analysis::kPeakGroups.end());
+    } else if (*command.peaks != "none") {
+      for (std::string_view rest = *command.peaks;;) {
+        const std::size_t comma = rest.find(',');
+        output.peaks.emplace_back(rest.substr(0, comma));
+        if (comma == std::string_view::npos) break;
+        rest.remove_prefix(comma + 1);
+      }
+    }
+  }
+}
+
 /// The option that sets a [solver] key or a run limit, for error messages about a value given on
 /// the command line.
 std::string option_for(const std::string& key) {
@@ -130,13 +153,15 @@ std::string option_for(const std::string& key) {
     std::map<std::string, std::string> options = {{"limits.max_steps", "--max-steps"},
                                                   {"limits.max_wall_time_s", "--max-wall-time"},
                                                   {"limits.max_history_values", "--max-history-values"},
-                                                  {"solver.method", "--method"}};
+                                                  {"solver.method", "--method"},
+                                                  {"output.history", "--history"},
+                                                  {"output.peaks", "--peaks"}};
     for (const analysis::SettingSpec& s : analysis::setting_specs()) {
       options["solver." + std::string(s.key)] = std::string(s.option);
     }
     return options;
   }();
-  const auto found = kOptions.find(key);
+  const auto found = kOptions.find(key.substr(0, key.find('[')));  // output.peaks[2]: --peaks
   return found != kOptions.end() ? found->second : key;
 }
 
@@ -156,6 +181,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
                                                          .record = command.record});
   try {
     apply_run_options(command, scene.solver);
+    apply_output_options(command, scene.output);
   } catch (const InputError& error) {
     throw InputError(option_for(error.key()), error.value(), error.reason(), command.scene);
   }
@@ -184,7 +210,8 @@ int run_run(const RunCommand& command, const std::string& command_line) {
   }
   files.finish(*report, provenance);
   fmt::print("{}", io::full_report(*report));
-  fmt::print("Wrote {}/summary.json, impacts.csv, history.csv, contacts_history.csv\n", folder.string());
+  fmt::print("Wrote {}/summary.json, impacts.csv{}\n", folder.string(),
+             scene.output.history ? ", history.csv, contacts_history.csv" : "");
   return report->result.status == solvers::RunStatus::completed ? 0 : 3;
 }
 

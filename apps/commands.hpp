@@ -52,6 +52,8 @@ struct RunCommand {
   std::optional<std::string> halving;         // on | off
   std::optional<std::string> event_location;  // halving | interpolate
   std::optional<double> hold_rtol;
+  std::optional<std::string> history;  // on | off: replaces output.history
+  std::optional<std::string> peaks;    // none, all or a comma-separated list of groups: replaces output.peaks
   std::string out_dir;  // empty: out/<scene name, made safe as a folder name>
   // Limits of the run (analysis::RunLimits); unset: its defaults.
   std::optional<long> max_steps;

@@ -96,6 +96,12 @@ int main(int argc, char** argv) {
   run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
   run_app->add_option("--event-location", run.event_location, option_help(Setting::event_location));
   run_app->add_option("--hold-rtol", run.hold_rtol, option_help(Setting::hold_rtol));
+  run_app->add_option("--history", run.history,
+                      "on or off: write history.csv and contacts_history.csv (replaces output.history; off computes "
+                      "neither)");
+  run_app->add_option("--peaks", run.peaks,
+                      "Peak groups in summary.json: none, all or a comma-separated list of displacements, accelerations, "
+                      "drifts (replaces output.peaks)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
   run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");

@@ -86,6 +86,19 @@ Scene with_restitution(Scene scene, double restitution) {
   return scene;
 }
 
+/// The scene with output.history and output.peaks replaced (None: kept), checked, as `run
+/// --history --peaks` replace them.
+Scene with_outputs(Scene scene, std::optional<bool> history, std::optional<std::vector<std::string>> peaks) {
+  try {
+    if (history) scene.output.history = *history;
+    if (peaks) scene.output.peaks = std::move(*peaks);
+    scene.validate();
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  return scene;
+}
+
 /// excitation::with_record(), as `run --record ...` applies it, then (`read`) the record read once
 /// so that a record that cannot be read or scales beyond 10 g is refused now (io::read_scene does
 /// the same). Without `read` only the choice and the file's existence are checked, as a record
@@ -297,7 +310,12 @@ PYBIND11_MODULE(_pounding, m) {
       .def_property_readonly("method", [](const Scene& s) { return s.solver.method; })
       .def_property_readonly("contact_law", [](const Scene& s) { return s.contact.law; })
       .def_property_readonly("record_file", [](const Scene& s) { return s.excitation.file; })
+      .def_property_readonly("history", [](const Scene& s) { return s.output.history; })
+      .def_property_readonly("peaks", [](const Scene& s) { return s.output.peaks; })
       .def("with_gap", &with_gap, py::arg("gap_m"))
+      .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),
+           "The scene with output.history (bool) and output.peaks (a list of peak groups: displacements, "
+           "accelerations, drifts) replaced; None keeps the scene's")
       .def("with_restitution", &with_restitution, py::arg("restitution"))
       .def(
           "_with_record",

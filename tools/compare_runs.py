@@ -18,6 +18,10 @@ from pathlib import Path
 def load(folder: Path):
     try:
         summary = json.loads((folder / "summary.json").read_text())
+        outputs = summary.get("outputs", {"history": True, "peaks": ["displacements"]})
+        if not outputs["history"] or "displacements" not in outputs["peaks"]:
+            sys.exit(f"error: {folder} holds no history or no displacement peaks ([output] in docs/scene-format.md): "
+                     "run it again with --history on --peaks all")
         with (folder / "history.csv").open() as handle:
             rows = list(csv.reader(handle))
     except FileNotFoundError as error:

@@ -39,6 +39,9 @@ FIT_RESIDUAL_LIMIT_M = 1e-9  # the vertex columns are exact functions of (u, φ)
 
 def read_run(folder: Path):
     summary_file, history_file = folder / "summary.json", folder / "history.csv"
+    if summary_file.is_file() and not json.loads(summary_file.read_text()).get("outputs", {"history": True})["history"]:
+        sys.exit(f"error: {folder} holds no history.csv ([output] history = false, or --history off): run it again "
+                 "with --history on")
     for f in (summary_file, history_file):
         if not f.is_file():
             sys.exit(f"error: {f} not found (is {folder} the output folder of `pounding run`?)")

@@ -78,8 +78,9 @@ Scene.__repr__ = lambda self: (f"<pounding.Scene {self.name!r}: gap {self.gap_m}
 def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiffness=None):
     """Reads and validates a scene file, like `pounding run SCENE [--gap G] [--restitution K]
     [--contact-law L] [--contact-stiffness S]` (the same errors, naming those options). Returns a
-    Scene with .name, .file, .gap_m, .restitution, .method, .contact_law, .record_file and the
-    with_gap(m), with_restitution(k), with_record(path, ...) copies. `contact_stiffness` is in the
+    Scene with .name, .file, .gap_m, .restitution, .method, .contact_law, .record_file, .history,
+    .peaks ([output]) and the with_gap(m), with_restitution(k), with_record(path, ...),
+    with_outputs(history=, peaks=) copies. `contact_stiffness` is in the
     law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp and jankowski."""
     return _pounding.load_scene(path, gap, restitution, contact_law, contact_stiffness)
 
@@ -141,7 +142,9 @@ class RunResult:
     and values; its provenance has no command line); impacts, touches, sustained_contacts, peaks,
     energy and statistics are its entries; impacts_array is impacts.csv as a numpy structured
     array; history maps history.csv's columns (t_s first) to numpy arrays, contact_forces
-    contacts_history.csv's (one entry per contact carrying a force at a history instant)."""
+    contacts_history.csv's (one entry per contact carrying a force at a history instant). The
+    scene's [output] decides what there is: without history both are empty dicts, and each floor
+    of peaks holds the groups summary["outputs"]["peaks"] lists."""
 
     def __init__(self, run):
         self._run = run
@@ -166,6 +169,8 @@ class RunResult:
 
     @property
     def history(self):
+        if not self.summary["outputs"]["history"]:
+            return {}
         if self._history is None:
             table = self._run.history_table()
             self._history = _columns(table, self._run.history_columns())
@@ -173,6 +178,8 @@ class RunResult:
 
     @property
     def contact_forces(self):
+        if not self.summary["outputs"]["history"]:
+            return {}
         if self._contact_forces is None:
             table = self._run.contact_force_table()
             self._contact_forces = _columns(table, self._run.contact_force_columns())
@@ -200,7 +207,8 @@ def run(scene, method=None, max_steps=None, max_wall_time_s=None, max_history_va
     [solver] keys for another method are then not used, as with --method), the [solver] settings
     by their registry names (settings(); e.g. rtol=1e-8, dt_s=0.01), and the run limits
     (--max-steps, --max-wall-time, --max-history-values). A setting the method does not use
-    raises InputError naming it, as the command line refuses it. Releases the GIL while it runs.
+    raises InputError naming it, as the command line refuses it. The outputs are the scene's
+    [output] (Scene.with_outputs changes them). Releases the GIL while it runs.
     Returns a RunResult; a run that did not complete says so in .status, it does not raise."""
     _check_settings(settings)
     limits = _pounding.RunLimits()

@@ -338,6 +338,8 @@ namespace {
 
 SeverityPoint severity_at(Scene scene, double gap_m) {
   scene.set_gap(gap_m);
+  scene.output.history = false;  // a point keeps impact statistics only
+  scene.output.peaks.clear();
   const RunReport report = run_scene(scene);
   SeverityPoint point;
   point.gap_m = gap_m;

@@ -42,6 +42,7 @@ solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used) {
                      : used.event_location == "interpolate" ? solvers::HhtEventLocation::interpolate
                                                             : solvers::HhtEventLocation::halving;
   options.restitution = scene.contact.restitution;
+  options.outputs = scene.output.selection();
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
   return options;
@@ -55,6 +56,7 @@ solvers::EventOptions event_options(const Scene& scene, const MethodInfo& method
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
   options.law = contact_law_info(scene.contact.law).law;
   options.contact_stiffness = scene.contact.used_stiffness();
+  options.outputs = scene.output.selection();
   options.history_floors = scene.output.history_floors;
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
@@ -78,8 +80,10 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   WorkEstimate estimate;
   estimate.dof = system.dof();
   estimate.duration_s = system.ground_motion().end_s() - system.ground_motion().start_s();
-  estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
-  estimate.history_columns = static_cast<double>(solvers::history_columns(system, scene.output.history_floors).size());
+  if (scene.output.history) {
+    estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
+    estimate.history_columns = static_cast<double>(solvers::history_columns(system, scene.output.history_floors).size());
+  }
   const UsedSettings used = resolve(scene.solver);
   if (!used.method->event_driven) {
     estimate.min_steps = std::ceil(estimate.duration_s / used.dt_s);

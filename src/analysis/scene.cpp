@@ -1,5 +1,6 @@
 #include "pounding/analysis/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <fmt/format.h>
@@ -97,6 +98,16 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
     if (!seen.insert(level).second) throw InputError(key, std::to_string(level), "is listed twice");
   }
   require_range("output.history_interval_s", output.history_interval_s, kHistoryInterval);
+  for (std::size_t i = 0; i < output.peaks.size(); ++i) {
+    const std::string key = fmt::format("output.peaks[{}]", i + 1), value = fmt::format("\"{}\"", output.peaks[i]);
+    if (std::find(kPeakGroups.begin(), kPeakGroups.end(), output.peaks[i]) == kPeakGroups.end()) {
+      throw InputError(key, value, fmt::format("expected one of {} (or an empty list for no peaks)", fmt::join(kPeakGroups, ", ")));
+    }
+    if (std::find(output.peaks.begin(), output.peaks.begin() + static_cast<std::ptrdiff_t>(i), output.peaks[i]) !=
+        output.peaks.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw InputError(key, value, "is listed twice");
+    }
+  }
 }
 
 void validate_pair(const Scene& scene) {
@@ -119,6 +130,14 @@ void validate_pair(const Scene& scene) {
 }
 
 }  // namespace
+
+solvers::OutputSelection OutputSettings::selection() const {
+  auto asked = [&](std::string_view group) { return std::find(peaks.begin(), peaks.end(), group) != peaks.end(); };
+  return {.history = history,
+          .displacement_peaks = asked(kPeakGroups[0]),
+          .acceleration_peaks = asked(kPeakGroups[1]),
+          .drift_peaks = asked(kPeakGroups[2])};
+}
 
 double ContactSettings::used_stiffness() const {
   const ContactLawInfo& info = contact_law_info(law);

@@ -158,10 +158,14 @@ void add_stiffness_ladder(const Scene& scene, const StudyOptions& options, Study
 
 }  // namespace
 
-StudyResult run_study(const Scene& scene, const StudyOptions& options,
+StudyResult run_study(const Scene& given, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress,
                       const std::function<void(const StiffnessRow&)>& stiffness_progress) {
   options.validate();
+  // Runs are compared by their histories and every peak group, whatever the scene's [output] leaves out.
+  Scene scene = given;
+  scene.output.history = true;
+  scene.output.peaks.assign(kPeakGroups.begin(), kPeakGroups.end());
   auto timed = [&](Scene variant, double& run_time_s, const RunLimits& limits = {}) {
     std::vector<double> times;
     solvers::RunResult result;

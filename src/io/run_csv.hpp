@@ -4,6 +4,7 @@
 // impact_schema.hpp, the list summary.json's impacts follow too.
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -22,5 +23,8 @@ void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& 
 /// summary.json's list), level, striking_building, vertex, struck_edge, gap_m, gap_rate_mps, force_kN.
 void write_contact_forces_header(std::ostream& out);
 void write_contact_force_row(const solvers::ContactForceSample& sample, std::ostream& out);
+/// Removes an earlier run's history.csv and contacts_history.csv from `folder`, for a run that
+/// writes neither: no file may stand beside a summary.json that is not its run's.
+void remove_history_files(const std::filesystem::path& folder);
 
 }  // namespace pounding::io

@@ -52,22 +52,35 @@ void append_contacts(const analysis::RunReport& report, std::string& text) {
 }
 
 /// Per floor: the peak absolute accelerations (m/s² and g) and the drift ratios of the storey
-/// below it (%, at the CM and at the worst corner), each with its instant.
+/// below it (%, at the CM and at the worst corner), each with its instant: the groups computed.
 void append_design_peaks(const analysis::RunReport& report, std::string& text) {
+  const solvers::OutputSelection& outputs = report.result.outputs;
+  if (!outputs.acceleration_peaks && !outputs.drift_peaks) return;
   auto out = std::back_inserter(text);
   const double g = report.g_mps2;
   const char* part = report.contact_law == "impulse" ? "smooth part: each impact adds an impulse (impacts)" : "contact forces included";
   for (const auto& building : report.result.peaks) {
-    fmt::format_to(out, "Accelerations and storey drifts of {} (absolute accelerations, {}):\n", building.name, part);
+    if (outputs.acceleration_peaks) {
+      fmt::format_to(out, "{} of {} (absolute accelerations, {}):\n",
+                     outputs.drift_peaks ? "Accelerations and storey drifts" : "Accelerations", building.name, part);
+    } else {
+      fmt::format_to(out, "Storey drifts of {}:\n", building.name);
+    }
     for (const auto& f : building.floors) {
-      const solvers::WorstCornerDrift corner = solvers::worst_corner_drift(f);
-      fmt::format_to(out,
-                     "  floor {}: |ax| {:.3f} m/s² = {:.3f} g at {:.3f} s, |ay| {:.3f} m/s² = {:.3f} g at {:.3f} s; "
-                     "drift x {:.3f} % at {:.3f} s, y {:.3f} % at {:.3f} s, corner {} {} {:.3f} % at {:.3f} s\n",
-                     f.floor, std::abs(f.ax_abs_mps2.value), std::abs(f.ax_abs_mps2.value) / g, f.ax_abs_mps2.t_s,
-                     std::abs(f.ay_abs_mps2.value), std::abs(f.ay_abs_mps2.value) / g, f.ay_abs_mps2.t_s,
-                     100 * std::abs(f.drift_x.value), f.drift_x.t_s, 100 * std::abs(f.drift_y.value), f.drift_y.t_s,
-                     corner.corner, corner.axis, 100 * std::abs(corner.peak.value), corner.peak.t_s);
+      fmt::format_to(out, "  floor {}: ", f.floor);
+      if (outputs.acceleration_peaks) {
+        fmt::format_to(out, "|ax| {:.3f} m/s² = {:.3f} g at {:.3f} s, |ay| {:.3f} m/s² = {:.3f} g at {:.3f} s{}",
+                       std::abs(f.ax_abs_mps2.value), std::abs(f.ax_abs_mps2.value) / g, f.ax_abs_mps2.t_s,
+                       std::abs(f.ay_abs_mps2.value), std::abs(f.ay_abs_mps2.value) / g, f.ay_abs_mps2.t_s,
+                       outputs.drift_peaks ? "; " : "");
+      }
+      if (outputs.drift_peaks) {
+        const solvers::WorstCornerDrift corner = solvers::worst_corner_drift(f);
+        fmt::format_to(out, "drift x {:.3f} % at {:.3f} s, y {:.3f} % at {:.3f} s, corner {} {} {:.3f} % at {:.3f} s",
+                       100 * std::abs(f.drift_x.value), f.drift_x.t_s, 100 * std::abs(f.drift_y.value), f.drift_y.t_s,
+                       corner.corner, corner.axis, 100 * std::abs(corner.peak.value), corner.peak.t_s);
+      }
+      text += '\n';
     }
   }
 }
@@ -76,7 +89,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   const solvers::RunResult& r = report.result;
   auto out = std::back_inserter(text);
   // The top level is where the buildings pound hardest; each building's own floor there.
-  for (std::size_t b = 0; b < r.peaks.size() && !report.levels.empty(); ++b) {
+  for (std::size_t b = 0; b < r.peaks.size() && !report.levels.empty() && r.outputs.displacement_peaks; ++b) {
     const auto& building = r.peaks[b];
     const auto& top = building.floors.at(static_cast<std::size_t>(report.levels.back().floors[b] - 1));
     fmt::format_to(out, "Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",

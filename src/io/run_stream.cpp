@@ -22,15 +22,20 @@ void StreamedRunFiles::history_columns(const std::vector<std::string>& columns) 
   std::filesystem::create_directories(folder_);
   // A summary.json vouches for the files beside it; from here on they are this run's, unfinished.
   std::filesystem::remove(folder_ / "summary.json");
-  history_.open(partial("history.csv"), std::ios::binary | std::ios::trunc);
-  contacts_.open(partial("contacts_history.csv"), std::ios::binary | std::ios::trunc);
+  with_history_ = !columns.empty();
+  if (with_history_) {
+    history_.open(partial("history.csv"), std::ios::binary | std::ios::trunc);
+    contacts_.open(partial("contacts_history.csv"), std::ios::binary | std::ios::trunc);
+    write_csv_header(columns, history_);
+    write_contact_forces_header(contacts_);
+    history_.flush();
+    contacts_.flush();
+  } else {
+    remove_history_files(folder_);
+  }
   impacts_.open(partial("impacts.csv"), std::ios::binary | std::ios::trunc);
   opened_ = true;
-  write_csv_header(columns, history_);
-  write_contact_forces_header(contacts_);
   write_impacts_header(impacts_);
-  history_.flush();
-  contacts_.flush();
   impacts_.flush();
   last_flush_ = std::chrono::steady_clock::now();
 }
@@ -69,8 +74,10 @@ void StreamedRunFiles::close_checked(std::ofstream& out, const char* name) {
 
 void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenance& provenance) {
   if (!opened_) throw std::logic_error("StreamedRunFiles::finish before the run named its history columns");
-  close_checked(history_, "history.csv");
-  close_checked(contacts_, "contacts_history.csv");
+  if (with_history_) {
+    close_checked(history_, "history.csv");
+    close_checked(contacts_, "contacts_history.csv");
+  }
   close_checked(impacts_, "impacts.csv");
   write_json(run_json(report, provenance), folder_ / "summary.json");
 }

@@ -1,5 +1,6 @@
 #include "pounding/io/run_writer.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <map>
 
@@ -70,30 +71,48 @@ json worst_corner_json(const solvers::FloorPeaks& f) {
   return {{"corner", w.corner}, {"axis", std::string(1, w.axis)}, {"value", w.peak.value}, {"t_s", w.peak.t_s}};
 }
 
-json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, double g_mps2) {
+/// Per building (with its contact vertices) and floor, the peak groups `outputs` asked for.
+json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers::OutputSelection& outputs, double g_mps2) {
   json list = json::array();
   for (const auto& building : peaks) {
     json vertices = json::array(), floors = json::array();
     for (const auto& v : building.contact_vertices_rest) vertices.push_back(point(v));
     for (const auto& f : building.floors) {
-      floors.push_back({{"floor", f.floor},
-                        {"u_m", peak(f.u_m)},
-                        {"v_m", peak(f.v_m)},
-                        {"phi_rad", peak(f.phi_rad)},
-                        {"vertex_dx_m", peak_list(f.vertex_dx_m)},
-                        {"ax_abs_mps2", peak_in_g(f.ax_abs_mps2, g_mps2)},
-                        {"ay_abs_mps2", peak_in_g(f.ay_abs_mps2, g_mps2)},
-                        {"phi_ddot_radps2", peak(f.phi_ddot_radps2)},
-                        {"drift_x", peak(f.drift_x)},
-                        {"drift_y", peak(f.drift_y)},
-                        {"corner_drift_x", peak_list(f.corner_drift_x)},
-                        {"corner_drift_y", peak_list(f.corner_drift_y)},
-                        {"worst_corner_drift", worst_corner_json(f)}});
+      json floor = {{"floor", f.floor}};
+      if (outputs.displacement_peaks) {
+        floor.update({{"u_m", peak(f.u_m)},
+                      {"v_m", peak(f.v_m)},
+                      {"phi_rad", peak(f.phi_rad)},
+                      {"vertex_dx_m", peak_list(f.vertex_dx_m)}});
+      }
+      if (outputs.acceleration_peaks) {
+        floor.update({{"ax_abs_mps2", peak_in_g(f.ax_abs_mps2, g_mps2)},
+                      {"ay_abs_mps2", peak_in_g(f.ay_abs_mps2, g_mps2)},
+                      {"phi_ddot_radps2", peak(f.phi_ddot_radps2)}});
+      }
+      if (outputs.drift_peaks) {
+        floor.update({{"drift_x", peak(f.drift_x)},
+                      {"drift_y", peak(f.drift_y)},
+                      {"corner_drift_x", peak_list(f.corner_drift_x)},
+                      {"corner_drift_y", peak_list(f.corner_drift_y)},
+                      {"worst_corner_drift", worst_corner_json(f)}});
+      }
+      floors.push_back(floor);
     }
     list.push_back({{"building", building.name}, {"contact_vertices", building.contact_vertices},
                     {"contact_vertices_rest", vertices}, {"floors", floors}});
   }
   return list;
+}
+
+/// Which outputs the run computed ([output] history and peaks).
+json outputs_json(const solvers::OutputSelection& outputs) {
+  json groups = json::array();
+  const bool asked[3] = {outputs.displacement_peaks, outputs.acceleration_peaks, outputs.drift_peaks};
+  for (std::size_t k = 0; k < analysis::kPeakGroups.size(); ++k) {
+    if (asked[k]) groups.push_back(analysis::kPeakGroups[k]);
+  }
+  return {{"history", outputs.history}, {"peaks", groups}};
 }
 
 json energy_json(const solvers::EnergyAudit& e) {
@@ -204,6 +223,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
           {"start_s", r.start_s},
           {"end_s", r.end_s},
           {"levels", levels_json(report.levels)},
+          {"outputs", outputs_json(r.outputs)},
           {"history_levels", r.history.levels},
           {"candidates", candidates_json(report.candidates)},
           {"impact_count", r.impacts.size()},
@@ -212,7 +232,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
           {"touches", touches},
           {"sustained_contacts", sustained},
           {"accelerations", accelerations_json(report)},
-          {"peaks", peaks_json(r.peaks, report.g_mps2)},
+          {"peaks", peaks_json(r.peaks, r.outputs, report.g_mps2)},
           {"energy", energy_json(r.energy)},
           {"statistics", statistics_json(r.statistics, report.candidates)},
           {"provenance", provenance_json(provenance)}};
@@ -228,9 +248,13 @@ void write_csv_header(const std::vector<std::string>& columns, std::ostream& out
 }
 
 void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& out) {
-  out << fmt::format("{}", t_s);
-  for (double value : values) out << fmt::format(",{}", value);
-  out << '\n';
+  // The shortest text that reads back to the same double ("{}"), the whole line formatted in one
+  // buffer with the format compiled, and written at once: a run writes hundreds of values a row.
+  fmt::memory_buffer line;
+  fmt::format_to(std::back_inserter(line), FMT_COMPILE("{}"), t_s);
+  for (double value : values) fmt::format_to(std::back_inserter(line), FMT_COMPILE(",{}"), value);
+  line.push_back('\n');
+  out.write(line.data(), static_cast<std::streamsize>(line.size()));
 }
 
 void write_contact_forces_header(std::ostream& out) {
@@ -244,20 +268,29 @@ void write_contact_force_row(const solvers::ContactForceSample& f, std::ostream&
                      f.struck_edge, f.gap_m, f.gap_rate_mps, f.force_kN);
 }
 
+void remove_history_files(const std::filesystem::path& folder) {
+  std::filesystem::remove(folder / "history.csv");
+  std::filesystem::remove(folder / "contacts_history.csv");
+}
+
 void write_run(const analysis::RunReport& report, const Provenance& provenance, const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
   // summary.json goes last and an earlier run's goes first: whatever happens in between, a
   // summary never stands beside files from another run.
   std::filesystem::remove(folder / "summary.json");
   const solvers::RunResult& r = report.result;
-  write_atomically(folder / "history.csv", [&](std::ostream& out) {
-    write_csv_header(r.history.columns, out);
-    for (std::size_t k = 0; k < r.history.time_s.size(); ++k) write_history_row(r.history.time_s[k], r.history.rows[k], out);
-  });
-  write_atomically(folder / "contacts_history.csv", [&](std::ostream& out) {
-    write_contact_forces_header(out);
-    for (const solvers::ContactForceSample& f : r.history.contact_forces) write_contact_force_row(f, out);
-  });
+  if (r.outputs.history) {
+    write_atomically(folder / "history.csv", [&](std::ostream& out) {
+      write_csv_header(r.history.columns, out);
+      for (std::size_t k = 0; k < r.history.time_s.size(); ++k) write_history_row(r.history.time_s[k], r.history.rows[k], out);
+    });
+    write_atomically(folder / "contacts_history.csv", [&](std::ostream& out) {
+      write_contact_forces_header(out);
+      for (const solvers::ContactForceSample& f : r.history.contact_forces) write_contact_force_row(f, out);
+    });
+  } else {
+    remove_history_files(folder);
+  }
   write_atomically(folder / "impacts.csv", [&](std::ostream& out) {
     write_impacts_header(out);
     for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out);

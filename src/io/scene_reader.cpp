@@ -482,6 +482,18 @@ analysis::OutputSettings read_output(std::optional<TableReader> table) {
     }
   }
   output.history_interval_s = table->number_or("history_interval_s", output.history_interval_s);
+  if (const toml::node* history = table->find("history")) {
+    if (!history->is_boolean()) throw table->error(*history, table->key_path("history"), "expected true or false");
+    output.history = *history->value<bool>();
+  }
+  if (const toml::node* peaks = table->find("peaks")) {
+    const std::string key = table->key_path("peaks");
+    const toml::array& array = table->array_of(*peaks, key);
+    output.peaks.clear();
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      output.peaks.push_back(table->string_of(array[i], fmt::format("{}[{}]", key, i + 1)));
+    }
+  }
   table->finish();
   return output;
 }

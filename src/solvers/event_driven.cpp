@@ -105,7 +105,8 @@ class EventDrivenRun final : public OdeFunctions {
         hold_record_(count_, -1),
         open_(count_),
         gap_components_(gap_components(system)),
-        recorder_(system, recorded_dynamics(), options.history_floors, options.history_interval_s, options.sink) {}
+        recorder_(system, recorded_dynamics(), options.history_floors, options.history_interval_s, options.outputs,
+                  options.sink) {}
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(3 * count_); }

@@ -108,18 +108,24 @@ std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, 
 }
 
 Recorder::Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics,
-                   const std::vector<int>& history_levels, double history_interval_s, RunSink* sink)
+                   const std::vector<int>& history_levels, double history_interval_s, const OutputSelection& outputs,
+                   RunSink* sink)
     : system_(system),
       dynamics_(std::move(dynamics)),
+      outputs_(outputs),
       history_levels_(chosen_levels(system, history_levels)),
       interval_s_(history_interval_s),
       sink_(sink) {
-  for (const contact::Level& level : history_levels_) history_.levels.push_back(level.index);
   next_sample_s_ = system.ground_motion().start_s();
-  history_.interval_s = interval_s_;
-  history_.columns = history_columns(system, history_levels);
+  if (outputs_.history) {
+    for (const contact::Level& level : history_levels_) history_.levels.push_back(level.index);
+    history_.interval_s = interval_s_;
+    history_.columns = history_columns(system, history_levels);
+    row_.resize(static_cast<Eigen::Index>(history_.columns.size()) - 1);
+  }
   drift_offset_ = {0, drift_slots(0) * static_cast<std::size_t>(system.building(0).storeys()), 0};
   drift_offset_[2] = drift_offset_[1] + drift_slots(1) * static_cast<std::size_t>(system.building(1).storeys());
+  const int n = system.dof();
   for (int b = 0; b < 2; ++b) {
     vertices_[b] = contact_vertices(system.candidates(), b);
     BuildingPeaks peaks;
@@ -134,9 +140,24 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynam
       floor.corner_drift_x.resize(system.building(b).definition.slab.size());
       floor.corner_drift_y.resize(system.building(b).definition.slab.size());
       peaks.floors.push_back(floor);
+      const int i = system.floor_index(b, f);
+      FloorComponents c;
+      for (int k = 0; k < 3; ++k) c.coordinate[k] = {i + k, n + i + k};
+      c.vertex = {i, i + 2, n + i, n + i + 2};
+      for (int below = std::max(1, f - 1); below <= f; ++below) {  // a drift reads this floor and the one below
+        const int j = system.floor_index(b, below);
+        for (int k = 0; k < 3; ++k) c.drift.insert(c.drift.end(), {j + k, n + j + k});
+      }
+      components_[b].push_back(std::move(c));
     }
     peaks_.push_back(std::move(peaks));
   }
+  y_dot_.resize(system.state_size());
+  y_ddot_.resize(system.state_size());
+  partial_ = dynamics::VectorXd::Zero(system.state_size());
+  const std::size_t points = 1 + std::max(system.building(0).definition.slab.size(), system.building(1).definition.slab.size());
+  below_.resize(points);
+  below_rate_.resize(points);
 }
 
 std::size_t Recorder::drift_index(int b, int floor, std::size_t slot) const {
@@ -145,15 +166,16 @@ std::size_t Recorder::drift_index(int b, int floor, std::size_t slot) const {
 
 std::size_t Recorder::drift_slots(int b) const { return 2 * (system_.building(b).definition.slab.size() + 1); }
 
-Recorder::Drifts Recorder::storey_drifts(const dynamics::VectorXd& y) const {
-  Drifts d{dynamics::VectorXd(static_cast<Eigen::Index>(drift_offset_[2])),
-           dynamics::VectorXd(static_cast<Eigen::Index>(drift_offset_[2]))};
+void Recorder::storey_drifts(const dynamics::VectorXd& y, Drifts& d) const {
+  d.value.resize(static_cast<Eigen::Index>(drift_offset_[2]));
+  d.rate.resize(static_cast<Eigen::Index>(drift_offset_[2]));
   const int n = system_.dof();
   for (int b = 0; b < 2; ++b) {
     const model::BuildingDefinition& def = system_.building(b).definition;
     const std::size_t points = def.slab.size() + 1;  // the CM, then the corners
     // Each floor's point motions once (one sin/cos per floor), then differences of floors.
-    std::vector<model::Point2> below(points, model::Point2::Zero()), below_rate(points, model::Point2::Zero());
+    std::fill_n(below_.begin(), points, model::Point2::Zero());
+    std::fill_n(below_rate_.begin(), points, model::Point2::Zero());
     for (int f = 1; f <= system_.building(b).storeys(); ++f) {
       const int i = system_.floor_index(b, f);
       const double height_m = def.storey_height_m.at(static_cast<std::size_t>(f - 1));
@@ -164,15 +186,14 @@ Recorder::Drifts Recorder::storey_drifts(const dynamics::VectorXd& y) const {
         const model::Point2 here_rate = point_velocity(arm, c, s, y[n + i], y[n + i + 1], y[n + i + 2]);
         for (int axis = 0; axis < 2; ++axis) {
           const auto j = static_cast<Eigen::Index>(drift_index(b, f, 2 * k + static_cast<std::size_t>(axis)));
-          d.value[j] = (here[axis] - below[k][axis]) / height_m;
-          d.rate[j] = (here_rate[axis] - below_rate[k][axis]) / height_m;
+          d.value[j] = (here[axis] - below_[k][axis]) / height_m;
+          d.rate[j] = (here_rate[axis] - below_rate_[k][axis]) / height_m;
         }
-        below[k] = here;
-        below_rate[k] = here_rate;
+        below_[k] = here;
+        below_rate_[k] = here_rate;
       }
     }
   }
-  return d;
 }
 
 bool Recorder::free_motion() const { return !dynamics_.free_motion || dynamics_.free_motion(); }
@@ -195,10 +216,9 @@ Recorder::Drift Recorder::storey_drift(const dynamics::VectorXd& y, int b, int f
   return {(upper - lower) / height_m, (upper_rate - lower_rate) / height_m};
 }
 
-dynamics::VectorXd Recorder::absolute_accelerations(double t, const dynamics::VectorXd& y) const {
-  dynamics::VectorXd y_dot(system_.state_size());
-  dynamics_.derivative(t, y, y_dot);
-  return y_dot.tail(system_.dof()) + system_.influence() * system_.ground_motion().accel_at(t);
+void Recorder::absolute_accelerations(double t, const dynamics::VectorXd& y, dynamics::VectorXd& accel) const {
+  dynamics_.derivative(t, y, y_dot_);
+  accel = y_dot_.tail(system_.dof()) + system_.influence() * system_.ground_motion().accel_at(t);
 }
 
 namespace {
@@ -215,66 +235,94 @@ Peak& drift_peak(FloorPeaks& floor, std::size_t slot) {
 
 }  // namespace
 
-void Recorder::observe(double t, const dynamics::VectorXd& y) { observe(t, y, absolute_accelerations(t, y), storey_drifts(y)); }
+void Recorder::measure(double t, const dynamics::VectorXd& y, bool accelerations, bool drifts, Instant& into) const {
+  into.t_s = t;
+  into.y = y;
+  into.rate_known = false;
+  if (accelerations) absolute_accelerations(t, y, into.accel);
+  if (drifts) storey_drifts(y, into.drifts);
+}
 
-void Recorder::observe(double t, const dynamics::VectorXd& y, const dynamics::VectorXd& accel, const Drifts& drifts) {
-  observed_t_s_ = t;
-  observed_accel_ = accel;
+void Recorder::update_peaks(const Instant& at) {
+  const double t = *at.t_s;
+  const dynamics::VectorXd& y = at.y;
   for (int b = 0; b < 2; ++b) {
     const model::Point2 centre = system_.building(b).definition.centre_of_mass;
     for (FloorPeaks& floor : peaks_[b].floors) {
       const int i = system_.floor_index(b, floor.floor);
-      floor.u_m.update(y[i], t);
-      floor.v_m.update(y[i + 1], t);
-      floor.phi_rad.update(y[i + 2], t);
-      for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
-        floor.vertex_dx_m[k].update(vertex_dx(vertices_[b][k], centre, y[i], y[i + 2]), t);
+      if (outputs_.displacement_peaks) {
+        floor.u_m.update(y[i], t);
+        floor.v_m.update(y[i + 1], t);
+        floor.phi_rad.update(y[i + 2], t);
+        for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
+          floor.vertex_dx_m[k].update(vertex_dx(vertices_[b][k], centre, y[i], y[i + 2]), t);
+        }
       }
-      floor.ax_abs_mps2.update(accel[i], t);
-      floor.ay_abs_mps2.update(accel[i + 1], t);
-      floor.phi_ddot_radps2.update(accel[i + 2], t);
-      for (std::size_t slot = 0; slot < drift_slots(b); ++slot) {
-        drift_peak(floor, slot).update(drifts.value[static_cast<Eigen::Index>(drift_index(b, floor.floor, slot))], t);
+      if (outputs_.acceleration_peaks) {
+        floor.ax_abs_mps2.update(at.accel[i], t);
+        floor.ay_abs_mps2.update(at.accel[i + 1], t);
+        floor.phi_ddot_radps2.update(at.accel[i + 2], t);
+      }
+      if (outputs_.drift_peaks) {
+        for (std::size_t slot = 0; slot < drift_slots(b); ++slot) {
+          drift_peak(floor, slot).update(at.drifts.value[static_cast<Eigen::Index>(drift_index(b, floor.floor, slot))], t);
+        }
       }
     }
   }
 }
 
-dynamics::VectorXd Recorder::free_acceleration_rates(double t, const dynamics::VectorXd& y,
-                                                     const dynamics::VectorXd& accel) const {
+void Recorder::free_acceleration_rates(double t, const dynamics::VectorXd& y, const dynamics::VectorXd& accel,
+                                       dynamics::VectorXd& rate) const {
   // Free motion: q̈ = A_v y − r a_g (A_v the acceleration rows of A), so q̈ + r a_g = A_v y and
   // its rate is A_v ẏ, the forcing's slope cancelling. The system's free rhs at the "state" ẏ
   // gives A_v ẏ − r a_g(t) in its acceleration rows (sparse, O(n)).
   const int n = system_.dof();
-  const dynamics::VectorXd r_ag = system_.influence() * system_.ground_motion().accel_at(t);
-  dynamics::VectorXd y_dot(system_.state_size()), y_ddot(system_.state_size());
-  y_dot << y.tail(n), accel - r_ag;
-  system_.rhs(t, y_dot, y_ddot);
-  return y_ddot.tail(n) + r_ag;
+  const double a_g = system_.ground_motion().accel_at(t);
+  y_dot_ << y.tail(n), accel - system_.influence() * a_g;
+  system_.rhs(t, y_dot_, y_ddot_);
+  rate = y_ddot_.tail(n) + system_.influence() * a_g;
 }
 
-void Recorder::locate_acceleration_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a,
-                                         const dynamics::VectorXd& y_b, const dynamics::VectorXd& a_a,
-                                         const dynamics::VectorXd& a_b,
-                                         const std::function<dynamics::VectorXd(double)>& at) {
-  auto accel = [&](double t) { return absolute_accelerations(t, at(t)); };
-  // Free motion: the rate is exact (free_acceleration_rates). While contact forces act no rate
-  // comes with the state (it would need the derivative of every contact force): a central
-  // difference on the interpolant, whose states are smooth inside a stretch, stands in, one-sided
-  // at the ends. Its step, 1e-4 of the stretch, keeps both truncation and round-off far below
-  // what moves the located peak's value (a turning point: the value is flat there).
+void Recorder::locate_acceleration_peaks(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at) {
+  const dynamics::VectorXd &a_a = start_.accel, &a_b = last_.accel;
+  auto accel = [&](double t, dynamics::VectorXd& into) { absolute_accelerations(t, at(t), into); };
+  // Free motion: the rate is exact (free_acceleration_rates), and the end's carries over to the
+  // next stretch. While contact forces act no rate comes with the state (it would need the
+  // derivative of every contact force): a central difference on the interpolant, whose states
+  // are smooth inside a stretch, stands in, one-sided at the ends. Its step, 1e-4 of the
+  // stretch, keeps both truncation and round-off far below what moves the located peak's value
+  // (a turning point: the value is flat there).
   const bool free = free_motion();
   const double h = 1e-4 * (t_b - t_a);
-  auto rate = [&](double t) {
+  auto rate = [&](double t, int j) {
     if (free) {
       const dynamics::VectorXd y = at(t);
-      return free_acceleration_rates(t, y, absolute_accelerations(t, y));
+      absolute_accelerations(t, y, accel_lo_);
+      free_acceleration_rates(t, y, accel_lo_, accel_hi_);
+      return accel_hi_[j];
     }
     const double lo = std::max(t_a, t - h), hi = std::min(t_b, t + h);
-    return dynamics::VectorXd((accel(hi) - accel(lo)) / (hi - lo));
+    accel(lo, accel_lo_);
+    accel(hi, accel_hi_);
+    return (accel_hi_[j] - accel_lo_[j]) / (hi - lo);
   };
-  const dynamics::VectorXd rate_a = free ? free_acceleration_rates(t_a, y_a, a_a) : (accel(t_a + h) - a_a) / h;
-  const dynamics::VectorXd rate_b = free ? free_acceleration_rates(t_b, y_b, a_b) : (a_b - accel(t_b - h)) / h;
+  if (free && start_.rate_known) {
+    // start_.accel_rate is the previous stretch's end rate, exact for this one too.
+  } else if (free) {
+    free_acceleration_rates(t_a, start_.y, a_a, start_.accel_rate);
+  } else {
+    accel(t_a + h, accel_hi_);
+    start_.accel_rate = (accel_hi_ - a_a) / h;
+  }
+  if (free) {
+    free_acceleration_rates(t_b, last_.y, a_b, last_.accel_rate);
+  } else {
+    accel(t_b - h, accel_lo_);
+    last_.accel_rate = (a_b - accel_lo_) / h;
+  }
+  last_.rate_known = free;
+  const dynamics::VectorXd &rate_a = start_.accel_rate, &rate_b = last_.accel_rate;
   for (int b = 0; b < 2; ++b) {
     for (FloorPeaks& floor : peaks_[b].floors) {
       const int i = system_.floor_index(b, floor.floor);
@@ -286,18 +334,19 @@ void Recorder::locate_acceleration_peaks(double t_a, double t_b, const dynamics:
         const double bound = std::max(std::abs(a_a[j]), std::abs(a_b[j])) +
                              2.0 * (t_b - t_a) * std::max(std::abs(rate_a[j]), std::abs(rate_b[j]));
         if (bound <= std::abs(peaks[k]->value)) continue;
-        const double t = find_root([&](double t_s) { return rate(t_s)[j]; }, t_a, t_b, rate_a[j], rate_b[j],
+        const double t = find_root([&](double t_s) { return rate(t_s, j); }, t_a, t_b, rate_a[j], rate_b[j],
                                    peak_time_width(t_a, t_b));
-        peaks[k]->update(accel(t)[j], t);
+        accel(t, accel_lo_);
+        peaks[k]->update(accel_lo_[j], t);
       }
     }
   }
 }
 
-template <class Value, class Rate>
-void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const dynamics::VectorXd& y_a,
-                           const dynamics::VectorXd& y_b, const std::function<dynamics::VectorXd(double)>& at,
-                           const Value& value, const Rate& rate) {
+template <class StateAt, class Value, class Rate>
+void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const StateAt& state_at, const Value& value,
+                           const Rate& rate) {
+  const dynamics::VectorXd &y_a = start_.y, &y_b = last_.y;
   const double rate_a = rate(y_a), rate_b = rate(y_b);
   if (!(rate_a * rate_b < 0.0)) return;  // no turning point inside (an even number is missed)
   // Skip turning points that cannot beat the peak: |x(t*)| ≤ max |x| at the ends + ∫|ẋ|, and the
@@ -306,36 +355,40 @@ void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const dynamics::V
   const double bound = std::max(std::abs(value(y_a)), std::abs(value(y_b))) +
                        2.0 * (t_b - t_a) * std::max(std::abs(rate_a), std::abs(rate_b));
   if (bound <= std::abs(peak.value)) return;
-  const double t = find_root([&](double t_s) { return rate(at(t_s)); }, t_a, t_b, rate_a, rate_b);
-  peak.update(value(at(t)), t);
+  const double t = find_root([&](double t_s) { return rate(state_at(t_s)); }, t_a, t_b, rate_a, rate_b);
+  peak.update(value(state_at(t)), t);
 }
 
-void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
-                            const std::function<dynamics::VectorXd(double)>& at, const ComponentsAt& components_at) {
+void Recorder::locate_peaks(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+                            const ComponentsAt& components_at) {
   const int n = system_.dof();
-  dynamics::VectorXd partial = y_b;
-  auto reading = [&](std::vector<int> indices) -> std::function<dynamics::VectorXd(double)> {
-    if (!components_at) return at;
-    return [&, indices](double t) {
-      components_at(t, indices, partial);
-      return partial;
+  // The state at t with (at least) the components `indices` right.
+  auto reading = [&](const std::vector<int>& indices) {
+    return [&](double t) -> const dynamics::VectorXd& {
+      if (components_at) {
+        components_at(t, indices, partial_);
+      } else {
+        partial_ = at(t);
+      }
+      return partial_;
     };
   };
   for (int b = 0; b < 2; ++b) {
     const model::Point2 centre = system_.building(b).definition.centre_of_mass;
-    for (FloorPeaks& floor : peaks_[b].floors) {
+    for (std::size_t f = 0; f < peaks_[b].floors.size(); ++f) {
+      FloorPeaks& floor = peaks_[b].floors[f];
+      const FloorComponents& components = components_[b][f];
       const int i = system_.floor_index(b, floor.floor);
-      auto coordinate = [&](Peak& peak, int k) {
-        locate_peak(peak, t_a, t_b, y_a, y_b, reading({i + k, n + i + k}), [&](const dynamics::VectorXd& y) { return y[i + k]; },
+      Peak* coordinates[3] = {&floor.u_m, &floor.v_m, &floor.phi_rad};
+      for (int k = 0; k < 3; ++k) {
+        locate_peak(*coordinates[k], t_a, t_b, reading(components.coordinate[k]),
+                    [&](const dynamics::VectorXd& y) { return y[i + k]; },
                     [&](const dynamics::VectorXd& y) { return y[n + i + k]; });
-      };
-      coordinate(floor.u_m, 0);
-      coordinate(floor.v_m, 1);
-      coordinate(floor.phi_rad, 2);
+      }
       for (std::size_t k = 0; k < vertices_[b].size(); ++k) {
         const model::Point2& vertex = vertices_[b][k];
         locate_peak(
-            floor.vertex_dx_m[k], t_a, t_b, y_a, y_b, reading({i, i + 2, n + i, n + i + 2}),
+            floor.vertex_dx_m[k], t_a, t_b, reading(components.vertex),
             [&](const dynamics::VectorXd& y) { return vertex_dx(vertex, centre, y[i], y[i + 2]); },
             [&](const dynamics::VectorXd& y) { return vertex_dx_rate(vertex, centre, y[i + 2], y[n + i], y[n + i + 2]); });
       }
@@ -343,23 +396,20 @@ void Recorder::locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_
   }
 }
 
-void Recorder::locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, const Drifts& d_b,
-                                  const dynamics::VectorXd& y_b, const std::function<dynamics::VectorXd(double)>& at,
+void Recorder::locate_drift_peaks(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
                                   const ComponentsAt& components_at) {
-  const int n = system_.dof();
-  dynamics::VectorXd partial = y_b;
+  const Drifts &d_a = start_.drifts, &d_b = last_.drifts;
   for (int b = 0; b < 2; ++b) {
-    for (FloorPeaks& floor : peaks_[b].floors) {
-      // A drift reads the (u, v, φ) and rates of its floor and the floor below.
-      std::vector<int> indices;
-      for (int f = std::max(1, floor.floor - 1); f <= floor.floor; ++f) {
-        const int i = system_.floor_index(b, f);
-        for (int k = 0; k < 3; ++k) indices.insert(indices.end(), {i + k, n + i + k});
-      }
-      auto state_at = [&](double t) -> dynamics::VectorXd {
-        if (!components_at) return at(t);
-        components_at(t, indices, partial);
-        return partial;
+    for (std::size_t f = 0; f < peaks_[b].floors.size(); ++f) {
+      FloorPeaks& floor = peaks_[b].floors[f];
+      const std::vector<int>& indices = components_[b][f].drift;
+      auto state_at = [&](double t) -> const dynamics::VectorXd& {
+        if (components_at) {
+          components_at(t, indices, partial_);
+        } else {
+          partial_ = at(t);
+        }
+        return partial_;
       };
       for (std::size_t slot = 0; slot < drift_slots(b); ++slot) {
         const auto j = static_cast<Eigen::Index>(drift_index(b, floor.floor, slot));
@@ -377,22 +427,21 @@ void Recorder::locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, con
   }
 }
 
-void Recorder::append_row(double t, const dynamics::VectorXd& y) {
-  const dynamics::VectorXd accel = absolute_accelerations(t, y);
-  const Drifts drifts = storey_drifts(y);
-  Eigen::VectorXd row(static_cast<Eigen::Index>(history_.columns.size()) - 1);
+void Recorder::append_row(const Instant& at) {
+  const double t = *at.t_s;
+  const dynamics::VectorXd& y = at.y;
   Eigen::Index c = 0;
   for (const contact::Level& level : history_levels_) {
     for (int b = 0; b < 2; ++b) {
       const int i = system_.floor_index(b, level.floors[b]);
-      row[c++] = y[i];
-      row[c++] = y[i + 1];
-      row[c++] = y[i + 2];
+      row_[c++] = y[i];
+      row_[c++] = y[i + 1];
+      row_[c++] = y[i + 2];
       const model::Point2 centre = system_.building(b).definition.centre_of_mass;
-      for (const model::Point2& vertex : vertices_[b]) row[c++] = vertex_dx(vertex, centre, y[i], y[i + 2]);
-      for (int k = 0; k < 3; ++k) row[c++] = accel[i + k];
+      for (const model::Point2& vertex : vertices_[b]) row_[c++] = vertex_dx(vertex, centre, y[i], y[i + 2]);
+      for (int k = 0; k < 3; ++k) row_[c++] = at.accel[i + k];
       for (std::size_t slot = 0; slot < drift_slots(b); ++slot) {
-        row[c++] = drifts.value[static_cast<Eigen::Index>(drift_index(b, level.floors[b], slot))];
+        row_[c++] = at.drifts.value[static_cast<Eigen::Index>(drift_index(b, level.floors[b], slot))];
       }
     }
   }
@@ -413,22 +462,26 @@ void Recorder::append_row(double t, const dynamics::VectorXd& y) {
     }
   }
   if (sink_ != nullptr) {
-    // Columns at the first row, not at construction: by then the run has passed its checks.
-    if (!last_row_t_s_) sink_->history_columns(history_.columns);
-    sink_->history_row(t, row);
+    sink_->history_row(t, row_);
     for (const ContactForceSample& f : forces) sink_->contact_force(f);
   } else {
     history_.time_s.push_back(t);
-    history_.rows.push_back(std::move(row));
+    history_.rows.push_back(row_);
     history_.contact_forces.insert(history_.contact_forces.end(), forces.begin(), forces.end());
   }
   last_row_t_s_ = t;
 }
 
 void Recorder::sample(double t, const dynamics::VectorXd& y) {
-  observe(t, y);
-  if (last_row_t_s_ == t) return;
-  append_row(t, y);
+  if (!started_ && sink_ != nullptr) {
+    // Columns at the first sample, not at construction: by then the run has passed its checks.
+    sink_->history_columns(history_.columns);
+  }
+  started_ = true;
+  const bool row = outputs_.history && last_row_t_s_ != t;
+  measure(t, y, row || outputs_.acceleration_peaks, row || outputs_.drift_peaks, last_);
+  update_peaks(last_);
+  if (row) append_row(last_);
 }
 
 void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
@@ -436,10 +489,6 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                        const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
                        const std::optional<StretchEnergy>& closed_form, const ComponentsAt& components_at) {
   if (!(t_b > t_a)) return;
-  const dynamics::VectorXd y_a = at(t_a);  // the stretch's own start (after an impact there)
-  // The last state observed at t_a is where this stretch starts: the step end before it, or an
-  // event's state after the event, with the dynamics that go on from there.
-  const dynamics::VectorXd a_a = observed_t_s_ == t_a ? observed_accel_ : absolute_accelerations(t_a, y_a);
   if (closed_form) {
     energy_.input_kJ += closed_form->input_kJ;
     energy_.damping_kJ += closed_form->damping_kJ;
@@ -456,17 +505,29 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     energy_.damping_kJ += half * kWeights[k] * system_.damping_power(y);
     energy_.constraint_work_kJ += half * kWeights[k] * constraint_power(t, y);
   }
-  while (next_sample_s_ <= t_b) {
-    if (next_sample_s_ > t_a) sample(next_sample_s_, at(next_sample_s_));
-    next_sample_s_ = system_.ground_motion().start_s() +
-                     interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
+  // The stretch starts where the last instant recorded left off: the previous step's end or an
+  // event's state after the event, with the dynamics that go on from there. Swapped out before the
+  // samples inside the stretch take the place of the latest instant.
+  const bool peaks = outputs_.any_peaks();
+  if (peaks) {
+    std::swap(start_, last_);
+    if (start_.t_s != t_a) measure(t_a, at(t_a), outputs_.acceleration_peaks, outputs_.drift_peaks, start_);
   }
-  const dynamics::VectorXd a_b = absolute_accelerations(t_b, y_b);
-  const Drifts d_a = storey_drifts(y_a), d_b = storey_drifts(y_b);
-  locate_peaks(t_a, t_b, y_a, y_b, at, components_at);
-  locate_drift_peaks(t_a, t_b, d_a, d_b, y_b, at, components_at);
-  locate_acceleration_peaks(t_a, t_b, y_a, y_b, a_a, a_b, at);
-  observe(t_b, y_b, a_b, d_b);
+  // The peaks see the sample instants whether or not rows are written, so they do not depend on
+  // the history (on HHT's Hermite interpolant a sample can beat the located turning points).
+  if (outputs_.history || peaks) {
+    while (next_sample_s_ <= t_b) {
+      if (next_sample_s_ > t_a) sample(next_sample_s_, at(next_sample_s_));
+      next_sample_s_ = system_.ground_motion().start_s() +
+                       interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
+    }
+  }
+  if (!peaks) return;
+  measure(t_b, y_b, outputs_.acceleration_peaks, outputs_.drift_peaks, last_);
+  if (outputs_.displacement_peaks) locate_peaks(t_a, t_b, at, components_at);
+  if (outputs_.drift_peaks) locate_drift_peaks(t_a, t_b, at, components_at);
+  if (outputs_.acceleration_peaks) locate_acceleration_peaks(t_a, t_b, at);
+  update_peaks(last_);
 }
 
 void Recorder::stream_new_impacts(const std::vector<ImpactRecord>& impacts) {
@@ -479,6 +540,7 @@ void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result) 
   energy_.kinetic_kJ = system_.kinetic_energy(final_state);
   energy_.strain_kJ = system_.strain_energy(final_state);
   result.energy = energy_;
+  result.outputs = outputs_;
   result.peaks = std::move(peaks_);
   result.history = std::move(history_);
 }

@@ -244,7 +244,32 @@ expect_refusal "--halving" run "$scene" --method hht --halving sometimes --out "
 expect_refusal "--repeat" study "$scene" --repeat 0 --out "$work/bad"
 expect_refusal "building\[2\].storey_height_m = \[4.5, 3, 3" check "$work/no-levels.toml"
 expect_refusal "slab-to-column impacts are outside this model" run "$work/no-levels.toml" --out "$work/bad"
+expect_refusal "--peaks = \"speeds\": expected one of displacements, accelerations, drifts" run "$scene" --peaks drifts,speeds --out "$work/bad"
+expect_refusal "--history = never: expected on or off" run "$scene" --history never --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
+
+# [output] selection: --history off --peaks drifts over the folder of a full run writes no
+# history (and removes the earlier one), the drift peaks only, and the same impacts and energy.
+cp -r "$work/d20" "$work/selected"
+"$pounding" run "$scene" --history off --peaks drifts --out "$work/selected" > "$work/selected.txt" \
+    || fail "run with --history off --peaks drifts exited $?"
+grep -q "^Wrote .*summary.json, impacts.csv$" "$work/selected.txt" || fail "--history off: the files written"
+/usr/bin/python3 - "$work/d20" "$work/selected" <<'PY' || fail "--history off --peaks drifts outputs"
+import json, os, sys
+full, selected = (json.load(open(f"{folder}/summary.json")) for folder in sys.argv[1:])
+folder = sys.argv[2]
+assert not os.path.exists(f"{folder}/history.csv") and not os.path.exists(f"{folder}/contacts_history.csv")
+assert full["outputs"] == {"history": True, "peaks": ["displacements", "accelerations", "drifts"]}, full["outputs"]
+assert selected["outputs"] == {"history": False, "peaks": ["drifts"]}, selected["outputs"]
+assert selected["impacts"] == full["impacts"] and selected["energy"] == full["energy"]
+for b_full, b_sel in zip(full["peaks"], selected["peaks"]):
+    for f_full, f_sel in zip(b_full["floors"], b_sel["floors"]):
+        assert set(f_sel) == {"floor", "drift_x", "drift_y", "corner_drift_x", "corner_drift_y", "worst_corner_drift"}, f_sel
+        assert all(f_sel[key] == f_full[key] for key in f_sel), f_sel
+PY
+/usr/bin/python3 "$source_dir/tools/compare_runs.py" "$work/d20" "$work/selected" > /dev/null 2> "$work/compare-selected.txt" \
+    && fail "compare_runs.py accepted a run without history"
+grep -q "run it again with --history on" "$work/compare-selected.txt" || fail "compare_runs.py on a run without history: $(cat "$work/compare-selected.txt")"
 
 # Issue 15: absurd options are refused naming the option, the value and the range.
 expect_refusal "--gap = 1e+17: must lie in \[0, 10\] m" run "$scene" --gap 1e17 --out "$work/bad"

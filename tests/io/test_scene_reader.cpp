@@ -328,6 +328,29 @@ BOOST_AUTO_TEST_CASE(HistoryFloorsNameLevels) {
                       {"output.history_floors[1]", "3", "levels", "1..2"}));
 }
 
+BOOST_AUTO_TEST_CASE(OutputSelectionDefaultsToEverythingAndRefusesUnknownGroups) {
+  Case plain(kScene);
+  const pounding::analysis::OutputSettings all = read_scene(plain.file).output;
+  BOOST_TEST(all.history);
+  BOOST_TEST(all.peaks == std::vector<std::string>({"displacements", "accelerations", "drifts"}), tt::per_element());
+  const pounding::solvers::OutputSelection every = all.selection();
+  BOOST_TEST((every.history && every.displacement_peaks && every.acceleration_peaks && every.drift_peaks));
+  Case some(kScene + "[output]\nhistory = false\npeaks = [\"drifts\"]\n");
+  const pounding::solvers::OutputSelection drifts = read_scene(some.file).output.selection();
+  BOOST_TEST((!drifts.history && !drifts.displacement_peaks && !drifts.acceleration_peaks && drifts.drift_peaks));
+  Case none(kScene + "[output]\npeaks = []\n");
+  BOOST_TEST(!read_scene(none.file).output.selection().any_peaks());
+
+  BOOST_TEST(mentions(error_of(kScene + "[output]\npeaks = [\"drifts\", \"velocities\"]\n"),
+                      {"scene.toml", "output.peaks[2] = \"velocities\"", "displacements, accelerations, drifts"}));
+  BOOST_TEST(mentions(error_of(kScene + "[output]\npeaks = [\"drifts\", \"drifts\"]\n"),
+                      {"scene.toml", "output.peaks[2] = \"drifts\"", "listed twice"}));
+  BOOST_TEST(mentions(error_of(kScene + "[output]\npeaks = \"drifts\"\n"), {"scene.toml", "output.peaks", "expected an array"}));
+  BOOST_TEST(mentions(error_of(kScene + "[output]\npeaks = [1]\n"), {"output.peaks[1] = 1", "expected a string"}));
+  BOOST_TEST(mentions(error_of(kScene + "[output]\nhistory = \"off\"\n"),
+                      {"scene.toml", "output.history = \"off\"", "expected true or false"}));
+}
+
 // Issue 15: inputs a hostile or careless user tried. Each is refused naming the key, the value
 // and the range it must lie in (docs/scene-format.md).
 BOOST_AUTO_TEST_CASE(MalformedUtf8IsRefusedBeforeTomlSeesIt) {

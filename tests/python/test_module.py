@@ -138,6 +138,25 @@ def test_overrides_match_cli(tmp_path):
     assert_same(pounding.run(other).summary, expected)
 
 
+def test_output_selection_matches_cli(tmp_path, paper_pair):
+    """with_outputs does what --history and --peaks do; without history the arrays are empty and
+    the impacts are the full run's."""
+    expected = cli_run(tmp_path, PAPER, "--history", "off", "--peaks", "drifts,displacements")
+    scene = pounding.load_scene(PAPER)
+    assert (scene.history, scene.peaks) == (True, ["displacements", "accelerations", "drifts"])
+    selected = scene.with_outputs(history=False, peaks=["drifts", "displacements"])
+    assert (selected.history, selected.peaks) == (False, ["drifts", "displacements"])
+    result = pounding.run(selected)
+    assert_same(result.summary, expected)
+    assert result.summary["outputs"] == {"history": False, "peaks": ["displacements", "drifts"]}
+    assert result.history == {} and result.contact_forces == {}
+    assert result.impacts == paper_pair[1].impacts
+    assert "ax_abs_mps2" not in result.peaks[0]["floors"][0] and "drift_x" in result.peaks[0]["floors"][0]
+    with pytest.raises(pounding.InputError) as error:
+        scene.with_outputs(peaks=["speeds"])
+    assert error.value.key == "output.peaks[1]" and error.value.value == '"speeds"'
+
+
 def test_bad_scene_raises_cli_message(tmp_path):
     bad = tmp_path / "bad.toml"
     text = (PAPER.read_text().replace("restitution = 0.5", "restitution = 1.5")

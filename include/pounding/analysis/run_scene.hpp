@@ -38,7 +38,7 @@ struct RunLimits {
 struct WorkEstimate {
   int dof = 0;                   // both buildings
   double duration_s = 0.0;       // simulated time
-  double history_rows = 0.0;     // regular samples (event rows come on top)
+  double history_rows = 0.0;     // regular samples (event rows come on top); 0 without history
   double history_columns = 0.0;
   double min_steps = 0.0;        // hht: duration/Δt; event-driven: duration over the largest step allowed
   double history_values() const { return history_rows * history_columns; }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pounding/analysis/methods.hpp"
@@ -37,10 +38,18 @@ struct ContactSettings {
   void set_stiffness(double value);
 };
 
-/// What `pounding run` writes to history.csv.
+/// The peak groups `output.peaks` may list, in the order outputs list them: displacements (u, v,
+/// φ, contact vertices' x), accelerations (absolute, of the CM), drifts (storey drift ratios).
+inline constexpr std::array<std::string_view, 3> kPeakGroups{"displacements", "accelerations", "drifts"};
+
+/// What `pounding run` records besides impacts and the energy audit (always), and how.
 struct OutputSettings {
+  bool history = true;               // history.csv and contacts_history.csv; false: neither computed nor written
   std::vector<int> history_floors;   // levels (1-based, as `check` lists them); empty: every level
   double history_interval_s = 0.01;
+  std::vector<std::string> peaks{kPeakGroups.begin(), kPeakGroups.end()};  // peak groups (kPeakGroups), any subset
+  /// What the solvers record. @pre valid (Scene::validate).
+  solvers::OutputSelection selection() const;
 };
 
 struct Scene {

@@ -16,8 +16,9 @@ namespace pounding::io {
 /// `impacts.csv.partial` (each with its header): impacts flushed at every row, the histories at
 /// least every `flush_interval_s` of wall time.
 /// The files open, and an earlier run's summary.json is removed, when the run names its columns
-/// (just before its first row, once it has passed its checks). finish() renames both and writes summary.json last,
-/// the same four files write_run() writes for the same run, byte for byte in the CSVs.
+/// (just before its first row, once it has passed its checks). finish() renames them and writes summary.json last,
+/// the same files write_run() writes for the same run, byte for byte in the CSVs. A run without
+/// history (no columns) writes impacts.csv only, and removes an earlier run's histories.
 class StreamedRunFiles final : public solvers::RunSink {
  public:
   explicit StreamedRunFiles(std::filesystem::path folder, double flush_interval_s = 1.0);
@@ -44,6 +45,7 @@ class StreamedRunFiles final : public solvers::RunSink {
   std::chrono::steady_clock::time_point last_flush_;
   std::ofstream history_, contacts_, impacts_;
   bool opened_ = false;
+  bool with_history_ = false;  // history.csv and contacts_history.csv are written
 };
 
 }  // namespace pounding::io

@@ -65,6 +65,7 @@ struct EventOptions {
   /// of the energy integrals needs short steps.
   bool clearance_steps = false;
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
+  OutputSelection outputs;             // what the run records besides impacts and energy; default: all
   std::vector<int> history_floors;     // levels (1-based) to write; empty: every level
   double history_interval_s = 0.01;
   /// Receives the history rows and impacts as they come (the history then holds no rows); null:

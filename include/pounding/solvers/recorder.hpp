@@ -1,7 +1,8 @@
 #pragma once
-// Collects what a run reports from its states: peaks, the sampled history and the energy
-// integrals. Shared by every solution path so their outputs compare column for column. With a
-// RunSink the history rows and impacts go to the sink as they come and the history is not kept.
+// Collects what a run reports from its states: the peaks and the sampled history that its
+// OutputSelection asks for, and the energy integrals (always). Shared by every solution path so
+// their outputs compare column for column. With a RunSink the history rows and impacts go to the
+// sink as they come and the history is not kept.
 
 #include <functional>
 #include <optional>
@@ -50,16 +51,17 @@ class Recorder {
   using ComponentsAt = std::function<void(double t, const std::vector<int>& indices, dynamics::VectorXd& y)>;
 
   /// History of the levels `history_levels` (1-based indices into system.levels(); empty: every
-  /// level), each as building 1's floor then building 2's. `sink` (may be null; must outlive the
-  /// recorder) receives the columns at the first row, then every row, contact force and impact;
-  /// the history in the result then has its columns and no rows. @pre indices valid.
+  /// level), each as building 1's floor then building 2's, when `outputs.history`; the peak groups
+  /// `outputs` asks for (the others are neither computed nor reported). `sink` (may be null; must
+  /// outlive the recorder) receives the columns at the first sample (none without history), then
+  /// every row, contact force and impact; the history in the result then has its columns and no
+  /// rows. @pre indices valid.
   Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics, const std::vector<int>& history_levels,
-           double history_interval_s, RunSink* sink = nullptr);
+           double history_interval_s, const OutputSelection& outputs, RunSink* sink = nullptr);
 
-  /// A state the run passes through (step ends, samples, events): updates the peaks (the
-  /// accelerations with the dynamics of the stretch that starts or goes on at t).
-  void observe(double t, const dynamics::VectorXd& y);
-  /// Writes a history row at t (also observes it).
+  /// Writes a history row at t (once per instant, with history) and updates the peaks at the
+  /// state y, which the next stretch starts from (the run's start, or an event's state after the
+  /// event, with the dynamics that go on from there).
   void sample(double t, const dynamics::VectorXd& y);
   /// Advances over (t_a, t_b] of a smooth stretch whose states `at(t)` returns and whose end
   /// state is `y_b`: history samples that fall inside, the peaks (turning points inside located
@@ -68,7 +70,9 @@ class Recorder {
   /// act), and the energy integrals (3-point Gauss–Legendre, or `closed_form` when given: the
   /// integrator's own, for a stretch without contact forces). `constraint_power(t, y)` is the
   /// power of sustained-contact forces (kW). `components_at`, when given, locates the peaks of
-  /// displacements and drifts instead of `at` (accelerations need the whole state).
+  /// displacements and drifts instead of `at` (accelerations need the whole state). The stretch
+  /// starts from the state last sampled or advanced to at t_a (else from `at(t_a)`), whose
+  /// quantities are not computed again.
   void advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                const std::function<dynamics::VectorXd(double)>& at,
                const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
@@ -81,27 +85,45 @@ class Recorder {
   /// HHT: energy a step's update removed (kJ), see HhtStepper::algorithmic_dissipation.
   void add_algorithmic_dissipation(double energy_kJ) { energy_.algorithmic_dissipation_kJ += energy_kJ; }
 
-  /// Moves the collected peaks, history and energy (with the final state's energies) into
-  /// `result`, and streams any impact of `result` not streamed yet.
+  /// Moves the collected peaks, history and energy (with the final state's energies) and the
+  /// output selection into `result`, and streams any impact of `result` not streamed yet.
   void finish(const dynamics::VectorXd& final_state, RunResult& result);
 
  private:
-  void append_row(double t, const dynamics::VectorXd& y);
-  bool free_motion() const;
-  /// q̈ + r a_g (m/s², rad/s²) of every DOF at (t, y), ordered as q.
-  dynamics::VectorXd absolute_accelerations(double t, const dynamics::VectorXd& y) const;
-  /// Their rates (m/s³, rad/s³) in free motion, given the accelerations `accel` at (t, y).
-  dynamics::VectorXd free_acceleration_rates(double t, const dynamics::VectorXd& y, const dynamics::VectorXd& accel) const;
-  /// y_a, y_b, a_a, a_b: the states and accelerations at the stretch's ends.
-  void locate_acceleration_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
-                                 const dynamics::VectorXd& a_a, const dynamics::VectorXd& a_b,
-                                 const std::function<dynamics::VectorXd(double)>& at);
   /// Every storey drift ratio at y and its rate (1/s), at drift_index(building, floor, slot); slot
   /// 0, 1: x, y at the CM; 2k + 2, 2k + 3: x, y at slab corner k + 1.
   struct Drifts {
     dynamics::VectorXd value, rate;
   };
-  Drifts storey_drifts(const dynamics::VectorXd& y) const;
+  /// What the recorder computed at one instant: the end of one stretch is the start of the next,
+  /// so nothing is computed twice. Accelerations and drifts are kept when a peak group or the
+  /// history needs them; the accelerations' rate only where advance() had it exactly.
+  struct Instant {
+    std::optional<double> t_s;
+    dynamics::VectorXd y, accel;  // accel: q̈ + r a_g with the dynamics going on from t_s
+    Drifts drifts;
+    dynamics::VectorXd accel_rate;
+    bool rate_known = false;
+  };
+  /// The components of the state that a floor's peaks read, for ComponentsAt.
+  struct FloorComponents {
+    std::array<std::vector<int>, 3> coordinate;  // (u, u̇), (v, v̇), (φ, φ̇)
+    std::vector<int> vertex;                     // u, φ and their rates
+    std::vector<int> drift;                      // the floor's and the floor below's (u, v, φ) and rates
+  };
+
+  /// Fills `into` at (t, y) with what the outputs need (accelerations and drifts when asked).
+  void measure(double t, const dynamics::VectorXd& y, bool accelerations, bool drifts, Instant& into) const;
+  void update_peaks(const Instant& at);
+  void append_row(const Instant& at);
+  bool free_motion() const;
+  /// q̈ + r a_g (m/s², rad/s²) of every DOF at (t, y), ordered as q, into `accel`.
+  void absolute_accelerations(double t, const dynamics::VectorXd& y, dynamics::VectorXd& accel) const;
+  /// Their rates (m/s³, rad/s³) in free motion, given the accelerations `accel` at (t, y).
+  void free_acceleration_rates(double t, const dynamics::VectorXd& y, const dynamics::VectorXd& accel,
+                               dynamics::VectorXd& rate) const;
+  void locate_acceleration_peaks(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at);
+  void storey_drifts(const dynamics::VectorXd& y, Drifts& d) const;
   /// One of them (for root finding, where the table would be wasted).
   struct Drift {
     double value, rate;
@@ -109,31 +131,36 @@ class Recorder {
   Drift storey_drift(const dynamics::VectorXd& y, int building, int floor, std::size_t slot) const;
   std::size_t drift_slots(int building) const;
   std::size_t drift_index(int building, int floor, std::size_t slot) const;
-  void locate_drift_peaks(double t_a, double t_b, const Drifts& d_a, const Drifts& d_b, const dynamics::VectorXd& y_b,
-                          const std::function<dynamics::VectorXd(double)>& at, const ComponentsAt& components_at);
-  void observe(double t, const dynamics::VectorXd& y, const dynamics::VectorXd& accel, const Drifts& drifts);
-  void locate_peaks(double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
-                    const std::function<dynamics::VectorXd(double)>& at, const ComponentsAt& components_at);
+  void locate_drift_peaks(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+                          const ComponentsAt& components_at);
+  void locate_peaks(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+                    const ComponentsAt& components_at);
   /// Updates `peak` at the turning point of `value` inside (t_a, t_b), if its rate changes sign
   /// there and it can beat the peak.
-  template <class Value, class Rate>
-  void locate_peak(Peak& peak, double t_a, double t_b, const dynamics::VectorXd& y_a, const dynamics::VectorXd& y_b,
-                   const std::function<dynamics::VectorXd(double)>& at, const Value& value, const Rate& rate);
+  template <class StateAt, class Value, class Rate>
+  void locate_peak(Peak& peak, double t_a, double t_b, const StateAt& state_at, const Value& value, const Rate& rate);
 
   const dynamics::CoupledSystem& system_;
   RecordedDynamics dynamics_;
+  OutputSelection outputs_;
   std::vector<contact::Level> history_levels_;
   double interval_s_;
   double next_sample_s_;
   std::array<std::size_t, 3> drift_offset_{};  // building 1's drifts from [0], building 2's from [1], count [2]
   std::array<std::vector<model::Point2>, 2> vertices_;  // contact vertices per building, by outline number
+  std::array<std::vector<FloorComponents>, 2> components_;  // per building and floor, as peaks_
   std::vector<BuildingPeaks> peaks_;
   History history_;
   EnergyAudit energy_;
   RunSink* sink_;
+  bool started_ = false;                // the sink has its columns
   std::optional<double> last_row_t_s_;  // a row is written once per instant
-  std::optional<double> observed_t_s_;  // the last observed instant and its accelerations
-  dynamics::VectorXd observed_accel_;
+  Instant start_, last_;  // the stretch being advanced starts at start_; last_: the latest instant
+  // Scratch space of the hot path, sized once (no allocation per step).
+  mutable dynamics::VectorXd y_dot_, y_ddot_;                // absolute_accelerations, free_acceleration_rates
+  mutable std::vector<model::Point2> below_, below_rate_;  // storey_drifts
+  dynamics::VectorXd partial_, accel_lo_, accel_hi_;        // states and accelerations inside a stretch
+  Eigen::VectorXd row_;
   std::size_t impacts_streamed_ = 0;
 };
 

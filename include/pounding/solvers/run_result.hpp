@@ -191,6 +191,16 @@ struct History {
   std::vector<ContactForceSample> contact_forces;  // at the same instants, in time order
 };
 
+/// What a run records besides its impacts, touches, sustained contacts, statistics and energy
+/// audit (always recorded). A part left out is neither computed nor written.
+struct OutputSelection {
+  bool history = true;             // history rows and contact-force samples (History)
+  bool displacement_peaks = true;  // FloorPeaks' u_m, v_m, phi_rad and vertex_dx_m
+  bool acceleration_peaks = true;  // ax_abs_mps2, ay_abs_mps2, phi_ddot_radps2
+  bool drift_peaks = true;         // drift_x, drift_y and the corner drifts
+  bool any_peaks() const { return displacement_peaks || acceleration_peaks || drift_peaks; }
+};
+
 struct RunResult {
   RunStatus status = RunStatus::completed;
   std::string status_detail;
@@ -200,6 +210,7 @@ struct RunResult {
   std::vector<ImpactRecord> impacts;
   std::vector<TouchRecord> touches;
   std::vector<SustainedContactRecord> sustained_contacts;
+  OutputSelection outputs;  // what was recorded; the peaks of groups left out stay 0
   std::vector<BuildingPeaks> peaks;
   EnergyAudit energy;
   SolverStatistics statistics;

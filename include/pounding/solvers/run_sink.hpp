@@ -14,7 +14,9 @@ namespace pounding::solvers {
 class RunSink {
  public:
   virtual ~RunSink() = default;
-  /// Once, before any row: the history's column names (`t_s` first, as History::columns).
+  /// Once, when the run records its first state (before any row or impact): the history's column
+  /// names (`t_s` first, as History::columns), empty for a run without history (no row or contact
+  /// force follows).
   virtual void history_columns(const std::vector<std::string>& columns) = 0;
   /// One history row, in time order: t (s) and the values of columns[1..].
   virtual void history_row(double t_s, const Eigen::VectorXd& values) = 0;
