@@ -863,14 +863,14 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   result_.start_s = t0;
   VectorXd y = options_.initial_state.size() ? options_.initial_state : VectorXd::Zero(system_.state_size());
   if (options_.max_step_s == 0.0) mode_bound_.emplace(system_, options_.overlap_allowance_m, options_.steps_per_period);
-  if (options_.max_step_s == 0.0 && options_.clearance_steps && !compliant()) {
-    clearance_.emplace(system_);
-    watched_.resize(count_);
-  }
 
   recorder_.sample(t0, y);
   start(t0, y);
   try {
+    if (options_.max_step_s == 0.0 && options_.clearance_steps && !compliant()) {
+      clearance_.emplace(system_);  // throws, as the exact path does, if a building's damping is not classical
+      watched_.resize(count_);
+    }
     integrator_ = make_integrator(*this, t0, y);
     begin_phase(t0, y);
     while (!stop_ && step_once()) {
