@@ -162,6 +162,7 @@ const std::vector<MethodInfo> kMethods = {
      .settings = {hold_rtol, modes_cutoff_hz},
      .factory = exact_factory,
      .steps_per_period = kExactSubdivisionsPerPeriod,
+     .clearance_steps = true,
      .reference = true},
 };
 

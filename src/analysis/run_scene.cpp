@@ -64,6 +64,8 @@ solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
   options.modes_cutoff_hz = used.modes_cutoff_hz;
+  // Clearance steps bound the kept modes' amplitudes only; a truncated run keeps the short steps.
+  options.clearance_steps = method.clearance_steps && used.modes_cutoff_hz == 0.0;
   return options;
 }
 
@@ -105,12 +107,17 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   if (!used.method->event_driven) {
     estimate.min_steps = std::ceil(estimate.duration_s / used.dt_s);
   } else {
-    // The automatic step bound is longest at rest (motion only adds modal amplitude).
+    // The automatic step bound is longest at rest (motion only adds modal amplitude); steps that
+    // far from contact span whole record intervals are bounded only by the record's samples.
     const solvers::EventOptions options = event_options(scene, used);
-    const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period,
-                                      options.modes_cutoff_hz);
-    estimate.min_steps =
-        std::ceil(estimate.duration_s / bound.max_step_s(Eigen::VectorXd::Zero(system.state_size())));
+    if (options.clearance_steps) {
+      estimate.min_steps = static_cast<double>(system.ground_motion().time_s().size() - 1);
+    } else {
+      const solvers::GapModeBound bound(system, options.overlap_allowance_m, options.steps_per_period,
+                                        options.modes_cutoff_hz);
+      estimate.min_steps =
+          std::ceil(estimate.duration_s / bound.max_step_s(Eigen::VectorXd::Zero(system.state_size())));
+    }
   }
   return estimate;
 }

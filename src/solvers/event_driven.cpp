@@ -14,6 +14,7 @@
 
 #include "pounding/input_error.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
+#include "pounding/solvers/gap_clearance.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
 #include "pounding/solvers/recorder.hpp"
 #include "pounding/solvers/root_finding.hpp"
@@ -272,6 +273,9 @@ class EventDrivenRun final : public OdeFunctions {
   void restart(double t, const VectorXd& y);
   void after_step(double t, const VectorXd& y);
   void update_step_bound(double t, const VectorXd& y);
+  /// The longest step from (t, y) in free flight over which every gap provably stays above
+  /// contact_tolerance_m (GapClearance), up to the next record sample.
+  double clear_step_s(double t, const VectorXd& y);
   void update_hold_records(double t, const VectorXd& y);
   void count_event(double t);
   void set_next_stop(double t);
@@ -294,6 +298,9 @@ class EventDrivenRun final : public OdeFunctions {
   RunResult result_;
   std::unique_ptr<Integrator> integrator_;
   std::optional<GapModeBound> mode_bound_;  // when options_.max_step_s is automatic
+  std::optional<GapClearance> clearance_;   // when options_.clearance_steps applies
+  std::vector<bool> watched_;               // scratch: the candidates clearance_ watches
+  double open_until_s_ = -kInfinity;        // clearance_ proved every gap open up to here
   double current_max_step_s_ = 0.0;
   double prev_t_ = 0.0;
   VectorXd prev_y_;
@@ -632,6 +639,7 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
   // zero and recovers within one step (or just grazes zero) does not; it shows as a minimum
   // inside the step: ġ < 0 at the start, ġ > 0 at the end. Examine that minimum on the
   // integrator's interpolant.
+  if (t <= open_until_s_) return std::nullopt;  // every gap stayed above the touch tolerance
   std::optional<Hidden> earliest;
   VectorXd at(system_.state_size());
   auto keep_earliest = [&](double t_hit, std::size_t i) {
@@ -721,6 +729,8 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
   // floor (where its root fires), from (g − floor) + ġτ + ½g̈τ² = 0, so that the interpolant
   // that locates the re-closure spans a short stretch of a smooth flight.
   double bound = options_.max_step_s > 0.0 ? options_.max_step_s : mode_bound_->max_step_s(y);
+  open_until_s_ = -kInfinity;
+  if (clearance_ && is_free_motion()) bound = std::max(bound, clear_step_s(t, y));
   VectorXd y_dot(system_.state_size());
   bool have_accel = false;
   for (std::size_t i = 0; i < count_; ++i) {
@@ -742,6 +752,23 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
     integrator_->set_max_step(bound);
     current_max_step_s_ = bound;
   }
+}
+
+double EventDrivenRun::clear_step_s(double t, const VectorXd& y) {
+  // Steps end at record samples, so the window ends at the next one and a_g is one straight
+  // piece over it: its largest |a_g| is at an end.
+  const std::optional<double> next = system_.ground_motion().next_sample_after(t);
+  if (!next) return 0.0;
+  const double horizon_s = *next - t;
+  const double peak_accel_mps2 =
+      std::max(std::abs(system_.ground_motion().accel_at(t)), std::abs(system_.ground_motion().accel_at(*next)));
+  for (std::size_t i = 0; i < count_; ++i) watched_[i] = modes_[i] == Mode::armed || modes_[i] == Mode::masked;
+  // Above contact_tolerance_m throughout, a gap can neither close nor touch inside the step.
+  const double open_s = clearance_->open_time_s(y, watched_, options_.contact_tolerance_m, horizon_s, peak_accel_mps2);
+  open_until_s_ = t + open_s;
+  // Open up to the stop time: a bound past it lets the stop time end the step (t + horizon may
+  // round below it).
+  return open_s >= horizon_s ? 2.0 * horizon_s : open_s;
 }
 
 void EventDrivenRun::note_overlaps(double t, const VectorXd& y) {
@@ -855,6 +882,10 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   recorder_.sample(t0, y);
   start(t0, y);
   try {
+    if (options_.max_step_s == 0.0 && options_.clearance_steps && !compliant()) {
+      clearance_.emplace(system_);  // throws, as the exact path does, if a building's damping is not classical
+      watched_.resize(count_);
+    }
     integrator_ = make_integrator(*this, t0, y);
     begin_phase(t0, y);
     while (!stop_ && step_once()) {

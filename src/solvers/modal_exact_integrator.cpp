@@ -49,6 +49,17 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
     }
   }
   contact_y_ = Eigen::VectorXd::Constant(system.state_size(), std::numeric_limits<double>::quiet_NaN());
+  for (int b = 0; b < 2; ++b) {
+    contact_q_[b].resize(contact_shapes_[b].rows());
+    contact_q_rate_[b].resize(contact_shapes_[b].rows());
+  }
+  for (ModalState* modal : {&segment_.start, &end_, &probe_, &probe_b_}) {
+    modal->eta.resize(modes);
+    modal->eta_rate.resize(modes);
+  }
+  roots_start_.resize(functions.root_count());
+  roots_end_.resize(functions.root_count());
+  roots_probe_.resize(functions.root_count());
   restart(t0, y0);
 }
 
@@ -62,18 +73,17 @@ void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
     return;
   }
   const int n = system_.dof();
-  ModalState modal{Eigen::VectorXd(omega_.size()), Eigen::VectorXd(omega_.size())};
+  ModalState& modal = segment_.start;
   for (int b = 0; b < 2; ++b) {
     const int size = bases_[b].size(), dofs = system_.building(b).dof();
-    modal.eta.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(dof_offset_[b], dofs);
-    modal.eta_rate.segment(mode_offset_[b], size) = bases_[b].projection * y.segment(n + dof_offset_[b], dofs);
+    modal.eta.segment(mode_offset_[b], size).noalias() = bases_[b].projection * y.segment(dof_offset_[b], dofs);
+    modal.eta_rate.segment(mode_offset_[b], size).noalias() = bases_[b].projection * y.segment(n + dof_offset_[b], dofs);
   }
   segment_.t_start_s = t;
-  segment_.start = std::move(modal);
   end_t_s_ = std::numeric_limits<double>::quiet_NaN();
   state_ = y;
   t_s_ = t;
-  roots_start_ = roots_at(t, y);
+  roots_at(t, y, roots_start_);
 }
 
 void ModalExactIntegrator::set_max_step(double h_s) {
@@ -92,7 +102,7 @@ void ModalExactIntegrator::begin_segment(double t, double t_end) {
   if (t == end_t_s_) {
     segment_.start = end_;  // the last step's end, already evaluated
   } else if (t != segment_.t_start_s) {
-    segment_.start = modal_at(t);  // on the last segment's load
+    segment_.start = modal_at(t, probe_);  // on the last segment's load
   }
   segment_.t_start_s = t;
   const auto& times = system_.ground_motion().time_s();
@@ -107,17 +117,18 @@ void ModalExactIntegrator::begin_segment(double t, double t_end) {
   segment_.accel_mps2 = system_.ground_motion().accel_at(t);
 }
 
-const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(double tau_s, Buildings buildings) {
-  // Most recently used first: the step length, then the recorder's Gauss points inside it.
-  auto slot = std::find_if(cache_.begin(), cache_.end(), [&](const CachedSteps& c) { return c.tau_s == tau_s; });
-  if (slot == cache_.end()) {
-    slot = cache_.end() - 1;  // the least recently used
+const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(StepCache& cache, double tau_s, double same_s,
+                                                                    Buildings buildings) {
+  auto slot = std::find_if(cache.begin(), cache.end(),
+                           [&](const CachedSteps& c) { return std::abs(c.tau_s - tau_s) <= same_s; });
+  if (slot == cache.end()) {
+    slot = cache.end() - 1;  // the least recently used
     slot->tau_s = tau_s;
     slot->filled = {false, false};
     slot->steps.resize(static_cast<std::size_t>(omega_.size()));
   }
-  std::rotate(cache_.begin(), slot, slot + 1);
-  CachedSteps& entry = cache_.front();
+  std::rotate(cache.begin(), slot, slot + 1);
+  CachedSteps& entry = cache.front();
   for (int b = 0; b < 2; ++b) {
     if (!buildings[b] || entry.filled[b]) continue;
     for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
@@ -128,15 +139,24 @@ const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(double tau_s
   return entry.steps;
 }
 
-ModalExactIntegrator::ModalState ModalExactIntegrator::modal_at(double t, Buildings buildings) {
+ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_at(double t, ModalState& modal, Buildings buildings,
+                                                                 StepCache* cache) {
   const double tau = t - segment_.t_start_s;
-  const std::vector<OscillatorStep>& steps = steps_over(tau, buildings);
-  const Eigen::Index n = omega_.size();
-  ModalState modal{Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN()),
-                   Eigen::VectorXd::Constant(n, std::numeric_limits<double>::quiet_NaN()),
-                   segment_.accel_mps2 + segment_.slope_mps3 * tau, segment_.slope_mps3};
+  // A step's τ = t_end − t is the difference of two rounded times: the same record interval or
+  // step bound comes out a few ulps of t apart from step to step. At step ends those τ count as
+  // one length (the state shifts in time by 4 ulps of t, below the recurrence's own round-off),
+  // so they share coefficients instead of each costing a sin, cos and exp per mode; probes inside
+  // a step (root polishing) get exactly their own τ.
+  const double same_s = cache ? 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), tau) : 0.0;
+  const std::vector<OscillatorStep>& steps = steps_over(cache ? *cache : probe_cache_, tau, same_s, buildings);
+  modal.accel_mps2 = segment_.accel_mps2 + segment_.slope_mps3 * tau;
+  modal.accel_rate_mps3 = segment_.slope_mps3;
   for (int b = 0; b < 2; ++b) {
-    if (!buildings[b]) continue;
+    if (!buildings[b]) {
+      modal.eta.segment(mode_offset_[b], bases_[b].size()).setConstant(std::numeric_limits<double>::quiet_NaN());
+      modal.eta_rate.segment(mode_offset_[b], bases_[b].size()).setConstant(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
     for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
       const OscillatorStep& s = steps[static_cast<std::size_t>(k)];
       // The modal load is −Γ a_g(t) = −Γ (accel + slope τ).
@@ -165,8 +185,9 @@ const Eigen::VectorXd& ModalExactIntegrator::contact_state(const ModalState& mod
   const int n = system_.dof();
   for (int b = 0; b < 2; ++b) {
     const int size = bases_[b].size();
-    Eigen::VectorXd q = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
-    Eigen::VectorXd q_rate = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size);
+    Eigen::VectorXd &q = contact_q_[b], &q_rate = contact_q_rate_[b];
+    q.noalias() = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
+    q_rate.noalias() = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size);
     if (truncated_) {
       q += modal.accel_mps2 * contact_static_[b];
       q_rate += modal.accel_rate_mps3 * contact_static_[b];
@@ -180,8 +201,7 @@ const Eigen::VectorXd& ModalExactIntegrator::contact_state(const ModalState& mod
   return contact_y_;
 }
 
-Eigen::VectorXd ModalExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
-  Eigen::VectorXd g(functions_.root_count());
+const Eigen::VectorXd& ModalExactIntegrator::roots_at(double t, const Eigen::VectorXd& y, Eigen::VectorXd& g) {
   functions_.roots(t, y, g);
   ++counters_.root_evaluations;
   if (!g.allFinite()) throw std::logic_error("exact path: a root function reads the state outside the contact floors");
@@ -194,23 +214,22 @@ StepOutcome ModalExactIntegrator::step(double t_final) {
   begin_segment(t_s_, t_end);
   ++counters_.steps;
 
-  end_ = modal_at(t_end);
   end_t_s_ = std::numeric_limits<double>::quiet_NaN();
-  const ModalState& end = end_;
-  const Eigen::VectorXd roots_end = roots_at(t_end, contact_state(end));
+  const ModalState& end = modal_at(t_end, end_, {true, true}, &step_cache_);
+  const Eigen::VectorXd& roots_end = roots_at(t_end, contact_state(end), roots_end_);
   // Closing crossings (+ to − or onto 0), the direction the loop asks for.
   double t_root = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < roots_end.size(); ++i) {
     if (!(roots_start_[i] > 0.0 && roots_end[i] <= 0.0)) continue;
-    const double b = find_root([&](double t) { return roots_at(t, contact_state(modal_at(t)))[i]; }, t_s_, t_end,
-                               roots_start_[i], roots_end[i]);
+    const double b = find_root([&](double t) { return roots_at(t, contact_state(modal_at(t, probe_)), roots_probe_)[i]; },
+                               t_s_, t_end, roots_start_[i], roots_end[i]);
     t_root = std::min(t_root, b);  // the root function has reached ≤ 0 there
   }
 
   roots_found_.assign(static_cast<std::size_t>(roots_end.size()), 0);
   if (t_root < std::numeric_limits<double>::infinity()) {
-    physical(modal_at(t_root), state_);
-    const Eigen::VectorXd roots_here = roots_at(t_root, state_);
+    physical(modal_at(t_root, probe_), state_);
+    const Eigen::VectorXd& roots_here = roots_at(t_root, state_, roots_probe_);
     for (Eigen::Index i = 0; i < roots_here.size(); ++i) {
       if (roots_start_[i] > 0.0 && roots_here[i] <= 0.0) roots_found_[static_cast<std::size_t>(i)] = -1;
     }
@@ -228,15 +247,15 @@ StepOutcome ModalExactIntegrator::step(double t_final) {
   return {StepKind::stop_time, t_end, {}};
 }
 
-ModalExactIntegrator::ModalState ModalExactIntegrator::modal_in_step(double t) {
+const ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_in_step(double t, ModalState& scratch) {
   if (t == segment_.t_start_s) return segment_.start;
   if (t == end_t_s_) return end_;
-  return modal_at(t);
+  return modal_at(t, scratch);
 }
 
 std::optional<StretchEnergy> ModalExactIntegrator::energy_between(double t_a, double t_b) {
   if (held_phase_ || truncated_) return std::nullopt;
-  const ModalState a = modal_in_step(t_a), b = modal_in_step(t_b);
+  const ModalState &a = modal_in_step(t_a, probe_), &b = modal_in_step(t_b, probe_b_);
   const double accel_a = segment_.accel_mps2 + segment_.slope_mps3 * (t_a - segment_.t_start_s);
   const double accel_b = segment_.accel_mps2 + segment_.slope_mps3 * (t_b - segment_.t_start_s);
   StretchEnergy energy;
@@ -260,7 +279,7 @@ void ModalExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) 
   if (held_phase_) {
     held_->interpolate(t, y);
   } else {
-    physical(modal_at(t), y);
+    physical(modal_at(t, probe_), y);
   }
 }
 
@@ -271,7 +290,7 @@ void ModalExactIntegrator::interpolate_components(double t, const std::vector<in
   const int n = system_.dof();
   Buildings needed{false, false};  // a floor's peak needs its own building's modes only
   for (int index : indices) needed[(index >= n ? index - n : index) >= dof_offset_[1] ? 1 : 0] = true;
-  const ModalState modal = modal_at(t, needed);
+  const ModalState& modal = modal_at(t, probe_, needed);
   for (int index : indices) {
     const bool rate = index >= n;
     const int dof = rate ? index - n : index;

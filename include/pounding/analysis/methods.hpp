@@ -137,6 +137,7 @@ struct MethodInfo {
   /// Event-driven: the integrator with `used`'s settings on `system`'s state. Null for hht.
   solvers::IntegratorFactory (*factory)(const UsedSettings& used, const dynamics::CoupledSystem& system) = nullptr;
   double steps_per_period = 0.0;  // root bracketing of event-driven runs; 0: EventOptions' default
+  bool clearance_steps = false;   // EventOptions::clearance_steps: longer steps far from contact
   bool reference = false;         // the study's reference (no ladder of its own)
   Setting ladder_setting = Setting::rtol;
   std::vector<double> ladder{}, quick_ladder{};  // the study's settings (quick: `study --quick`)

@@ -61,6 +61,13 @@ struct EventOptions {
   /// quasi-static (the exact path's truncation, ExactSettings::modes_cutoff_hz), so the automatic
   /// step bound counts those modes only. 0: every mode.
   double modes_cutoff_hz = 0.0;
+  /// With the automatic bound and the impulse law: in free flight, a step may also reach as far
+  /// as every gap provably stays above contact_tolerance_m (GapClearance, from the modal
+  /// amplitudes), up to the next record sample, so a step far from contact spans a whole record
+  /// interval and no gap can cross, dip below zero or touch unseen inside it. For integrators
+  /// whose energy_between is a closed form (the exact path's): the recorder's Gauss quadrature
+  /// of the energy integrals needs short steps.
+  bool clearance_steps = false;
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
   OutputSelection outputs;             // what the run records besides impacts and energy; default: all
   std::vector<int> history_floors;     // levels (1-based) to write; empty: every level

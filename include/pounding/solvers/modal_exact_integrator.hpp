@@ -87,18 +87,25 @@ class ModalExactIntegrator final : public Integrator {
     std::array<bool, 2> filled{false, false};
     std::vector<OscillatorStep> steps;
   };
+  /// The most recently used τ first; at step ends a τ within round-off of a kept one reuses it
+  /// (see modal_at). Two caches, so the probes inside a step (root polishing, the recorder's
+  /// points) do not evict the step lengths that recur from step to step.
+  using StepCache = std::array<CachedSteps, 4>;
   using Buildings = std::array<bool, 2>;  // which buildings' modes to evaluate
 
   void begin_segment(double t, double t_end);
-  const std::vector<OscillatorStep>& steps_over(double tau_s, Buildings buildings);
-  /// The modes of `buildings` at t within the current step (the others NaN).
-  ModalState modal_at(double t, Buildings buildings = {true, true});
-  /// modal_at, reusing the step's start and end states.
-  ModalState modal_in_step(double t);
+  /// Every mode's step over τ from `cache` (one within same_s of τ), computed for `buildings` if missing.
+  const std::vector<OscillatorStep>& steps_over(StepCache& cache, double tau_s, double same_s, Buildings buildings);
+  /// Writes the modes of `buildings` at t within the current step into `modal` (the others
+  /// NaN); returns `modal`. `cache`: the step-length cache, for a step's end (null: a probe).
+  ModalState& modal_at(double t, ModalState& modal, Buildings buildings = {true, true}, StepCache* cache = nullptr);
+  /// modal_at, reusing the step's start and end states (else written into `scratch`).
+  const ModalState& modal_in_step(double t, ModalState& scratch);
   void physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const;
   /// y at the contact floors only (the other components NaN), for the root functions.
   const Eigen::VectorXd& contact_state(const ModalState& modal);
-  Eigen::VectorXd roots_at(double t, const Eigen::VectorXd& y);
+  /// The root functions at (t, y) into `g`; returns it.
+  const Eigen::VectorXd& roots_at(double t, const Eigen::VectorXd& y, Eigen::VectorXd& g);
 
   OdeFunctions& functions_;
   const dynamics::CoupledSystem& system_;
@@ -116,7 +123,11 @@ class ModalExactIntegrator final : public Integrator {
   std::array<Eigen::VectorXd, 2> contact_static_;  // the same rows of the static correction R
   bool truncated_ = false;                         // some mode is left out
   Eigen::VectorXd contact_y_;  // NaN outside the contact floors
-  std::array<CachedSteps, 8> cache_;  // most recently used first
+  StepCache step_cache_, probe_cache_;
+  // Scratch, sized once, so that a step allocates nothing.
+  std::array<Eigen::VectorXd, 2> contact_q_, contact_q_rate_;
+  ModalState probe_, probe_b_;
+  Eigen::VectorXd roots_end_, roots_probe_;
 
   Segment segment_;
   ModalState end_;                    // the modal state at the last step's end ...
