@@ -226,11 +226,12 @@ class EventDrivenRun final : public OdeFunctions {
 
   void start(double t, VectorXd& y);
   bool step_once();
-  std::optional<Hidden> hidden_contact(double t, const VectorXd& y);
+  /// Uses the gaps at the step's two ends, prev_gaps_ and gaps_.
+  std::optional<Hidden> hidden_contact(double t);
   std::optional<double> reclosure(std::size_t i, double t, const contact::GapState& start,
                                   const contact::GapState& end);
   void settle_holds(double t, const VectorXd& y);
-  void note_overlaps(double t, const VectorXd& y);
+  void note_overlaps(double t);
   void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
                     const std::vector<std::size_t>& released, const char* release_reason);
   FloorContacts floor_contacts(const VectorXd& y, int level, const std::set<std::size_t>& fired) const;
@@ -271,11 +272,18 @@ class EventDrivenRun final : public OdeFunctions {
   /// Step limits and bookkeeping for a new smooth stretch starting at (t, y).
   void begin_phase(double t, const VectorXd& y);
   void restart(double t, const VectorXd& y);
+  /// The bookkeeping after a step that ends at (t, y) without an event; gaps_ holds y's gaps.
   void after_step(double t, const VectorXd& y);
-  void update_step_bound(double t, const VectorXd& y);
+  /// `gaps`: every candidate's gap in state y.
+  void update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps);
   /// The longest step from (t, y) in free flight over which every gap provably stays above
   /// contact_tolerance_m (GapClearance), up to the next record sample.
   double clear_step_s(double t, const VectorXd& y);
+  /// Every candidate's gap in state y, into `gaps`.
+  void evaluate_gaps(const VectorXd& y, std::vector<contact::GapState>& gaps) const {
+    gaps.resize(count_);
+    for (std::size_t i = 0; i < count_; ++i) gaps[i] = system_.gap(y, i);
+  }
   void update_hold_records(double t, const VectorXd& y);
   void count_event(double t);
   void set_next_stop(double t);
@@ -304,6 +312,9 @@ class EventDrivenRun final : public OdeFunctions {
   double current_max_step_s_ = 0.0;
   double prev_t_ = 0.0;
   VectorXd prev_y_;
+  // Every candidate's gap at prev_y_ and at the end of the step in progress: evaluated once per
+  // step for the checks that read them all (each gap takes the slabs' exact rotation).
+  std::vector<contact::GapState> prev_gaps_, gaps_;
   std::deque<double> recent_events_;
   bool stop_ = false;
 };
@@ -326,7 +337,8 @@ void EventDrivenRun::accumulate_counters() {
 void EventDrivenRun::begin_phase(double t, const VectorXd& y) {
   current_max_step_s_ = -1.0;  // force update_step_bound to hand the integrator its bound
   set_next_stop(t);
-  update_step_bound(t, y);
+  evaluate_gaps(y, prev_gaps_);
+  update_step_bound(t, y, prev_gaps_);
   prev_t_ = t;
   prev_y_ = y;
 }
@@ -634,7 +646,7 @@ void EventDrivenRun::resolve_floor(double t, VectorXd& y, int level, const std::
   }
 }
 
-std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, const VectorXd& y) {
+std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t) {
   // CVODE sees a root only where a gap changes sign between step ends. A gap that dips below
   // zero and recovers within one step (or just grazes zero) does not; it shows as a minimum
   // inside the step: ġ < 0 at the start, ġ > 0 at the end. Examine that minimum on the
@@ -646,7 +658,7 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t, c
     if (!earliest || t_hit < earliest->t_s) earliest = Hidden{t_hit, i};
   };
   for (std::size_t i = 0; i < count_; ++i) {
-    const contact::GapState s0 = system_.gap(prev_y_, i), s1 = system_.gap(y, i);
+    const contact::GapState &s0 = prev_gaps_[i], &s1 = gaps_[i];
     if (modes_[i] == Mode::masked) {
       if (const std::optional<double> t_hit = reclosure(i, t, s0, s1)) keep_earliest(*t_hit, i);
       continue;
@@ -723,7 +735,7 @@ std::optional<double> EventDrivenRun::reclosure(std::size_t i, double t, const c
   return at_floor ? std::optional<double>(t) : std::nullopt;
 }
 
-void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
+void EventDrivenRun::update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps) {
   // After an impact the next flight of that pair can be far shorter than the last step. While it
   // is masked, bound the step by a quarter of the predicted time until its gap reaches its mask
   // floor (where its root fires), from (g − floor) + ġτ + ½g̈τ² = 0, so that the interpolant
@@ -735,7 +747,7 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y) {
   bool have_accel = false;
   for (std::size_t i = 0; i < count_; ++i) {
     if (modes_[i] != Mode::masked) continue;
-    const contact::GapState s = system_.gap(y, i);
+    const contact::GapState& s = gaps[i];
     const double height = s.gap_m - mask_floor_m_[i];
     if (!s.on_segment() || !(height > 0.0) || std::isinf(height)) continue;
     if (!have_accel) {
@@ -771,22 +783,22 @@ double EventDrivenRun::clear_step_s(double t, const VectorXd& y) {
   return open_s >= horizon_s ? 2.0 * horizon_s : open_s;
 }
 
-void EventDrivenRun::note_overlaps(double t, const VectorXd& y) {
+void EventDrivenRun::note_overlaps(double t) {
   for (std::size_t i = 0; i < count_; ++i) {
     if (modes_[i] == Mode::held) continue;  // a held gap's drift is reported with its hold
     if (modes_[i] == Mode::compliant || modes_[i] == Mode::released) continue;  // penetration is the law's
-    const contact::GapState s = system_.gap(y, i);
+    const contact::GapState& s = gaps_[i];
     if (s.on_segment()) result_.statistics.note_overlap(s.gap_m, t, i);
   }
 }
 
 void EventDrivenRun::after_step(double t, const VectorXd& y) {
-  note_overlaps(t, y);
+  note_overlaps(t);
   for (std::size_t i = 0; i < count_; ++i) {
-    if (modes_[i] == Mode::masked && system_.gap(y, i).gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
+    if (modes_[i] == Mode::masked && gaps_[i].gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
   }
   update_hold_records(t, y);
-  update_step_bound(t, y);
+  update_step_bound(t, y, gaps_);
 }
 
 void EventDrivenRun::update_hold_records(double t, const VectorXd& y) {
@@ -812,6 +824,7 @@ bool EventDrivenRun::step_once() {
   const double t = outcome.t_s;
   VectorXd y = integrator_->state();
   if (diverged(t, y, result_)) return false;
+  evaluate_gaps(y, gaps_);
   auto interpolated = [&](double time) {
     VectorXd state(system_.state_size());
     integrator_->interpolate(time, state);
@@ -822,7 +835,7 @@ bool EventDrivenRun::step_once() {
     integrator_->interpolate_components(time, indices, state);
   };
 
-  if (const std::optional<Hidden> hidden = hidden_contact(t, y)) {
+  if (const std::optional<Hidden> hidden = hidden_contact(t)) {
     ++result_.statistics.interpolant_events;
     VectorXd y_event = interpolated(hidden->t_s);
     recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power,
@@ -861,6 +874,7 @@ bool EventDrivenRun::step_once() {
   after_step(t, y);
   prev_t_ = t;
   prev_y_ = y;
+  std::swap(prev_gaps_, gaps_);
   if (result_.statistics.steps + integrator_->counters().steps > options_.max_steps) {
     result_.status = RunStatus::step_limit;
     result_.status_detail = fmt::format("more than {} steps by t = {} s", options_.max_steps, t);

@@ -30,6 +30,8 @@ using LinearSolver = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, Lin
 
 /// @throws std::runtime_error if creation fails.
 Context make_context();
+/// A serial vector whose element-wise operations (and those of its clones) are compiled with this
+/// library rather than taken from the SUNDIALS build: same results, several times faster.
 Vector make_vector(long length, SUNContext context);
 /// A dense n×n matrix and the dense direct solver for it.
 Matrix make_dense_matrix(long n, SUNContext context);
