@@ -64,8 +64,7 @@ solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
   options.modes_cutoff_hz = used.modes_cutoff_hz;
-  // Clearance steps bound the kept modes' amplitudes only; a truncated run keeps the short steps.
-  options.clearance_steps = method.clearance_steps && used.modes_cutoff_hz == 0.0;
+  options.clearance_steps = method.clearance_steps;
   return options;
 }
 

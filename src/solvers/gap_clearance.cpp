@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "pounding/model/modal_basis.hpp"
 
@@ -98,6 +99,10 @@ double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, con
     open_s = low_s;
   }
   return open_s;
+}
+
+double GapClearance::highest_frequency_hz() const {
+  return std::max(buildings_[0].omega_rad_s.maxCoeff(), buildings_[1].omega_rad_s.maxCoeff()) / (2.0 * std::numbers::pi);
 }
 
 }  // namespace pounding::solvers

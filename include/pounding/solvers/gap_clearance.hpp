@@ -35,6 +35,9 @@ class GapClearance {
   ///   acts in the window (free flight).
   double open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, const std::vector<bool>& watched,
                      double clearance_m, double horizon_s, double peak_accel_mps2) const;
+  /// The highest natural frequency (Hz) of either building: the bound covers every mode, so a
+  /// run that drops modes above a lower cut-off (their quasi-static part is not bounded) must not use it.
+  double highest_frequency_hz() const;
 
  private:
   struct BuildingModes {
