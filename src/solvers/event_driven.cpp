@@ -902,6 +902,8 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
       // A truncated run's dropped modes move as R a_g, which the bound does not cover.
       const double cutoff_hz = options_.modes_cutoff_hz;
       if (cutoff_hz > 0.0 && cutoff_hz <= clearance_->highest_frequency_hz()) clearance_.reset();
+      // Its steps may span whole record intervals: the peaks are located on quarter periods.
+      if (clearance_) recorder_.set_peak_step(clearance_->shortest_damped_period_s() / 4.0);
     }
     integrator_ = make_integrator(*this, t0, y);
     begin_phase(t0, y);

@@ -18,6 +18,12 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
     const model::ModalBasis basis = model::modal_basis(system.building(b), system.influence().segment(modes.offset, n));
     modes.projection = basis.projection;
     modes.omega_rad_s = basis.omega_rad_s;
+    for (Eigen::Index k = 0; k < basis.omega_rad_s.size(); ++k) {
+      const double zeta = basis.damping_ratio[k];
+      if (zeta >= 1.0) continue;
+      const double period_s = 2.0 * std::numbers::pi / (basis.omega_rad_s[k] * std::sqrt(1.0 - zeta * zeta));
+      shortest_damped_period_s_ = std::min(shortest_damped_period_s_, period_s);
+    }
     modes.participation = basis.participation.cwiseAbs();
     for (const contact::Candidate& c : candidates) modes.floors.push_back(c.floors[b]);
     std::sort(modes.floors.begin(), modes.floors.end());

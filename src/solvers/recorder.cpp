@@ -523,11 +523,20 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     }
   }
   if (!peaks) return;
-  measure(t_b, y_b, outputs_.acceleration_peaks, outputs_.drift_peaks, last_);
-  if (outputs_.displacement_peaks) locate_peaks(t_a, t_b, at, components_at);
-  if (outputs_.drift_peaks) locate_drift_peaks(t_a, t_b, at, components_at);
-  if (outputs_.acceleration_peaks) locate_acceleration_peaks(t_a, t_b, at);
-  update_peaks(last_);
+  // Turning points are found from the rates at the piece ends, so a piece must be too short for
+  // a rate to change sign twice unseen (peak_step_s_).
+  const double length_s = t_b - t_a;
+  const int pieces = peak_step_s_ > 0.0 ? std::max(1, static_cast<int>(std::ceil(length_s / peak_step_s_))) : 1;
+  for (int k = 1; k <= pieces; ++k) {
+    const double s_a = t_a + length_s * (k - 1) / pieces;
+    const double s_b = k == pieces ? t_b : t_a + length_s * k / pieces;
+    if (k > 1) std::swap(start_, last_);
+    measure(s_b, k == pieces ? y_b : at(s_b), outputs_.acceleration_peaks, outputs_.drift_peaks, last_);
+    if (outputs_.displacement_peaks) locate_peaks(s_a, s_b, at, components_at);
+    if (outputs_.drift_peaks) locate_drift_peaks(s_a, s_b, at, components_at);
+    if (outputs_.acceleration_peaks) locate_acceleration_peaks(s_a, s_b, at);
+    update_peaks(last_);
+  }
 }
 
 void Recorder::stream_new_impacts(const std::vector<ImpactRecord>& impacts) {

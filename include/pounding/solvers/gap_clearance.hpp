@@ -17,6 +17,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include <limits>
+
 #include "pounding/dynamics/coupled_system.hpp"
 
 namespace pounding::solvers {
@@ -38,6 +40,9 @@ class GapClearance {
   /// The highest natural frequency (Hz) of either building: the bound covers every mode, so a
   /// run that drops modes above a lower cut-off (their quasi-static part is not bounded) must not use it.
   double highest_frequency_hz() const;
+  /// The shortest damped period (s) among both buildings' oscillating modes (ζ < 1; infinity if
+  /// none oscillates).
+  double shortest_damped_period_s() const { return shortest_damped_period_s_; }
 
  private:
   struct BuildingModes {
@@ -59,6 +64,7 @@ class GapClearance {
 
   std::array<BuildingModes, 2> buildings_;
   std::vector<Pair> pairs_;
+  double shortest_damped_period_s_ = std::numeric_limits<double>::infinity();
   const dynamics::CoupledSystem& system_;
   // Scratch for open_time_s (no allocation per call).
   mutable std::array<Eigen::VectorXd, 2> amplitude_, eta_, eta_rate_, rate_bound_, rate_growth_, displacement_bound_,

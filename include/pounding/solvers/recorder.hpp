@@ -78,6 +78,10 @@ class Recorder {
                const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
                const std::optional<StretchEnergy>& closed_form = std::nullopt,
                const ComponentsAt& components_at = {});
+  /// Peaks are located on pieces of a stretch no longer than this (s; 0: whole stretches), for
+  /// paths whose steps may span more than a quarter of the shortest oscillation period (the exact
+  /// path's clearance steps): within a quarter period no rate changes sign twice unseen.
+  void set_peak_step(double peak_step_s) { peak_step_s_ = peak_step_s; }
   void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
   /// Passes the impacts appended to `impacts` since the last call to the sink (if any). Call it
   /// once an event's records are final.
@@ -155,6 +159,7 @@ class Recorder {
   RunSink* sink_;
   bool started_ = false;                // the sink has its columns
   std::optional<double> last_row_t_s_;  // a row is written once per instant
+  double peak_step_s_ = 0.0;
   Instant start_, last_;  // the stretch being advanced starts at start_; last_: the latest instant
   // Scratch space of the hot path, sized once (no allocation per step).
   mutable dynamics::VectorXd y_dot_, y_ddot_;                // absolute_accelerations, free_acceleration_rates
