@@ -8,7 +8,7 @@
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/dynamics/modal_system.hpp"
 #include "pounding/input_error.hpp"
-#include "pounding/model/modal.hpp"
+#include "pounding/model/mode.hpp"
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/exact_integrator.hpp"
@@ -424,7 +424,7 @@ ComponentAtol component_atol(const dynamics::CoupledSystem& system, double atol_
     double farthest_m = 0.0;
     for (const model::Point2& corner : d.slab.vertices()) farthest_m = std::max(farthest_m, (corner - d.centre_of_mass).norm());
     result.rotation_rad[static_cast<std::size_t>(b)] = atol_m / farthest_m;
-    lowest_omega = std::min(lowest_omega, model::modal_analysis(system.building(b)).front().omega_rad_s);
+    lowest_omega = std::min(lowest_omega, system.building(b).modes.front().omega_rad_s);
   }
   result.rate_per_s = lowest_omega;
   return result;

@@ -24,7 +24,7 @@ std::vector<BuildingSummary> summarise_buildings(const Scene& scene) {
     summary.frame_factor = building.frame_factor;
     summary.frame_factor_solved = definition.uses_columns() && definition.target_period_s.has_value();
     summary.rayleigh = building.rayleigh;
-    summary.modes = model::modal_analysis(building);
+    summary.modes = std::move(building.modes);
     summaries.push_back(std::move(summary));
   }
   return summaries;

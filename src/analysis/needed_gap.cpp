@@ -9,7 +9,7 @@
 
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/input_error.hpp"
-#include "pounding/model/modal.hpp"
+#include "pounding/model/mode.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
@@ -158,7 +158,7 @@ std::vector<FacingPoint> facing_points(const CoupledSystem& system, const std::v
 }
 
 GapMode gap_mode(const model::Building& building) {
-  const std::vector<model::Mode> modes = model::modal_analysis(building);
+  const std::vector<model::Mode>& modes = building.modes;
   std::size_t k = 0;
   while (k < modes.size() && modes[k].dominant != model::ModeComponent::x) ++k;
   if (k == modes.size()) k = 0;  // no mode dominated by x: the fundamental one

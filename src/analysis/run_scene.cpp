@@ -6,7 +6,7 @@
 
 #include "pounding/analysis/contact_laws.hpp"
 #include "pounding/input_error.hpp"
-#include "pounding/model/modal.hpp"
+#include "pounding/model/mode.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
 #include "pounding/solvers/hht.hpp"
@@ -73,7 +73,7 @@ solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used
 void check_modes_kept(const Scene& scene, const UsedSettings& used, const dynamics::CoupledSystem& system) {
   if (used.modes_cutoff_hz == 0.0) return;
   for (int b = 0; b < 2; ++b) {
-    const double first_hz = model::modal_analysis(system.building(b)).front().omega_rad_s / (2.0 * std::numbers::pi);
+    const double first_hz = system.building(b).modes.front().omega_rad_s / (2.0 * std::numbers::pi);
     if (first_hz < used.modes_cutoff_hz) continue;
     throw InputError("solver.modes_cutoff_hz", format_value(used.modes_cutoff_hz),
                      fmt::format("keeps no mode of {} (its first mode is at {:.4g} Hz)",

@@ -8,7 +8,7 @@
 #include <map>
 
 #include "pounding/analysis/run_scene.hpp"
-#include "pounding/model/modal.hpp"
+#include "pounding/model/mode.hpp"
 #include "pounding/solvers/run_budget.hpp"
 #include "pounding/input_error.hpp"
 
@@ -166,8 +166,6 @@ void add_truncation_ladder(const Scene& scene, StudyResult& study, Timed& timed,
   exact.solver = with_method(scene.solver, reference_method().name);
   exact.solver.not_used.clear();
   const dynamics::CoupledSystem system = build_system(exact);
-  std::array<std::vector<model::Mode>, 2> modes{model::modal_analysis(system.building(0)),
-                                                model::modal_analysis(system.building(1))};
   for (double cutoff_hz : truncation_ladder()) {
     if (solvers::interrupt_requested()) {
       study.interrupted = true;
@@ -177,7 +175,7 @@ void add_truncation_ladder(const Scene& scene, StudyResult& study, Timed& timed,
     row.cutoff_hz = cutoff_hz;
     std::array<int, 2> kept{0, 0};
     for (int b = 0; b < 2; ++b) {
-      for (const model::Mode& mode : modes[b]) {
+      for (const model::Mode& mode : system.building(b).modes) {
         const bool keep = cutoff_hz == 0.0 || mode.omega_rad_s / (2.0 * std::numbers::pi) < cutoff_hz;
         kept[b] += keep ? 1 : 0;
         ++row.modes_total;

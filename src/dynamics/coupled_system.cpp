@@ -46,6 +46,13 @@ void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) 
   y_dot.head(dof_) = y.tail(dof_);
 }
 
+const model::ModalBasis& CoupledSystem::modal_basis(int b) const {
+  std::call_once(modal_bases_->built[b], [&] {
+    modal_bases_->basis[b] = model::modal_basis(buildings_[b], influence_.segment(offset_[b], buildings_[b].dof()));
+  });
+  return modal_bases_->basis[b];
+}
+
 void CoupledSystem::external_force(double t, Eigen::Ref<VectorXd> force) const {
   force = -ground_motion_.accel_at(t) * mass_.cwiseProduct(influence_);
 }

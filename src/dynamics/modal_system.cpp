@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "pounding/model/modal.hpp"
+#include "pounding/model/mode.hpp"
 
 namespace pounding::dynamics {
 namespace {
@@ -25,7 +25,7 @@ ModalSystem::ModalSystem(const CoupledSystem& system) : system_(system) {
   for (int b = 0; b < 2; ++b) {
     const model::Building& building = system.building(b);
     const int offset = system.floor_index(b, 1), size = building.dof();
-    const std::vector<model::Mode> modes = model::modal_analysis(building);
+    const std::vector<model::Mode>& modes = building.modes;
     MatrixXd& shapes = shapes_[b];
     shapes.resize(size, size);
     for (int i = 0; i < size; ++i) {

@@ -265,10 +265,10 @@ Building make_building(const BuildingDefinition& definition) {
   }
   require_positive_definite(building.stiffness, definition);
 
-  const std::vector<Mode> modes = modal_analysis(building.mass_diagonal, building.stiffness);
+  building.modes = modal_analysis(building.mass_diagonal, building.stiffness);
   const auto [i, j] = definition.damping.modes;
-  building.rayleigh =
-      fit_rayleigh(modes[i - 1].omega_rad_s, modes[j - 1].omega_rad_s, definition.damping.ratio);
+  building.rayleigh = fit_rayleigh(building.modes[i - 1].omega_rad_s, building.modes[j - 1].omega_rad_s,
+                                   definition.damping.ratio);
   building.damping = building.rayleigh.a0_per_s * Eigen::MatrixXd(building.mass_diagonal.asDiagonal()) +
                      building.rayleigh.a1_s * building.stiffness;
   return building;

@@ -3,12 +3,10 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "pounding/model/modal.hpp"
-
 namespace pounding::model {
 
 ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::VectorXd>& influence) {
-  const std::vector<Mode> modes = modal_analysis(building);
+  const std::vector<Mode>& modes = building.modes;
   const auto n = static_cast<Eigen::Index>(modes.size());
   ModalBasis basis;
   basis.omega_rad_s.resize(n);

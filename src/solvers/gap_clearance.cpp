@@ -15,7 +15,7 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
     BuildingModes& modes = buildings_[b];
     const int n = system.building(b).dof();
     modes.offset = system.floor_index(b, 1);
-    const model::ModalBasis basis = model::modal_basis(system.building(b), system.influence().segment(modes.offset, n));
+    const model::ModalBasis& basis = system.modal_basis(b);
     modes.projection = basis.projection;
     modes.omega_rad_s = basis.omega_rad_s;
     for (Eigen::Index k = 0; k < basis.omega_rad_s.size(); ++k) {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "pounding/model/modal.hpp"
+#include "pounding/model/mode.hpp"
 
 namespace pounding::solvers {
 
@@ -55,7 +55,7 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
     const int offset = system.floor_index(b, 1);
     const Eigen::VectorXd& mass = building.mass_diagonal;
     const Eigen::VectorXd influence = system.influence().segment(offset, building.dof());
-    for (const model::Mode& mode : model::modal_analysis(building)) {
+    for (const model::Mode& mode : building.modes) {
       longest_period_s = std::max(longest_period_s, mode.period_s);
       const double omega = mode.omega_rad_s;
       // A mode left out follows a_g quasi-statically, linear within a step: it cannot hide a minimum.

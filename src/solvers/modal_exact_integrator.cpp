@@ -18,9 +18,7 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
     const int n = system.building(b).dof();
     dof_offset_[b] = system.floor_index(b, 1);
     mode_offset_[b] = modes;
-    bases_[b] = model::keep_modes_below(
-        model::modal_basis(system.building(b), system.influence().segment(dof_offset_[b], n)),
-        settings_.modes_cutoff_hz);
+    bases_[b] = model::keep_modes_below(system.modal_basis(b), settings_.modes_cutoff_hz);
     modes += bases_[b].size();
     truncated_ = truncated_ || bases_[b].size() < n;
   }

@@ -59,7 +59,7 @@ BOOST_AUTO_TEST_CASE(OneStoreySymmetricBuildingHasPeriodTwoPiSqrtMOverK) {
   const RectangularColumn c;
   const double kx = 4 * c.kx(), ky = 4 * c.ky();
   const double k_theta = 4 * (c.kx() * 25 + c.ky() * 25);  // Σ kx y² + ky x², corners at ±5 m
-  const auto modes = modal_analysis(building);
+  const std::vector<Mode>& modes = building.modes;
   // Expected periods, longest first: x (soft direction), then torsion or y.
   std::vector<double> expected = {kTwoPi * std::sqrt(100 / kx), kTwoPi * std::sqrt(100 / ky),
                                   kTwoPi * std::sqrt(1000 / k_theta)};
@@ -69,7 +69,7 @@ BOOST_AUTO_TEST_CASE(OneStoreySymmetricBuildingHasPeriodTwoPiSqrtMOverK) {
 
 BOOST_AUTO_TEST_CASE(SymmetricPlanHasUncoupledXYAndTorsionModes) {
   const Building building = make_building(one_storey_rectangular_columns(Point2::Zero()));
-  for (const Mode& mode : modal_analysis(building)) {
+  for (const Mode& mode : building.modes) {
     const int c = static_cast<int>(mode.dominant);
     BOOST_TEST(component_share(mode, building.mass_diagonal, c) == 1.0, tt::tolerance(1e-12));
   }
@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(OneStoreyEccentricMassMatchesClosedForm) {
                                   kTwoPi / std::sqrt((p - disc) / (2 * m * J)),
                                   kTwoPi / std::sqrt((p + disc) / (2 * m * J))};
   std::sort(expected.rbegin(), expected.rend());
-  const auto modes = modal_analysis(building);
+  const std::vector<Mode>& modes = building.modes;
   for (int k = 0; k < 3; ++k) BOOST_TEST(modes[k].period_s == expected[k], tt::tolerance(1e-12));
 
   // The coupled modes move both v and φ; the x mode moves u only.
@@ -120,7 +120,7 @@ BOOST_AUTO_TEST_CASE(TwoStoreyShearBuildingMatchesClosedFormFrequencies) {
   const double omega_high = std::sqrt((p + disc) / (2 * m1 * m2));
 
   std::vector<double> x_omegas;
-  for (const Mode& mode : modal_analysis(building)) {
+  for (const Mode& mode : building.modes) {
     if (mode.dominant == ModeComponent::x) x_omegas.push_back(mode.omega_rad_s);
   }
   BOOST_TEST_REQUIRE(x_omegas.size() == 2u);
@@ -132,7 +132,7 @@ BOOST_AUTO_TEST_CASE(RayleighCoefficientsReproduceTheRatioAtBothChosenModes) {
   BuildingDefinition b = square_building(4, 12.0, 300.0, 7200.0, Point2(1.0, -0.5));
   b.damping = {0.05, {1, 3}};
   const Building building = make_building(b);
-  const auto modes = modal_analysis(building);
+  const std::vector<Mode>& modes = building.modes;
   // Independent check through the assembled C: ζ_n = φₙᵀ C φₙ / (2 ωₙ) for mass-normalised φ.
   auto modal_ratio = [&](int n) {
     const Mode& mode = modes[n - 1];
@@ -148,11 +148,11 @@ BOOST_AUTO_TEST_CASE(FrameFactorIsSolvedForTheTargetPeriod) {
   BuildingDefinition b = square_building(5, 15.0, 400.0, 15000.0, Point2(1.0, 0.5));
   b.target_period_s = 0.8;
   const Building building = make_building(b);
-  BOOST_TEST(modal_analysis(building).front().period_s == 0.8, tt::tolerance(1e-10));
+  BOOST_TEST(modal_analysis(building.mass_diagonal, building.stiffness).front().period_s == 0.8, tt::tolerance(1e-10));
 
   BuildingDefinition unit = b;
   unit.target_period_s.reset();
-  const double period_unit = modal_analysis(make_building(unit)).front().period_s;
+  const double period_unit = make_building(unit).modes.front().period_s;
   BOOST_TEST(building.frame_factor == std::pow(period_unit / 0.8, 2), tt::tolerance(1e-12));
 }
 
@@ -204,12 +204,30 @@ BOOST_AUTO_TEST_CASE(EachStoreyStiffnessUsesItsOwnHeight) {
   BOOST_TEST(k(0, 0) != 2 * k(3, 3));  // fails if both storeys took one height
 }
 
+BOOST_AUTO_TEST_CASE(BuildingKeepsTheModesOfItsFinalStiffness) {
+  // With a target period make_building solves the modes of K at f = 1 first: the kept ones must
+  // be those of the K it returns (the same decomposition, bit for bit, in the same order).
+  BuildingDefinition b = square_building(5, 15.0, 400.0, 15000.0, Point2(1.0, 0.5));
+  b.target_period_s = 0.8;
+  const Building building = make_building(b);
+  const std::vector<Mode> expected = modal_analysis(building.mass_diagonal, building.stiffness);
+  BOOST_TEST_REQUIRE(building.modes.size() == expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    BOOST_TEST(building.modes[k].omega_rad_s == expected[k].omega_rad_s);
+    BOOST_TEST(building.modes[k].period_s == expected[k].period_s);
+    BOOST_TEST((building.modes[k].shape.array() == expected[k].shape.array()).all());
+    BOOST_TEST((building.modes[k].dominant == expected[k].dominant));
+    BOOST_TEST(building.modes[k].effective_mass_ratio_x == expected[k].effective_mass_ratio_x);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(FrameFactorIsSolvedForTheTargetPeriodWithUnequalStoreys) {
   // K stays linear in f when each storey has its own height, so the closed-form solve holds.
   BuildingDefinition b = square_building(5, 15.0, 400.0, 15000.0, Point2(1.0, 0.5));
   b.storey_height_m = {4.5, 3.0, 3.0, 3.2, 3.0};
   b.target_period_s = 0.8;
-  BOOST_TEST(modal_analysis(make_building(b)).front().period_s == 0.8, tt::tolerance(1e-10));
+  const Building building = make_building(b);
+  BOOST_TEST(modal_analysis(building.mass_diagonal, building.stiffness).front().period_s == 0.8, tt::tolerance(1e-10));
 }
 
 BOOST_AUTO_TEST_CASE(FloorElevationsAreSumsOfStoreyHeights) {

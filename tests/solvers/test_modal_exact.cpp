@@ -5,6 +5,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <thread>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "../support/fixtures.hpp"
@@ -120,6 +121,48 @@ BOOST_AUTO_TEST_CASE(ModalBasisDiagonalisesARayleighBuilding) {
   BOOST_TEST((modal_damping - Eigen::MatrixXd(two_zeta_omega.asDiagonal())).norm() <= 1e-10 * two_zeta_omega.norm());
   // Σ Γ² is the total mass along x (the effective masses of all modes add up to it).
   BOOST_TEST(basis.participation.squaredNorm() == influence.dot(mass * influence), tt::tolerance(1e-10));
+}
+
+namespace {
+
+template <class Matrix>
+bool same_bits(const Matrix& a, const Matrix& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && (a.array() == b.array()).all();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(ARunSharesOneModalBasisPerBuilding) {
+  // The system's basis of each building is model::modal_basis of that building along its part of
+  // r, bit for bit; built once, whichever thread asks first, and shared by copies of the system.
+  const dynamics::CoupledSystem system = analysis::build_system(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml"));
+  std::array<std::array<const model::ModalBasis*, 2>, 4> seen{};
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    threads.emplace_back([&, k] {
+      for (int i = 0; i < 2; ++i) {
+        const int b = (i + static_cast<int>(k)) % 2;  // half the threads ask for building 2 first
+        seen[k][static_cast<std::size_t>(b)] = &system.modal_basis(b);
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  const dynamics::CoupledSystem copy = system;
+  for (int b = 0; b < 2; ++b) {
+    const auto slot = static_cast<std::size_t>(b);
+    for (const auto& pointers : seen) BOOST_TEST(pointers[slot] == &system.modal_basis(b));
+    BOOST_TEST(&copy.modal_basis(b) == &system.modal_basis(b));
+    const model::Building& building = system.building(b);
+    const model::ModalBasis expected =
+        model::modal_basis(building, system.influence().segment(system.floor_index(b, 1), building.dof()));
+    const model::ModalBasis& kept = system.modal_basis(b);
+    BOOST_TEST(same_bits(kept.omega_rad_s, expected.omega_rad_s));
+    BOOST_TEST(same_bits(kept.damping_ratio, expected.damping_ratio));
+    BOOST_TEST(same_bits(kept.shapes, expected.shapes));
+    BOOST_TEST(same_bits(kept.projection, expected.projection));
+    BOOST_TEST(same_bits(kept.participation, expected.participation));
+    BOOST_TEST(same_bits(kept.dropped_static_s2, expected.dropped_static_s2));
+  }
 }
 
 BOOST_AUTO_TEST_CASE(ModalBasisRefusesDampingTheModesDoNotDiagonalise) {

@@ -9,7 +9,6 @@
 
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/io/scene_reader.hpp"
-#include "pounding/model/modal.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
 #include "../support/two_slabs.hpp"
 
@@ -70,7 +69,7 @@ BOOST_AUTO_TEST_CASE(AStiffStoreySetsNoBoundAndBdfKeepsEveryImpactWithFarFewerSt
   const auto system = analysis::build_system(scene);
   double shortest_period_s = std::numeric_limits<double>::infinity();
   for (int b = 0; b < 2; ++b) {
-    shortest_period_s = std::min(shortest_period_s, model::modal_analysis(system.building(b)).back().period_s);
+    shortest_period_s = std::min(shortest_period_s, system.building(b).modes.back().period_s);
   }
   const solvers::GapModeBound bound(system, kResolution_m, 4.0);
   bound.max_step_s(Eigen::VectorXd::Zero(system.state_size()));

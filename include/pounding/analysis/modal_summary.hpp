@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "pounding/analysis/scene.hpp"
-#include "pounding/model/modal.hpp"
+#include "pounding/model/mode.hpp"
 
 namespace pounding::analysis {
 

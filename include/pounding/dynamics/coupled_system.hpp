@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "pounding/contact/candidates.hpp"
@@ -13,6 +15,7 @@
 #include "pounding/contact/impact.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/model/building.hpp"
+#include "pounding/model/modal_basis.hpp"
 
 namespace pounding::dynamics {
 
@@ -41,6 +44,11 @@ class CoupledSystem {
   const MatrixXd& damping() const { return damping_; }      // block-diagonal C
   /// r: the ground motion's direction (cos β, sin β, 0) repeated per floor, size n.
   const VectorXd& influence() const { return influence_; }
+  /// Building b's complete modal basis under the ground motion (model::modal_basis with b's part
+  /// of influence()), built at the first call and kept, so that a run's solvers share one. Safe to
+  /// call from several threads. @throws std::runtime_error as model::modal_basis (and tries
+  /// again at the next call).
+  const model::ModalBasis& modal_basis(int b) const;
 
   /// The ground motion's effective force f(t) = −M r a_g(t) (kN, kN·m).
   void external_force(double t, Eigen::Ref<VectorXd> force) const;
@@ -121,6 +129,13 @@ class CoupledSystem {
   Eigen::SparseMatrix<double> contact_force_rows(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
                                                  double damping_kNs_per_m) const;
 
+  /// The bases modal_basis() built. Behind a pointer because std::once_flag neither copies nor
+  /// moves; copies of the system share them, as they have the same buildings and influence.
+  struct ModalBases {
+    std::array<std::once_flag, 2> built;
+    std::array<model::ModalBasis, 2> basis;
+  };
+
   std::array<model::Building, 2> buildings_;
   excitation::GroundMotion ground_motion_;
   std::vector<contact::Level> levels_;
@@ -136,6 +151,7 @@ class CoupledSystem {
   // O(n) instead of the dense A's O(n²).
   Eigen::SparseMatrix<double> stiffness_sparse_, damping_sparse_;
   Eigen::SparseMatrix<double> acceleration_rows_;  // −M⁻¹[K, C]: A's lower half, sparse
+  std::shared_ptr<ModalBases> modal_bases_ = std::make_shared<ModalBases>();
 };
 
 }  // namespace pounding::dynamics

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pounding/input_error.hpp"
+#include "pounding/model/mode.hpp"
 #include "pounding/model/polygon.hpp"
 
 namespace pounding::model {
@@ -107,13 +108,17 @@ struct Building {
   Eigen::MatrixXd damping;         // 3N×3N
   RayleighCoefficients rayleigh;
   double frame_factor = 1.0;       // the one used (given, solved, or 1 for direct matrices)
+  /// All 3N modes of mass_diagonal and stiffness (model::modal_analysis), longest period first,
+  /// solved once by make_building: every user of a building's modes reads these. Stale if M or K
+  /// is changed afterwards.
+  std::vector<Mode> modes;
 
   int storeys() const { return definition.storeys; }
   int dof() const { return 3 * definition.storeys; }
 };
 
 /// Validates `definition`, solves the frame factor if a target period is given, assembles
-/// M, K, C. @throws InputError (field relative to the building) for invalid data or a
+/// M, K, C and solves the modes. @throws InputError (field relative to the building) for invalid data or a
 /// stiffness that is not positive definite.
 Building make_building(const BuildingDefinition& definition);
 

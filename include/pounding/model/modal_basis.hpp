@@ -30,7 +30,9 @@ struct ModalBasis {
 inline constexpr double kClassicalDampingTolerance = 1e-9;
 
 /// The modal basis of `building` under ground motion along `influence` (r over the building's
-/// DOFs, (cos β, sin β, 0) per floor). @pre influence.size() == building.dof().
+/// DOFs, (cos β, sin β, 0) per floor), from the modes the building keeps (Building::modes); a run
+/// reads its buildings' bases from dynamics::CoupledSystem::modal_basis, built once.
+/// @pre influence.size() == building.dof(), building.modes those of its M and K.
 /// @throws std::runtime_error if the eigensolver fails or building.damping is not
 ///   a0 M + a1 K (Φᵀ C Φ ≠ diag(2ζω) within kClassicalDampingTolerance): the modes would not
 ///   decouple it.
