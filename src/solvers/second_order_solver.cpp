@@ -55,12 +55,13 @@ int SecondOrderLinearSolver::setup(SUNLinearSolver solver, SUNMatrix) {
 }
 
 void SecondOrderLinearSolver::factor(const NewtonData& data) {
-  sparse_ = functions_.acceleration_jacobian(data.t_s, view(data.prediction), sparse_rows_);
+  // A linear phase's J is constant: evaluating it (and, dense, scanning it for the diagonal
+  // case) once per phase leaves a change of γ only the γ-dependent work.
+  const bool new_jacobian = !jacobian_current_ || !functions_.is_linear();
+  if (new_jacobian) evaluate_jacobian(data);
   if (sparse_) {
-    factor_sparse(data.gamma);
+    factor_sparse(data.gamma, new_jacobian);
   } else {
-    jacobian_.resize(2 * n_, 2 * n_);
-    functions_.jacobian(data.t_s, view(data.prediction), jacobian_);
     factor_dense(data.gamma);
   }
   gamma_ = data.gamma;
@@ -68,19 +69,38 @@ void SecondOrderLinearSolver::factor(const NewtonData& data) {
   ++factorizations_;
 }
 
-void SecondOrderLinearSolver::factor_sparse(double g) {
+void SecondOrderLinearSolver::evaluate_jacobian(const NewtonData& data) {
+  sparse_ = functions_.acceleration_jacobian(data.t_s, view(data.prediction), sparse_rows_);
+  if (!sparse_) {
+    jacobian_.resize(2 * n_, 2 * n_);
+    functions_.jacobian(data.t_s, view(data.prediction), jacobian_);
+    const auto a21 = jacobian_.bottomLeftCorner(n_, n_), a22 = jacobian_.bottomRightCorner(n_, n_);
+    diagonal_ = is_diagonal(a21) && is_diagonal(a22);
+    if (diagonal_) {
+      a21_diagonal_ = a21.diagonal();
+      a22_diagonal_ = a22.diagonal();
+    }
+  }
+  jacobian_current_ = true;
+  ++jacobian_evaluations_;
+}
+
+void SecondOrderLinearSolver::factor_sparse(double g, bool new_rows) {
   Eigen::SparseMatrix<double> identity(n_, n_);
   identity.setIdentity();
   const Eigen::SparseMatrix<double> reduced =
       identity - g * sparse_rows_.rightCols(n_) - (g * g) * sparse_rows_.leftCols(n_);
   // The pattern changes with the contact phase only, and ordering it costs half as much as the
-  // numeric factorisation: order again only when the pattern is not the one ordered.
-  const auto outer = std::span(reduced.outerIndexPtr(), static_cast<std::size_t>(n_ + 1));
-  const auto inner = std::span(reduced.innerIndexPtr(), static_cast<std::size_t>(reduced.nonZeros()));
-  if (!std::ranges::equal(outer, ordered_outer_) || !std::ranges::equal(inner, ordered_inner_)) {
-    sparse_reduced_.analyzePattern(reduced);
-    ordered_outer_.assign(outer.begin(), outer.end());
-    ordered_inner_.assign(inner.begin(), inner.end());
+  // numeric factorisation: order again only when the pattern is not the one ordered (rows kept
+  // from the last factorisation keep its pattern, which was ordered then).
+  if (new_rows) {
+    const auto outer = std::span(reduced.outerIndexPtr(), static_cast<std::size_t>(n_ + 1));
+    const auto inner = std::span(reduced.innerIndexPtr(), static_cast<std::size_t>(reduced.nonZeros()));
+    if (!std::ranges::equal(outer, ordered_outer_) || !std::ranges::equal(inner, ordered_inner_)) {
+      sparse_reduced_.analyzePattern(reduced);
+      ordered_outer_.assign(outer.begin(), outer.end());
+      ordered_inner_.assign(inner.begin(), inner.end());
+    }
   }
   sparse_reduced_.factorize(reduced);
   if (sparse_reduced_.info() != Eigen::Success) {
@@ -89,12 +109,10 @@ void SecondOrderLinearSolver::factor_sparse(double g) {
 }
 
 void SecondOrderLinearSolver::factor_dense(double g) {
-  const auto a21 = jacobian_.bottomLeftCorner(n_, n_), a22 = jacobian_.bottomRightCorner(n_, n_);
-  diagonal_ = is_diagonal(a21) && is_diagonal(a22);
   if (diagonal_) {
-    a21_diagonal_ = a21.diagonal();
-    reduced_diagonal_ = 1.0 - g * a22.diagonal().array() - g * g * a21_diagonal_.array();
+    reduced_diagonal_ = 1.0 - g * a22_diagonal_.array() - g * g * a21_diagonal_.array();
   } else {
+    const auto a21 = jacobian_.bottomLeftCorner(n_, n_), a22 = jacobian_.bottomRightCorner(n_, n_);
     Eigen::MatrixXd reduced = -g * a22 - g * g * a21;
     reduced.diagonal().array() += 1.0;
     reduced_.compute(reduced);

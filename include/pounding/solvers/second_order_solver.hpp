@@ -8,7 +8,11 @@
 // form: K and C couple only a storey's two floors, a held contact adds a few rows), the reduced
 // matrix is factored by a sparse LU, O(n) for a building's block-tridiagonal structure instead of
 // the dense LU's O(n³). It is "matrix-embedded": it evaluates the Jacobian through OdeFunctions
-// itself and refactors when the contact phase changes or γ drifts by more than 20 %.
+// itself and refactors when the contact phase changes or γ drifts by more than 20 %. While the
+// phase is linear (OdeFunctions::is_linear: J constant) J is evaluated once per phase, so a
+// refactorisation for a new γ redoes only the γ-dependent work (O(n) in modal free flight, where
+// evaluating and scanning the dense J is O(n²)); a nonlinear phase (a hold, a compliant contact)
+// evaluates J at every refactorisation.
 
 #include <Eigen/LU>
 #include <Eigen/SparseLU>
@@ -37,8 +41,13 @@ class SecondOrderLinearSolver {
 
   SUNLinearSolver get() const { return handle_.get(); }
   long factorizations() const { return factorizations_; }
-  /// The Jacobian changed (new contact phase): refactor at the next solve.
-  void invalidate() { stale_ = true; }
+  /// How many times J was evaluated (at most factorizations(): once per linear phase).
+  long jacobian_evaluations() const { return jacobian_evaluations_; }
+  /// The Jacobian changed (new contact phase): evaluate it and refactor at the next solve.
+  void invalidate() {
+    stale_ = true;
+    jacobian_current_ = false;
+  }
 
  private:
   static SUNLinearSolver_Type type(SUNLinearSolver);
@@ -46,28 +55,33 @@ class SecondOrderLinearSolver {
   static int solve(SUNLinearSolver solver, SUNMatrix, N_Vector x, N_Vector b, double tolerance);
   static int release(SUNLinearSolver solver);
   void factor(const NewtonData& data);
+  /// Evaluates J at the Newton prediction into sparse_rows_ or jacobian_ (and, dense, whether its
+  /// lower blocks are diagonal).
+  void evaluate_jacobian(const NewtonData& data);
 
   OdeFunctions& functions_;
   std::function<NewtonData()> newton_data_;
   sundials::LinearSolver handle_;
   Eigen::Index n_ = 0;  // second-order DOF count: the state has 2n entries
-  /// Factors I − γA22 − γ²A21 from the sparse rows [A21, A22] in sparse_rows_.
-  void factor_sparse(double gamma);
+  /// Factors I − γA22 − γ²A21 from the sparse rows [A21, A22] in sparse_rows_; orders its pattern
+  /// again only when `new_rows` (just evaluated) and the pattern is not the one ordered.
+  void factor_sparse(double gamma, bool new_rows);
   /// Factors it from the dense jacobian_.
   void factor_dense(double gamma);
 
   Eigen::MatrixXd jacobian_;  // dense path: the whole 2n × 2n Jacobian
   Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;  // dense path, when not diagonal
-  bool sparse_ = false;                           // the last factorisation took the sparse path
+  bool sparse_ = false;                           // the last evaluation of J gave sparse rows
   Eigen::SparseMatrix<double> sparse_rows_;       // [A21, A22], n × 2n
   Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_reduced_;
   std::vector<int> ordered_outer_, ordered_inner_;  // the pattern sparse_reduced_ was ordered for
   bool diagonal_ = false;              // A21 and A22 diagonal: reduced_diagonal_ holds the matrix
   Eigen::VectorXd reduced_diagonal_;   // 1 − γ diag A22 − γ² diag A21
-  Eigen::VectorXd a21_diagonal_;
+  Eigen::VectorXd a21_diagonal_, a22_diagonal_;
+  bool jacobian_current_ = false;      // J is this phase's (kept while the phase is linear)
   double gamma_ = 0.0;
   bool stale_ = true;
-  long factorizations_ = 0;
+  long factorizations_ = 0, jacobian_evaluations_ = 0;
   std::string& error_sink_;
 };
 
