@@ -118,8 +118,8 @@ struct Building {
 };
 
 /// Validates `definition`, solves the frame factor if a target period is given, assembles
-/// M, K, C and solves the modes. @throws InputError (field relative to the building) for invalid data or a
-/// stiffness that is not positive definite.
+/// M, K, C and solves the modes. @throws InputError (field relative to the building) for invalid
+/// data or a stiffness that is not positive definite.
 Building make_building(const BuildingDefinition& definition);
 
 }  // namespace pounding::model

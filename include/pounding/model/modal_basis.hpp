@@ -33,9 +33,8 @@ inline constexpr double kClassicalDampingTolerance = 1e-9;
 /// DOFs, (cos β, sin β, 0) per floor), from the modes the building keeps (Building::modes); a run
 /// reads its buildings' bases from dynamics::CoupledSystem::modal_basis, built once.
 /// @pre influence.size() == building.dof(), building.modes those of its M and K.
-/// @throws std::runtime_error if the eigensolver fails or building.damping is not
-///   a0 M + a1 K (Φᵀ C Φ ≠ diag(2ζω) within kClassicalDampingTolerance): the modes would not
-///   decouple it.
+/// @throws std::runtime_error if building.damping is not a0 M + a1 K (Φᵀ C Φ ≠ diag(2ζω) within
+///   kClassicalDampingTolerance): the modes would not decouple it.
 ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::VectorXd>& influence);
 
 /// `full` (a complete basis, modal_basis()) with only its modes of frequency ωᵢ/2π < cutoff_hz;
