@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <ostream>
+#include <string>
 
 #include "pounding/analysis/methods.hpp"
 #include "pounding/io/json_report.hpp"
@@ -15,31 +16,38 @@ const char* kCsvHeader =
     "impact_time_error_s,impact_time_error_all_s,impact_time_error_before_hold_s,impulse_relative_error,history_u_error_m,history_v_error_m,history_phi_error_rad,"
     "peak_u_error_m,peak_v_error_m,peak_phi_error_rad,impact_time_at_reference,history_u_at_reference\n";
 
-nlohmann::json row_json(const analysis::StudyRow& row) {
-  const analysis::RunErrors& e = row.errors;
-  return {{"method", row.method}, {"setting", row.setting}, {"value", row.value}, {"status", row.status},
-          {"run_time_s", row.run_time_s}, {"steps", row.steps}, {"rhs_evaluations", row.rhs_evaluations},
-          {"restarts", row.restarts}, {"impacts", row.impacts}, {"matched", e.matched}, {"missing", e.missing},
-          {"extra", e.extra}, {"impact_time_error_s", e.impact_time_s},
-          {"impact_time_error_all_s", e.impact_time_all_s},
+/// The error columns a study row and a truncation row share, in their CSV order.
+nlohmann::json errors_json(const analysis::RunErrors& e) {
+  return {{"matched", e.matched}, {"missing", e.missing}, {"extra", e.extra},
+          {"impact_time_error_s", e.impact_time_s}, {"impact_time_error_all_s", e.impact_time_all_s},
           {"impact_time_error_before_hold_s", e.impact_time_before_hold_s},
           {"impulse_relative_error", e.impulse_relative}, {"history_u_error_m", e.history_u_m},
           {"history_v_error_m", e.history_v_m}, {"history_phi_error_rad", e.history_phi_rad},
-          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad},
-          {"impact_time_at_reference", row.impact_time_at_reference},
-          {"history_u_at_reference", row.history_u_at_reference}};
+          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad}};
+}
+
+std::string errors_csv(const analysis::RunErrors& e) {
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}", e.matched, e.missing, e.extra, e.impact_time_s,
+                     e.impact_time_all_s, e.impact_time_before_hold_s, e.impulse_relative, e.history_u_m,
+                     e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad);
+}
+
+nlohmann::json row_json(const analysis::StudyRow& row) {
+  nlohmann::json json = {{"method", row.method}, {"setting", row.setting}, {"value", row.value},
+                         {"status", row.status}, {"run_time_s", row.run_time_s}, {"steps", row.steps},
+                         {"rhs_evaluations", row.rhs_evaluations}, {"restarts", row.restarts},
+                         {"impacts", row.impacts}, {"impact_time_at_reference", row.impact_time_at_reference},
+                         {"history_u_at_reference", row.history_u_at_reference}};
+  json.update(errors_json(row.errors));
+  return json;
 }
 
 void write_study_csv(const analysis::StudyResult& study, std::ostream& out) {
   out << kCsvHeader;
   for (const auto& row : study.rows) {
-    const analysis::RunErrors& e = row.errors;
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", row.method, row.setting,
-                       row.value, row.status, row.run_time_s, row.steps, row.rhs_evaluations, row.restarts,
-                       row.impacts, e.matched, e.missing, e.extra, e.impact_time_s, e.impact_time_all_s,
-                       e.impact_time_before_hold_s, e.impulse_relative,
-                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad,
-                       row.impact_time_at_reference, row.history_u_at_reference);
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", row.method, row.setting, row.value, row.status,
+                       row.run_time_s, row.steps, row.rhs_evaluations, row.restarts, row.impacts,
+                       errors_csv(row.errors), row.impact_time_at_reference, row.history_u_at_reference);
   }
 }
 
@@ -69,25 +77,18 @@ const char* kTruncationCsvHeader =
     "history_u_error_m,history_v_error_m,history_phi_error_rad,peak_u_error_m,peak_v_error_m,peak_phi_error_rad\n";
 
 nlohmann::json truncation_row_json(const analysis::TruncationRow& row) {
-  const analysis::RunErrors& e = row.errors;
-  return {{"modes_cutoff_hz", row.cutoff_hz}, {"modes_kept", row.modes_kept}, {"modes_total", row.modes_total},
-          {"status", row.status}, {"run_time_s", row.run_time_s}, {"steps", row.steps}, {"impacts", row.impacts},
-          {"matched", e.matched}, {"missing", e.missing}, {"extra", e.extra},
-          {"impact_time_error_s", e.impact_time_s}, {"impact_time_error_all_s", e.impact_time_all_s},
-          {"impact_time_error_before_hold_s", e.impact_time_before_hold_s},
-          {"impulse_relative_error", e.impulse_relative}, {"history_u_error_m", e.history_u_m},
-          {"history_v_error_m", e.history_v_m}, {"history_phi_error_rad", e.history_phi_rad},
-          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad}};
+  nlohmann::json json = {{"modes_cutoff_hz", row.cutoff_hz}, {"modes_kept", row.modes_kept},
+                         {"modes_total", row.modes_total}, {"status", row.status}, {"run_time_s", row.run_time_s},
+                         {"steps", row.steps}, {"impacts", row.impacts}};
+  json.update(errors_json(row.errors));
+  return json;
 }
 
 void write_truncation_csv(const analysis::StudyResult& study, std::ostream& out) {
   out << kTruncationCsvHeader;
   for (const auto& r : study.truncation_rows) {
-    const analysis::RunErrors& e = r.errors;
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.cutoff_hz, r.modes_kept,
-                       r.modes_total, r.status, r.run_time_s, r.steps, r.impacts, e.matched, e.missing, e.extra,
-                       e.impact_time_s, e.impact_time_all_s, e.impact_time_before_hold_s, e.impulse_relative,
-                       e.history_u_m, e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad);
+    out << fmt::format("{},{},{},{},{},{},{},{}\n", r.cutoff_hz, r.modes_kept, r.modes_total, r.status, r.run_time_s,
+                       r.steps, r.impacts, errors_csv(r.errors));
   }
 }
 
