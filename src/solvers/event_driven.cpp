@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <numbers>
 #include <fmt/format.h>
 #include <optional>
 #include <Eigen/QR>
@@ -276,6 +277,15 @@ class EventDrivenRun final : public OdeFunctions {
   void after_step(double t, const VectorXd& y);
   /// `gaps`: every candidate's gap in state y.
   void update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps);
+  /// True when options_.modes_cutoff_hz leaves out some mode of a building.
+  bool drops_modes() const {
+    const double cutoff_hz = options_.modes_cutoff_hz;
+    if (cutoff_hz == 0.0) return false;
+    for (int b = 0; b < 2; ++b) {
+      if (system_.building(b).modes.back().omega_rad_s / (2.0 * std::numbers::pi) >= cutoff_hz) return true;
+    }
+    return false;
+  }
   /// The longest step from (t, y) in free flight over which every gap provably stays above
   /// contact_tolerance_m (GapClearance), up to the next record sample.
   double clear_step_s(double t, const VectorXd& y);
@@ -896,14 +906,12 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   recorder_.sample(t0, y);
   start(t0, y);
   try {
-    if (options_.max_step_s == 0.0 && options_.clearance_steps && !compliant()) {
+    // A truncated run's dropped modes move as R a_g, which GapClearance does not bound.
+    if (options_.max_step_s == 0.0 && options_.clearance_steps && !compliant() && !drops_modes()) {
       clearance_.emplace(system_);  // throws, as the exact path does, if a building's damping is not classical
       watched_.resize(count_);
-      // A truncated run's dropped modes move as R a_g, which the bound does not cover.
-      const double cutoff_hz = options_.modes_cutoff_hz;
-      if (cutoff_hz > 0.0 && cutoff_hz <= clearance_->highest_frequency_hz()) clearance_.reset();
       // Its steps may span whole record intervals: the peaks are located on quarter periods.
-      if (clearance_) recorder_.set_peak_step(clearance_->shortest_damped_period_s() / 4.0);
+      recorder_.set_peak_step(clearance_->shortest_damped_period_s() / 4.0);
     }
     integrator_ = make_integrator(*this, t0, y);
     begin_phase(t0, y);

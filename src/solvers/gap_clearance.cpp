@@ -107,8 +107,4 @@ double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, con
   return open_s;
 }
 
-double GapClearance::highest_frequency_hz() const {
-  return std::max(buildings_[0].omega_rad_s.maxCoeff(), buildings_[1].omega_rad_s.maxCoeff()) / (2.0 * std::numbers::pi);
-}
-
 }  // namespace pounding::solvers

@@ -307,13 +307,12 @@ void Recorder::locate_acceleration_peaks(double t_a, double t_b, const std::func
     accel(hi, accel_hi_);
     return (accel_hi_[j] - accel_lo_[j]) / (hi - lo);
   };
-  if (free && start_.rate_known) {
-    // start_.accel_rate is the previous stretch's end rate, exact for this one too.
-  } else if (free) {
-    free_acceleration_rates(t_a, start_.y, a_a, start_.accel_rate);
-  } else {
+  // In free motion a start rate already known is the previous stretch's end rate, exact here too.
+  if (!free) {
     accel(t_a + h, accel_hi_);
     start_.accel_rate = (accel_hi_ - a_a) / h;
+  } else if (!start_.rate_known) {
+    free_acceleration_rates(t_a, start_.y, a_a, start_.accel_rate);
   }
   if (free) {
     free_acceleration_rates(t_b, last_.y, a_b, last_.accel_rate);
@@ -343,6 +342,17 @@ void Recorder::locate_acceleration_peaks(double t_a, double t_b, const std::func
   }
 }
 
+const dynamics::VectorXd& Recorder::read_components(double t, const std::vector<int>& indices,
+                                                    const std::function<dynamics::VectorXd(double)>& at,
+                                                    const ComponentsAt& components_at) {
+  if (components_at) {
+    components_at(t, indices, partial_);
+  } else {
+    partial_ = at(t);
+  }
+  return partial_;
+}
+
 template <class StateAt, class Value, class Rate>
 void Recorder::locate_peak(Peak& peak, double t_a, double t_b, const StateAt& state_at, const Value& value,
                            const Rate& rate) {
@@ -364,14 +374,7 @@ void Recorder::locate_peaks(double t_a, double t_b, const std::function<dynamics
   const int n = system_.dof();
   // The state at t with (at least) the components `indices` right.
   auto reading = [&](const std::vector<int>& indices) {
-    return [&](double t) -> const dynamics::VectorXd& {
-      if (components_at) {
-        components_at(t, indices, partial_);
-      } else {
-        partial_ = at(t);
-      }
-      return partial_;
-    };
+    return [&](double t) -> const dynamics::VectorXd& { return read_components(t, indices, at, components_at); };
   };
   for (int b = 0; b < 2; ++b) {
     const model::Point2 centre = system_.building(b).definition.centre_of_mass;
@@ -404,12 +407,7 @@ void Recorder::locate_drift_peaks(double t_a, double t_b, const std::function<dy
       FloorPeaks& floor = peaks_[b].floors[f];
       const std::vector<int>& indices = components_[b][f].drift;
       auto state_at = [&](double t) -> const dynamics::VectorXd& {
-        if (components_at) {
-          components_at(t, indices, partial_);
-        } else {
-          partial_ = at(t);
-        }
-        return partial_;
+        return read_components(t, indices, at, components_at);
       };
       for (std::size_t slot = 0; slot < drift_slots(b); ++slot) {
         const auto j = static_cast<Eigen::Index>(drift_index(b, floor.floor, slot));

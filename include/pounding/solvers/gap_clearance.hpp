@@ -37,9 +37,6 @@ class GapClearance {
   ///   acts in the window (free flight).
   double open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, const std::vector<bool>& watched,
                      double clearance_m, double horizon_s, double peak_accel_mps2) const;
-  /// The highest natural frequency (Hz) of either building: the bound covers every mode, so a
-  /// run that drops modes above a lower cut-off (their quasi-static part is not bounded) must not use it.
-  double highest_frequency_hz() const;
   /// The shortest damped period (s) among both buildings' oscillating modes (ζ < 1; infinity if
   /// none oscillates).
   double shortest_damped_period_s() const { return shortest_damped_period_s_; }

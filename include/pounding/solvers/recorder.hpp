@@ -139,6 +139,11 @@ class Recorder {
                           const ComponentsAt& components_at);
   void locate_peaks(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
                     const ComponentsAt& components_at);
+  /// The state at t with (at least) the components `indices` right, from `components_at` when
+  /// given, else `at`; in partial_, valid until the next call.
+  const dynamics::VectorXd& read_components(double t, const std::vector<int>& indices,
+                                            const std::function<dynamics::VectorXd(double)>& at,
+                                            const ComponentsAt& components_at);
   /// Updates `peak` at the turning point of `value` inside (t_a, t_b), if its rate changes sign
   /// there and it can beat the peak.
   template <class StateAt, class Value, class Rate>
