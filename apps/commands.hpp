@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "pounding/excitation/record_choice.hpp"
 
@@ -83,6 +84,21 @@ struct GapCommand {
   std::string out_dir;   // empty: out/<scene name>-gap (out/<scene name>-records with --records)
 };
 
+struct SpectrumCommand {
+  std::vector<std::string> records;        // one spectrum each; two with --rotd: also the pair's RotD
+  std::optional<std::string> format;       // peer-at2, columns, single; default: peer-at2 for .AT2, else columns
+  std::string units = "g";                 // of the records' accelerations
+  std::optional<double> dt_s;              // single: the sample spacing; others: re-spaces
+  std::vector<int> accel_columns;          // one for every record, or one per record (a pair from one file)
+  double damping_ratio = 0.05;
+  std::vector<double> periods_s;           // empty: 0.01–10 s, 61 log-spaced
+  bool rotd = false;
+  double angle_step_deg = 1.0;
+  std::string scene;                       // empty: no building periods marked
+  std::string out_dir = "out/spectrum";
+  bool no_plot = false;                    // skip spectrum.png (drawn by tools/plot_spectrum.py)
+};
+
 struct SweepCommand {
   std::string sweep_file;
   std::optional<int> workers;  // LocalCluster processes; unset: every core
@@ -96,6 +112,7 @@ int run_gap(const GapCommand& command, const std::string& command_line);  // in 
 /// Replaces the process by `python3 -m pounding.sweep` (its exit code is the command's).
 /// @throws InputError when the interpreter or the module is missing.
 int run_sweep(const SweepCommand& command);  // in sweep_command.cpp
+int run_spectrum(const SpectrumCommand& command, const std::string& command_line);  // in spectrum_command.cpp
 int run_modes(const ModesCommand& command);
 int run_study(const StudyCommand& command, const std::string& command_line);
 int run_run(const RunCommand& command, const std::string& command_line);

@@ -140,6 +140,31 @@ int main(int argc, char** argv) {
   gap_app->add_option("--out", gap.out_dir,
                       "Output folder (default out/<scene name>-gap, or out/<scene name>-records with --records)");
 
+  pounding::cli::SpectrumCommand spectrum;
+  CLI::App* spectrum_app = app.add_subcommand(
+      "spectrum", "Elastic response spectra (Sd, PSV, PSA) of records, exact for piecewise-linear records; RotD50 and "
+                  "RotD100 of a pair; a scene's building periods marked");
+  spectrum_app->add_option("records", spectrum.records, "Record files (one spectrum each)")->required();
+  spectrum_app->add_option("--format", spectrum.format,
+                           "Format of the records: peer-at2, columns or single (default: peer-at2 for .AT2 files, "
+                           "else columns)");
+  spectrum_app->add_option("--units", spectrum.units, "Units of the records' accelerations: g, m/s2 or cm/s2")
+      ->capture_default_str();
+  spectrum_app->add_option("--record-dt", spectrum.dt_s, "single: the records' sample spacing (s); other formats: re-spaces them");
+  spectrum_app->add_option("--record-column", spectrum.accel_columns,
+                           "Column of the acceleration (from 1): one for every record, or one per record, "
+                           "comma-separated (a pair from one file: 1,2)")
+      ->delimiter(',');
+  spectrum_app->add_option("--damping", spectrum.damping_ratio, "Critical damping ratio of the oscillators, in [0, 1)")
+      ->capture_default_str();
+  spectrum_app->add_option("--periods", spectrum.periods_s, "Periods (s), comma-separated (default 0.01-10 s, 61 log-spaced)")
+      ->delimiter(',');
+  spectrum_app->add_flag("--rotd", spectrum.rotd, "With two records (a pair of horizontal components): RotD50 and RotD100");
+  spectrum_app->add_option("--angle-step", spectrum.angle_step_deg, "Angle step of RotD (degrees)")->capture_default_str();
+  spectrum_app->add_option("--scene", spectrum.scene, "Scene whose buildings' first three periods are marked");
+  spectrum_app->add_option("--out", spectrum.out_dir, "Output folder")->capture_default_str();
+  spectrum_app->add_flag("--no-plot", spectrum.no_plot, "Do not draw spectrum.png (tools/plot_spectrum.py)");
+
   pounding::cli::SweepCommand sweep;
   CLI::App* sweep_app = app.add_subcommand(
       "sweep", "Runs of every scene x record x gap x restitution x method x contact law of a sweep file, on Dask "
@@ -172,6 +197,7 @@ int main(int argc, char** argv) {
     if (*study_app) return pounding::cli::run_study(study, command_line);
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);
     if (*sweep_app) return pounding::cli::run_sweep(sweep);
+    if (*spectrum_app) return pounding::cli::run_spectrum(spectrum, command_line);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

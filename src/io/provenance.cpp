@@ -10,7 +10,6 @@
 #include "pounding/version.hpp"
 
 namespace pounding::io {
-namespace {
 
 std::string utc_now_iso8601() {
   const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -18,6 +17,8 @@ std::string utc_now_iso8601() {
   gmtime_r(&now, &utc);
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", utc);
 }
+
+namespace {
 
 nlohmann::ordered_json text_or_null(const std::string& text) {
   return text.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(text);

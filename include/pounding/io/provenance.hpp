@@ -29,6 +29,9 @@ struct Provenance {
 /// @throws std::runtime_error naming a file that cannot be read.
 Provenance make_provenance(const analysis::Scene& scene, std::string command_line = {});
 
+/// Now, as ISO 8601 UTC ("2026-11-21T19:42:44Z").
+std::string utc_now_iso8601();
+
 /// The arguments as one line a POSIX shell splits back into the same arguments: each argument
 /// holding anything but letters, digits and -_./=:,+@% is put in single quotes.
 std::string command_line_text(const std::vector<std::string>& arguments);
