@@ -7,7 +7,9 @@ their mode.
     tools/plot_spectrum.py out/spectrum [--out figure.png]
 """
 import argparse
+import io
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -46,8 +48,23 @@ def plot(folder, out):
     for ax in (ax_a, ax_d):
         ax.grid(True, which="both", lw=0.3)
     ax_a.legend(fontsize=7)
-    fig.savefig(out, dpi=110)
+    image = io.BytesIO()
+    fig.savefig(image, dpi=110, format="png")
+    write_no_follow(out, image.getvalue())
     return out
+
+
+def write_no_follow(path, data):
+    """Writes `data` to `path` created afresh: a file or a symbolic link already there (a shared
+    results folder) is unlinked, never followed, and O_EXCL | O_NOFOLLOW refuses anything that
+    reappears under the name."""
+    try:
+        os.unlink(path)
+    except FileNotFoundError:
+        pass
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, 0o666)
+    with os.fdopen(fd, "wb") as handle:
+        handle.write(data)
 
 
 def main():

@@ -453,6 +453,27 @@ def _cell(value):
     return str(value)
 
 
+def _create_no_follow(path):
+    """A new text handle on `path` created afresh: whatever stands there (a file, or a symbolic link
+    planted in a shared results folder) is unlinked — the link itself, never its target — and the
+    file is created with O_EXCL | O_NOFOLLOW, so nothing is ever written through a link."""
+    try:
+        os.unlink(path)
+    except FileNotFoundError:
+        pass
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC, 0o666)
+    return os.fdopen(fd, "w", newline="")
+
+
+def _replace_no_follow(path, text):
+    """Writes `text` to `path` whole: into PATH.partial created afresh, then renamed over `path`
+    (a rename replaces a link standing at `path`, it never follows it)."""
+    partial = pathlib.Path(str(path) + ".partial")
+    with _create_no_follow(partial) as handle:
+        handle.write(text)
+    partial.replace(path)
+
+
 class Table:
     """sweep.csv, appended a row at a time and flushed; reads back the keys of the rows it holds."""
 
@@ -460,9 +481,16 @@ class Table:
         self.path, self.columns, self.key_columns = pathlib.Path(path), list(columns), list(key_columns)
         self.keys = set()
         self.rows = 0
+        if self.path.is_symlink():
+            raise _error("", "out", str(self.path.parent),
+                         f"{self.path.name} is a symbolic link; pounding writes only files of its own there: remove it")
         if self.path.exists():
             self._read_existing()
-        self.handle = open(self.path, "a", newline="")
+        if self.path.exists():  # a regular file (links refused above): appended, never followed
+            fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_NOFOLLOW | os.O_CLOEXEC)
+            self.handle = os.fdopen(fd, "a", newline="")
+        else:
+            self.handle = _create_no_follow(self.path)
         if self.rows == 0 and self.path.stat().st_size == 0:
             self._write(self.columns)
 
@@ -470,7 +498,7 @@ class Table:
         text = self.path.read_text()
         if text and not text.endswith("\n"):  # a row cut off by a kill: drop it, the run is redone
             text = text[: text.rfind("\n") + 1]
-            self.path.write_text(text)
+            _replace_no_follow(self.path, text)
         rows = list(csv.reader(io.StringIO(text)))
         if not rows:
             return
@@ -549,7 +577,10 @@ def run_sweep(sweep_file, out=None, workers=None, scheduler=None, progress=True,
     if max_runs is not None and (not isinstance(max_runs, int) or max_runs < 0):
         raise _error("", "max_runs", _text(max_runs), "expected a whole number >= 0")
     out = pathlib.Path(out or sweep.out or pathlib.Path("out") / sweep.file.stem)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:  # a file of that name, a folder without permission, ...
+        raise _error("", "out", str(out), f"cannot create this folder: {error.strerror}") from None
 
     key_columns = [*PARAMETERS, *sweep.setting_keys]
     table = Table(out / "sweep.csv", sweep.columns(), key_columns)
@@ -696,9 +727,7 @@ def _write_json(out, sweep, result, runs, where, date_utc, wall_time_s):
                        "git_commit": pounding._pounding.git_commit or None,
                        "python": sys.version.split()[0], "dask": dask.__version__,
                        "host": socket.gethostname(), "date_utc": date_utc}}
-    partial = out / "sweep.json.partial"
-    partial.write_text(json.dumps(document, indent=2) + "\n")
-    partial.replace(out / "sweep.json")
+    _replace_no_follow(out / "sweep.json", json.dumps(document, indent=2) + "\n")
 
 
 # ------------------------------------------------------------------------------------------------

@@ -2,9 +2,10 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <fstream>
+#include <ostream>
 
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_files.hpp"
 
 namespace pounding::io {
 namespace {
@@ -30,14 +31,7 @@ json level_json(const analysis::NeededGap& gap, const analysis::LevelGap& l) {
           {"rules", {{"abs_m", l.rules.abs_m}, {"srss_m", l.rules.srss_m}, {"ddc_m", l.rules.ddc_m}}}};
 }
 
-std::ofstream open_for_writing(const std::filesystem::path& file) {
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-  return out;
-}
-
-void write_levels_csv(const analysis::NeededGap& gap, const std::filesystem::path& file) {
-  std::ofstream out = open_for_writing(file);
+void write_levels_csv(const analysis::NeededGap& gap, std::ostream& out) {
   out << "level,floor_b1,floor_b2,elevation_m,needed_gap_m,t_s,delta_b1_m,delta_b2_m,abs_m,srss_m,ddc_m,pair\n";
   for (const analysis::LevelGap& l : gap.levels) {
     out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", l.level.index, l.level.floors[0],
@@ -47,8 +41,7 @@ void write_levels_csv(const analysis::NeededGap& gap, const std::filesystem::pat
   }
 }
 
-void write_history_csv(const analysis::NeededGap& gap, const std::filesystem::path& file) {
-  std::ofstream out = open_for_writing(file);
+void write_history_csv(const analysis::NeededGap& gap, std::ostream& out) {
   out << "t_s";
   for (const analysis::LevelGap& l : gap.levels) out << fmt::format(",touch_gap_level_{}_m", l.level.index);
   out << '\n';
@@ -59,8 +52,7 @@ void write_history_csv(const analysis::NeededGap& gap, const std::filesystem::pa
   }
 }
 
-void write_curve_csv(const std::vector<analysis::SeverityPoint>& curve, const std::filesystem::path& file) {
-  std::ofstream out = open_for_writing(file);
+void write_curve_csv(const std::vector<analysis::SeverityPoint>& curve, std::ostream& out) {
   out << "gap_m,status,impacts,max_impulse_kNs,max_approach_mps,energy_lost_kJ,wall_time_s\n";
   for (const analysis::SeverityPoint& p : curve) {
     out << fmt::format("{},{},{},{},{},{},{}\n", p.gap_m, p.status, p.impacts, p.max_impulse_kNs, p.max_approach_mps,
@@ -78,8 +70,7 @@ std::string csv_text(const std::string& text) {
 /// A number of a CSV row; empty where it does not exist.
 std::string csv_number(double value) { return std::isfinite(value) ? fmt::format("{}", value) : ""; }
 
-void write_records_csv(const analysis::RecordSetResult& set, const std::filesystem::path& file) {
-  std::ofstream out = open_for_writing(file);
+void write_records_csv(const analysis::RecordSetResult& set, std::ostream& out) {
   out << "record,source,status,message,pga_g,duration_s,needed_gap_m,level,floor_b1,floor_b2,t_s,abs_m,srss_m,ddc_m,"
          "steps,wall_time_s\n";
   for (const analysis::RecordGap& r : set.records) {
@@ -144,7 +135,7 @@ void write_record_set(const std::string& scene, const analysis::RecordSetResult&
   json document = record_set_json(scene, set);
   document["provenance"] = provenance_json(provenance);
   write_json(document, folder / "records.json");
-  write_records_csv(set, folder / "records.csv");
+  write_atomically(folder / "records.csv", [&](std::ostream& out) { write_records_csv(set, out); });
 }
 
 json gap_json(const std::string& scene, const analysis::NeededGap& gap,
@@ -201,9 +192,11 @@ void write_gap(const std::string& scene, const analysis::NeededGap& gap,
   json document = gap_json(scene, gap, curve);
   document["provenance"] = provenance_json(provenance);
   write_json(document, folder / "gap.json");
-  write_levels_csv(gap, folder / "gap.csv");
-  write_history_csv(gap, folder / "gap_history.csv");
-  if (!curve.empty()) write_curve_csv(curve, folder / "gap_curve.csv");
+  write_atomically(folder / "gap.csv", [&](std::ostream& out) { write_levels_csv(gap, out); });
+  write_atomically(folder / "gap_history.csv", [&](std::ostream& out) { write_history_csv(gap, out); });
+  if (!curve.empty()) {
+    write_atomically(folder / "gap_curve.csv", [&](std::ostream& out) { write_curve_csv(curve, out); });
+  }
 }
 
 }  // namespace pounding::io

@@ -1,10 +1,12 @@
 #include "pounding/io/output_files.hpp"
 
+#include <ext/stdio_filebuf.h>
 #include <fmt/format.h>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -25,7 +27,43 @@ bool sync_path(const std::filesystem::path& path, int flags) {
   return synced;
 }
 
+/// Creates `path` afresh (see ExclusiveOutput); the descriptor, or throws. An entry that
+/// reappears between the unlink and the open (a race in a shared folder) makes O_EXCL fail: try
+/// again a few times, then give up rather than open it.
+int create_exclusively(const std::filesystem::path& path) {
+  constexpr int kAttempts = 5;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    if (::unlink(path.c_str()) != 0 && errno != ENOENT) break;
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0) return fd;
+    if (errno != EEXIST) break;
+  }
+  throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), std::strerror(errno)));
+}
+
 }  // namespace
+
+struct ExclusiveOutput::Buffer {
+  explicit Buffer(int fd) : file(fd, std::ios::out | std::ios::binary), stream(&file) {}
+  __gnu_cxx::stdio_filebuf<char> file;  // owns the descriptor: closed with the buffer
+  std::ostream stream;
+};
+
+ExclusiveOutput::ExclusiveOutput(std::filesystem::path path) : path_(std::move(path)) {
+  const int fd = create_exclusively(path_);
+  buffer_ = std::make_unique<Buffer>(fd);
+  buffer_->stream.precision(17);
+}
+
+ExclusiveOutput::~ExclusiveOutput() = default;
+
+std::ostream& ExclusiveOutput::stream() { return buffer_->stream; }
+
+void ExclusiveOutput::close(const std::filesystem::path& shown_as) {
+  buffer_->stream.flush();
+  const bool written = static_cast<bool>(buffer_->stream) && buffer_->file.close() != nullptr;
+  if (!written) throw std::runtime_error(fmt::format("cannot write {} (disk full?)", shown_as.string()));
+}
 
 void commit_partial(const std::filesystem::path& partial, const std::filesystem::path& file) {
   // Data first, then the name, then the folder entry: after a crash of the machine (not only of
@@ -43,14 +81,9 @@ void commit_partial(const std::filesystem::path& partial, const std::filesystem:
 void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write) {
   std::filesystem::path partial = file;
   partial += ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + file.string());
-    out.precision(17);
-    write(out);
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + file.string() + " (disk full?)");
-  }
+  ExclusiveOutput out(partial);
+  write(out.stream());
+  out.close(file);
   commit_partial(partial, file);
 }
 
@@ -66,7 +99,12 @@ std::filesystem::path require_writable_folder(const std::filesystem::path& folde
   if (error) throw InputError(option, value, fmt::format("cannot create this folder: {}", error.message()));
   if (!std::filesystem::is_directory(folder)) throw InputError(option, value, "is not a folder");
   const std::filesystem::path probe = folder / fmt::format(".pounding-write-test-{}", ::getpid());
-  const bool writable = static_cast<bool>(std::ofstream(probe));
+  bool writable = true;
+  try {
+    ExclusiveOutput(probe).close(probe);  // never truncates a file a link planted here points to
+  } catch (const std::runtime_error&) {
+    writable = false;
+  }
   std::filesystem::remove(probe, error);
   if (!writable) throw InputError(option, value, "cannot write files into this folder");
   return created;

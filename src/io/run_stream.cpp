@@ -20,38 +20,39 @@ std::filesystem::path StreamedRunFiles::partial(const char* name) const {
 
 void StreamedRunFiles::history_columns(const std::vector<std::string>& columns) {
   std::filesystem::create_directories(folder_);
-  // A summary.json vouches for the files beside it; from here on they are this run's, unfinished.
+  // A summary.json vouches for the files beside it, so it goes first; then an earlier run's
+  // results, so that a killed run leaves only its own .partial files, never a mix of two runs.
   std::filesystem::remove(folder_ / "summary.json");
+  std::filesystem::remove(folder_ / "impacts.csv");
+  remove_history_files(folder_);
   with_history_ = !columns.empty();
   if (with_history_) {
-    history_.open(partial("history.csv"), std::ios::binary | std::ios::trunc);
-    contacts_.open(partial("contacts_history.csv"), std::ios::binary | std::ios::trunc);
-    write_csv_header(columns, history_);
-    write_contact_forces_header(contacts_);
-    history_.flush();
-    contacts_.flush();
-  } else {
-    remove_history_files(folder_);
+    history_ = std::make_unique<ExclusiveOutput>(partial("history.csv"));
+    contacts_ = std::make_unique<ExclusiveOutput>(partial("contacts_history.csv"));
+    write_csv_header(columns, history_->stream());
+    write_contact_forces_header(contacts_->stream());
+    history_->stream().flush();
+    contacts_->stream().flush();
   }
-  impacts_.open(partial("impacts.csv"), std::ios::binary | std::ios::trunc);
+  impacts_ = std::make_unique<ExclusiveOutput>(partial("impacts.csv"));
   opened_ = true;
-  write_impacts_header(impacts_);
-  impacts_.flush();
+  write_impacts_header(impacts_->stream());
+  impacts_->stream().flush();
   last_flush_ = std::chrono::steady_clock::now();
 }
 
 void StreamedRunFiles::history_row(double t_s, const Eigen::VectorXd& values) {
-  write_history_row(t_s, values, history_);
+  write_history_row(t_s, values, history_->stream());
   flush_history_if_due();
 }
 
 void StreamedRunFiles::contact_force(const solvers::ContactForceSample& sample) {
-  write_contact_force_row(sample, contacts_);  // follows its history row, whose flush is due-checked
+  write_contact_force_row(sample, contacts_->stream());  // follows its history row, whose flush is due-checked
 }
 
 void StreamedRunFiles::impact(const solvers::ImpactRecord& impact) {
-  write_impact_row(impact, impacts_);
-  impacts_.flush();  // impacts are few and the run's main result: none waits in a buffer
+  write_impact_row(impact, impacts_->stream());
+  impacts_->stream().flush();  // impacts are few and the run's main result: none waits in a buffer
 }
 
 void StreamedRunFiles::flush_history_if_due() {
@@ -59,16 +60,14 @@ void StreamedRunFiles::flush_history_if_due() {
   // newest row on disk can be when rows come slowly (stiff stretches, many events).
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ < flush_interval_) return;
-  history_.flush();
-  contacts_.flush();
+  history_->stream().flush();
+  contacts_->stream().flush();
   last_flush_ = now;
 }
 
-void StreamedRunFiles::close_checked(std::ofstream& out, const char* name) {
-  out.flush();
-  const bool written = static_cast<bool>(out);
-  out.close();
-  if (!written) throw std::runtime_error(fmt::format("cannot write {} (disk full?)", (folder_ / name).string()));
+void StreamedRunFiles::close_checked(std::unique_ptr<ExclusiveOutput>& out, const char* name) {
+  out->close(folder_ / name);
+  out.reset();
   commit_partial(partial(name), folder_ / name);
 }
 
@@ -84,9 +83,9 @@ void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenanc
 
 void StreamedRunFiles::abandon() {
   if (!opened_) return;
-  history_.close();
-  contacts_.close();
-  impacts_.close();
+  history_.reset();
+  contacts_.reset();
+  impacts_.reset();
   std::error_code ignored;  // nothing to report: the run is being refused for its own reason
   std::filesystem::remove(partial("history.csv"), ignored);
   std::filesystem::remove(partial("contacts_history.csv"), ignored);

@@ -28,12 +28,16 @@ start_and_wait_for_lines() {
 }
 
 # Killed once two impacts (at 36.3 s of the record, about 3 s into a Release run; waiting at most
-# 200 s leaves room for the sanitizer build) are on disk.
+# 200 s leaves room for the sanitizer build) are on disk, in a folder that held an earlier run's
+# outputs: they are removed when the run starts, so none is taken for the killed run's.
+mkdir -p "$work/killed"
+for earlier in summary.json history.csv impacts.csv contacts_history.csv; do echo earlier > "$work/killed/$earlier"; done
 start_and_wait_for_lines killed impacts.csv.partial 3
 if kill -KILL "$pid" 2> /dev/null; then
   wait "$pid" 2> /dev/null
-  [ ! -e "$work/killed/summary.json" ] || fail "a killed run left a summary.json"
-  [ ! -e "$work/killed/history.csv" ] || fail "a killed run left a history.csv as if complete"
+  for earlier in summary.json history.csv impacts.csv contacts_history.csv; do
+    [ ! -e "$work/killed/$earlier" ] || fail "a killed run left $earlier (an earlier run's) beside its .partial files"
+  done
   /usr/bin/python3 - "$work/killed" <<'PY' || fail "the killed run's history.csv.partial / impacts.csv.partial"
 import sys
 folder = sys.argv[1]

@@ -3,20 +3,45 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <string_view>
 
 namespace pounding::io {
 
-/// Writes `file` into `file.partial` and renames it over `file` once complete, so a reader or a
-/// killed run never sees a truncated file (a leftover `.partial` marks a write that was cut off),
-/// and a crash of the machine leaves the old file or the whole new one (commit_partial).
+/// An output file created afresh, never through a link: whatever entry already stands at `path`
+/// (a file, or a symbolic link planted in a shared folder) is removed first — unlink removes a
+/// link itself, never its target — and the file is created with O_CREAT | O_EXCL | O_NOFOLLOW,
+/// which refuses to open anything that reappeared under the name. Mode 0666 less the umask.
+class ExclusiveOutput {
+ public:
+  /// @throws std::runtime_error naming `path` if it cannot be created.
+  explicit ExclusiveOutput(std::filesystem::path path);
+  ~ExclusiveOutput();
+  ExclusiveOutput(const ExclusiveOutput&) = delete;
+  ExclusiveOutput& operator=(const ExclusiveOutput&) = delete;
+
+  std::ostream& stream();
+  const std::filesystem::path& path() const { return path_; }
+  /// Flushes and closes. @throws std::runtime_error naming `shown_as` if a write failed (disk full).
+  void close(const std::filesystem::path& shown_as);
+
+ private:
+  struct Buffer;
+  std::filesystem::path path_;
+  std::unique_ptr<Buffer> buffer_;
+};
+
+/// Writes `file` into `file.partial` (an ExclusiveOutput) and renames it over `file` once complete,
+/// so a reader or a killed run never sees a truncated file (a leftover `.partial` marks a write
+/// that was cut off), and a crash of the machine leaves the old file or the whole new one
+/// (commit_partial). A symbolic link standing at `file` is replaced by the file, never followed.
 /// @throws std::runtime_error naming the file if it cannot be written.
 void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write);
 
-/// Makes a finished `partial` file durable (fsync) and renames it over `file`, then syncs the
-/// folder. @throws std::runtime_error naming `file` if the data cannot be synced or renamed.
+/// Makes a finished `partial` file durable (fsync) and renames it over `file` (rename replaces a
+/// link at `file` and never writes through it), then syncs the folder. @throws std::runtime_error naming `file` if the data cannot be synced or renamed.
 void commit_partial(const std::filesystem::path& partial, const std::filesystem::path& file);
 
 /// Creates `folder` if missing and proves that files can be created in it (writes and removes

@@ -4,9 +4,10 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
+#include <memory>
 
 #include "pounding/analysis/run_scene.hpp"
+#include "pounding/io/output_files.hpp"
 #include "pounding/io/provenance.hpp"
 #include "pounding/solvers/run_sink.hpp"
 
@@ -15,8 +16,11 @@ namespace pounding::io {
 /// While the run goes, rows go to `history.csv.partial`, `contacts_history.csv.partial` and
 /// `impacts.csv.partial` (each with its header): impacts flushed at every row, the histories at
 /// least every `flush_interval_s` of wall time.
-/// The files open, and an earlier run's summary.json is removed, when the run names its columns
-/// (just before its first row, once it has passed its checks). finish() renames them and writes summary.json last,
+/// The files open when the run names its columns (just before its first row, once it has passed
+/// its checks), each created afresh and never through a link (ExclusiveOutput); an earlier run's
+/// outputs in the folder (summary.json, history.csv, contacts_history.csv, impacts.csv) are
+/// removed then, so a folder never holds one run's files beside another's, even when this run
+/// is killed. finish() renames them and writes summary.json last,
 /// the same files write_run() writes for the same run, byte for byte in the CSVs. A run without
 /// history (no columns) writes impacts.csv only, and removes an earlier run's histories.
 class StreamedRunFiles final : public solvers::RunSink {
@@ -38,12 +42,12 @@ class StreamedRunFiles final : public solvers::RunSink {
  private:
   std::filesystem::path partial(const char* name) const;
   void flush_history_if_due();
-  void close_checked(std::ofstream& out, const char* name);
+  void close_checked(std::unique_ptr<ExclusiveOutput>& out, const char* name);
 
   std::filesystem::path folder_;
   std::chrono::duration<double> flush_interval_;
   std::chrono::steady_clock::time_point last_flush_;
-  std::ofstream history_, contacts_, impacts_;
+  std::unique_ptr<ExclusiveOutput> history_, contacts_, impacts_;
   bool opened_ = false;
   bool with_history_ = false;  // history.csv and contacts_history.csv are written
 };
