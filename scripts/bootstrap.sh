@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs (only those missing), then configures and
 # builds a Release tree in build/, the Python module in build/python/ (README, "Python").
-# Safe to run again: it redoes only what is out of date.
+# Arguments, if any, are build targets (e.g. `--target pounding_cli`): the example builds only
+# the program and the module, the test command everything. Safe to run again: it redoes only
+# what is out of date.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,4 +13,4 @@ packages=(g++ make cmake libsundials-dev libeigen3-dev libboost-test-dev libtoml
 ./scripts/install-packages.sh "${packages[@]}"
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j "$(nproc)"
+cmake --build build -j "$(nproc)" "$@"
