@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +37,42 @@ void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& r
   command.add_option("--direction-deg", record.direction_deg, "Direction of the shaking in plan (degrees from +x)");
 }
 
+/// A study's timed repetitions: each repeats the whole ladder (about a minute on the paper scene).
+constexpr int kMaxStudyRepeats = 100;
+
+/// Whole-number options: the range each may take, checked on the text (so an overflowing
+/// 99999999999999999999 is refused by name, not wrapped or clamped by the conversion).
+const std::map<std::string, std::pair<long long, long long>> kIntegerRanges = {
+    {"--order", {1, 12}},           {"--max-halvings", {0, 60}},     {"--record-column", {1, 1000}},
+    {"--max-steps", {1, 1000000000000}}, {"--max-history-values", {1, 1000000000000}}, {"--threads", {0, 4096}}};
+
+/// Every option that takes a value refuses an empty one (`--gap ''` is a slip, not "unset"), and
+/// the whole-number options their range.
+void harden_options(CLI::App& app) {
+  const CLI::Validator non_empty(
+      [](std::string& value) { return value.empty() ? std::string("an empty value is not allowed") : std::string(); },
+      "", "NON_EMPTY");
+  for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    for (CLI::Option* option : command->get_options([](CLI::Option* o) { return o->get_type_size() > 0; })) {
+      option->check(non_empty);
+      const auto range = kIntegerRanges.find(option->get_name());
+      if (range != kIntegerRanges.end()) option->check(CLI::Range(range->second.first, range->second.second));
+    }
+  }
+}
+
+/// A first argument that names no command: said with the word and the commands there are (CLI11
+/// would say only "A subcommand is required").
+std::optional<std::string> unknown_command(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return std::nullopt;
+  std::string names;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    if (command->get_name() == argv[1]) return std::nullopt;
+    names += (names.empty() ? "" : ", ") + command->get_name();
+  }
+  return fmt::format("unknown command '{}'; the commands are {}", argv[1], names);
+}
+
 /// "pounding 0.1.0 (git 0123abc...)", or without the commit when the build did not know it.
 std::string version_text() {
   const std::string_view commit = pounding::git_commit();
@@ -54,7 +92,7 @@ int main(int argc, char** argv) {
   add_scene_argument(*modes_app, modes.scene);
   modes_app->add_option("--json", modes.json_file, "Also write the modes as JSON to this file");
   modes_app->add_option("--count", modes.count, "Modes printed per building")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(CLI::Range(1, 10000));
 
   pounding::cli::MethodsCommand methods;
   CLI::App* methods_app = app.add_subcommand("methods", "The solution paths and the settings each uses");
@@ -115,7 +153,7 @@ int main(int argc, char** argv) {
   add_scene_argument(*study_app, study.scene);
   study_app->add_option("--gap", study.gap_m, "Clear gap (m); moves building 2 along x");
   study_app->add_option("--repeat", study.repeat, "Timed runs per setting; the median is reported")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(CLI::Range(1, kMaxStudyRepeats));
   study_app->add_flag("--quick", study.quick, "A short ladder: rtol 1e-6 and 1e-8, dt 0.05 and 0.01 s");
   study_app->add_option("--out", study.out_dir, "Output folder (default out/<scene name>-study)");
 
@@ -181,6 +219,11 @@ int main(int argc, char** argv) {
   sweep_app->add_option("--out", sweep.out_dir, "Output folder (default: the file's out, else out/<sweep file name>)");
   sweep_app->add_flag("--no-progress", sweep.no_progress, "No progress bar");
 
+  harden_options(app);
+  if (const auto unknown = unknown_command(app, argc, argv)) {
+    fmt::print(stderr, "error: {}\n", *unknown);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

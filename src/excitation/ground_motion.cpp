@@ -89,7 +89,9 @@ std::optional<AccelUnits> parse_accel_units(std::string_view name) {
 
 void ExcitationSpec::validate() const {
   // Physical ranges (docs/scene-format.md): beyond them a value is a typo or a unit mistake.
-  const Range sample_spacing{0.0, kMaxSampleSpacing_s, "s", true};
+  // Below 1e-5 s a spacing is a typo (accelerographs sample at 50 Hz to 1 kHz); a denormal one
+  // would make every sample time the same.
+  const Range sample_spacing{kMinSampleSpacing_s, kMaxSampleSpacing_s, "s"};
   if (dt_override_s) require_range("excitation.dt_s", *dt_override_s, sample_spacing);
   if (read.dt_s) require_range("excitation.dt_s", *read.dt_s, sample_spacing);
   if (duration_s) require_range("excitation.duration_s", *duration_s, {0.0, kMaxRecordDuration_s, "s", true});
@@ -112,6 +114,10 @@ void ExcitationSpec::validate() const {
   }
   if (read.accel_column && *read.accel_column < 1) {
     throw InputError("excitation.accel_column", std::to_string(*read.accel_column), "columns are numbered from 1");
+  }
+  if (read.format == RecordFormat::columns && read.accel_column == read.time_column) {
+    throw InputError("excitation.accel_column", std::to_string(*read.accel_column),
+                     "is the time column (excitation.time_column): the acceleration must be another column");
   }
 }
 

@@ -24,7 +24,12 @@ std::vector<Line> read_lines(const std::filesystem::path& file) {
   int number = 0;
   while (std::getline(in, text)) {
     if (!text.empty() && text.back() == '\r') text.pop_back();
-    lines.push_back({++number, text});
+    ++number;
+    // A NUL ends a number's text for strtod, so "0.0\0 9" would read as 0.0: refuse the line.
+    if (text.find('\0') != std::string::npos) {
+      throw InputError(fmt::format("line {}", number), "", "holds a NUL byte: not a text record file", file.string());
+    }
+    lines.push_back({number, text});
   }
   return lines;
 }

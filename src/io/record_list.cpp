@@ -121,6 +121,9 @@ std::vector<analysis::RecordEntry> read_list_file(const std::filesystem::path& f
     if (end == std::string::npos) end = text.size();
     std::string_view content(text.data() + begin, end - begin);
     begin = end + 1;
+    if (content.find('\0') != std::string_view::npos) {
+      throw InputError("--records", fmt::format("{}:{}", file.string(), number), "the line holds a NUL byte");
+    }
     content = content.substr(0, content.find('#'));
     ListLine line(fmt::format("{}:{}", file.string(), number), content);
     const std::optional<std::string> path = line.next_word();

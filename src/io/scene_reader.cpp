@@ -623,6 +623,10 @@ analysis::Scene read_scene(const std::filesystem::path& file, const SceneOverrid
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError("", "", "cannot open the scene file", file.string());
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n');
+    throw InputError(fmt::format("line {}", line), "", "holds a NUL byte: not a TOML text file", file.string());
+  }
   return parse_scene(text, file, overrides);
 }
 

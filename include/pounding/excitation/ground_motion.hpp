@@ -17,7 +17,8 @@ std::optional<AccelUnits> parse_accel_units(std::string_view name);
 
 // Physical ranges of the excitation (docs/scene-format.md lists them next to their keys).
 inline constexpr double kMaxRecordDuration_s = 3600.0;  // record times lie in [0, this]
-inline constexpr double kMaxSampleSpacing_s = 1.0;      // dt_s in (0, this]
+inline constexpr double kMinSampleSpacing_s = 1e-5;     // dt_s in [this, kMaxSampleSpacing_s]: 100 kHz
+inline constexpr double kMaxSampleSpacing_s = 1.0;
 inline constexpr double kMaxPeakAccel_g = 10.0;         // processed peak |a_g|; recorded peaks stay below 5 g
 inline constexpr double kGravityRange_mps2[2] = {9.0, 10.5};  // g_mps2: Earth's 9.78…9.83, or 10 for hand checks
 
