@@ -11,6 +11,17 @@
 namespace pounding::analysis {
 namespace {
 
+/// The row's needed gap, governing level and rules from a contact-free run that took steps.
+void take_gap(RecordGap& row, const NeededGap& gap) {
+  row.needed_gap_m = gap.needed_gap_m;
+  row.level = gap.level;
+  row.t_s = gap.t_s;
+  for (const LevelGap& l : gap.levels) {
+    if (l.level.index == gap.level) row.floors = l.level.floors;
+  }
+  row.rules = gap.rules;
+}
+
 /// needed_gap(scene) under one record; any failure (a record that cannot be read, a run that
 /// fails) becomes the row's message.
 RecordGap record_gap(Scene scene, const RecordEntry& entry, const solvers::RunBudget& budget) {
@@ -26,16 +37,16 @@ RecordGap record_gap(Scene scene, const RecordEntry& entry, const solvers::RunBu
     row.pga_g = motion.peak_mps2() / scene.excitation.g_mps2;
     row.duration_s = motion.end_s() - motion.start_s();
     const NeededGap gap = needed_gap(scene, budget);
-    row.needed_gap_m = gap.needed_gap_m;
-    row.level = gap.level;
-    row.t_s = gap.t_s;
-    for (const LevelGap& l : gap.levels) {
-      if (l.level.index == gap.level) row.floors = l.level.floors;
-    }
-    row.rules = gap.rules;
     row.steps = gap.steps;
     row.status = std::string(solvers::to_string(gap.status));  // interrupted / time_limit: a partial run
     row.message = gap.status_detail;
+    // Stopped before its first step (the set was interrupted while it waited), a run has no gap,
+    // not the gap at rest: its row stays empty rather than show round-off as a needed gap.
+    if (gap.status == solvers::RunStatus::completed || gap.steps > 0) {
+      take_gap(row, gap);
+    } else {
+      row.message = "not started: " + row.message;
+    }
   } catch (const std::exception& error) {
     row.message = error.what();
   }

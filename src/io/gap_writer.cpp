@@ -67,6 +67,9 @@ std::string csv_text(const std::string& text) {
   return quoted + "\"";
 }
 
+/// A level or floor of a CSV row; empty for 0 (none: the record's run never started or failed).
+std::string csv_level(int level) { return level > 0 ? std::to_string(level) : ""; }
+
 /// A number of a CSV row; empty where it does not exist.
 std::string csv_number(double value) { return std::isfinite(value) ? fmt::format("{}", value) : ""; }
 
@@ -76,7 +79,8 @@ void write_records_csv(const analysis::RecordSetResult& set, std::ostream& out) 
   for (const analysis::RecordGap& r : set.records) {
     out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.record), csv_text(r.source),
                        r.status, csv_text(r.message), csv_number(r.pga_g), csv_number(r.duration_s),
-                       csv_number(r.needed_gap_m), r.level, r.floors[0], r.floors[1], csv_number(r.t_s),
+                       csv_number(r.needed_gap_m), csv_level(r.level), csv_level(r.floors[0]), csv_level(r.floors[1]),
+                       csv_number(r.t_s),
                        csv_number(r.rules.abs_m), csv_number(r.rules.srss_m), csv_number(r.rules.ddc_m), r.steps,
                        r.wall_time_s);
   }
@@ -100,7 +104,7 @@ json record_json(const analysis::RecordGap& r) {
           {"pga_g", finite_or_null(r.pga_g)},
           {"duration_s", finite_or_null(r.duration_s)},
           {"needed_gap_m", finite_or_null(r.needed_gap_m)},
-          {"level", r.level},
+          {"level", r.level > 0 ? json(r.level) : json(nullptr)},
           {"floor", governed ? json({r.floors[0], r.floors[1]}) : json(nullptr)},
           {"t_s", governed ? finite_or_null(r.t_s) : json(nullptr)},
           {"rules",

@@ -304,6 +304,10 @@ std::vector<model::Column> read_columns(TableReader& table) {
   if (const toml::node* node = table.find("columns")) {
     const std::string key = table.key_path("columns");
     const toml::array& array = table.array_of(*node, key);
+    if (array.size() > model::kMaxColumns) {
+      throw table.error(*node, key, fmt::format("{} columns: a storey may have at most {}", array.size(),
+                                                model::kMaxColumns));
+    }
     for (std::size_t i = 0; i < array.size(); ++i) {
       const auto v = table.numbers_of(array[i], fmt::format("{}[{}]", key, i + 1), 4);
       columns.push_back({Point2(v[0], v[1]), v[2], v[3]});
@@ -320,6 +324,13 @@ std::vector<model::Column> read_columns(TableReader& table) {
       const auto ys = grid.numbers_of(grid.require("y"), grid.key_path("y"));
       const double b = grid.number("b_m"), h = grid.number("h_m");
       grid.finish();
+      // Counted before a column is made: 10 000 × 10 000 would be 10⁸ columns from 150 kB of text.
+      const double total = static_cast<double>(columns.size()) + static_cast<double>(xs.size()) * ys.size();
+      if (total > static_cast<double>(model::kMaxColumns)) {
+        throw table.error(grids[g], grid_key,
+                          fmt::format("{} x {} = {} columns (with those listed before): a storey may have at most {}",
+                                      xs.size(), ys.size(), xs.size() * ys.size(), model::kMaxColumns));
+      }
       for (double y : ys) {
         for (double x : xs) columns.push_back({Point2(x, y), b, h});
       }
@@ -388,6 +399,10 @@ model::BuildingDefinition read_building(TableReader table) {
   {
     const std::string key = table.key_path("slab");
     const toml::array& vertices = table.array_of(table.require("slab"), key);
+    if (vertices.size() > model::kMaxSlabVertices) {
+      throw table.error(vertices, key, fmt::format("{} vertices: a slab may have at most {}", vertices.size(),
+                                                   model::kMaxSlabVertices));
+    }
     std::vector<Point2> points;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       points.push_back(table.point_of(vertices[i], fmt::format("{}[{}]", key, i + 1)));
@@ -575,6 +590,12 @@ void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice
     scene.excitation = excitation::with_record(scene.excitation, choice);
     excitation::load_ground_motion(scene.excitation);
   } catch (const InputError& error) {
+    // A record the options chose as format 'single' without its spacing: say which option is
+    // missing, in the scene's name (the key excitation.dt_s was never typed).
+    if (error.key() == "excitation.dt_s" && error.value() == "missing" && (choice.format || choice.file)) {
+      throw InputError("--record-dt", "missing", "the record is read as format 'single', which needs its sample spacing (s)",
+                       scene.file.string());
+    }
     const std::string option = record_option(error.key(), choice);
     if (option.empty()) throw;
     throw InputError(option, error.value(), error.reason(), error.file().empty() ? scene.file.string() : error.file());

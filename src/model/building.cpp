@@ -44,6 +44,10 @@ void validate_slab(const BuildingDefinition& b) {
     throw InputError("slab", fmt::format("{} vertices", b.slab.size()),
                      "a slab needs at least 3 vertices");
   }
+  if (b.slab.size() > kMaxSlabVertices) {
+    throw InputError("slab", fmt::format("{} vertices", b.slab.size()),
+                     fmt::format("a slab may have at most {} vertices", kMaxSlabVertices));
+  }
   for (std::size_t i = 0; i < b.slab.size(); ++i) {
     if (!(b.slab.vertex(i).cwiseAbs().maxCoeff() <= kMaxPlanCoordinate_m)) {  // NaN fails too
       throw InputError(indexed("slab", i), point_text(b.slab.vertex(i)),
@@ -78,6 +82,10 @@ void validate_per_floor(const std::vector<double>& values, const char* key, int 
 void validate_columns(const BuildingDefinition& b) {
   if (b.columns.empty()) {
     throw InputError("columns", "none", "give columns (or column_grid), or storey_stiffness");
+  }
+  if (b.columns.size() > kMaxColumns) {
+    throw InputError("columns", fmt::format("{} columns", b.columns.size()),
+                     fmt::format("a storey may have at most {} columns", kMaxColumns));
   }
   for (std::size_t i = 0; i < b.columns.size(); ++i) {
     const Column& c = b.columns[i];

@@ -39,7 +39,45 @@ refused "--json: an empty value is not allowed" modes "$paper" --json ''
 refused "--count: Value 0 not in range 1 to 10000" modes "$paper" --count 0
 refused "--repeat: Value 1000000000 not in range 1 to 100" study "$paper" --repeat 1000000000
 refused "unknown command 'frobnicate'" frobnicate
+refused "paper.toml: --record-dt = missing: the record is read as format 'single'" \
+  run "$paper" --record "$source_dir/examples/records/elcentro1940_ns_0.02s.AT2" --record-format single --out "$work/o"
+
+# Work bounded before it is allocated: a 10 000 x 10 000 column grid (10^8 columns from 150 kB of
+# text) and a 20 003-vertex slab are refused at once, naming the key.
+/usr/bin/python3 - "$paper" "$work" <<'PY'
+import sys
+paper, work = sys.argv[1], sys.argv[2]
+scene = open(paper).read().replace('file = "../records/', f'file = "{paper.rsplit("/", 2)[0]}/records/')
+xs = ", ".join(f"{-24 + i * 0.0024:.4f}" for i in range(10000))
+grid = scene.replace("x = [-24.0, -18.0, -12.0, -6.0, 0.0]", f"x = [{xs}]", 1)
+grid = grid.replace("y = [0.0, 5.0, 10.0, 15.0, 20.0]", f"y = [{xs}]", 1)
+open(f"{work}/grid.toml", "w").write(grid)
+vertices = ", ".join(f"[{-24 + 24 * i / 20000:.6f}, 0.0]" for i in range(20001))
+slab = scene.replace("slab = [[-24.0, 0.0], [0.0, 0.0], [0.0, 20.0], [-24.0, 20.0]]",
+                     f"slab = [{vertices}, [0.0, 20.0], [-24.0, 20.0]]", 1)
+open(f"{work}/slab.toml", "w").write(slab)
+PY
+refused "building[1].column_grid[1] = {...}: 10000 x 10000 = 100000000 columns" check "$work/grid.toml"
+refused "20003 vertices: a slab may have at most 1000" check "$work/slab.toml"
 [ -e "$work/o/summary.json" ] && fail "a refused run wrote summary.json"
+
+# A record set interrupted while records wait: their rows say "not started" and leave the needed
+# gap, level and floors empty (they showed the gap at rest, -7e-16 m, at level 1).
+"$pounding" gap "$source_dir/examples/paper/el-centro-true-time.toml" --records "$source_dir/examples/records/set.txt" \
+  --threads 1 --out "$work/set" > /dev/null 2>&1 &
+set_pid=$!
+sleep 0.5
+kill -INT $set_pid
+wait $set_pid
+/usr/bin/python3 - "$work/set/records.csv" <<'PY' || fail "rows of records that never started"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+waiting = [r for r in rows if r["message"].startswith("not started")]
+assert waiting, "no record was left waiting: nothing checked"
+for r in waiting:
+    assert r["status"] == "interrupted" and r["steps"] == "0", r
+    assert r["needed_gap_m"] == r["level"] == r["floor_b1"] == r["floor_b2"] == r["t_s"] == "", r
+PY
 
 echo "$((failures == 0 ? 1 : 0)) passed, $((failures == 0 ? 0 : 1)) failed"
 [ $failures -eq 0 ]

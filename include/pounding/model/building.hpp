@@ -18,6 +18,13 @@ namespace pounding::model {
 /// DOF, whose dense modal analysis still takes well under a second.
 inline constexpr int kMaxStoreys = 200;
 
+/// The most vertices a slab outline may have (an L or a rounded plan needs tens; contact
+/// candidates grow with the product of two slabs' vertex counts), and the most columns a storey
+/// may list (a 100 × 100 grid). Checked by the scene reader before it builds anything, so that a
+/// short file cannot ask for hours of work or gigabytes of memory.
+inline constexpr std::size_t kMaxSlabVertices = 1000;
+inline constexpr std::size_t kMaxColumns = 10'000;
+
 /// The storey heights a scene may give (m), each storey's alone or one for all: beyond them a
 /// value is a typo or a unit mistake. Public so that the scene reader can refuse a single value
 /// under the key the user typed.
