@@ -59,6 +59,20 @@ def _check_settings(settings):
     if unknown:
         raise TypeError(f"unknown settings {', '.join(unknown)}; "
                         f"expected keywords among {', '.join(_pounding.setting_keys())}")
+    for name, value in settings.items():
+        _check_number(name, value, -2**31, 2**31 - 1)
+
+
+def _check_number(name, value, smallest, largest):
+    """A keyword's number checked before it reaches C++, where a Python int too large for the C type
+    raised a cast error without the keyword's name: InputError naming it, with the range of a
+    whole number (a float's range is the library's to check, naming the scene key)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return  # text settings (newton, form, ...) and None are the library's to check
+    if isinstance(value, int) and not smallest <= value <= largest:
+        text = str(value) if len(str(value)) <= 40 else str(value)[:40] + "..."
+        raise InputError(f"{name} = {text}: must lie in [{smallest}, {largest}]", "", name, text,
+                         f"must lie in [{smallest}, {largest}]")
 
 
 def _with_method(self, method=None, **settings):
@@ -215,6 +229,7 @@ def run(scene, method=None, max_steps=None, max_wall_time_s=None, max_history_va
     for name, value in (("max_steps", max_steps), ("max_wall_time_s", max_wall_time_s),
                         ("max_history_values", max_history_values)):
         if value is not None:
+            _check_number(name, value, 1, 10**12)  # the command line's --max-steps range
             setattr(limits, name, value)
     return RunResult(_pounding.run(scene, method, settings, limits))
 

@@ -120,8 +120,8 @@ class Sweep:
         self.max_wall_time_s = None
         if "max_wall_time_s" in document:
             value = document["max_wall_time_s"]
-            if not _is_number(value) or not value > 0:
-                raise _error(self.file, "max_wall_time_s", _text(value), "expected a number of seconds > 0")
+            if not _is_number(value) or not value > 0 or not math.isfinite(value):
+                raise _error(self.file, "max_wall_time_s", _text(value), "expected a finite number of seconds > 0")
             self.max_wall_time_s = float(value)
         self.out = None
         if "out" in document:
@@ -283,8 +283,13 @@ class Sweep:
                                  getattr(error, "value", _text(item)),
                                  f"{getattr(error, 'reason', str(error))} (scene {scene_file})") from None
             records.append({"name": os.path.basename(item["file"]), "source": f"{self.file.name}:{where}", **choice})
-        if len({r["source"] for r in records}) != len(records):
-            raise _error(self.file, "records", _text(value), "a record is given twice")
+        seen = {}
+        for index, record in enumerate(records):  # the same file with the same options: one run twice
+            same = tuple(sorted((k, str(v)) for k, v in record.items() if k not in ("name", "source")))
+            if same in seen:
+                raise _error(self.file, f"records[{index}]", _text(value[index]),
+                             f"the same record as records[{seen[same]}]: a record is given twice")
+            seen[same] = index
         return records
 
     def _record_list(self, path):
@@ -640,12 +645,33 @@ def _serial(sweep, todo):
         yield row, run_task(task, gap)
 
 
+SCHEDULER_TIMEOUT_S = 10
+
+
+def _connect(distributed, scheduler):
+    """A client of the scheduler at `scheduler`, or an InputError: exit 2 for an address that is
+    not one, 3 (ConnectionError) for one where nothing answers within SCHEDULER_TIMEOUT_S."""
+    if not isinstance(scheduler, str) or "://" not in scheduler or not scheduler.split("://", 1)[1]:
+        raise _error("", "--scheduler", _text(scheduler), "expected an address such as tcp://HOST:8786")
+    try:
+        return distributed.Client(scheduler, timeout=SCHEDULER_TIMEOUT_S)
+    except (OSError, TimeoutError) as error:
+        raise SchedulerUnreachable(f"--scheduler = {scheduler}: no Dask scheduler answered within "
+                                   f"{SCHEDULER_TIMEOUT_S} s ({type(error).__name__})") from None
+    except ValueError as error:
+        raise _error("", "--scheduler", _text(scheduler), f"not a scheduler address ({error})") from None
+
+
+class SchedulerUnreachable(ConnectionError):
+    """The scheduler address is well formed but nothing answered there (exit 3, as an interrupted sweep)."""
+
+
 def _client(workers, scheduler):
     """A Dask client: of the scheduler at `scheduler`, or of a new LocalCluster of `workers`
     processes (None: every core), one thread each; the client closes the cluster it started."""
     import dask.distributed  # Debian python3-distributed
     if scheduler is not None:
-        client = dask.distributed.Client(scheduler)
+        client = _connect(dask.distributed, scheduler)
         mine = _worker_identity()
         for worker, identity in client.run(_worker_identity).items():
             if tuple(identity) != mine:
@@ -755,6 +781,9 @@ def main(argv=None):
     except InputError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
+    except SchedulerUnreachable as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 3
     print(f"{len(result.rows)} rows in {result.csv} ({result.executed} run now, {result.skipped} already there, "
           f"{result.failed} not completed)")
     if result.interrupted:

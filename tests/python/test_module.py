@@ -216,6 +216,16 @@ def test_inapplicable_setting_raises_naming_it():
         pounding.run(scene, rtoll=1e-6)
 
 
+def test_whole_numbers_too_large_for_c_raise_naming_the_keyword():
+    # 2**63 reached pybind11's cast and raised "Unable to cast Python instance" without a name.
+    scene = pounding.load_scene(PAPER)
+    for keywords, key in ((dict(method="cvode-bdf", order=2**63), "order"), (dict(order=-2**63), "order"),
+                          (dict(max_steps=2**70), "max_steps"), (dict(max_history_values=0), "max_history_values")):
+        with pytest.raises(pounding.InputError) as raised:
+            pounding.run(scene, **keywords)
+        assert raised.value.key == key and "must lie in" in str(raised.value), keywords
+
+
 def test_modes_match_cli(tmp_path):
     cli("modes", PAPER, "--json", tmp_path / "modes.json")
     expected = json.loads((tmp_path / "modes.json").read_text())["buildings"]

@@ -156,6 +156,8 @@ def test_a_failed_run_is_a_row(folder):
     ('records = ["nowhere.AT2"]', "records[0].file", "", "no such"),
     ('records = "nowhere.txt"', "records", '"nowhere.txt"', "no such record list or folder"),
     ("needed_gap = 1", "needed_gap", "1", "expected true or false"),
+    ("max_wall_time_s = inf", "max_wall_time_s", "inf", "expected a finite number of seconds"),
+    ('records = ["pulse_a.txt", {file = "pulse_a.txt"}]', "records[1]", "pulse_a.txt", "a record is given twice"),
 ])
 def test_bad_sweep_file_names_file_key_and_value(folder, tmp_path, text, key, value, reason):
     path = folder / "bad.toml"
@@ -193,6 +195,20 @@ def test_cli_runs_the_sweep_and_refuses_a_bad_file(folder, serial):
         pounding.sweep(folder / "typo.toml", workers=0, progress=False)
     done = subprocess.run([CLI, "sweep", folder / "typo.toml", "--serial"], capture_output=True, text=True)
     assert done.returncode == 2 and done.stderr == f"error: {raised.value}\n"
+
+
+def test_front_end_errors_are_messages_not_tracebacks(folder, tmp_path):
+    a_file = tmp_path / "a_file"
+    a_file.write_text("")
+    for arguments, status, words in ((["--scheduler", "garbage"], 2, "--scheduler = \"garbage\": expected an address"),
+                                     (["--scheduler", ""], 2, "--scheduler: an empty value is not allowed"),
+                                     # nothing listens on port 1: exit 3 after the bounded wait (10 s)
+                                     (["--scheduler", "tcp://127.0.0.1:1"], 3, "no Dask scheduler answered within"),
+                                     (["--serial", "--out", str(a_file)], 2, "cannot create this folder")):
+        done = subprocess.run([CLI, "sweep", folder / "sweep.toml", "--no-progress"] + arguments,
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == status and words in done.stderr, (arguments, done.returncode, done.stderr)
+        assert "Traceback" not in done.stderr, done.stderr
 
 
 def test_plot_sweep_fits_the_needed_gaps(folder, serial):
