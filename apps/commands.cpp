@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <optional>
 
 #include "pounding/analysis/contact_laws.hpp"
@@ -149,7 +150,29 @@ void apply_output_options(const RunCommand& command, analysis::OutputSettings& o
 
 /// The option that sets a [solver] key or a run limit, for error messages about a value given on
 /// the command line.
-std::string option_for(const std::string& key) {
+/// The options of `run` that the user gave, by their flags.
+std::set<std::string> given_options(const RunCommand& c) {
+  const std::pair<bool, const char*> options[] = {
+      {c.method.has_value(), "--method"},          {c.order.has_value(), "--order"},
+      {c.rtol.has_value(), "--rtol"},              {c.atol.has_value(), "--atol"},
+      {c.newton.has_value(), "--newton"},          {c.form.has_value(), "--form"},
+      {c.dt_s.has_value(), "--dt"},                {c.alpha.has_value(), "--alpha"},
+      {c.contact_tolerance_m.has_value(), "--contact-tol"}, {c.max_halvings.has_value(), "--max-halvings"},
+      {c.event_location.has_value(), "--event-location"},   {c.hold_rtol.has_value(), "--hold-rtol"},
+      {c.modes_cutoff_hz.has_value(), "--modes-cutoff"},    {c.history.has_value(), "--history"},
+      {c.peaks.has_value(), "--peaks"},            {c.max_steps.has_value(), "--max-steps"},
+      {c.max_wall_time_s.has_value(), "--max-wall-time"},   {c.max_history_values.has_value(), "--max-history-values"}};
+  std::set<std::string> given;
+  for (const auto& [set, flag] : options) {
+    if (set) given.insert(flag);
+  }
+  return given;
+}
+
+/// The option that set `key` when the user gave it; otherwise the key itself, so that a value
+/// from the scene file is blamed on the file's key, not on an option nobody typed. The run limits
+/// have no scene key: their option is named whether given or defaulted.
+std::string option_for(const std::string& key, const RunCommand& command) {
   static const std::map<std::string, std::string> kOptions = [] {
     std::map<std::string, std::string> options = {{"limits.max_steps", "--max-steps"},
                                                   {"limits.max_wall_time_s", "--max-wall-time"},
@@ -163,7 +186,9 @@ std::string option_for(const std::string& key) {
     return options;
   }();
   const auto found = kOptions.find(key.substr(0, key.find('[')));  // output.peaks[2]: --peaks
-  return found != kOptions.end() ? found->second : key;
+  if (found == kOptions.end()) return key;
+  const bool limit = key.rfind("limits.", 0) == 0;
+  return limit || given_options(command).count(found->second) ? found->second : key;
 }
 
 analysis::RunLimits run_limits(const RunCommand& command) {
@@ -184,7 +209,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
     apply_run_options(command, scene.solver);
     apply_output_options(command, scene.output);
   } catch (const InputError& error) {
-    throw InputError(option_for(error.key()), error.value(), error.reason(), command.scene);
+    throw InputError(option_for(error.key(), command), error.value(), error.reason(), command.scene);
   }
   const analysis::RunLimits limits = run_limits(command);
   const std::filesystem::path folder =
@@ -205,7 +230,12 @@ int run_run(const RunCommand& command, const std::string& command_line) {
   } catch (const InputError& error) {
     files.abandon();
     if (!created.empty()) std::filesystem::remove_all(created);  // a refused run leaves nothing
-    const std::string option = option_for(error.key());
+    // A law the method cannot run, both given as options, is the options' fault, not the scene's.
+    if (error.key() == "contact.law" && command.contact_law) {
+      throw InputError("--contact-law", error.value(), error.reason() + (command.method ? " (--method)" : ""),
+                       command.scene);
+    }
+    const std::string option = option_for(error.key(), command);
     if (option == error.key()) throw;
     throw InputError(option, error.value(), error.reason(), command.scene);
   }

@@ -5,11 +5,19 @@
 namespace pounding {
 namespace {
 
+/// A key or value as the message shows it: cut after 200 characters (a 500 kB key typed by
+/// mistake would otherwise make a 500 kB message); the error's fields keep it whole.
+std::string shown(const std::string& text) {
+  constexpr std::size_t kMaxShown = 200;
+  if (text.size() <= kMaxShown) return text;
+  return fmt::format("{}... ({} characters)", text.substr(0, kMaxShown), text.size());
+}
+
 std::string compose(const std::string& file, const std::string& key, const std::string& value,
                     const std::string& reason) {
-  std::string message = file.empty() ? std::string{} : file + ": ";
-  if (!key.empty()) message += key;
-  if (!value.empty()) message += (key.empty() ? "" : " = ") + value;
+  std::string message = file.empty() ? std::string{} : shown(file) + ": ";
+  if (!key.empty()) message += shown(key);
+  if (!value.empty()) message += (key.empty() ? "" : " = ") + shown(value);
   if (!key.empty() || !value.empty()) message += ": ";
   return message + reason;
 }

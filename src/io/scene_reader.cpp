@@ -279,7 +279,9 @@ std::vector<double> per_floor_masses(TableReader& table, int storeys) {
     return table.numbers_of(node, key);
   }
   std::vector<double> masses(std::max(storeys, 0), positive(table, node, key));
-  if (top && !masses.empty()) masses.back() = positive(table, *top, table.key_path("top_floor_mass_t"));
+  if (top && !masses.empty()) {
+    masses.back() = in_range(table, *top, table.key_path("top_floor_mass_t"), model::kFloorMass);
+  }
   return masses;
 }
 
@@ -322,7 +324,8 @@ std::vector<model::Column> read_columns(TableReader& table) {
       TableReader grid(*grids[g].as_table(), grid_key, table.file());
       const auto xs = grid.numbers_of(grid.require("x"), grid.key_path("x"));
       const auto ys = grid.numbers_of(grid.require("y"), grid.key_path("y"));
-      const double b = grid.number("b_m"), h = grid.number("h_m");
+      const double b = in_range(grid, grid.require("b_m"), grid.key_path("b_m"), model::kColumnSize);
+      const double h = in_range(grid, grid.require("h_m"), grid.key_path("h_m"), model::kColumnSize);
       grid.finish();
       // Counted before a column is made: 10 000 × 10 000 would be 10⁸ columns from 150 kB of text.
       const double total = static_cast<double>(columns.size()) + static_cast<double>(xs.size()) * ys.size();

@@ -17,9 +17,7 @@ std::string indexed(const char* key, std::size_t index) { return fmt::format("{}
 // Physical ranges (docs/scene-format.md lists each next to its key). Beyond them a value is a
 // typo or a unit mistake, and the modal analysis or the time step it implies is meaningless.
 constexpr double kMaxPlanCoordinate_m = 10'000.0;
-constexpr Range kFloorMass{1.0, 1e10, "t"};     // above 1e6 t only to model a rigid wall
 constexpr Range kPolarMoment{0.1, 1e14, "t·m²"};
-constexpr Range kColumnSize{0.0, 5.0, "m", true};
 constexpr Range kYoungsModulus{1e6, 1e9, "kPa"};
 constexpr Range kFrameFactor{1e-4, 10.0, "", true};
 constexpr Range kTargetPeriod{0.02, 20.0, "s"};

@@ -61,6 +61,21 @@ refused "building[1].column_grid[1] = {...}: 10000 x 10000 = 100000000 columns" 
 refused "20003 vertices: a slab may have at most 1000" check "$work/slab.toml"
 [ -e "$work/o/summary.json" ] && fail "a refused run wrote summary.json"
 
+# Messages name the key the file holds, and cut what they echo.
+/usr/bin/python3 - "$paper" "$work" <<'PY'
+import sys
+paper, work = sys.argv[1], sys.argv[2]
+scene = open(paper).read().replace('file = "../records/', f'file = "{paper.rsplit("/", 2)[0]}/records/')
+open(f"{work}/top.toml", "w").write(scene.replace("top_floor_mass_t = 530.0", "top_floor_mass_t = 0.9", 1))
+open(f"{work}/grid_b.toml", "w").write(scene.replace("b_m = 0.45", "b_m = -0.45", 1))
+open(f"{work}/long_key.toml", "w").write(scene.replace("[excitation]", "[excitation]\n" + "k" * 500000 + " = 1", 1))
+PY
+refused "building[1].top_floor_mass_t = 0.9: must lie in [1," check "$work/top.toml"
+refused "building[1].column_grid[1].b_m = -0.45: must lie in (0, 5] m" check "$work/grid_b.toml"
+refused "(500011 characters) = 1: unknown key" check "$work/long_key.toml"
+[ "$(wc -c < "$work/out.txt")" -lt 2000 ] || fail "a 500 kB key gave a $(wc -c < "$work/out.txt")-byte message"
+refused "--contact-law = \"kelvin\": does not run on method hht" run "$paper" --contact-law kelvin --method hht --out "$work/o"
+
 # A record set interrupted while records wait: their rows say "not started" and leave the needed
 # gap, level and floors empty (they showed the gap at rest, -7e-16 m, at level 1).
 "$pounding" gap "$source_dir/examples/paper/el-centro-true-time.toml" --records "$source_dir/examples/records/set.txt" \

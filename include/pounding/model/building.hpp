@@ -29,6 +29,11 @@ inline constexpr std::size_t kMaxColumns = 10'000;
 /// value is a typo or a unit mistake. Public so that the scene reader can refuse a single value
 /// under the key the user typed.
 inline constexpr Range kStoreyHeightRange{1.0, 20.0, "m"};
+/// A floor's mass (above 1e6 t only to model a rigid wall) and a column's section sides, public
+/// for the same reason: `top_floor_mass_t` and a `column_grid`'s `b_m`/`h_m` are refused under
+/// their own keys, not under the `mass_t[i]` and `columns[i].b` they become.
+inline constexpr Range kFloorMass{1.0, 1e10, "t"};
+inline constexpr Range kColumnSize{0.0, 5.0, "m", true};
 
 /// A column between two floors, fixed at both ends. b is its size along x, h along y (m).
 struct Column {
