@@ -21,6 +21,33 @@ std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
                                   {.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m});
 }
 
+/// The scene's keys that chose how its record is read, as typed ("excitation.format = single,
+/// excitation.accel_column = 99"), for an error the record file itself raised.
+std::string reading_keys(const excitation::ExcitationSpec& spec) {
+  constexpr const char* kFormats[] = {"peer-at2", "columns", "single"};
+  std::string keys = fmt::format("excitation.format = {}", kFormats[static_cast<int>(spec.read.format)]);
+  if (spec.read.format == excitation::RecordFormat::columns) {
+    keys += fmt::format(", excitation.time_column = {}", spec.read.time_column);
+  }
+  if (spec.read.accel_column) keys += fmt::format(", excitation.accel_column = {}", *spec.read.accel_column);
+  if (spec.read.dt_s) keys += fmt::format(", excitation.dt_s = {}", *spec.read.dt_s);
+  return keys;
+}
+
+excitation::GroundMotion scene_ground_motion(const Scene& scene) {
+  try {
+    return excitation::load_ground_motion(scene.excitation);
+  } catch (const InputError& error) {
+    // The record file's line and field say what was found; the scene's file and keys say what
+    // was asked of it (a column 99 the file does not have was the scene's choice).
+    if (scene.file.empty() || error.file().rfind(scene.excitation.file.string(), 0) != 0) throw;
+    throw InputError(error.key(), error.value(),
+                     fmt::format("{} (read as {} asks: {})", error.reason(), scene.file.string(),
+                                 reading_keys(scene.excitation)),
+                     error.file());
+  }
+}
+
 dynamics::CoupledSystem build_system(const Scene& scene) {
   std::array<model::Building, 2> buildings;
   for (std::size_t b = 0; b < 2; ++b) {
@@ -30,7 +57,7 @@ dynamics::CoupledSystem build_system(const Scene& scene) {
       throw error.in_context(scene.file.string(), fmt::format("building[{}]", b + 1));
     }
   }
-  return dynamics::CoupledSystem(std::move(buildings), excitation::load_ground_motion(scene.excitation),
+  return dynamics::CoupledSystem(std::move(buildings), scene_ground_motion(scene),
                                  scene.levels(), scene_candidates(scene));
 }
 

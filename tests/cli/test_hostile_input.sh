@@ -66,10 +66,16 @@ refused "20003 vertices: a slab may have at most 1000" check "$work/slab.toml"
 import sys
 paper, work = sys.argv[1], sys.argv[2]
 scene = open(paper).read().replace('file = "../records/', f'file = "{paper.rsplit("/", 2)[0]}/records/')
+kobe = 'file = "' + paper.rsplit("/", 2)[0] + '/records/kobe1995_jma_ns_ew_0.005s_cms2.txt"\nformat = "single"'
+open(f"{work}/column99.toml", "w").write(scene.replace(
+    'file = "' + paper.rsplit("/", 2)[0] + '/records/elcentro1940_ns_0.02s.AT2"\nformat = "peer-at2"',
+    kobe + "\naccel_column = 99", 1))
 open(f"{work}/top.toml", "w").write(scene.replace("top_floor_mass_t = 530.0", "top_floor_mass_t = 0.9", 1))
 open(f"{work}/grid_b.toml", "w").write(scene.replace("b_m = 0.45", "b_m = -0.45", 1))
 open(f"{work}/long_key.toml", "w").write(scene.replace("[excitation]", "[excitation]\n" + "k" * 500000 + " = 1", 1))
 PY
+refused "column 99 was asked for (read as $work/column99.toml asks: excitation.format = single, excitation.accel_column = 99" \
+  check "$work/column99.toml"
 refused "building[1].top_floor_mass_t = 0.9: must lie in [1," check "$work/top.toml"
 refused "building[1].column_grid[1].b_m = -0.45: must lie in (0, 5] m" check "$work/grid_b.toml"
 refused "(500011 characters) = 1: unknown key" check "$work/long_key.toml"
