@@ -673,7 +673,14 @@ def _client(workers, scheduler):
     if scheduler is not None:
         client = _connect(dask.distributed, scheduler)
         mine = _worker_identity()
-        for worker, identity in client.run(_worker_identity).items():
+        try:
+            identities = client.run(_worker_identity)
+        except Exception as error:  # a worker that cannot import pounding raises its ImportError here
+            client.close()
+            raise _error("", "--scheduler", scheduler,
+                         f"a worker cannot run pounding ({type(error).__name__}: {error}); start the workers with "
+                         f"PYTHONPATH holding this build's module") from None
+        for worker, identity in identities.items():
             if tuple(identity) != mine:
                 client.close()
                 raise _error("", "--scheduler", scheduler,
@@ -685,8 +692,15 @@ def _client(workers, scheduler):
     if package_parent not in path.split(os.pathsep):
         os.environ["PYTHONPATH"] = package_parent + (os.pathsep + path if path else "")
     count = workers or os.cpu_count() or 1
-    cluster = dask.distributed.LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                                            dashboard_address=":0", silence_logs=logging.ERROR)  # any free port
+    # Ctrl-C reaches the whole process group: the workers, started with SIGINT ignored (a
+    # disposition a new process keeps, and under which Python installs no KeyboardInterrupt), leave
+    # it to this process, which closes the cluster, instead of each printing a traceback.
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        cluster = dask.distributed.LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                                                dashboard_address=":0", silence_logs=logging.ERROR)  # any free port
+    finally:
+        signal.signal(signal.SIGINT, previous)
     client = dask.distributed.Client(cluster)
     client._pounding_cluster = cluster
     return client, f"LocalCluster({count} workers x 1 thread)"

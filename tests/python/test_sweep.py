@@ -12,7 +12,9 @@ import json
 import math
 import os
 import pathlib
+import signal
 import subprocess
+import time
 
 import numpy as np
 import pytest
@@ -209,6 +211,27 @@ def test_front_end_errors_are_messages_not_tracebacks(folder, tmp_path):
                               capture_output=True, text=True, timeout=120)
         assert done.returncode == status and words in done.stderr, (arguments, done.returncode, done.stderr)
         assert "Traceback" not in done.stderr, done.stderr
+
+
+def test_ctrl_c_stops_a_cluster_sweep_without_worker_tracebacks(tmp_path):
+    # Ctrl-C signals the whole process group; the Dask workers each printed a KeyboardInterrupt
+    # traceback. 200 runs keep the sweep going when the signal comes, after its first rows.
+    gaps = ", ".join(f"{0.05 + 0.001 * i:.3f}" for i in range(200))
+    (tmp_path / "long.toml").write_text(f'scenes = ["{PAPER}"]\ngaps_m = [{gaps}]\nmethods = ["exact"]\n')
+    table = tmp_path / "out" / "sweep.csv"
+    sweep = subprocess.Popen([CLI, "sweep", tmp_path / "long.toml", "--workers", "2", "--no-progress", "--out",
+                              tmp_path / "out"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             start_new_session=True)
+    deadline = time.monotonic() + 120
+    while sweep.poll() is None and time.monotonic() < deadline:
+        if table.exists() and table.read_text().count("\n") >= 3:
+            break
+        time.sleep(0.1)
+    assert sweep.poll() is None, "the sweep ended before the signal: nothing checked"
+    os.killpg(sweep.pid, signal.SIGINT)
+    out, err = sweep.communicate(timeout=120)
+    assert sweep.returncode == 3 and "interrupted" in err, (sweep.returncode, err)
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
 
 
 def test_plot_sweep_fits_the_needed_gaps(folder, serial):
