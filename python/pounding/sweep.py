@@ -87,6 +87,18 @@ def _error(file, key, value, reason):
 # The sweep file
 
 
+def _refuse_nul(file, value, key=""):
+    """InputError naming the first string of the document that holds a NUL character (TOML's
+    "\u0000"): no path or name may hold one, and the operating system refuses it with a
+    ValueError that names nothing."""
+    if isinstance(value, str) and "\0" in value:
+        raise _error(file, key, _text(value), "holds a NUL character")
+    items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, list) else ()
+    for part, item in items:
+        _refuse_nul(file, item, f"{key}.{part}" if isinstance(part, str) and key else
+                    part if isinstance(part, str) else f"{key}[{part}]")
+
+
 class Sweep:
     """A checked sweep file: the product's axes as plain values (what the workers get)."""
 
@@ -102,6 +114,7 @@ class Sweep:
             document = tomllib.loads(raw.decode("utf-8"))
         except (UnicodeDecodeError, tomllib.TOMLDecodeError) as error:
             raise _error(self.file, "", "", f"not a TOML file: {error}") from None
+        _refuse_nul(self.file, document)
         for key in document:
             if key not in SWEEP_KEYS:
                 raise _error(self.file, key, _text(document[key]), f"unknown key (expected {', '.join(SWEEP_KEYS)})")
