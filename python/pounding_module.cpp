@@ -29,6 +29,7 @@
 #include "pounding/io/run_report.hpp"
 #include "pounding/io/run_writer.hpp"
 #include "pounding/io/scene_reader.hpp"
+#include "pounding/model/building.hpp"
 #include "pounding/solvers/run_budget.hpp"
 #include "pounding/version.hpp"
 
@@ -273,6 +274,35 @@ py::list record_list(const Scene& scene, const std::filesystem::path& list_or_fo
   return entries;
 }
 
+/// An Eigen matrix as a numpy array (a copy).
+py::array_t<double> array_of(const Eigen::MatrixXd& m) {
+  return matrix(static_cast<std::size_t>(m.rows()), static_cast<std::size_t>(m.cols()),
+                [&](std::size_t r, std::size_t c) { return m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)); });
+}
+
+/// Each building's assembled model, as the runs build it (model::make_building): M, K, C (3N×3N,
+/// floor 1's u, v, φ first) and the mode shapes as columns, longest period first, mass-normalised.
+py::list building_matrices(const Scene& scene) {
+  py::list buildings;
+  for (std::size_t i = 0; i < scene.buildings.size(); ++i) {
+    pounding::model::Building building;
+    try {
+      building = pounding::model::make_building(scene.buildings[i]);
+    } catch (const InputError& error) {
+      throw error.in_context(scene.file.string(), "building[" + std::to_string(i + 1) + "]");
+    }
+    Eigen::MatrixXd shapes(building.dof(), static_cast<Eigen::Index>(building.modes.size()));
+    for (std::size_t j = 0; j < building.modes.size(); ++j) shapes.col(static_cast<Eigen::Index>(j)) = building.modes[j].shape;
+    py::dict item;
+    item["M"] = array_of(building.mass_diagonal.asDiagonal().toDenseMatrix());
+    item["K"] = array_of(building.stiffness);
+    item["C"] = array_of(building.damping);
+    item["shapes"] = array_of(shapes);
+    buildings.append(item);
+  }
+  return buildings;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_pounding, m) {
@@ -303,21 +333,25 @@ PYBIND11_MODULE(_pounding, m) {
   });
   m.def("impact_columns", &impact_columns);
 
-  py::class_<Scene>(m, "Scene")
-      .def_readonly("name", &Scene::name)
-      .def_property_readonly("file", [](const Scene& s) { return s.file; })
-      .def_property_readonly("gap_m", [](const Scene& s) { return s.contact.gap_m; })
-      .def_property_readonly("restitution", [](const Scene& s) { return s.contact.restitution; })
-      .def_property_readonly("method", [](const Scene& s) { return s.solver.method; })
-      .def_property_readonly("contact_law", [](const Scene& s) { return s.contact.law; })
-      .def_property_readonly("record_file", [](const Scene& s) { return s.excitation.file; })
-      .def_property_readonly("history", [](const Scene& s) { return s.output.history; })
-      .def_property_readonly("peaks", [](const Scene& s) { return s.output.peaks; })
-      .def("with_gap", &with_gap, py::arg("gap_m"))
+  py::class_<Scene>(m, "Scene", "A scene read and checked by pounding.load_scene(); its with_* methods return changed copies")
+      .def_readonly("name", &Scene::name, "The scene's name (its file's `name`)")
+      .def_property_readonly("file", [](const Scene& s) { return s.file; }, "The scene file it was read from")
+      .def_property_readonly("gap_m", [](const Scene& s) { return s.contact.gap_m; }, "contact.gap_m: the clear gap at rest (m)")
+      .def_property_readonly("restitution", [](const Scene& s) { return s.contact.restitution; },
+                             "contact.restitution: the coefficient of restitution")
+      .def_property_readonly("method", [](const Scene& s) { return s.solver.method; }, "solver.method (pounding.methods())")
+      .def_property_readonly("contact_law", [](const Scene& s) { return s.contact.law; }, "contact.law")
+      .def_property_readonly("record_file", [](const Scene& s) { return s.excitation.file; }, "excitation.file: the record")
+      .def_property_readonly("history", [](const Scene& s) { return s.output.history; },
+                             "output.history: whether runs keep the history")
+      .def_property_readonly("peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
+      .def("with_gap", &with_gap, py::arg("gap_m"),
+           "The scene with building 2 moved along x to the clear gap gap_m (m), as `run --gap`")
       .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),
            "The scene with output.history (bool) and output.peaks (a list of peak groups: displacements, "
            "accelerations, drifts) replaced; None keeps the scene's")
-      .def("with_restitution", &with_restitution, py::arg("restitution"))
+      .def("with_restitution", &with_restitution, py::arg("restitution"),
+           "The scene with contact.restitution replaced, as `run --restitution`")
       .def(
           "_with_record",
           [](const Scene& scene, std::filesystem::path file, std::optional<std::string> format,
@@ -351,6 +385,7 @@ PYBIND11_MODULE(_pounding, m) {
       py::arg("law"));
   m.def("record_list", &record_list, py::arg("scene"), py::arg("list_or_folder"));
 
+  m.def("building_matrices", &building_matrices, py::arg("scene"));
   m.def("modes_json", [](const Scene& scene) {
     return pounding::io::modes_json(pounding::analysis::summarise_buildings(scene)).dump();
   });

@@ -7,18 +7,20 @@ returning Python objects and numpy arrays instead of files.
     result.history["B1_f7_u_m"]            # numpy array over result.history["t_s"]
     pounding.needed_gap(scene).needed_gap_m
     pounding.sweep("examples/sweep/sweep.toml", workers=2)   # many runs on Dask (pounding/sweep.py)
+    pounding.modes(scene)[0]["shapes"], pounding.modes(scene)[0]["K"]   # mode shapes, M, K, C
+    result.history_frame(), result.impacts_frame()   # pandas DataFrames (Debian python3-pandas)
 
 Units are in the names (m, s, kNs, kJ), as in the command line's files. Bad input raises
 pounding.InputError (a ValueError) with the command line's message, naming file, key and value.
 run() and needed_gap() release the GIL: runs on several threads proceed in parallel.
 """
 
-import json
+import json as _json
 
-import numpy as np
+import numpy as _np
 
-__all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "record_list", "modes", "run",
-           "needed_gap", "methods", "settings", "sweep", "__version__"]
+__all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "record_list", "modes", "modes_frame",
+           "run", "needed_gap", "methods", "settings", "sweep", "__version__"]
 
 
 class InputError(ValueError):
@@ -83,10 +85,21 @@ def _with_method(self, method=None, **settings):
     return self._with_solver(method, settings)
 
 
-Scene.with_record = _with_record
-Scene.with_method = _with_method
-Scene.__repr__ = lambda self: (f"<pounding.Scene {self.name!r}: gap {self.gap_m} m, restitution "
-                               f"{self.restitution}, method {self.method}, record {str(self.record_file)!r}>")
+def _as_method(function, name):
+    """`function` as the Scene method `name`: help(Scene) then lists it under its own name."""
+    function.__name__, function.__qualname__ = name, f"Scene.{name}"
+    setattr(Scene, name, function)
+
+
+_as_method(_with_record, "with_record")
+_as_method(_with_method, "with_method")
+def _scene_repr(self):
+    return (f"<pounding.Scene {self.name!r}: gap {self.gap_m} m, restitution {self.restitution}, "
+            f"method {self.method}, record {str(self.record_file)!r}>")
+
+
+_as_method(_scene_repr, "__repr__")
+Scene.__module__ = "pounding"  # help() and repr name the package, not the bindings
 
 
 def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiffness=None):
@@ -133,17 +146,44 @@ def modes(scene):
     """Modal analysis of both buildings (`pounding modes --json`'s `buildings`): one dict a
     building with the command line's keys (name, storeys, dof, total_mass_t, frame_factor, rayleigh, modes, ...),
     plus numpy arrays over the modes, longest period first: periods_s, frequencies_hz and
-    effective_mass_ratio {x, y, rz} (fractions of the total mass)."""
-    buildings = json.loads(_pounding.modes_json(scene))["buildings"]
-    for building in buildings:
-        building["periods_s"] = np.array(building["periods_s"])
-        building["frequencies_hz"] = np.array([m["frequency_hz"] for m in building["modes"]])
+    effective_mass_ratio {x, y, rz} (fractions of the total mass); and the model the runs solve,
+    M q'' + C q' + K q = -M r a_g, with q = (u1, v1, phi1, u2, ...) floor 1 first about each
+    floor's centre of mass (dofs names them as history.csv does: f1_u_m, f1_v_m, f1_phi_rad, ...):
+    M (t and t*m^2 on the diagonal), K (kN/m, kN, kN*m/rad), C (Rayleigh, kN*s/m, ...), all
+    3N x 3N, and shapes (3N x 3N, column j the mode j of `modes`, mass-normalised: shapes.T @ M @ shapes = I)."""
+    buildings = _json.loads(_pounding.modes_json(scene))["buildings"]
+    for building, model in zip(buildings, _pounding.building_matrices(scene)):
+        building["periods_s"] = _np.array(building["periods_s"])
+        building["frequencies_hz"] = _np.array([m["frequency_hz"] for m in building["modes"]])
         building["effective_mass_ratio"] = {
-            axis: np.array([m["effective_mass_ratio"][axis] for m in building["modes"]]) for axis in ("x", "y", "rz")}
+            axis: _np.array([m["effective_mass_ratio"][axis] for m in building["modes"]]) for axis in ("x", "y", "rz")}
+        building["dofs"] = [f"f{floor}_{name}" for floor in range(1, building["storeys"] + 1)
+                            for name in ("u_m", "v_m", "phi_rad")]
+        building.update(model)
     return buildings
 
 
-_IMPACT_DTYPES = {"real": np.float64, "integer": np.int64, "flag": np.bool_}
+def _pandas():
+    try:
+        import pandas
+    except ImportError as error:
+        raise ImportError("the *_frame() methods need pandas (Debian: python3-pandas); "
+                          "the same data is there as numpy arrays without it") from error
+    return pandas
+
+
+def modes_frame(scene):
+    """modes(scene) as one pandas DataFrame, a row a mode: building, mode (from 1, longest period
+    first), period_s, frequency_hz, dominant and effective_mass_ratio_{x,y,rz}."""
+    rows = [{"building": building["name"], "mode": index, "period_s": mode["period_s"],
+             "frequency_hz": mode["frequency_hz"], "dominant": mode["dominant"],
+             **{f"effective_mass_ratio_{axis}": mode["effective_mass_ratio"][axis] for axis in ("x", "y", "rz")}}
+            for building in _json.loads(_pounding.modes_json(scene))["buildings"]
+            for index, mode in enumerate(building["modes"], start=1)]
+    return _pandas().DataFrame(rows)
+
+
+_IMPACT_DTYPES = {"real": _np.float64, "integer": _np.int64, "flag": _np.bool_}
 
 
 def _columns(table, names):
@@ -162,7 +202,7 @@ class RunResult:
 
     def __init__(self, run):
         self._run = run
-        self.summary = json.loads(run.summary_json())
+        self.summary = _json.loads(run.summary_json())
         for key in ("status", "status_detail", "impacts", "touches", "sustained_contacts", "peaks", "energy",
                     "statistics"):
             setattr(self, key, self.summary[key])
@@ -175,7 +215,7 @@ class RunResult:
         if self._impacts_array is None:
             columns = _pounding.impact_columns()
             table = self._run.impact_table()
-            array = np.zeros(len(table), dtype=[(name, _IMPACT_DTYPES[kind]) for name, kind in columns])
+            array = _np.zeros(len(table), dtype=[(name, _IMPACT_DTYPES[kind]) for name, kind in columns])
             for index, (name, kind) in enumerate(columns):
                 array[name] = table[:, index].astype(_IMPACT_DTYPES[kind])
             self._impacts_array = array
@@ -203,6 +243,20 @@ class RunResult:
     def time_s(self):
         """The history's sample times (s): history["t_s"]."""
         return self.history["t_s"]
+
+    def history_frame(self):
+        """history as a pandas DataFrame indexed by t_s (empty without history)."""
+        history = dict(self.history)
+        frame = _pandas().DataFrame(history)
+        return frame.set_index("t_s") if "t_s" in frame else frame
+
+    def impacts_frame(self):
+        """impacts_array (impacts.csv) as a pandas DataFrame, a row an impact."""
+        return _pandas().DataFrame(self.impacts_array)
+
+    def contact_forces_frame(self):
+        """contact_forces (contacts_history.csv) as a pandas DataFrame."""
+        return _pandas().DataFrame(dict(self.contact_forces))
 
     def report(self):
         """The report `pounding run` prints (several lines)."""
@@ -241,11 +295,17 @@ class GapResult:
     history_touch_gap_m (one column a level) are gap_history.csv's touch gaps as numpy arrays."""
 
     def __init__(self, gap):
-        self.summary = json.loads(gap.gap_json())
+        self.summary = _json.loads(gap.gap_json())
         for key in ("status", "status_detail", "end_s", "needed_gap_m", "level", "floor", "t_s", "levels", "rules"):
             setattr(self, key, self.summary.get(key))
         self.history_t_s = gap.history_t_s()
         self.history_touch_gap_m = gap.touch_gap_table()
+
+    def history_frame(self):
+        """gap_history.csv as a pandas DataFrame indexed by t_s, a column touch_gap_level_<n>_m a level."""
+        columns = {f"touch_gap_level_{level['level']}_m": self.history_touch_gap_m[:, index]
+                   for index, level in enumerate(self.levels)}
+        return _pandas().DataFrame(columns, index=_pandas().Index(self.history_t_s, name="t_s"))
 
     def __repr__(self):
         return f"<pounding.GapResult needed gap {self.needed_gap_m} m at level {self.level}, t = {self.t_s} s>"

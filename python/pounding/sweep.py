@@ -546,10 +546,37 @@ class Table:
         self.handle.close()
 
 
-def read_table(path):
-    """sweep.csv as a list of dicts of text (empty cells for missing values)."""
+TEXT_COLUMNS = {"scene_file", "scene", "record", "record_source", "contact_law", "method", "status", "message",
+                "needed_gap_status"}
+INTEGER_COLUMNS = {"impact_count", "touch_count", "sustained_contact_count", "steps", "needed_gap_level"}
+
+
+def _typed(column, text):
+    """A cell of sweep.csv as the value it was written from: None for an empty cell, text for the
+    TEXT_COLUMNS, int for the INTEGER_COLUMNS, float for the other results and parameters, and for
+    a [solver] setting's column an int, a float or its text, whichever reads (order, rtol, newton)."""
+    if text == "":
+        return None
+    if column in TEXT_COLUMNS:
+        return text
+    if column in INTEGER_COLUMNS:
+        return int(text)
+    if column in RESULTS or column in NEEDED_GAP or column in TIMINGS or column in PARAMETERS:
+        return float(text)
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+def read_table(path, typed=True):
+    """sweep.csv as a list of dicts, a row a run: with typed, each cell as its type (_typed: None,
+    str, int or float; floats bit for bit as run); without, as text (empty cells for missing values)."""
     with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+        rows = list(csv.DictReader(f))
+    return [{column: _typed(column, text) for column, text in row.items()} for row in rows] if typed else rows
 
 
 # ------------------------------------------------------------------------------------------------
@@ -557,7 +584,8 @@ def read_table(path):
 
 
 class SweepResult:
-    """What run_sweep did: the table's path, its rows (dicts of text, as read back), how many runs
+    """What run_sweep did: the table's path, its rows (dicts of typed values, as read back:
+    read_table; frame() is the same table as a pandas DataFrame), how many runs
     this call executed and skipped (already in the table), how many rows did not complete, and
     whether runs of the product are still missing (interrupted)."""
 
@@ -567,6 +595,11 @@ class SweepResult:
         self.rows = read_table(self.csv)
         self.executed, self.skipped, self.interrupted = executed, skipped, interrupted
         self.failed = sum(row["status"] != "completed" for row in self.rows)
+
+    def frame(self):
+        """The rows as a pandas DataFrame (Debian python3-pandas), a column a sweep.csv column."""
+        import pandas
+        return pandas.DataFrame(self.rows, columns=list(self.rows[0]) if self.rows else None)
 
     def __repr__(self):
         return (f"<pounding.sweep.SweepResult {len(self.rows)} rows in {self.csv}: {self.executed} run now, "

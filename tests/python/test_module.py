@@ -1,6 +1,7 @@
 """`import pounding` against the command line: the same scene run both ways gives the same
-documents bit for bit, bad input the same messages. CTest runs this file with PYTHONPATH at the
-build's module folder and POUNDING_CLI at the program; by hand:
+documents bit for bit, bad input the same messages. CTest runs this file with the interpreter of a
+virtual environment the package is pip-installed in (POUNDING_INSTALLED_IN names it) and
+POUNDING_CLI at the program; by hand, against the build's module folder:
     PYTHONPATH=build/python /usr/bin/python3 -m pytest tests/python
 """
 
@@ -32,6 +33,15 @@ RECORD = SOURCE / "examples" / "records" / "elcentro1940_ns_peer_RSN6.AT2"
 # (git_commit ends in -dirty for a build from edited sources).
 NOT_REPRODUCIBLE = {("provenance", "command_line"), ("provenance", "date_utc"), ("statistics", "wall_time_s"),
                     ("wall_time_s",)}
+
+
+
+@pytest.mark.skipif("POUNDING_INSTALLED_IN" not in os.environ, reason="run against the build's module folder")
+def test_imported_from_the_installed_package():
+    """CTest's runs test the package pip installed, not the source or build tree."""
+    where = pathlib.Path(pounding.__file__).resolve()
+    assert pathlib.Path(os.environ["POUNDING_INSTALLED_IN"]).resolve() in where.parents, where
+    assert not os.environ.get("PYTHONPATH")
 
 
 def assert_same(a, b, path=()):

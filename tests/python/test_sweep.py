@@ -7,6 +7,7 @@ folder, POUNDING_CLI at the program); by hand:
 Tiny sweeps (2 records × 2 gaps of the paper scene under 6 s synthetic records) keep it short.
 """
 
+import csv
 import hashlib
 import json
 import math
@@ -102,6 +103,24 @@ def test_rows_are_the_module_s_runs(folder, serial):
     assert 0 < len(pounded) < 4, "the sweep should hold runs with and without pounding"
 
 
+def test_rows_are_typed(folder, serial):
+    """Rows hold numbers as numbers (read back bit for bit from the CSV's text), names as text;
+    frame() is the same table in pandas."""
+    with open(folder / "serial" / "sweep.csv", newline="") as f:
+        text_rows = list(csv.DictReader(f))
+    for row, text in zip(serial.rows, text_rows):
+        assert isinstance(row["record"], str) and isinstance(row["method"], str)
+        assert isinstance(row["impact_count"], int) and row["impact_count"] == int(text["impact_count"])
+        for column in ("gap_m", "restitution", "needed_gap_m", "b1_peak_u_m", "wall_time_s"):
+            assert isinstance(row[column], float) and repr(row[column]) == text[column], column
+        assert row["needed_gap_level"] == int(text["needed_gap_level"])
+    pandas = pytest.importorskip("pandas")
+    frame = serial.frame()
+    assert list(frame.columns) == list(text_rows[0]) and len(frame) == len(text_rows)
+    assert frame["impact_count"].tolist() == [row["impact_count"] for row in serial.rows]
+    assert pandas.api.types.is_float_dtype(frame["gap_m"])
+
+
 def test_interrupted_sweep_resumes_without_redoing_runs(folder, serial):
     out = folder / "resumed"
     first = pounding.sweep(folder / "sweep.toml", out=out, workers=0, progress=False, max_runs=1)
@@ -133,7 +152,7 @@ def test_a_failed_run_is_a_row(folder):
     assert len(failed) == 2 and result.failed == 2
     for row in failed:
         assert row["status"] == "failed" and "broken.AT2" in row["message"] and "PEER" in row["message"]
-        assert row["impact_count"] == "" and row["needed_gap_m"] == ""
+        assert row["impact_count"] is None and row["needed_gap_m"] is None
         assert row["needed_gap_status"].startswith("failed: ") and "broken.AT2" in row["needed_gap_status"]
     assert all(row["status"] == "completed" for row in result.rows if row["record"] == "pulse_a.txt")
 

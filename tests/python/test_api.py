@@ -1,0 +1,87 @@
+"""The package's surface: a clean namespace, docstrings help() shows under the right names, the
+model's matrices and mode shapes (checked against scipy's own eigen-solution), and the pandas
+DataFrames beside the numpy arrays. CTest runs this file in python_module."""
+
+import os
+import pathlib
+import pydoc
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+import pounding
+
+SOURCE = pathlib.Path(os.environ.get("POUNDING_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+PAPER = SOURCE / "examples" / "paper" / "paper.toml"
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return pounding.load_scene(PAPER)
+
+
+def test_namespace_is_the_documented_api():
+    public = {name for name in dir(pounding) if not name.startswith("_")}
+    # sweep is a submodule imported on first use (another test file of the session may have)
+    assert public - {"sweep"} == set(pounding.__all__) - {"sweep", "__version__"}
+    assert not {"np", "json"} & set(dir(pounding))
+
+
+def test_help_shows_every_method_under_its_own_name_with_a_docstring():
+    text = pydoc.render_doc(pounding.Scene, renderer=pydoc.plaintext)
+    assert "_with_record" not in text and "_with_solver" not in text and "lambda" not in text
+    assert "class Scene in module pounding" in text
+    for name in ("with_gap", "with_restitution", "with_record", "with_method", "with_outputs", "gap_m", "name",
+                 "record_file"):
+        assert pydoc.getdoc(getattr(pounding.Scene, name)).strip(), name
+    assert pounding.Scene.with_record.__name__ == "with_record"
+    for name in set(pounding.__all__) - {"__version__"}:
+        assert pydoc.getdoc(getattr(pounding, name)).strip(), name
+    for cls in (pounding.RunResult, pounding.GapResult):
+        for name, member in vars(cls).items():
+            if not name.startswith("_") and callable(member):
+                assert pydoc.getdoc(member).strip(), f"{cls.__name__}.{name}"
+
+
+def test_matrices_and_shapes_are_the_modes(scene):
+    """scipy's generalised eigen-solution of the exposed K and M gives the periods `pounding modes`
+    prints (relative 1e-9); the shapes are M-orthonormal and K-diagonal (1e-9); C is the Rayleigh
+    combination a0 M + a1 K of the printed coefficients (1e-12 of |C|)."""
+    for building in pounding.modes(scene):
+        M, K, C, shapes = building["M"], building["K"], building["C"], building["shapes"]
+        dof = building["dof"]
+        assert M.shape == K.shape == C.shape == shapes.shape == (dof, dof) and len(building["dofs"]) == dof
+        assert building["dofs"][:3] == ["f1_u_m", "f1_v_m", "f1_phi_rad"]
+        assert np.array_equal(M, np.diag(np.diag(M))) and np.allclose(K, K.T, rtol=0, atol=1e-9 * abs(K).max())
+        omega_squared = scipy.linalg.eigh(K, M, eigvals_only=True)
+        periods = np.sort(2 * np.pi / np.sqrt(omega_squared))[::-1]
+        np.testing.assert_allclose(periods, building["periods_s"], rtol=1e-9)
+        np.testing.assert_allclose(shapes.T @ M @ shapes, np.eye(dof), atol=1e-9)
+        np.testing.assert_allclose(shapes.T @ K @ shapes, np.diag((2 * np.pi / building["periods_s"]) ** 2),
+                                   rtol=1e-9, atol=1e-9 * abs(K).max())
+        rayleigh = building["rayleigh"]
+        np.testing.assert_allclose(C, rayleigh["a0_per_s"] * M + rayleigh["a1_s"] * K, rtol=0,
+                                   atol=1e-12 * abs(C).max())
+        # Storey 1 of a 7-storey building: floor 1's u couples to floor 2's u, not to floor 3's.
+        assert K[0, 3] != 0 and K[0, 6] == 0
+
+
+def test_frames_hold_the_arrays(scene):
+    pytest.importorskip("pandas")
+    result = pounding.run(scene)
+    history = result.history_frame()
+    assert history.index.name == "t_s" and np.array_equal(history.index.to_numpy(), result.history["t_s"])
+    assert list(history.columns) == [c for c in result.history if c != "t_s"]
+    assert np.array_equal(history["B2_f7_u_m"].to_numpy(), result.history["B2_f7_u_m"])
+    impacts = result.impacts_frame()
+    assert list(impacts.columns) == list(result.impacts_array.dtype.names) and len(impacts) == len(result.impacts)
+    assert np.array_equal(impacts["impulse_kNs"].to_numpy(), result.impacts_array["impulse_kNs"])
+    forces = result.contact_forces_frame()
+    assert len(forces) == len(result.contact_forces["t_s"])
+    modes = pounding.modes_frame(scene)
+    periods = np.concatenate([b["periods_s"] for b in pounding.modes(scene)])
+    assert np.array_equal(modes["period_s"].to_numpy(), periods) and modes["mode"].iloc[0] == 1
+    gap = pounding.needed_gap(scene)
+    frame = gap.history_frame()
+    assert np.array_equal(frame.to_numpy(), gap.history_touch_gap_m) and frame.index.name == "t_s"
