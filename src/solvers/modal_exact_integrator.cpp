@@ -206,6 +206,32 @@ const Eigen::VectorXd& ModalExactIntegrator::roots_at(double t, const Eigen::Vec
   return g;
 }
 
+double ModalExactIntegrator::earliest_root(double t_end, const Eigen::VectorXd& roots_end) {
+  // Closing crossings (+ to − or onto 0), the direction the loop asks for. A function whose sign
+  // is the same at both ends may still have dipped below zero and recovered inside the step (a
+  // slow pair that touched and would have sunk in); then it may be below zero where another
+  // function's root ends the step. So the bracket shrinks to each earliest root found and the
+  // functions are checked again there, until no new one has crossed.
+  double t_root = std::numeric_limits<double>::infinity();
+  double t_high = t_end;
+  Eigen::VectorXd roots_high = roots_end;
+  std::vector<bool> located(static_cast<std::size_t>(roots_end.size()), false);
+  for (;;) {
+    bool located_new = false;
+    for (Eigen::Index i = 0; i < roots_high.size(); ++i) {
+      if (located[static_cast<std::size_t>(i)] || !(roots_start_[i] > 0.0 && roots_high[i] <= 0.0)) continue;
+      located[static_cast<std::size_t>(i)] = located_new = true;
+      const double b = find_root(
+          [&](double t) { return roots_at(t, contact_state(modal_at(t, probe_)), roots_probe_)[i]; }, t_s_, t_high,
+          roots_start_[i], roots_high[i]);
+      t_root = std::min(t_root, b);  // the root function has reached ≤ 0 there
+    }
+    if (!located_new || !(t_root < t_high)) return t_root;
+    t_high = t_root;
+    roots_high = roots_at(t_high, contact_state(modal_at(t_high, probe_)), roots_probe_);
+  }
+}
+
 StepOutcome ModalExactIntegrator::step(double t_final) {
   if (held_phase_) return held_->step(t_final);
   const double t_end = std::min({t_s_ + max_step_s_, stop_time_s_, t_final});
@@ -215,14 +241,7 @@ StepOutcome ModalExactIntegrator::step(double t_final) {
   end_t_s_ = std::numeric_limits<double>::quiet_NaN();
   const ModalState& end = modal_at(t_end, end_, {true, true}, &step_cache_);
   const Eigen::VectorXd& roots_end = roots_at(t_end, contact_state(end), roots_end_);
-  // Closing crossings (+ to − or onto 0), the direction the loop asks for.
-  double t_root = std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i < roots_end.size(); ++i) {
-    if (!(roots_start_[i] > 0.0 && roots_end[i] <= 0.0)) continue;
-    const double b = find_root([&](double t) { return roots_at(t, contact_state(modal_at(t, probe_)), roots_probe_)[i]; },
-                               t_s_, t_end, roots_start_[i], roots_end[i]);
-    t_root = std::min(t_root, b);  // the root function has reached ≤ 0 there
-  }
+  const double t_root = earliest_root(t_end, roots_end);
 
   roots_found_.assign(static_cast<std::size_t>(roots_end.size()), 0);
   if (t_root < std::numeric_limits<double>::infinity()) {

@@ -106,6 +106,9 @@ class ModalExactIntegrator final : public Integrator {
   const Eigen::VectorXd& contact_state(const ModalState& modal);
   /// The root functions at (t, y) into `g`; returns it.
   const Eigen::VectorXd& roots_at(double t, const Eigen::VectorXd& y, Eigen::VectorXd& g);
+  /// The earliest closing crossing in (t_s_, t_end] of any root function, +inf if none; roots_end
+  /// are the functions at t_end.
+  double earliest_root(double t_end, const Eigen::VectorXd& roots_end);
 
   OdeFunctions& functions_;
   const dynamics::CoupledSystem& system_;
