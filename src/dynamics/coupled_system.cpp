@@ -84,6 +84,12 @@ double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, s
          s.curvature_mps2;
 }
 
+double CoupledSystem::gap_rate_round_off_mps(ConstVectorRef y, std::size_t index) const {
+  const contact::Candidate& c = candidates_[index];
+  const contact::RowVector6d row = pair_row(gap(y, index), c);
+  return 1e-15 + 1e-9 * row.cwiseAbs().dot(pair_velocities(y, c.floors).cwiseAbs());
+}
+
 contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, const std::array<int, 2>& floors) const {
   contact::Vector6d v;
   v << y.segment<3>(dof_ + floor_index(0, floors[0])), y.segment<3>(dof_ + floor_index(1, floors[1]));
@@ -102,7 +108,7 @@ contact::Vector6d CoupledSystem::pair_inverse_mass(const std::array<int, 2>& flo
 }
 
 void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held,
-                                    MatrixXd& rows, VectorXd& bias) const {
+                                    MatrixXd& rows, VectorXd& bias, bool drift_correction) const {
   const Eigen::Index k = static_cast<Eigen::Index>(held.size());
   rows = MatrixXd::Zero(k, dof_);
   bias.resize(k);
@@ -114,7 +120,8 @@ void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::siz
     // Drift correction g̈ = −3ġ/τ − 2g/τ²: roots −1/τ and −2/τ, distinct so that the linearised
     // held system stays diagonalisable (the exact path relies on it).
     constexpr double tau = hold_time_constant_s;
-    bias[r] = s.curvature_mps2 + 3.0 * s.gap_rate_mps / tau + 2.0 * s.gap_m / (tau * tau);
+    bias[r] = s.curvature_mps2;
+    if (drift_correction) bias[r] += 3.0 * s.gap_rate_mps / tau + 2.0 * s.gap_m / (tau * tau);
   }
 }
 
@@ -142,6 +149,26 @@ contact::LcpSolution CoupledSystem::hold_complementarity(double t, ConstVectorRe
   constraint_rows(y, held, rows, bias);
   const MatrixXd w = rows * mass_.cwiseInverse().asDiagonal() * rows.transpose();
   return contact::solve_lcp(w, rows * y_dot.tail(dof_) + bias);
+}
+
+CoupledSystem::PhysicalHoldForces CoupledSystem::physical_hold_forces(double t, ConstVectorRef y,
+                                                                      const std::vector<std::size_t>& held) const {
+  VectorXd y_dot(state_size());
+  rhs(t, y, y_dot);
+  MatrixXd rows;
+  VectorXd bias;
+  constraint_rows(y, held, rows, bias, false);
+  const MatrixXd w = rows * mass_.cwiseInverse().asDiagonal() * rows.transpose();
+  const auto free_accel = y_dot.tail(dof_);
+  PhysicalHoldForces result;
+  result.forces_kN = w.completeOrthogonalDecomposition().solve(-(rows * free_accel + bias));
+  // The free gap accelerations are differences of terms of this size; below it a force is noise.
+  const VectorXd term_size = rows.cwiseAbs() * free_accel.cwiseAbs();
+  for (Eigen::Index k = 0; k < rows.rows(); ++k) {
+    const double round_off_mps2 = 1e-9 * (1.0 + term_size[k] + std::abs(bias[k]));
+    result.pressing.push_back(w(k, k) * result.forces_kN[k] > round_off_mps2);
+  }
+  return result;
 }
 
 void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,

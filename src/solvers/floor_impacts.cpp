@@ -66,7 +66,9 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
     const double impulse = solution.impulses_kNs[k];
     const double rate_before = contacts.rows[k].gap_rate_mps;
     const double rate_after = contacts.rows[k].jacobian.dot(v_after);
-    if (impulse > 0.0 && rate_before < 0.0) {
+    // Closing by rounding alone is not approaching: its round-off impulse is no impact.
+    const double round_off_mps = system.gap_rate_round_off_mps(y_before, i);
+    if (impulse > 0.0 && rate_before < -round_off_mps) {
       ImpactRecord r = impact_at(system, t, i, s);
       r.approach_velocity_mps = -rate_before;
       r.separation_velocity_mps = rate_after;
@@ -74,7 +76,7 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
       r.energy_lost_kJ = -impulse * (rate_before + rate_after) / 2.0;  // the shares sum to the pair's loss
       r.starts_hold = !holds.empty() && holds[k];
       result.impacts.push_back(r);
-    } else if (touched.count(i) && rate_before >= 0.0) {
+    } else if (touched.count(i) && rate_before >= -round_off_mps) {
       // A closing contact that took no impulse was stopped by its neighbours' (a coincident
       // corner, a dependent row): it is part of their impact, not a touch.
       result.touches.push_back(touch_record(system, t, i, s));

@@ -62,6 +62,10 @@ class CoupledSystem {
   contact::GapState gap(ConstVectorRef y, std::size_t index) const;
   /// g̈ (m/s²) of candidate `index` in state y moving with ẏ = y_dot: G q̈ + h.
   double gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const;
+  /// The round-off of candidate `index`'s gap rate in state y (m/s): ġ is a difference of terms
+  /// G_j q̇_j, and below 1e-9 of their size (plus 1e-15 m/s) a pair is neither approaching nor
+  /// separating. Two identical buildings side by side close at 1e-23 m/s by rounding alone.
+  double gap_rate_round_off_mps(ConstVectorRef y, std::size_t index) const;
   /// ġ = G q̇ as a row over the floor pair's six velocities (building 1's slab first).
   contact::RowVector6d pair_row(const contact::GapState& state, const contact::Candidate& c) const;
   /// Velocities of the slab pair `floors` (1-based floor of building 1, of building 2) in state
@@ -82,6 +86,16 @@ class CoupledSystem {
   /// be released. Unlike constrained_rhs, which keeps every held gap closed whatever the sign of
   /// its force, this decides which contacts can stay held together.
   contact::LcpSolution hold_complementarity(double t, ConstVectorRef y, const std::vector<std::size_t>& held) const;
+  /// The physical normal forces that would keep `held` closed (g̈ = 0, no drift correction): what
+  /// decides whether a slow contact is held. `pressing[k]` says whether force k is compressive
+  /// beyond round-off: its gap acceleration W_kk λ_k exceeds 1e-9 (1 + Σ|G_kj q̈_j|) m/s², the
+  /// round-off of the free accelerations it balances (two identical buildings pressed together
+  /// by nothing get forces of 1e-16 kN either way).
+  struct PhysicalHoldForces {
+    VectorXd forces_kN;
+    std::vector<bool> pressing;
+  };
+  PhysicalHoldForces physical_hold_forces(double t, ConstVectorRef y, const std::vector<std::size_t>& held) const;
   /// Jacobian of constrained_rhs with the constraint rows frozen at y: the free Jacobian with
   /// the acceleration rows projected by P = I − M⁻¹Gᵀ W⁻¹ G, plus the Baumgarte terms. Exact in
   /// the velocity rows and in the columns of floors outside the held contacts; in the contact
@@ -122,8 +136,9 @@ class CoupledSystem {
   /// G of candidate `index` over all n velocities.
   Eigen::RowVectorXd full_row(ConstVectorRef y, std::size_t index) const;
   /// Rows G (one per held contact, over all n velocities) and g̈'s velocity-only part.
+  /// With `drift_correction` false, the bias is the curvature term alone.
   void constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows,
-                       VectorXd& bias) const;
+                       VectorXd& bias, bool drift_correction = true) const;
   /// M⁻¹Gᵀ G [k, c] (n × 2n, 36 entries): the acceleration rows of the force −k g − c ġ of
   /// candidate `index` with its row G frozen at y, to be subtracted.
   Eigen::SparseMatrix<double> contact_force_rows(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
