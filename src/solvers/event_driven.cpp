@@ -295,6 +295,10 @@ class EventDrivenRun final : public OdeFunctions {
     for (std::size_t i = 0; i < count_; ++i) gaps[i] = system_.gap(y, i);
   }
   void update_hold_records(double t, const VectorXd& y);
+  /// Gives a root at its floor to each pair masked beside its edge whose vertex is now on it.
+  void watch_arrivals(const std::vector<contact::GapState>& gaps);
+  /// Ends a completed run as unresolved_overlap if a pair not held sank past the touch band.
+  void report_overlap();
   void count_event(double t);
   void set_next_stop(double t);
   void accumulate_counters();
@@ -348,6 +352,7 @@ void EventDrivenRun::begin_phase(double t, const VectorXd& y) {
   current_max_step_s_ = -1.0;  // force update_step_bound to hand the integrator its bound
   set_next_stop(t);
   evaluate_gaps(y, prev_gaps_);
+  watch_arrivals(prev_gaps_);
   update_step_bound(t, y, prev_gaps_);
   prev_t_ = t;
   prev_y_ = y;
@@ -595,11 +600,12 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorConta
         slow.push_back(k);
       }
     }
+    // Held if the physical force is compressive: the drift correction (3ġ/τ at the slow ġ the
+    // impulse left) would pull a gently pressed pair apart, and stick() brings ġ to 0 anyway.
     std::vector<bool> proposal(n, false);
     if (!slow.empty()) {
-      VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(trial.size()));
-      system_.constrained_rhs(t, y_after, trial, y_dot, forces);
-      for (std::size_t s = 0; s < slow.size(); ++s) proposal[slow[s]] = forces[others + s] > 0.0;
+      const std::vector<bool> pressing = system_.physical_hold_forces(t, y_after, trial).pressing;
+      for (std::size_t s = 0; s < slow.size(); ++s) proposal[slow[s]] = pressing[others + s];
     }
     if (proposal == holding) break;
     holding = proposal;
@@ -683,7 +689,8 @@ std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t) {
                                    s0.gap_rate_mps, s1.gap_rate_mps);
     const contact::GapState lowest = state_at(t_min);
     if (!lowest.on_segment()) continue;
-    result_.statistics.note_overlap(lowest.gap_m, t_min, i);
+    // A minimum below zero is where the path would have gone without the impact at t_cross: it is
+    // not an overlap of the computed motion (handle_event notes the gap at the crossing).
     if (lowest.gap_m < 0.0) {
       const double t_cross =
           find_root([&](double time) { return state_at(time).gap_m; }, prev_t_, t_min, s0.gap_m, lowest.gap_m);
@@ -704,7 +711,11 @@ std::optional<double> EventDrivenRun::reclosure(std::size_t i, double t, const c
   // on the interpolant, the highest sample polished to the maximum. If the gap never rose, the
   // pair has been in contact (within the allowance) since before the step; once past its floor,
   // the contact is taken at the step end, where its own root stopped the integrator.
-  if (!end.on_segment() || !(end.gap_m < 0.0 && end.gap_rate_mps < 0.0)) return std::nullopt;
+  if (!end.on_segment()) return std::nullopt;
+  // Masked after crossing the edge's extension, the vertex has come onto the edge inside the
+  // other slab: a contact now, wherever it is heading.
+  if (mask_floor_m_[i] == -kInfinity && end.gap_m < -options_.overlap_allowance_m) return t;
+  if (!(end.gap_m < 0.0 && end.gap_rate_mps < 0.0)) return std::nullopt;
   VectorXd at(system_.state_size());
   auto state_at = [&](double time) {
     integrator_->interpolate_components(time, gap_components_[i], at);
@@ -735,13 +746,17 @@ std::optional<double> EventDrivenRun::reclosure(std::size_t i, double t, const c
       if (g_top >= 0.0) t_open = t_top, g_open = g_top, after = k + 1;
     }
   }
+  // The root stops the integrator with g at the floor to within its own tolerance.
+  const bool at_floor = end.gap_m <= mask_floor_m_[i] + 1e-9 * std::abs(mask_floor_m_[i]);
   if (after > 0) {
     const double t_hit =
         find_root([&](double time) { return state_at(time).gap_m; }, t_open, times[after], g_open, gaps[after]);
-    return state_at(t_hit).on_segment() ? t_hit : t;  // closed beside the edge, then slid onto it
+    const contact::GapState hit = state_at(t_hit);
+    // Rising and falling by rounding alone (two identical buildings at zero gap) is no flight;
+    // a pair that really sinks reaches its floor.
+    if (!at_floor && -hit.gap_rate_mps <= system_.gap_rate_round_off_mps(at, i)) return std::nullopt;
+    return hit.on_segment() ? t_hit : t;  // closed beside the edge, then slid onto it
   }
-  // The root stops the integrator with g at the floor to within its own tolerance.
-  const bool at_floor = end.gap_m <= mask_floor_m_[i] + 1e-9 * std::abs(mask_floor_m_[i]);
   return at_floor ? std::optional<double>(t) : std::nullopt;
 }
 
@@ -802,13 +817,38 @@ void EventDrivenRun::note_overlaps(double t) {
   }
 }
 
+void EventDrivenRun::watch_arrivals(const std::vector<contact::GapState>& gaps) {
+  // Masked as it passed beside the edge, the vertex has come onto it: from here on its gap is a
+  // depth into the other slab, watched by a root as a contact's is.
+  for (std::size_t i = 0; i < count_; ++i) {
+    if (modes_[i] == Mode::masked && mask_floor_m_[i] == -kInfinity && gaps[i].on_segment()) {
+      mask_floor_m_[i] = std::min(gaps[i].gap_m, 0.0) - options_.overlap_allowance_m;
+    }
+  }
+}
+
 void EventDrivenRun::after_step(double t, const VectorXd& y) {
   note_overlaps(t);
   for (std::size_t i = 0; i < count_; ++i) {
-    if (modes_[i] == Mode::masked && gaps_[i].gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
+    if (modes_[i] != Mode::masked) continue;
+    if (gaps_[i].gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
   }
+  watch_arrivals(gaps_);
   update_hold_records(t, y);
   update_step_bound(t, y, gaps_);
+}
+
+void EventDrivenRun::report_overlap() {
+  // Every closing is located before the pair sinks in; an overlap deeper than the touch band means
+  // a contact was passed over and everything after it is off, so the run must not say completed.
+  const SolverStatistics& stats = result_.statistics;
+  if (result_.status != RunStatus::completed || !(stats.max_interpenetration_m > options_.contact_tolerance_m)) return;
+  const contact::Candidate& c = system_.candidates()[static_cast<std::size_t>(stats.max_interpenetration_candidate)];
+  result_.status = RunStatus::unresolved_overlap;
+  result_.status_detail =
+      fmt::format("slabs sank {:.3g} m into each other at {:.6f} s (deeper than contact_tolerance_m {} m), level {}: {}",
+                  stats.max_interpenetration_m, stats.max_interpenetration_t_s, options_.contact_tolerance_m, c.level,
+                  contact::describe(c));
 }
 
 void EventDrivenRun::update_hold_records(double t, const VectorXd& y) {
@@ -869,6 +909,13 @@ bool EventDrivenRun::step_once() {
       if (found[i] != 0) gap_roots.push_back(i);
       if (found[count_ + i] != 0) force_roots.push_back(i);
       if (found[2 * count_ + i] != 0) edge_roots.push_back(i);
+      // An integrator flags the functions whose crossing it located; one that went through zero
+      // at the same instant by a rounding (g = −5e-16 m) can go unflagged, and after the restart
+      // it would start below zero, where its root can no longer fire.
+      if (found[i] == 0 && modes_[i] == Mode::armed && gaps_[i].gap_m <= 0.0 && gaps_[i].on_segment() &&
+          gaps_[i].gap_rate_mps < 0.0) {
+        gap_roots.push_back(i);
+      }
     }
     if (compliant()) {
       handle_compliant_event(t, y, gap_roots, force_roots, edge_roots);
@@ -927,6 +974,7 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
     result_.status_detail = fmt::format("after t = {} s: {}", prev_t_, error.what());
   }
   result_.end_s = prev_t_;
+  report_overlap();
   for (std::size_t i : std::vector<std::size_t>(held_)) release(i, prev_t_, prev_y_, "end of run");
   for (std::size_t i = 0; i < count_; ++i) {
     if (open_[i]) end_contact(i, prev_t_, prev_y_);
