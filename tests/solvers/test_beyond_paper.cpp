@@ -29,8 +29,10 @@ solvers::RunResult run(const std::string& file, const std::string& method, io::S
 }
 
 /// The held force λ from the constrained equations solved directly (no complementarity):
-/// M q̈ = f − K q − C q̇ + Gᵀ λ, G q̈ + h + bias = 0 (the same Baumgarte bias as the model).
-double direct_hold_force(const dynamics::CoupledSystem& system, const Eigen::VectorXd& y, std::size_t index) {
+/// M q̈ = f − K q − C q̇ + Gᵀ λ, G q̈ + h + bias = 0 (the same Baumgarte bias as the model, or
+/// none with `drift_correction` false: the physical force).
+double direct_hold_force(const dynamics::CoupledSystem& system, const Eigen::VectorXd& y, std::size_t index,
+                         bool drift_correction = true) {
   const int n = system.dof();
   Eigen::VectorXd free(2 * n);
   system.rhs(0.0, y, free);  // the record starts at rest: a_g(0) = 0
@@ -40,7 +42,8 @@ double direct_hold_force(const dynamics::CoupledSystem& system, const Eigen::Vec
   g.segment<3>(system.floor_index(c.striking_building, c.floors[c.striking_building])) = s.striking_row;
   g.segment<3>(system.floor_index(c.struck_building, c.floors[c.struck_building])) = s.struck_row;
   const double tau = dynamics::CoupledSystem::hold_time_constant_s;
-  const double bias = s.curvature_mps2 + 3.0 * s.gap_rate_mps / tau + 2.0 * s.gap_m / (tau * tau);
+  const double bias =
+      s.curvature_mps2 + (drift_correction ? 3.0 * s.gap_rate_mps / tau + 2.0 * s.gap_m / (tau * tau) : 0.0);
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + 1, n + 1);
   kkt.topLeftCorner(n, n) = system.mass_diagonal().asDiagonal();
   kkt.topRightCorner(n, 1) = -g.transpose();
@@ -88,6 +91,61 @@ BOOST_AUTO_TEST_CASE(HeldForceAfterAJumpOnTheNextFloorMatchesADirectSolve) {
   const auto released = system.hold_complementarity(0.0, y, {index});
   BOOST_TEST(released.x[0] == 0.0);
   BOOST_TEST(released.w[0] > 0.0);  // the gap would open: the hold is released
+}
+
+BOOST_AUTO_TEST_CASE(AGentlyPressedPairIsHeldByItsPhysicalForceNotTheDriftCorrection) {
+  // Floor 1's corner pressed gently on building 2 (floor 2 pulls it), separating at a slow ġ left
+  // by an impulse. The drift correction's 3ġ/τ asks for a pull larger than the press, so the
+  // stabilised force is tensile; the physical force (the direct solve without the correction) is
+  // compressive, and it is the one that decides the hold (issue 22, defect 4).
+  const auto scene = io::read_scene(kScenes + "six-storeys-plastic.toml");
+  const auto system = analysis::build_system(scene);
+  std::size_t index = system.candidates().size();
+  for (std::size_t i = 0; i < system.candidates().size(); ++i) {
+    if (system.candidates()[i].level == 1 && system.candidates()[i].striking_building == 0) index = i;
+  }
+  BOOST_TEST_REQUIRE(index < system.candidates().size());
+  const int n = system.dof();
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+  y[system.floor_index(0, 1)] = 0.02;     // at contact
+  y[system.floor_index(0, 2)] = 0.06;     // storey 2 pulls floor 1 harder than storey 1 holds it back
+  const double pressing_kN = direct_hold_force(system, y, index, false);
+  BOOST_TEST_REQUIRE(pressing_kN > 0.0);
+  // A slow separation whose correction outweighs the press: ġ = 2 λ W τ / 3.
+  const double w = system.normal_inverse_mass(y, index);
+  y[n + system.floor_index(0, 1)] = -2.0 * pressing_kN * w * dynamics::CoupledSystem::hold_time_constant_s / 3.0;
+  BOOST_TEST_REQUIRE(system.gap(y, index).gap_rate_mps > 0.0);
+  BOOST_TEST_REQUIRE(direct_hold_force(system, y, index, true) < 0.0);
+
+  const auto physical = system.physical_hold_forces(0.0, y, {index});
+  BOOST_TEST(physical.forces_kN[0] == direct_hold_force(system, y, index, false), tt::tolerance(1e-9));
+  BOOST_TEST(physical.pressing[0]);
+}
+
+BOOST_AUTO_TEST_CASE(TwoIdenticalBuildingsShakenAlikePressNothing) {
+  // The twins at zero gap, displaced and shaken alike: the free gap accelerations are equal, the
+  // forces that would hold their corners are round-off, and none of them holds (defect 1).
+  const auto scene = io::read_scene(kScenes + "twins-zero-gap.toml");
+  const auto system = analysis::build_system(scene);
+  const int n = system.dof();
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+  for (int b = 0; b < 2; ++b) {
+    for (int f = 1; f <= 10; ++f) {
+      y[system.floor_index(b, f)] = 0.01 * f;       // u: a first-mode-like sway, no turn
+      y[n + system.floor_index(b, f)] = 0.05 * f;   // and its rate
+    }
+  }
+  std::vector<std::size_t> level_one;
+  for (std::size_t i = 0; i < system.candidates().size(); ++i) {
+    if (system.candidates()[i].level == 1 && std::abs(system.gap(y, i).gap_m) < 1e-12) level_one.push_back(i);
+  }
+  BOOST_TEST_REQUIRE(!level_one.empty());
+  const auto idle = system.physical_hold_forces(1.0, y, level_one);  // a_g(1 s) ≠ 0
+  for (std::size_t k = 0; k < level_one.size(); ++k) {
+    BOOST_TEST(std::abs(idle.forces_kN[static_cast<Eigen::Index>(k)]) < 1e-6);  // storey forces are ~1e5 kN
+    BOOST_TEST(!idle.pressing[k]);
+    BOOST_TEST(std::abs(system.gap(y, level_one[k]).gap_rate_mps) <= system.gap_rate_round_off_mps(y, level_one[k]));
+  }
 }
 
 BOOST_AUTO_TEST_CASE(ReclosureAfterAPlasticImpactIsFoundOnTime) {

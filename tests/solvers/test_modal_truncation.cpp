@@ -170,7 +170,11 @@ BOOST_AUTO_TEST_CASE(TruncatedRunApproachesTheFullOneAsTheCutoffRises) {
   for (double cutoff_hz : {2.0, 5.0, 15.0}) {
     scene.solver.modes_cutoff_hz = cutoff_hz;
     const solvers::RunResult run = analysis::run_scene(scene).result;
-    BOOST_TEST_REQUIRE(solvers::to_string(run.status) == "completed");
+    // A truncated run's holds keep only the kept modes' share of the gap closed and drift by up to
+    // millimetres, which the run reports as unresolved_overlap (docs/model.md); the first impact,
+    // before any hold, is what this measures.
+    const std::string status(solvers::to_string(run.status));
+    BOOST_TEST_REQUIRE((status == "completed" || status == "unresolved_overlap"));
     BOOST_TEST_REQUIRE(!run.impacts.empty());
     first_impact_error.push_back(std::abs(run.impacts.front().t_s - full.impacts.front().t_s));
     BOOST_TEST_MESSAGE(cutoff_hz << " Hz: first impact off by " << first_impact_error.back() << " s");
