@@ -102,18 +102,7 @@ std::string storeys_text(const model::BuildingDefinition& b) {
 /// file's method); the options themselves are checked against the method run (Scene::validate).
 void apply_run_options(const RunCommand& command, analysis::SolverSettings& solver) {
   if (command.method) solver = analysis::with_method(solver, *command.method);
-  if (command.order) solver.order = *command.order;
-  if (command.rtol) solver.rtol = *command.rtol;
-  if (command.atol) solver.atol = *command.atol;
-  if (command.newton) solver.newton = *command.newton;
-  if (command.form) solver.form = *command.form;
-  if (command.dt_s) solver.dt_s = *command.dt_s;
-  if (command.alpha) solver.alpha = *command.alpha;
-  if (command.contact_tolerance_m) solver.contact_tolerance_m = *command.contact_tolerance_m;
-  if (command.max_halvings) solver.max_halvings = *command.max_halvings;
-  if (command.event_location) solver.event_location = *command.event_location;
-  if (command.hold_rtol) solver.hold_rtol = *command.hold_rtol;
-  if (command.modes_cutoff_hz) solver.modes_cutoff_hz = *command.modes_cutoff_hz;
+  for (const auto& [setting, value] : command.settings) solver.set(setting, value);
   if (command.halving) {
     if (!analysis::applies(analysis::method_info(solver.method), analysis::Setting::event_location)) {
       throw InputError("--halving", *command.halving, fmt::format("does not apply to method {}", solver.method));
@@ -153,19 +142,14 @@ void apply_output_options(const RunCommand& command, analysis::OutputSettings& o
 /// The options of `run` that the user gave, by their flags.
 std::set<std::string> given_options(const RunCommand& c) {
   const std::pair<bool, const char*> options[] = {
-      {c.method.has_value(), "--method"},          {c.order.has_value(), "--order"},
-      {c.rtol.has_value(), "--rtol"},              {c.atol.has_value(), "--atol"},
-      {c.newton.has_value(), "--newton"},          {c.form.has_value(), "--form"},
-      {c.dt_s.has_value(), "--dt"},                {c.alpha.has_value(), "--alpha"},
-      {c.contact_tolerance_m.has_value(), "--contact-tol"}, {c.max_halvings.has_value(), "--max-halvings"},
-      {c.event_location.has_value(), "--event-location"},   {c.hold_rtol.has_value(), "--hold-rtol"},
-      {c.modes_cutoff_hz.has_value(), "--modes-cutoff"},    {c.history.has_value(), "--history"},
-      {c.peaks.has_value(), "--peaks"},            {c.max_steps.has_value(), "--max-steps"},
-      {c.max_wall_time_s.has_value(), "--max-wall-time"},   {c.max_history_values.has_value(), "--max-history-values"}};
+      {c.method.has_value(), "--method"},        {c.history.has_value(), "--history"},
+      {c.peaks.has_value(), "--peaks"},          {c.max_steps.has_value(), "--max-steps"},
+      {c.max_wall_time_s.has_value(), "--max-wall-time"}, {c.max_history_values.has_value(), "--max-history-values"}};
   std::set<std::string> given;
   for (const auto& [set, flag] : options) {
     if (set) given.insert(flag);
   }
+  for (const auto& entry : c.settings) given.emplace(analysis::spec(entry.first).option);
   return given;
 }
 

@@ -3,10 +3,12 @@
 // prints, and returns the process exit code; errors propagate as exceptions to main(). Those that
 // write results take the command line as typed, for the outputs' provenance.
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/methods.hpp"
 #include "pounding/excitation/record_choice.hpp"
 
 namespace pounding::cli {
@@ -19,6 +21,11 @@ struct ModesCommand {
 
 struct MethodsCommand {
   bool json = false;  // the registry as JSON on stdout (for scripts)
+};
+
+struct SettingsCommand {
+  bool json = false;      // the table as JSON on stdout (for scripts)
+  bool markdown = false;  // the tables of docs/scene-format.md's [solver] section
 };
 
 struct LawsCommand {
@@ -41,21 +48,10 @@ struct RunCommand {
   std::optional<double> contact_stiffness;  // in the law's unit (contact_laws.hpp)
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
-  std::optional<int> order;
-  std::optional<double> rtol;
-  std::optional<double> atol;
-  std::optional<std::string> newton;
-  std::optional<std::string> form;
-  std::optional<double> dt_s;
-  std::optional<double> alpha;
-  std::optional<double> contact_tolerance_m;
-  std::optional<int> max_halvings;
+  std::map<analysis::Setting, analysis::SettingValue> settings;  // the [solver] options given (--rtol, --dt, ...)
   std::optional<std::string> halving;         // on | off
-  std::optional<std::string> event_location;  // halving | interpolate
-  std::optional<double> hold_rtol;
   std::optional<std::string> history;  // on | off: replaces output.history
   std::optional<std::string> peaks;    // none, all or a comma-separated list of groups: replaces output.peaks
-  std::optional<double> modes_cutoff_hz;
   std::string out_dir;  // empty: out/<scene name, made safe as a folder name>
   // Limits of the run (analysis::RunLimits); unset: its defaults.
   std::optional<long> max_steps;
@@ -118,6 +114,8 @@ int run_study(const StudyCommand& command, const std::string& command_line);
 int run_run(const RunCommand& command, const std::string& command_line);
 int run_check(const CheckCommand& command);
 int run_methods(const MethodsCommand& command);
+/// `pounding settings`: every [solver] setting with its option, type, default, range and methods.
+int run_settings(const SettingsCommand& command);
 /// The contact laws: name, description, keys, default stiffness and its source, methods, and the
 /// rebound a lone contact achieves at the given restitution.
 int run_laws(const LawsCommand& command);

@@ -169,9 +169,12 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   if (command.atol) scene.solver.atol = *command.atol;
   try {
     scene.validate();
-  } catch (const InputError& error) {
-    throw InputError(error.key() == "solver.rtol" ? "--rtol" : error.key() == "solver.atol" ? "--atol" : error.key(),
-                     error.value(), error.reason(), command.scene);
+  } catch (const InputError& error) {  // an option's value is blamed on the option
+    using analysis::Setting;
+    const bool rtol = command.rtol && error.key() == "solver.rtol", atol = command.atol && error.key() == "solver.atol";
+    const std::string key = rtol ? std::string(analysis::spec(Setting::rtol).option)
+                            : atol ? std::string(analysis::spec(Setting::atol).option) : error.key();
+    throw InputError(key, error.value(), error.reason(), command.scene);
   }
   if (!command.records.empty()) return run_record_set(command, scene, command_line);
   // A scene name is text, not a path; the folder must take files before the runs, not after them.

@@ -41,10 +41,22 @@ void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& r
 constexpr int kMaxStudyRepeats = 100;
 
 /// Whole-number options: the range each may take, checked on the text (so an overflowing
-/// 99999999999999999999 is refused by name, not wrapped or clamped by the conversion).
-const std::map<std::string, std::pair<long long, long long>> kIntegerRanges = {
-    {"--order", {1, 12}},           {"--max-halvings", {0, 60}},     {"--record-column", {1, 1000}},
-    {"--max-steps", {1, 1000000000000}}, {"--max-history-values", {1, 1000000000000}}, {"--threads", {0, 4096}}};
+/// 99999999999999999999 is refused by name, not wrapped or clamped by the conversion); the
+/// [solver] settings' ranges come from their table (methods.hpp).
+std::map<std::string, std::pair<long long, long long>> integer_ranges_of_options() {
+  std::map<std::string, std::pair<long long, long long>> ranges = {
+      {"--order", {1, 12}},  // any ARKODE table; the method's own orders are checked after
+      {"--record-column", {1, 1000}},
+      {"--max-steps", {1, 1000000000000}},
+      {"--max-history-values", {1, 1000000000000}},
+      {"--threads", {0, 4096}}};
+  for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
+    if (spec.member.index() == 0 && spec.range) {
+      ranges[std::string(spec.option)] = {static_cast<long long>(spec.range->min), static_cast<long long>(spec.range->max)};
+    }
+  }
+  return ranges;
+}
 
 /// Every option that takes a value refuses an empty one (`--gap ''` is a slip, not "unset"), and
 /// the whole-number options their range.
@@ -52,11 +64,12 @@ void harden_options(CLI::App& app) {
   const CLI::Validator non_empty(
       [](std::string& value) { return value.empty() ? std::string("an empty value is not allowed") : std::string(); },
       "", "NON_EMPTY");
+  const auto integer_ranges = integer_ranges_of_options();
   for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
     for (CLI::Option* option : command->get_options([](CLI::Option* o) { return o->get_type_size() > 0; })) {
       option->check(non_empty);
-      const auto range = kIntegerRanges.find(option->get_name());
-      if (range != kIntegerRanges.end()) option->check(CLI::Range(range->second.first, range->second.second));
+      const auto range = integer_ranges.find(option->get_name());
+      if (range != integer_ranges.end()) option->check(CLI::Range(range->second.first, range->second.second));
     }
   }
 }
@@ -98,6 +111,12 @@ int main(int argc, char** argv) {
   CLI::App* methods_app = app.add_subcommand("methods", "The solution paths and the settings each uses");
   methods_app->add_flag("--json", methods.json, "As JSON (name, description, settings, study ladder and plot styles)");
 
+  pounding::cli::SettingsCommand settings;
+  CLI::App* settings_app =
+      app.add_subcommand("settings", "The [solver] settings: key, option, type, default, range, the methods using each");
+  settings_app->add_flag("--json", settings.json, "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
+  settings_app->add_flag("--markdown", settings.markdown, "The tables of docs/scene-format.md's [solver] section");
+
   pounding::cli::LawsCommand laws;
   CLI::App* laws_app = app.add_subcommand("laws", "The contact laws, their default stiffness and the rebound each achieves");
   laws_app->add_flag("--json", laws.json, "As JSON (name, description, keys, default stiffness, methods, rebound)");
@@ -120,27 +139,24 @@ int main(int argc, char** argv) {
   run_app->add_option("--contact-stiffness", run.contact_stiffness, pounding::analysis::contact_stiffness_help());
   add_record_options(*run_app, run.record);
   using pounding::analysis::option_help;
-  using pounding::analysis::Setting;
   run_app->add_option("--method", run.method, pounding::analysis::methods_help());
-  run_app->add_option("--order", run.order, option_help(Setting::order));
-  run_app->add_option("--rtol", run.rtol, option_help(Setting::rtol));
-  run_app->add_option("--atol", run.atol, option_help(Setting::atol));
-  run_app->add_option("--newton", run.newton, option_help(Setting::newton));
-  run_app->add_option("--form", run.form, option_help(Setting::form));
-  run_app->add_option("--dt", run.dt_s, option_help(Setting::dt_s));
-  run_app->add_option("--alpha", run.alpha, option_help(Setting::alpha));
-  run_app->add_option("--contact-tol", run.contact_tolerance_m, option_help(Setting::contact_tolerance_m));
-  run_app->add_option("--max-halvings", run.max_halvings, option_help(Setting::max_halvings));
+  for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
+    std::visit(
+        [&](const auto& member) {
+          using T = typename std::decay_t<decltype(pounding::analysis::SolverSettings{}.*member.given)>::value_type;
+          run_app->add_option_function<T>(
+              std::string(spec.option), [&run, id = spec.id](const T& value) { run.settings[id] = value; },
+              option_help(spec.id));
+        },
+        spec.member);
+  }
   run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
-  run_app->add_option("--event-location", run.event_location, option_help(Setting::event_location));
-  run_app->add_option("--hold-rtol", run.hold_rtol, option_help(Setting::hold_rtol));
   run_app->add_option("--history", run.history,
                       "on or off: write history.csv and contacts_history.csv (replaces output.history; off computes "
                       "neither)");
   run_app->add_option("--peaks", run.peaks,
                       "Peak groups in summary.json: none, all or a comma-separated list of displacements, accelerations, "
                       "drifts (replaces output.peaks)");
-  run_app->add_option("--modes-cutoff", run.modes_cutoff_hz, option_help(Setting::modes_cutoff_hz));
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
   run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
@@ -236,6 +252,7 @@ int main(int argc, char** argv) {
     if (*check_app) return pounding::cli::run_check(check);
     if (*methods_app) return pounding::cli::run_methods(methods);
     if (*laws_app) return pounding::cli::run_laws(laws);
+    if (*settings_app) return pounding::cli::run_settings(settings);
     if (*run_app) return pounding::cli::run_run(run, command_line);
     if (*study_app) return pounding::cli::run_study(study, command_line);
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);

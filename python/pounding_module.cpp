@@ -114,44 +114,15 @@ Scene with_record(Scene scene, const pounding::excitation::RecordChoice& choice,
   return scene;
 }
 
-/// Sets the [solver] key `key` from a Python value of its type (int, float or str).
-/// @throws InputError (key `solver.<key>`) for a value of another type.
-void set_setting(pounding::analysis::SolverSettings& solver, pounding::analysis::Setting setting, py::handle value) {
-  using pounding::analysis::Setting;
-  const std::string key = "solver." + std::string(pounding::analysis::spec(setting).key);
-  const bool is_int = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value);
-  auto refuse = [&](const char* expected) -> InputError {
-    return InputError(key, py::str(py::repr(value)), expected);
-  };
-  auto integer = [&] {
-    if (!is_int) throw refuse("expected an integer");
-    return value.cast<int>();
-  };
-  auto real = [&] {
-    if (!is_int && !py::isinstance<py::float_>(value)) throw refuse("expected a number");
-    return value.cast<double>();
-  };
-  auto text = [&] {
-    if (!py::isinstance<py::str>(value)) throw refuse("expected a string");
-    return value.cast<std::string>();
-  };
-  // No default: a Setting added to the registry without a line here is a -Wswitch warning, and
-  // a run given it raises instead of ignoring it.
-  switch (setting) {
-    case Setting::order: solver.order = integer(); return;
-    case Setting::rtol: solver.rtol = real(); return;
-    case Setting::atol: solver.atol = real(); return;
-    case Setting::newton: solver.newton = text(); return;
-    case Setting::form: solver.form = text(); return;
-    case Setting::hold_rtol: solver.hold_rtol = real(); return;
-    case Setting::modes_cutoff_hz: solver.modes_cutoff_hz = real(); return;
-    case Setting::dt_s: solver.dt_s = real(); return;
-    case Setting::alpha: solver.alpha = real(); return;
-    case Setting::contact_tolerance_m: solver.contact_tolerance_m = real(); return;
-    case Setting::max_halvings: solver.max_halvings = integer(); return;
-    case Setting::event_location: solver.event_location = text(); return;
-  }
-  throw std::logic_error("the Python module cannot set " + key + " yet (python/pounding_module.cpp, set_setting)");
+/// A Python int, float or str as a setting's value (SolverSettings::set checks it against the
+/// setting's type); anything else is refused naming `solver.<key>`.
+pounding::analysis::SettingValue setting_value(pounding::analysis::Setting setting, py::handle value) {
+  if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) return value.cast<int>();
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  const auto& spec = pounding::analysis::spec(setting);
+  throw InputError("solver." + std::string(spec.key), py::str(py::repr(value)),
+                   "expected " + pounding::analysis::expected_text(spec));
 }
 
 /// The scene with the method and settings replacing its own (as the options do in
@@ -163,7 +134,7 @@ Scene with_solver(Scene scene, const std::optional<std::string>& method, const p
     if (method) scene.solver = pounding::analysis::with_method(scene.solver, *method);
     for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
       const py::str key(std::string(spec.key));
-      if (settings.contains(key)) set_setting(scene.solver, spec.id, settings[key]);
+      if (settings.contains(key)) scene.solver.set(spec.id, setting_value(spec.id, settings[key]));
     }
     scene.validate();
     pounding::analysis::require_supported(pounding::analysis::contact_law_info(scene.contact.law),

@@ -39,12 +39,17 @@ InputError InputError::in_context(const std::string& file, const std::string& ke
 
 std::string format_value(double value) { return fmt::format("{}", value); }
 
+std::string range_text(const Range& range) {
+  const std::string interval = range.shown.empty() ? fmt::format("{}{}, {}]", range.min_open ? "(" : "[",
+                                                                  format_value(range.min), format_value(range.max))
+                                                    : std::string(range.shown);
+  return range.unit.empty() ? interval : interval + " " + std::string(range.unit);
+}
+
 void require_range(const std::string& key, double value, const Range& range) {
   const bool above_min = range.min_open ? value > range.min : value >= range.min;
   if (above_min && value <= range.max) return;  // false for NaN
-  throw InputError(key, format_value(value),
-                   fmt::format("must lie in {}{}, {}]{}{}", range.min_open ? "(" : "[", format_value(range.min),
-                               format_value(range.max), range.unit.empty() ? "" : " ", range.unit));
+  throw InputError(key, format_value(value), "must lie in " + range_text(range));
 }
 
 }  // namespace pounding

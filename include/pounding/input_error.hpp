@@ -37,9 +37,13 @@ struct Range {
   double max;
   std::string_view unit = {};  // as printed after the bounds, e.g. "m" or "s"
   bool min_open = false;       // (min, …]: the bound itself is refused (e.g. a mass of 0)
+  std::string_view shown = {}; // the interval as stated instead of the bounds' digits, e.g. "[-1/3, 0]"
 };
 
-/// @throws InputError(key, value, "must lie in [min, max] unit") unless value lies in `range`
+/// "[min, max] unit" or "(min, max] unit", or `shown` with the unit.
+std::string range_text(const Range& range);
+
+/// @throws InputError(key, value, "must lie in " + range_text(range)) unless value lies in `range`
 ///   (NaN and infinities never do).
 void require_range(const std::string& key, double value, const Range& range);
 

@@ -20,40 +20,87 @@ namespace {
 
 using IntegratorPtr = std::unique_ptr<solvers::Integrator>;
 
-// Ranges of the settings (docs/scene-format.md lists each next to its key).
-constexpr Range kRtol{1e-14, 0.1};                         // below 1e-14 is under round-off
-constexpr Range kAtol{1e-16, 1e-3, "m"};
-// Held stretches of the exact path: tighter than 1e-14 is under round-off; looser than 1e-6
-// would make the ground truth less accurate than the paths it judges.
-constexpr Range kHoldRtol{1e-14, 1e-6};
-// Modal truncation of the exact path: 0 is off; above 1e4 Hz no building model has modes to drop.
-constexpr Range kModesCutoff{0.0, 1e4, "Hz"};
-constexpr Range kHhtStep{0.0, 0.1, "s", true};             // published 0.05 s
-constexpr Range kHhtContactTolerance{0.0, 0.01, "m", true};
-constexpr int kMaxHalvings = 60;                           // 0.05 s / 2⁶⁰ is below round-off of t
-const std::vector<std::string> kNewtonSolvers{"reduced", "dense"};
-const std::vector<std::string> kForms{"physical", "modal"};
-const std::vector<std::string> kEventLocations{"halving", "end-of-step", "interpolate"};
 // Root bracketing of the exact path: a subdivision fine against the shortest period that moves a gap.
 constexpr double kExactSubdivisionsPerPeriod = 16.0;
 
-constexpr SettingSpec kSpecs[] = {
-    {Setting::order, "order", "--order", "ARKODE table order"},
-    {Setting::rtol, "rtol", "--rtol", "relative tolerance"},
-    {Setting::atol, "atol", "--atol",
-     "absolute tolerance of the slab displacements (m); rotations and rates derive from it"},
-    {Setting::newton, "newton", "--newton", "Newton linear solver: reduced (n x n) or dense (2n x 2n LU)"},
-    {Setting::form, "form", "--form",
-     "state integrated: physical (q, q') or modal (each building's modal coordinates)"},
-    {Setting::hold_rtol, "hold_rtol", "--hold-rtol", "relative tolerance of held stretches (CVODE BDF)"},
-    {Setting::modes_cutoff_hz, "modes_cutoff_hz", "--modes-cutoff",
-     "keep each building's modes below this frequency (Hz), the rest as their static response; 0: every mode"},
-    {Setting::dt_s, "dt_s", "--dt", "fixed time step (s)"},
-    {Setting::alpha, "alpha", "--alpha", "HHT alpha in [-1/3, 0]"},
-    {Setting::contact_tolerance_m, "contact_tolerance_m", "--contact-tol", "gap that counts as contact (m)"},
-    {Setting::max_halvings, "max_halvings", "--max-halvings", "deepest step halving"},
-    {Setting::event_location, "event_location", "--event-location", "halving, end-of-step or interpolate"},
-};
+template <typename T>
+constexpr SettingMember<T> member(std::optional<T> SolverSettings::*given, T UsedSettings::*used) {
+  return {given, used};
+}
+
+// The settings. Ranges: below 1e-14 a relative tolerance is under round-off; hold_rtol looser than
+// 1e-6 would make the ground truth less accurate than the paths it judges; above 1e4 Hz no
+// building model has modes to drop; 0.05 s / 2⁶⁰ is below the round-off of t. Built on first use
+// (a function's static), so that other files' static initialisers may read it.
+const std::vector<SettingSpec>& specs() {
+  static const std::vector<SettingSpec> kSpecs = {
+      {.id = Setting::order, .key = "order", .option = "--order",
+       .member = member(&SolverSettings::order, &UsedSettings::order), .default_value = 0,
+       .description = "ARKODE table order",
+       .details = "`arkode-erk` 5 (Dormand–Prince; the 8th-order Fehlberg table was dropped because its error "
+                  "estimate is blind to the time-dependent forcing); `arkode-dirk` 4 (SDIRK 5-3-4, default) or 3 "
+                  "(Kvaerno 4-2-3)"},
+      {.id = Setting::rtol, .key = "rtol", .option = "--rtol",
+       .member = member(&SolverSettings::rtol, &UsedSettings::rtol), .default_value = 1e-8,
+       .range = Range{1e-14, 0.1}, .description = "relative tolerance"},
+      {.id = Setting::atol, .key = "atol", .option = "--atol",
+       .member = member(&SolverSettings::atol, &UsedSettings::atol), .default_value = 1e-10,
+       .range = Range{1e-16, 1e-3, "m"},
+       .description = "absolute tolerance of the slab displacements (m); rotations and rates derive from it",
+       .details = "the other components' tolerances derive from it (below)"},
+      {.id = Setting::newton, .key = "newton", .option = "--newton",
+       .member = member(&SolverSettings::newton, &UsedSettings::newton), .default_value = std::string("reduced"),
+       .choices = {"reduced", "dense"},
+       .description = "Newton linear solver: reduced (n x n) or dense (2n x 2n LU)",
+       .details = "`reduced` solves the exact n×n structural system with the analytic Jacobian (by a sparse LU in "
+                  "the physical form, O(n)); `dense` is SUNDIALS' dense LU of the 2n×2n matrix (slower; results "
+                  "agree to the tolerance)"},
+      {.id = Setting::form, .key = "form", .option = "--form",
+       .member = member(&SolverSettings::form, &UsedSettings::form), .default_value = std::string("physical"),
+       .choices = {"physical", "modal"},
+       .description = "state integrated: physical (q, q') or modal (each building's modal coordinates)",
+       .details = "`modal` integrates each building's mass-normalised modal coordinates (η, η̇), q = Φη, in which "
+                  "free flight is 3N decoupled oscillators with a diagonal Newton system (O(n) per solve instead of "
+                  "an LU); while a contact force acts (a hold, a compliant contact) the physical equations are "
+                  "mapped through the modes. Tolerances below. Results agree with `physical` to the tolerance "
+                  "(tests/solvers/test_modal_form.cpp)"},
+      {.id = Setting::hold_rtol, .key = "hold_rtol", .option = "--hold-rtol",
+       .member = member(&SolverSettings::hold_rtol, &UsedSettings::hold_rtol), .default_value = 1e-12,
+       .range = Range{1e-14, 1e-6}, .description = "relative tolerance of held stretches (CVODE BDF)",
+       .details = "held stretches are the one part of the exact path integrated numerically (CVODE BDF, atol = "
+                  "hold_rtol/100 m, per component as below): a held contact rotates with the slabs, so it is not "
+                  "linear. Free flight is exact whatever this is"},
+      {.id = Setting::modes_cutoff_hz, .key = "modes_cutoff_hz", .option = "--modes-cutoff",
+       .member = member(&SolverSettings::modes_cutoff_hz, &UsedSettings::modes_cutoff_hz), .default_value = 0.0,
+       .range = Range{0.0, 1e4, "Hz"},
+       .description = "keep each building's modes below this frequency (Hz), the rest as their static response; 0: every mode",
+       .details = "modal truncation: the other modes are taken as their quasi-static response to the ground, "
+                  "R a_g(t) (residual flexibility, added to every displacement the run forms: gaps, impacts, "
+                  "outputs). An approximation, not the exact path: what it neglects is in docs/model.md (\"Modal "
+                  "truncation\"), and `pounding study` measures its error on the scene (`truncation.csv`). A "
+                  "cut-off that keeps no mode of a building is refused"},
+      {.id = Setting::dt_s, .key = "dt_s", .option = "--dt",
+       .member = member(&SolverSettings::dt_s, &UsedSettings::dt_s), .default_value = 0.05,  // the published value
+       .range = Range{0.0, 0.1, "s", true}, .description = "fixed time step (s)"},
+      {.id = Setting::alpha, .key = "alpha", .option = "--alpha",
+       .member = member(&SolverSettings::alpha, &UsedSettings::alpha), .default_value = -0.05,
+       .range = Range{-1.0 / 3.0, 0.0, {}, false, "[-1/3, 0]"}, .description = "HHT alpha in [-1/3, 0]",
+       .details = "β = (1 − α)²/4, γ = (1 − 2α)/2"},
+      {.id = Setting::contact_tolerance_m, .key = "contact_tolerance_m", .option = "--contact-tol",
+       .member = member(&SolverSettings::contact_tolerance_m, &UsedSettings::contact_tolerance_m),
+       .default_value = 1e-4, .range = Range{0.0, 0.01, "m", true}, .description = "gap that counts as contact (m)",
+       .details = "an approaching pair in this band takes an impact once it touches (g ≤ 0) or would within a step, "
+                  "and a pair deeper than it ends the run as `unresolved_overlap`"},
+      {.id = Setting::max_halvings, .key = "max_halvings", .option = "--max-halvings",
+       .member = member(&SolverSettings::max_halvings, &UsedSettings::max_halvings), .default_value = 30,
+       .range = Range{0, 60}, .description = "deepest step halving"},
+      {.id = Setting::event_location, .key = "event_location", .option = "--event-location",
+       .member = member(&SolverSettings::event_location, &UsedSettings::event_location),
+       .default_value = std::string("halving"), .choices = {"halving", "end-of-step", "interpolate"},
+       .description = "halving, end-of-step or interpolate", .details = "how the contact instant is found (`--halving off` is `end-of-step`)"},
+  };
+  return kSpecs;
+}
 
 solvers::NewtonSolver newton_solver(const UsedSettings& used) {
   return used.newton == "dense" ? solvers::NewtonSolver::dense : solvers::NewtonSolver::second_order;
@@ -174,60 +221,20 @@ std::string text_of(const SettingValue& value) {
 
 /// The value of `setting` in `given`, if given.
 std::optional<SettingValue> given_value(const SolverSettings& given, Setting setting) {
-  auto value = [](const auto& optional) -> std::optional<SettingValue> {
-    if (!optional) return std::nullopt;
-    return SettingValue(*optional);
-  };
-  switch (setting) {
-    case order: return value(given.order);
-    case rtol: return value(given.rtol);
-    case atol: return value(given.atol);
-    case newton: return value(given.newton);
-    case form: return value(given.form);
-    case hold_rtol: return value(given.hold_rtol);
-    case modes_cutoff_hz: return value(given.modes_cutoff_hz);
-    case dt_s: return value(given.dt_s);
-    case alpha: return value(given.alpha);
-    case contact_tolerance_m: return value(given.contact_tolerance_m);
-    case max_halvings: return value(given.max_halvings);
-    case event_location: return value(given.event_location);
-  }
-  return std::nullopt;
+  return std::visit(
+      [&](const auto& m) -> std::optional<SettingValue> {
+        if (!(given.*m.given)) return std::nullopt;
+        return SettingValue(*(given.*m.given));
+      },
+      spec(setting).member);
 }
 
 SettingValue used_value(const UsedSettings& used, Setting setting) {
-  switch (setting) {
-    case order: return used.order;
-    case rtol: return used.rtol;
-    case atol: return used.atol;
-    case newton: return used.newton;
-    case form: return used.form;
-    case hold_rtol: return used.hold_rtol;
-    case modes_cutoff_hz: return used.modes_cutoff_hz;
-    case dt_s: return used.dt_s;
-    case alpha: return used.alpha;
-    case contact_tolerance_m: return used.contact_tolerance_m;
-    case max_halvings: return used.max_halvings;
-    case event_location: return used.event_location;
-  }
-  return 0;
+  return std::visit([&](const auto& m) { return SettingValue(used.*m.used); }, spec(setting).member);
 }
 
 void clear(SolverSettings& given, Setting setting) {
-  switch (setting) {
-    case order: given.order.reset(); break;
-    case rtol: given.rtol.reset(); break;
-    case atol: given.atol.reset(); break;
-    case newton: given.newton.reset(); break;
-    case form: given.form.reset(); break;
-    case hold_rtol: given.hold_rtol.reset(); break;
-    case modes_cutoff_hz: given.modes_cutoff_hz.reset(); break;
-    case dt_s: given.dt_s.reset(); break;
-    case alpha: given.alpha.reset(); break;
-    case contact_tolerance_m: given.contact_tolerance_m.reset(); break;
-    case max_halvings: given.max_halvings.reset(); break;
-    case event_location: given.event_location.reset(); break;
-  }
+  std::visit([&](const auto& m) { (given.*m.given).reset(); }, spec(setting).member);
 }
 
 std::string key_of(Setting setting) { return "solver." + std::string(spec(setting).key); }
@@ -243,52 +250,30 @@ std::string or_list(const std::vector<std::string>& words) {
   return fmt::format("{} or {}", fmt::join(words.begin(), words.end() - 1, ", "), words.back());
 }
 
-void require_one_of(Setting setting, const std::string& value, const std::vector<std::string>& choices) {
-  if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
-    throw InputError(key_of(setting), quoted(value), "expected " + or_list(choices));
-  }
-}
-
 /// The range rule of each setting (applicability is checked before).
-void validate_value(const MethodInfo& info, const SolverSettings& given, Setting setting) {
-  switch (setting) {
-    case order:
-      if (std::find(info.orders.begin(), info.orders.end(), *given.order) == info.orders.end()) {
-        std::vector<std::string> offered;
-        for (int o : info.orders) offered.push_back(std::to_string(o));
-        throw InputError(key_of(order), std::to_string(*given.order),
-                         fmt::format("{} offers order {}", info.name, or_list(offered)));
-      }
-      return;
-    case rtol: return require_range(key_of(rtol), *given.rtol, kRtol);
-    case atol: return require_range(key_of(atol), *given.atol, kAtol);
-    case newton: return require_one_of(newton, *given.newton, kNewtonSolvers);
-    case form: return require_one_of(form, *given.form, kForms);
-    case hold_rtol: return require_range(key_of(hold_rtol), *given.hold_rtol, kHoldRtol);
-    case modes_cutoff_hz: return require_range(key_of(modes_cutoff_hz), *given.modes_cutoff_hz, kModesCutoff);
-    case dt_s: return require_range(key_of(dt_s), *given.dt_s, kHhtStep);
-    case alpha:
-      if (!(*given.alpha >= -1.0 / 3.0 && *given.alpha <= 0.0)) {
-        throw InputError(key_of(alpha), format_value(*given.alpha), "must lie in [-1/3, 0]");
-      }
-      return;
-    case contact_tolerance_m:
-      return require_range(key_of(contact_tolerance_m), *given.contact_tolerance_m, kHhtContactTolerance);
-    case max_halvings:
-      if (*given.max_halvings < 0 || *given.max_halvings > kMaxHalvings) {
-        throw InputError(key_of(max_halvings), std::to_string(*given.max_halvings),
-                         fmt::format("must lie in 0..{}", kMaxHalvings));
-      }
-      return;
-    case event_location: return require_one_of(event_location, *given.event_location, kEventLocations);
+void validate_value(const MethodInfo& info, const SettingSpec& s, const SettingValue& value) {
+  if (s.id == order) {
+    const int given = std::get<int>(value);
+    if (std::find(info.orders.begin(), info.orders.end(), given) == info.orders.end()) {
+      std::vector<std::string> offered;
+      for (int o : info.orders) offered.push_back(std::to_string(o));
+      throw InputError(key_of(order), std::to_string(given), fmt::format("{} offers order {}", info.name, or_list(offered)));
+    }
+  } else if (const auto* text = std::get_if<std::string>(&value)) {
+    if (std::find(s.choices.begin(), s.choices.end(), *text) == s.choices.end()) {
+      throw InputError(key_of(s.id), quoted(*text), "expected " + or_list(s.choices));
+    }
+  } else {
+    require_range(key_of(s.id), std::holds_alternative<int>(value) ? std::get<int>(value) : std::get<double>(value),
+                  *s.range);
   }
 }
 
 }  // namespace
 
-std::span<const SettingSpec> setting_specs() { return kSpecs; }
+std::span<const SettingSpec> setting_specs() { return specs(); }
 
-const SettingSpec& spec(Setting setting) { return kSpecs[static_cast<std::size_t>(setting)]; }
+const SettingSpec& spec(Setting setting) { return specs()[static_cast<std::size_t>(setting)]; }
 
 std::span<const MethodInfo> methods() { return kMethods; }
 
@@ -322,7 +307,7 @@ bool SolverSettings::given(Setting setting) const { return given_value(*this, se
 
 void SolverSettings::validate() const {
   const MethodInfo& info = method_info(method);
-  for (const SettingSpec& s : kSpecs) {
+  for (const SettingSpec& s : specs()) {
     const std::optional<SettingValue> value = given_value(*this, s.id);
     if (!value) continue;
     if (!applies(info, s.id)) {
@@ -330,7 +315,7 @@ void SolverSettings::validate() const {
       throw InputError(key_of(s.id), text,
                        fmt::format("does not apply to method {} (it uses {})", info.name, keys_of(info)));
     }
-    validate_value(info, *this, s.id);
+    validate_value(info, s, *value);
   }
 }
 
@@ -338,7 +323,7 @@ SolverSettings with_method(const SolverSettings& given, std::string_view method)
   const MethodInfo& info = method_info(method);
   SolverSettings result = given;
   result.method = std::string(method);
-  for (const SettingSpec& s : kSpecs) {
+  for (const SettingSpec& s : specs()) {
     const std::optional<SettingValue> value = given_value(given, s.id);
     if (!value) continue;
     const bool usable =
@@ -354,17 +339,15 @@ UsedSettings resolve(const SolverSettings& given, const dynamics::CoupledSystem*
   UsedSettings used;
   used.method = &method_info(given.method);
   used.order = used.method->orders.empty() ? 0 : given.order.value_or(used.method->orders.front());
-  used.rtol = given.rtol.value_or(used.rtol);
-  used.atol = given.atol.value_or(used.atol);
-  used.newton = given.newton.value_or(used.newton);
-  used.form = given.form.value_or(used.form);
-  used.hold_rtol = given.hold_rtol.value_or(used.hold_rtol);
-  used.modes_cutoff_hz = given.modes_cutoff_hz.value_or(used.modes_cutoff_hz);
-  used.dt_s = given.dt_s.value_or(used.dt_s);
-  used.alpha = given.alpha.value_or(used.alpha);
-  used.contact_tolerance_m = given.contact_tolerance_m.value_or(used.contact_tolerance_m);
-  used.max_halvings = given.max_halvings.value_or(used.max_halvings);
-  used.event_location = given.event_location.value_or(used.event_location);
+  for (const SettingSpec& s : specs()) {
+    if (s.id == order) continue;
+    std::visit(
+        [&](const auto& m) {
+          using T = std::decay_t<decltype(used.*m.used)>;
+          used.*m.used = (given.*m.given).value_or(std::get<T>(s.default_value));
+        },
+        s.member);
+  }
   if (system) {
     if (applies(*used.method, atol)) used.atol_components = component_atol(*system, used.atol);
     if (applies(*used.method, hold_rtol)) used.atol_components = component_atol(*system, used.hold_rtol / 100);
@@ -374,7 +357,7 @@ UsedSettings resolve(const SolverSettings& given, const dynamics::CoupledSystem*
 
 std::vector<SettingEntry> given_entries(const SolverSettings& given) {
   std::vector<SettingEntry> entries;
-  for (const SettingSpec& s : kSpecs) {
+  for (const SettingSpec& s : specs()) {
     if (auto value = given_value(given, s.id)) entries.push_back({s.key, std::move(*value)});
   }
   return entries;
@@ -405,9 +388,51 @@ std::string option_help(Setting setting) {
   for (const MethodInfo& info : kMethods) {
     if (applies(info, setting)) users.emplace_back(info.name);
   }
-  const std::string default_text =
-      setting == order ? "the method's first" : text_of(used_value(UsedSettings{}, setting));
-  return fmt::format("{}: {} (default {})", fmt::join(users, ", "), spec(setting).description, default_text);
+  return fmt::format("{}: {} (default {})", fmt::join(users, ", "), spec(setting).description,
+                     setting == order ? "the method's first" : text_of(spec(setting).default_value));
+}
+
+std::string_view type_name(const SettingSpec& s) {
+  constexpr std::string_view kNames[] = {"integer", "number", "string"};
+  return kNames[s.member.index()];
+}
+
+std::string expected_text(const SettingSpec& s) {
+  return fmt::format("{} {}", s.member.index() == 0 ? "an" : "a", type_name(s));
+}
+
+std::string accepted_text(const SettingSpec& s) {
+  if (s.id == order) return "the method's table orders";
+  if (!s.choices.empty()) return or_list(s.choices);
+  if (s.member.index() == 0) return fmt::format("{}..{}", s.range->min, s.range->max);  // integers
+  return range_text(*s.range);
+}
+
+std::string default_text(const SettingSpec& s) {
+  if (s.id == order) return "the method's first";
+  if (const auto* text = std::get_if<std::string>(&s.default_value)) return quoted(*text);
+  return text_of(s.default_value);
+}
+
+void SolverSettings::set(Setting setting, const SettingValue& value) {
+  const SettingSpec& s = spec(setting);
+  std::visit(
+      [&](const auto& m) {
+        using T = typename std::decay_t<decltype(this->*m.given)>::value_type;
+        if (const T* same = std::get_if<T>(&value)) {
+          this->*m.given = *same;
+          return;
+        }
+        if constexpr (std::is_same_v<T, double>) {  // a whole number is a number
+          if (const int* whole = std::get_if<int>(&value)) {
+            this->*m.given = *whole;
+            return;
+          }
+        }
+        const bool text = std::holds_alternative<std::string>(value);
+        throw InputError(key_of(setting), text ? quoted(text_of(value)) : text_of(value), "expected " + expected_text(s));
+      },
+      s.member);
 }
 
 std::string methods_help() {

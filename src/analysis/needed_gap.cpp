@@ -278,8 +278,8 @@ void NeededGapOptions::validate() const {
   auto positive = [](double value, const char* field) {
     if (!(value > 0.0) || !std::isfinite(value)) throw InputError(field, format_value(value), "must be positive");
   };
-  positive(rtol, "rtol");
-  positive(atol, "atol");
+  require_range("rtol", rtol, *spec(Setting::rtol).range);
+  require_range("atol", atol, *spec(Setting::atol).range);
   positive(history_interval_s, "history_interval_s");
   budget.validate();
 }

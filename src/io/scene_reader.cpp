@@ -474,18 +474,15 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   // Unset keys stay unset: the method's defaults fill them (analysis::resolve), and a key set
   // for a method that does not use it is refused by Scene::validate().
   solver.method = table->optional_string("method").value_or(solver.method);
-  solver.order = table->optional_integer("order");
-  solver.rtol = table->optional_number("rtol");
-  solver.atol = table->optional_number("atol");
-  solver.newton = table->optional_string("newton");
-  solver.form = table->optional_string("form");
-  solver.hold_rtol = table->optional_number("hold_rtol");
-  solver.modes_cutoff_hz = table->optional_number("modes_cutoff_hz");
-  solver.dt_s = table->optional_number("dt_s");
-  solver.alpha = table->optional_number("alpha");
-  solver.contact_tolerance_m = table->optional_number("contact_tolerance_m");
-  solver.max_halvings = table->optional_integer("max_halvings");
-  solver.event_location = table->optional_string("event_location");
+  for (const analysis::SettingSpec& spec : analysis::setting_specs()) {
+    std::optional<analysis::SettingValue> value;
+    switch (spec.member.index()) {  // the setting's type (SettingSpec::member)
+      case 0: value = table->optional_integer(spec.key); break;
+      case 1: value = table->optional_number(spec.key); break;
+      default: value = table->optional_string(spec.key); break;
+    }
+    if (value) solver.set(spec.id, *value);
+  }
   table->finish();
   return solver;
 }

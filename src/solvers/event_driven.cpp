@@ -1,6 +1,5 @@
 #include "pounding/solvers/event_driven.hpp"
 
-#include <cassert>
 
 #include <algorithm>
 #include <array>
@@ -40,7 +39,7 @@ void EventOptions::validate() const {
   auto positive = [](double value, const char* field) {
     if (!(value > 0.0) || !std::isfinite(value)) throw InputError(field, format_value(value), "must be positive");
   };
-  assert(restitution >= 0.0 && restitution <= 1.0);  // the scene's contact validator checks user input
+  require_range("restitution", restitution, {0.0, 1.0});  // also for programs that call the solver directly
   positive(contact_tolerance_m, "contact_tolerance_m");
   positive(reopen_gap_m, "reopen_gap_m");
   positive(overlap_allowance_m, "overlap_allowance_m");

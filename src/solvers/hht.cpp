@@ -1,9 +1,9 @@
 #include "pounding/solvers/hht.hpp"
 
-#include <cassert>
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 #include <set>
 
@@ -84,13 +84,14 @@ double HhtStepper::algorithmic_dissipation(const State& from, const State& to) c
 }
 
 void HhtOptions::validate() const {
-  // The user-facing rules of these (with the scene's keys) are analysis::SolverSettings::validate()
-  // and the scene's contact validator; here they are preconditions.
-  assert(dt_s > 0.0 && std::isfinite(dt_s));
-  assert(alpha >= -1.0 / 3.0 && alpha <= 0.0);
-  assert(contact_tolerance_m > 0.0 && std::isfinite(contact_tolerance_m));
-  assert(max_halvings >= 0 && max_halvings <= 60);
-  assert(restitution >= 0.0 && restitution <= 1.0);
+  // The user-facing rules (the scene's keys, tighter ranges) are analysis::SolverSettings::validate()
+  // and the scene's contact validator; these are the scheme's own, kept in release builds for
+  // programs that call the solver directly.
+  require_range("dt_s", dt_s, {0.0, std::numeric_limits<double>::max(), "s", true});
+  require_range("alpha", alpha, {-1.0 / 3.0, 0.0, {}, false, "[-1/3, 0]"});  // unconditionally stable, 2nd order
+  require_range("contact_tolerance_m", contact_tolerance_m, {0.0, std::numeric_limits<double>::max(), "m", true});
+  require_range("max_halvings", max_halvings, {0.0, 60.0});  // dt / 2⁶⁰ is below the round-off of t
+  require_range("restitution", restitution, {0.0, 1.0});
   if (!(history_interval_s > 0.0)) {
     throw InputError("history_interval_s", format_value(history_interval_s), "must be positive (s)");
   }

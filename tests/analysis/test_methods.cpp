@@ -226,3 +226,58 @@ BOOST_AUTO_TEST_CASE(AbsoluteTolerancesPerComponentAreWhatTheDocumentationSays) 
   BOOST_TEST(analysis::resolve(exact, &system).atol_components->displacement_m == 1e-14);
   BOOST_TEST(!analysis::resolve(analysis::with_method({}, "hht"), &system).atol_components.has_value());
 }
+
+BOOST_AUTO_TEST_CASE(EverySettingRowIsConsistent) {
+  // The table is the one declaration of each setting: its default must pass its own rule on every
+  // method using it, values beyond its range or choices are refused naming solver.<key>, a value
+  // of another type is refused by set(), and resolve() uses the default when it is not given.
+  const auto specs = analysis::setting_specs();
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const analysis::SettingSpec& spec = specs[i];
+    BOOST_TEST_CONTEXT(spec.key) {
+      BOOST_TEST(static_cast<std::size_t>(spec.id) == i);  // enum order: spec(id) is a lookup
+      BOOST_TEST(spec.option.substr(0, 2) == "--");
+      BOOST_TEST(!spec.description.empty());
+      const std::string key = "solver." + std::string(spec.key);
+      for (const analysis::MethodInfo& method : analysis::methods()) {
+        if (!analysis::applies(method, spec.id) || spec.id == Setting::order) continue;
+        analysis::SolverSettings s;
+        s.method = std::string(method.name);
+        s.set(spec.id, spec.default_value);
+        BOOST_TEST(reason_of(s) == "");
+        const analysis::UsedSettings defaulted = analysis::resolve(analysis::SolverSettings{.method = s.method});
+        const analysis::UsedSettings given = analysis::resolve(s);
+        BOOST_TEST(analysis::describe_used_settings(defaulted) == analysis::describe_used_settings(given));
+        if (spec.range) {
+          for (double outside : {spec.range->min - 1.0, spec.range->max * 2.0 + 1.0}) {
+            if (spec.member.index() == 0) s.set(spec.id, static_cast<int>(outside));
+            else s.set(spec.id, outside);
+            std::string where;
+            BOOST_TEST(reason_of(s, &where).rfind("must lie in", 0) == 0u);
+            BOOST_TEST(where == key);
+          }
+        } else {
+          s.set(spec.id, std::string("no-such-choice"));
+          std::string where;
+          BOOST_TEST(reason_of(s, &where).rfind("expected ", 0) == 0u);
+          BOOST_TEST(where == key);
+        }
+      }
+      analysis::SolverSettings s;
+      const analysis::SettingValue wrong =
+          spec.member.index() == 2 ? analysis::SettingValue(1.5) : analysis::SettingValue(std::string("1e-8"));
+      try {
+        s.set(spec.id, wrong);
+        BOOST_TEST(false, "a value of another type was taken");
+      } catch (const InputError& error) {
+        BOOST_TEST(error.key() == key);
+        BOOST_TEST(error.reason() == "expected " + analysis::expected_text(spec));
+      }
+      BOOST_TEST(!s.given(spec.id));
+    }
+  }
+  analysis::SolverSettings s;
+  s.set(Setting::rtol, 1);  // a whole number is a number
+  BOOST_TEST(*s.rtol == 1.0);
+  BOOST_CHECK_THROW(s.set(Setting::max_halvings, 2.0), InputError);  // a number is not a whole number
+}

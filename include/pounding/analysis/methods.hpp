@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "pounding/input_error.hpp"
 #include "pounding/solvers/event_driven.hpp"
 
 namespace pounding::dynamics {
@@ -30,16 +31,43 @@ namespace pounding::analysis {
 /// The keys of [solver] (docs/scene-format.md), in the order they are listed and written.
 enum class Setting { order, rtol, atol, newton, form, hold_rtol, modes_cutoff_hz, dt_s, alpha, contact_tolerance_m, max_halvings, event_location };
 
+struct SolverSettings;
+struct UsedSettings;
+using SettingValue = std::variant<int, double, std::string>;
+
+/// Where a setting of type T lives: its given value (unset: the default) and the value a run uses.
+template <typename T>
+struct SettingMember {
+  std::optional<T> SolverSettings::*given;
+  T UsedSettings::*used;
+};
+
+/// One [solver] setting, declared once: every reader (scene file, `pounding run` options, Python
+/// keywords), the validator, resolve(), summary.json's settings, `--help`, `pounding settings` and
+/// the table in docs/scene-format.md come from its row (the way Drake visits DRAKE_NVP fields).
 struct SettingSpec {
   Setting id;
-  std::string_view key;          // [solver] key, also the key in summary.json
+  std::string_view key;          // [solver] key, the key in summary.json and the Python keyword
   std::string_view option;       // `pounding run` option that sets it
-  std::string_view description;  // for --help and the docs, with units
+  std::variant<SettingMember<int>, SettingMember<double>, SettingMember<std::string>> member;  // its type
+  SettingValue default_value;    // what a run uses when it is not given (order: the method's first)
+  std::optional<Range> range = std::nullopt;  // numbers: the values accepted (integers are whole numbers in it)
+  std::vector<std::string> choices{};  // text: the values accepted
+  std::string_view description;  // one line, with units: `--help`
+  std::string_view details{};    // the docs' meaning column (docs/scene-format.md), after the description
 };
 
 /// Every setting, in enum order.
 std::span<const SettingSpec> setting_specs();
 const SettingSpec& spec(Setting setting);
+/// "integer", "number" or "string": the type a reader expects.
+std::string_view type_name(const SettingSpec& spec);
+/// "an integer", "a number" or "a string": what a value of another type is told.
+std::string expected_text(const SettingSpec& spec);
+/// The accepted values as the docs and errors state them: "[1e-14, 0.1]", "0..60", "reduced or dense".
+std::string accepted_text(const SettingSpec& spec);
+/// The default as the docs print it ("1e-08", "\"reduced\"", "the method's first").
+std::string default_text(const SettingSpec& spec);
 
 /// Time integration of `pounding run` as given (scene file, then command line). Unset: the
 /// method's default (UsedSettings lists the defaults).
@@ -62,6 +90,10 @@ struct SolverSettings {
   std::map<std::string, std::string> not_used;
 
   bool given(Setting setting) const;
+  /// Gives `setting` the value `value` (an integer for a number is taken as that number).
+  /// @throws InputError(`solver.<key>`, value, "expected an integer|a number|a string") for a
+  ///   value of another type; the range is validate()'s.
+  void set(Setting setting, const SettingValue& value);
   /// The method is a name of the registry, every given setting applies to it (else "does not
   /// apply to method M"), and every value lies in its range.
   /// @throws InputError naming `solver.<key>` and the value.
@@ -90,27 +122,26 @@ ComponentAtol component_atol(const dynamics::CoupledSystem& system, double atol_
 
 struct MethodInfo;
 
-/// What a run uses: the given settings, the rest at their defaults (the documented defaults are
-/// these initialisers; `order` is the method's first order).
+/// What a run uses: the given settings, the rest at their defaults (SettingSpec::default_value;
+/// `order` is the method's first order). resolve() makes it.
 struct UsedSettings {
   const MethodInfo* method = nullptr;
-  int order = 0;                        // the real table order; 0 for methods without one
-  double rtol = 1e-8;
-  double atol = 1e-10;                  // m (ComponentAtol derives the rest)
-  std::string newton = "reduced";
-  std::string form = "physical";        // (q, q̇), or (η, η̇) per building's modes (ModalSystem)
-  double hold_rtol = 1e-12;             // exact; the held stretches' atol is hold_rtol / 100 (m)
-  double modes_cutoff_hz = 0.0;         // exact; 0: every mode (no truncation)
-  double dt_s = 0.05;                   // s, the published value
-  double alpha = -0.05;
-  double contact_tolerance_m = 1e-4;
-  int max_halvings = 30;
-  std::string event_location = "halving";
+  int order = 0;                 // the real table order; 0 for methods without one
+  double rtol = 0.0;
+  double atol = 0.0;             // m (ComponentAtol derives the rest)
+  std::string newton;            // reduced | dense
+  std::string form;              // physical (q, q̇) | modal (η, η̇) per building's modes (ModalSystem)
+  double hold_rtol = 0.0;        // exact; the held stretches' atol is hold_rtol / 100 (m)
+  double modes_cutoff_hz = 0.0;  // exact; 0: every mode (no truncation)
+  double dt_s = 0.0;             // s
+  double alpha = 0.0;
+  double contact_tolerance_m = 0.0;
+  int max_halvings = 0;
+  std::string event_location;
   /// Per component, of atol (or of hold_rtol / 100 for exact); set by resolve() given a system.
   std::optional<ComponentAtol> atol_components;
 };
 
-using SettingValue = std::variant<int, double, std::string>;
 struct SettingEntry {
   std::string_view key;
   SettingValue value;

@@ -82,11 +82,11 @@ struct NeededGap {
 
 struct NeededGapOptions {
   bool adams = false;   // CVODE Adams instead of BDF
-  double rtol = 1e-8;
-  double atol = 1e-10;  // m, rad and their rates
+  double rtol = std::get<double>(spec(Setting::rtol).default_value);
+  double atol = std::get<double>(spec(Setting::atol).default_value);  // m, rad and their rates
   double history_interval_s = 0.01;
   solvers::RunBudget budget{};  // wall time; a SIGINT/SIGTERM (solvers::request_interrupt) also stops it
-  /// @throws InputError naming the field.
+  /// rtol and atol in the ranges of [solver]'s (methods.hpp). @throws InputError naming the field.
   void validate() const;
 };
 
