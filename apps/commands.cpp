@@ -392,9 +392,7 @@ int run_methods(const MethodsCommand& command) {
 }
 
 int run_laws(const LawsCommand& command) {
-  if (!(command.restitution >= 0.0 && command.restitution <= 1.0)) {
-    throw InputError("--restitution", fmt::format("{}", command.restitution), "must lie in [0, 1]");
-  }
+  require_range("--restitution", command.restitution, *analysis::contact_setting_spec("restitution").range);
   nlohmann::json list = nlohmann::json::array();
   for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
     const nlohmann::json rebound = law.rebound ? nlohmann::json(law.rebound(command.restitution)) : nlohmann::json(nullptr);

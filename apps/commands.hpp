@@ -25,7 +25,7 @@ struct MethodsCommand {
 
 struct SettingsCommand {
   bool json = false;      // the table as JSON on stdout (for scripts)
-  bool markdown = false;  // the tables of docs/scene-format.md's [solver] section
+  std::optional<std::string> markdown;  // solver | contact: that section's tables of docs/scene-format.md
 };
 
 struct LawsCommand {

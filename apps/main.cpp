@@ -113,9 +113,9 @@ int main(int argc, char** argv) {
 
   pounding::cli::SettingsCommand settings;
   CLI::App* settings_app =
-      app.add_subcommand("settings", "The [solver] settings: key, option, type, default, range, the methods using each");
+      app.add_subcommand("settings", "The [solver] and [contact] settings: key, option, type, default, range (and the methods using each)");
   settings_app->add_flag("--json", settings.json, "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
-  settings_app->add_flag("--markdown", settings.markdown, "The tables of docs/scene-format.md's [solver] section");
+  settings_app->add_option("--markdown", settings.markdown, "solver or contact: that section's tables in docs/scene-format.md");
 
   pounding::cli::LawsCommand laws;
   CLI::App* laws_app = app.add_subcommand("laws", "The contact laws, their default stiffness and the rebound each achieves");

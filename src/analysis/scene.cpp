@@ -14,34 +14,84 @@ namespace {
 
 constexpr double kGapTolerance_m = 1e-6;
 
-// Physical ranges (docs/scene-format.md lists each next to its key).
-constexpr Range kGap{0.0, 10.0, "m"};                      // seismic joints are centimetres to a metre
-constexpr Range kCandidateMargin{0.0, 10.0, "m", true};
-constexpr Range kHoldVelocity{0.0, 0.1, "m/s", true};      // pounding approaches at 0.1 to 1 m/s
-// Floors this far apart still meet face on: up to a slab's thickness. validate_levels() also
-// keeps it below half of every storey, so a floor meets at most one floor of the other building.
-constexpr Range kLevelTolerance{0.0, 0.5, "m", true};
 constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
-// From a soft pad (1 kN/m) to far stiffer than concrete (1e12 kN/m: contact periods of
-// microseconds for floor masses of tonnes, below which no integrator resolves the contact).
-constexpr Range kContactStiffness{1.0, 1e12, "kN/m"};
-// The Hertz laws' k δ^(1/2) at 1 mm of overlap spans the same 1 to 1e12 kN/m within a factor 30.
-constexpr Range kHertzStiffness{1.0, 1e13, "kN/m^1.5"};
 
-void validate_gap(const std::string& key, double gap_m) { require_range(key, gap_m, kGap); }
+// The [contact] keys. Ranges: seismic joints are centimetres to a metre; pounding approaches at
+// 0.1 to 1 m/s; floors up to a slab's thickness apart still meet face on (validate_levels() also
+// keeps the tolerance below half of every storey, so a floor meets at most one of the other
+// building); stiffness from a soft pad (1 kN/m) to far stiffer than concrete (1e12 kN/m: contact
+// periods of microseconds for floor masses of tonnes, below which no integrator resolves the
+// contact), and the Hertz laws' k δ^(1/2) at 1 mm of overlap spans the same within a factor 30.
+// Built on first use, so other files' static initialisers may read it.
+const std::vector<ContactSettingSpec>& contact_specs() {
+  static const std::vector<ContactSettingSpec> kSpecs = {
+      {.key = "gap_m", .option = "--gap", .member = &ContactSettings::gap_m, .required = true,
+       .range = Range{0.0, 10.0, "m"},
+       .description = "clear distance along x between the facing sides at rest (m)",
+       .details = "it must equal what the slab outlines show (to 1 µm); `--gap` moves building 2 (slab, CM, "
+                  "columns) along x to another gap"},
+      {.key = "restitution", .option = "--restitution", .member = &ContactSettings::restitution, .required = true,
+       .range = Range{0.0, 1.0}, .description = "Newton coefficient k"},
+      {.key = "candidate_margin_m", .member = &ContactSettings::candidate_margin_m,
+       .range = Range{0.0, 10.0, "m", true},
+       .description = "reach of the candidate search (m)",
+       .details = "a vertex is a candidate against an edge facing it when, at rest, it lies in front of the edge "
+                  "at most `gap_m` + margin away and projects onto the edge or at most margin beyond an end. 1 m is "
+                  "far above storey drifts and far below slab sizes; raise it only for very large motions"},
+      {.key = "hold_velocity_mps", .member = &ContactSettings::hold_velocity_mps,
+       .range = Range{0.0, 0.1, "m/s", true},
+       .description = "sticking threshold (m/s)",
+       .details = "after an impact, a pair that separates slower than this while pressed together is held in "
+                  "sustained contact instead of bouncing on (docs/model.md §7)"},
+      {.key = "law", .option = "--contact-law", .member = &ContactSettings::law,
+       .description = "how contacts push",
+       .details = "`impulse` is the paper's rigid impact with restitution and held contacts; `kelvin` a "
+                  "spring–dashpot element while the slabs overlap; `hertzdamp` a Hertz spring with damping ∝ δ^1.5 "
+                  "(Muthukumar & DesRoches 2006); `jankowski` a Hertz spring with a dashpot while approaching "
+                  "(Jankowski 2005) ([model.md §6a](model.md#6a-compliant-contact-kelvin-hertzdamp-jankowski), "
+                  "which also says which law to use for what). The compliant laws run on cvode-bdf, cvode-adams, "
+                  "arkode-erk and arkode-dirk; hht and exact refuse them (exit 2). `jankowski` refuses "
+                  "`restitution = 0` (its damping ratio is infinite there)"},
+      {.key = "stiffness_kN_per_m", .option = "--contact-stiffness", .member = &ContactSettings::stiffness_kN_per_m,
+       .range = Range{1.0, 1e12, "kN/m", false, "[1, 1e12]"},
+       .description = "kelvin only: the element's spring k (kN/m)",
+       .details = "refused for the other laws, naming the law and its key, like a solver setting the method does "
+                  "not use. The default is Jankowski's (2005) linear viscoelastic fit to concrete-on-concrete "
+                  "impact tests, 93.5 kN/mm, as quoted: not checked against the paper here; the dashpot follows "
+                  "from `restitution`"},
+      {.key = "stiffness_kN_per_m1_5", .option = "--contact-stiffness",
+       .member = &ContactSettings::stiffness_kN_per_m1_5, .range = Range{1.0, 1e13, "kN/m^1.5", false, "[1, 1e13]"},
+       .description = "hertzdamp's k_h or jankowski's β (kN/m^1.5)",
+       .details = "refused for impulse and kelvin; `--contact-stiffness` sets it when one of these laws is in "
+                  "force. Defaults as quoted, not checked against the papers: hertzdamp 25 000 kip/in^1.5 "
+                  "(Muthukumar & DesRoches 2006, concrete bridge decks), jankowski 2.75e9 N/m^1.5 (Jankowski 2005, "
+                  "the same concrete tests as kelvin's default). The damping follows from `restitution` (and for "
+                  "hertzdamp the approach speed at onset)"},
+      {.key = "level_tolerance_m", .member = &ContactSettings::level_tolerance_m,
+       .range = Range{0.0, 0.5, "m", true},
+       .description = "floors of the two buildings whose elevations differ by at most this form a level and can touch (m)",
+       .details = "must also lie below half of every storey height. 1 mm is far above the round-off of summed "
+                  "storey heights (3.3 + 3.3 + 3.3 against 4.95 + 4.95) and far below any offset a designer would "
+                  "mean, so floors match exactly when the file puts them at one height. Raise it (e.g. to a slab "
+                  "thickness, at most 0.5 m) only to treat slightly offset slabs as meeting face on"},
+  };
+  return kSpecs;
+}
+
+const Range& range_of(std::string_view key) { return *contact_setting_spec(key).range; }
+
+void validate_gap(const std::string& key, double gap_m) { require_range(key, gap_m, range_of("gap_m")); }
 
 std::string building_key(std::size_t index) { return fmt::format("building[{}]", index + 1); }
 
 void validate_contact(const ContactSettings& contact) {
-  validate_gap("contact.gap_m", contact.gap_m);
-  if (!(contact.restitution >= 0.0 && contact.restitution <= 1.0)) {
-    throw InputError("contact.restitution", format_value(contact.restitution), "must lie in [0, 1]");
+  for (const ContactSettingSpec& spec : contact_specs()) {
+    if (const auto* number = std::get_if<double ContactSettings::*>(&spec.member)) {
+      require_range("contact." + std::string(spec.key), contact.**number, *spec.range);
+    }
   }
-  require_range("contact.candidate_margin_m", contact.candidate_margin_m, kCandidateMargin);
-  require_range("contact.hold_velocity_mps", contact.hold_velocity_mps, kHoldVelocity);
-  require_range("contact.level_tolerance_m", contact.level_tolerance_m, kLevelTolerance);
   const ContactLawInfo& law = contact_law_info(contact.law);
-  auto check_stiffness = [&](std::string_view key, const std::optional<double>& value, const Range& range) {
+  auto check_stiffness = [&](std::string_view key, const std::optional<double>& value) {
     if (!value) return;
     const std::string name = "contact." + std::string(key);
     if (law.stiffness_key != key) {
@@ -51,10 +101,10 @@ void validate_contact(const ContactSettings& contact) {
                            : fmt::format("does not apply to law {}: its stiffness is {} ({})", law.name,
                                          law.stiffness_key, law.stiffness_unit));
     }
-    require_range(name, *value, range);
+    require_range(name, *value, range_of(key));
   };
-  check_stiffness("stiffness_kN_per_m", contact.stiffness_kN_per_m, kContactStiffness);
-  check_stiffness("stiffness_kN_per_m1_5", contact.stiffness_kN_per_m1_5, kHertzStiffness);
+  check_stiffness("stiffness_kN_per_m", contact.stiffness_kN_per_m);
+  check_stiffness("stiffness_kN_per_m1_5", contact.stiffness_kN_per_m1_5);
   if (law.law == contact::ContactLaw::jankowski && contact.restitution == 0.0) {
     throw InputError("contact.restitution", "0",
                      "must be positive for law jankowski: its damping ratio 9 sqrt(5) (1 - e^2) / (2e (e (9 pi - 16) "
@@ -137,6 +187,15 @@ solvers::OutputSelection OutputSettings::selection() const {
           .displacement_peaks = asked(kPeakGroups[0]),
           .acceleration_peaks = asked(kPeakGroups[1]),
           .drift_peaks = asked(kPeakGroups[2])};
+}
+
+std::span<const ContactSettingSpec> contact_setting_specs() { return contact_specs(); }
+
+const ContactSettingSpec& contact_setting_spec(std::string_view key) {
+  for (const ContactSettingSpec& spec : contact_specs()) {
+    if (spec.key == key) return spec;
+  }
+  throw std::logic_error("no [contact] key " + std::string(key));
 }
 
 double ContactSettings::used_stiffness() const {

@@ -532,14 +532,21 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
   }
   scene.excitation = read_excitation(root.subtable("excitation"), path.parent_path());
   TableReader contact = root.subtable("contact");
-  scene.contact.gap_m = contact.number("gap_m");
-  scene.contact.restitution = contact.number("restitution");
-  scene.contact.candidate_margin_m = contact.number_or("candidate_margin_m", scene.contact.candidate_margin_m);
-  scene.contact.hold_velocity_mps = contact.number_or("hold_velocity_mps", scene.contact.hold_velocity_mps);
-  scene.contact.level_tolerance_m = contact.number_or("level_tolerance_m", scene.contact.level_tolerance_m);
-  scene.contact.law = contact.optional_string("law").value_or(scene.contact.law);
-  scene.contact.stiffness_kN_per_m = contact.optional_number("stiffness_kN_per_m");
-  scene.contact.stiffness_kN_per_m1_5 = contact.optional_number("stiffness_kN_per_m1_5");
+  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
+    std::visit(
+        [&](auto analysis::ContactSettings::*member) {
+          auto& value = scene.contact.*member;
+          using T = std::decay_t<decltype(value)>;
+          if constexpr (std::is_same_v<T, std::string>) {
+            value = contact.optional_string(spec.key).value_or(value);
+          } else if constexpr (std::is_same_v<T, double>) {
+            value = spec.required ? contact.number(spec.key) : contact.number_or(spec.key, value);
+          } else {
+            value = contact.optional_number(spec.key);
+          }
+        },
+        spec.member);
+  }
   contact.finish();
   scene.solver = read_solver(root.optional_subtable("solver"));
   scene.output = read_output(root.optional_subtable("output"));

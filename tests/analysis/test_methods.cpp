@@ -1,6 +1,7 @@
 #define BOOST_TEST_MODULE methods
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
@@ -280,4 +281,40 @@ BOOST_AUTO_TEST_CASE(EverySettingRowIsConsistent) {
   s.set(Setting::rtol, 1);  // a whole number is a number
   BOOST_TEST(*s.rtol == 1.0);
   BOOST_CHECK_THROW(s.set(Setting::max_halvings, 2.0), InputError);  // a number is not a whole number
+}
+
+BOOST_AUTO_TEST_CASE(EveryContactRowIsCheckedByItsOwnRange) {
+  // Each [contact] number with a range: its default (ContactSettings' initialiser) passes, and a
+  // value beyond either bound is refused naming contact.<key> (the stiffness keys once their law
+  // is in force). The paper scene's levels are 3.5 m apart, so level_tolerance_m's 0.5 m is the
+  // table's bound, not the half-storey rule.
+  const analysis::ContactSettings defaults;
+  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
+    if (!spec.range) continue;
+    BOOST_TEST_CONTEXT(spec.key) {
+      for (double outside : {spec.range->min - 1.0, spec.range->max * 2.0 + 1.0}) {
+        analysis::Scene scene = paper();
+        std::visit(
+            [&](auto analysis::ContactSettings::*member) {
+              if constexpr (!std::is_same_v<std::decay_t<decltype(scene.contact.*member)>, std::string>) {
+                scene.contact.*member = outside;
+                if constexpr (std::is_same_v<std::decay_t<decltype(defaults.*member)>, double>) {
+                  const double default_value = defaults.*member;
+                  if (!spec.required) BOOST_TEST(default_value == std::clamp(default_value, spec.range->min, spec.range->max));
+                }
+              }
+            },
+            spec.member);
+        if (spec.key == "stiffness_kN_per_m") scene.contact.law = "kelvin";
+        if (spec.key == "stiffness_kN_per_m1_5") scene.contact.law = "hertzdamp";
+        try {
+          scene.validate();
+          BOOST_TEST(false, "accepted " << outside);
+        } catch (const InputError& error) {
+          BOOST_TEST(error.key() == "contact." + std::string(spec.key));
+          BOOST_TEST(error.reason() == "must lie in " + range_text(*spec.range));
+        }
+      }
+    }
+  }
 }

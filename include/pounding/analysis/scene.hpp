@@ -5,8 +5,10 @@
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "pounding/analysis/methods.hpp"
@@ -37,6 +39,24 @@ struct ContactSettings {
   /// kelvin's key, which the validator then refuses naming the law.
   void set_stiffness(double value);
 };
+
+/// One [contact] key, declared once: the scene reader, the range checks of Scene::validate(),
+/// `pounding settings` and docs/scene-format.md's [contact] table come from its row. The
+/// defaults are ContactSettings' initialisers (a required key has none).
+struct ContactSettingSpec {
+  std::string_view key;     // [contact] key, as `contact.<key>` in errors and summary.json
+  std::string_view option;  // the `run`/`check` option that replaces it; empty: none
+  std::variant<double ContactSettings::*, std::optional<double> ContactSettings::*, std::string ContactSettings::*> member;
+  bool required = false;
+  std::optional<Range> range = std::nullopt;  // numbers: the values accepted
+  std::string_view description{};             // one line, with units
+  std::string_view details{};                 // the docs' meaning column, after the description
+};
+
+/// Every [contact] key, in the order the docs list them.
+std::span<const ContactSettingSpec> contact_setting_specs();
+/// @pre `key` is a [contact] key.
+const ContactSettingSpec& contact_setting_spec(std::string_view key);
 
 /// The peak groups `output.peaks` may list, in the order outputs list them: displacements (u, v,
 /// φ, contact vertices' x), accelerations (absolute, of the CM), drifts (storey drift ratios).
