@@ -84,6 +84,7 @@ solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used
   solvers::EventOptions options;
   options.restitution = scene.contact.restitution;
   options.hold_velocity_mps = scene.contact.hold_velocity_mps;
+  options.hold_height_m = scene.contact.hold_height_m;
   options.law = contact_law_info(scene.contact.law).law;
   options.contact_stiffness = scene.contact.used_stiffness();
   options.outputs = scene.output.selection();

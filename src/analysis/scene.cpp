@@ -43,6 +43,11 @@ const std::vector<ContactSettingSpec>& contact_specs() {
        .description = "sticking threshold (m/s)",
        .details = "after an impact, a pair that separates slower than this while pressed together is held in "
                   "sustained contact instead of bouncing on (docs/model.md §7)"},
+      {.key = "hold_height_m", .member = &ContactSettings::hold_height_m, .range = Range{0.0, 1e-3, "m", true},
+       .description = "a pressed pair whose next flight would rise less than this (m), v⁺²/(2|g̈|), is held",
+       .details = "whatever `hold_velocity_mps` says: such a bounce is below what the integrators resolve at their "
+                  "default tolerances, and chasing it only accumulates round-off (and energy). Raise it towards "
+                  "the tolerance of a loose run; at most 1 mm, far below any flight that matters"},
       {.key = "law", .option = "--contact-law", .member = &ContactSettings::law,
        .description = "how contacts push",
        .details = "`impulse` is the paper's rigid impact with restitution and held contacts; `kelvin` a "

@@ -23,6 +23,7 @@ struct ContactSettings {
   double restitution = 0.5;        // Newton coefficient k ∈ [0, 1]
   double candidate_margin_m = 1.0; // reach of the candidate search beyond gap and edge ends (m)
   double hold_velocity_mps = 1e-3; // sticking threshold: slower separations of pressed pairs are held
+  double hold_height_m = 1e-8;     // a pair whose next flight would rise less than this is held too
   // Floors of the two buildings whose elevations differ by at most this stand at one level and
   // can touch (m). 1 mm: far above the round-off of summed storey heights, far below any
   // storey height or slab thickness, so only floors the file puts at one height match.
