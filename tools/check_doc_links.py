@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Checks that README.md and docs/*.md refer only to files that are in the repository.
+"""Checks that README.md, docs/*.md and docs/*/*.md (the user guide, docs/guide/) refer only to
+files that are in the repository.
 
 Checked: every relative Markdown link and image ([text](target), anchors stripped); every
 path-like token in code (inline `…` and fenced blocks): a token with a '/' made of path
@@ -92,7 +93,7 @@ def main():
     root = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent).resolve()
     ignored = ignored_folders(root)
     names = repository_names(root, ignored)
-    documents = [root / "README.md"] + sorted((root / "docs").glob("*.md"))
+    documents = [root / "README.md"] + sorted((root / "docs").glob("*.md")) + sorted((root / "docs").glob("*/*.md"))
     failures = 0
     for document in documents:
         for problem in problems(document, root, ignored, names):
