@@ -1,6 +1,6 @@
 // `pounding settings`: the [solver] and [contact] settings tables (analysis::setting_specs(),
 // analysis::contact_setting_specs()) as text, JSON, or the Markdown tables docs/scene-format.md
-// holds (tools/settings_doc.py writes and checks them).
+// holds (tools/doc_tables.py writes and checks them).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -31,10 +31,14 @@ std::string meaning(const SettingSpec& spec) {
 }
 
 nlohmann::json as_json(const SettingSpec& spec) {
-  nlohmann::json entry = {{"key", spec.key},          {"toml", "solver." + std::string(spec.key)},
-                          {"option", spec.option},    {"python", spec.key},
-                          {"type", analysis::type_name(spec)}, {"methods", users(spec)},
-                          {"description", spec.description},   {"details", spec.details}};
+  nlohmann::json entry = {{"key", spec.key},
+                          {"toml", "solver." + std::string(spec.key)},
+                          {"option", spec.option},
+                          {"python", spec.key},
+                          {"type", analysis::type_name(spec)},
+                          {"methods", users(spec)},
+                          {"description", spec.description},
+                          {"details", spec.details}};
   entry["default"] = spec.id == analysis::Setting::order
                          ? nlohmann::json(nullptr)
                          : std::visit([](const auto& v) { return nlohmann::json(v); }, spec.default_value);
@@ -73,7 +77,8 @@ std::string contact_default(const analysis::ContactSettingSpec& spec) {
         } else {  // a stiffness: each law using the key has its own
           std::vector<std::string> defaults;
           for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
-            if (law.stiffness_key == spec.key) defaults.push_back(fmt::format("{} {:g}", law.name, law.default_stiffness));
+            if (law.stiffness_key == spec.key)
+              defaults.push_back(fmt::format("{} {:g}", law.name, law.default_stiffness));
           }
           return fmt::format("{}", fmt::join(defaults, ", "));
         }
@@ -84,7 +89,8 @@ std::string contact_default(const analysis::ContactSettingSpec& spec) {
 std::string contact_type(const analysis::ContactSettingSpec& spec) {
   if (!spec.range) {  // the law
     std::vector<std::string> names;
-    for (const analysis::ContactLawInfo& law : analysis::contact_laws()) names.push_back(fmt::format("`\"{}\"`", law.name));
+    for (const analysis::ContactLawInfo& law : analysis::contact_laws())
+      names.push_back(fmt::format("`\"{}\"`", law.name));
     return fmt::format("{}", fmt::join(names, ", "));
   }
   return "number in " + range_text(*spec.range);
@@ -93,16 +99,22 @@ std::string contact_type(const analysis::ContactSettingSpec& spec) {
 void print_contact_markdown() {
   fmt::print("| key | option | type | default | meaning |\n|---|---|---|---|---|\n");
   for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
-    const bool literal = !spec.required && !std::holds_alternative<std::optional<double> analysis::ContactSettings::*>(spec.member);
-    fmt::print("| `{}` | {} | {} | {} | {}{}{} |\n", spec.key, spec.option.empty() ? "" : fmt::format("`{}`", spec.option),
-               contact_type(spec), literal ? fmt::format("`{}`", contact_default(spec)) : contact_default(spec),
-               spec.description, spec.details.empty() ? "" : "; ", spec.details);
+    const bool literal =
+        !spec.required && !std::holds_alternative<std::optional<double> analysis::ContactSettings::*>(spec.member);
+    fmt::print("| `{}` | {} | {} | {} | {}{}{} |\n", spec.key,
+               spec.option.empty() ? "" : fmt::format("`{}`", spec.option), contact_type(spec),
+               literal ? fmt::format("`{}`", contact_default(spec)) : contact_default(spec), spec.description,
+               spec.details.empty() ? "" : "; ", spec.details);
   }
 }
 
 nlohmann::json as_json(const analysis::ContactSettingSpec& spec) {
-  nlohmann::json entry = {{"key", spec.key}, {"toml", "contact." + std::string(spec.key)}, {"option", spec.option},
-                          {"required", spec.required}, {"description", spec.description}, {"details", spec.details}};
+  nlohmann::json entry = {{"key", spec.key},
+                          {"toml", "contact." + std::string(spec.key)},
+                          {"option", spec.option},
+                          {"required", spec.required},
+                          {"description", spec.description},
+                          {"details", spec.details}};
   if (spec.range) {
     entry["range"] = {{"min", spec.range->min}, {"max", spec.range->max}, {"min_open", spec.range->min_open}};
     entry["unit"] = spec.range->unit;

@@ -34,29 +34,45 @@ constexpr SettingMember<T> member(std::optional<T> SolverSettings::*given, T Use
 // (a function's static), so that other files' static initialisers may read it.
 const std::vector<SettingSpec>& specs() {
   static const std::vector<SettingSpec> kSpecs = {
-      {.id = Setting::order, .key = "order", .option = "--order",
-       .member = member(&SolverSettings::order, &UsedSettings::order), .default_value = 0,
+      {.id = Setting::order,
+       .key = "order",
+       .option = "--order",
+       .member = member(&SolverSettings::order, &UsedSettings::order),
+       .default_value = 0,
        .description = "ARKODE table order",
        .details = "`arkode-erk` 5 (Dormand–Prince; the 8th-order Fehlberg table was dropped because its error "
                   "estimate is blind to the time-dependent forcing); `arkode-dirk` 4 (SDIRK 5-3-4, default) or 3 "
                   "(Kvaerno 4-2-3)"},
-      {.id = Setting::rtol, .key = "rtol", .option = "--rtol",
-       .member = member(&SolverSettings::rtol, &UsedSettings::rtol), .default_value = 1e-8,
-       .range = Range{1e-14, 0.1}, .description = "relative tolerance"},
-      {.id = Setting::atol, .key = "atol", .option = "--atol",
-       .member = member(&SolverSettings::atol, &UsedSettings::atol), .default_value = 1e-10,
+      {.id = Setting::rtol,
+       .key = "rtol",
+       .option = "--rtol",
+       .member = member(&SolverSettings::rtol, &UsedSettings::rtol),
+       .default_value = 1e-8,
+       .range = Range{1e-14, 0.1},
+       .description = "relative tolerance"},
+      {.id = Setting::atol,
+       .key = "atol",
+       .option = "--atol",
+       .member = member(&SolverSettings::atol, &UsedSettings::atol),
+       .default_value = 1e-10,
        .range = Range{1e-16, 1e-3, "m"},
        .description = "absolute tolerance of the slab displacements (m); rotations and rates derive from it",
        .details = "the other components' tolerances derive from it (below)"},
-      {.id = Setting::newton, .key = "newton", .option = "--newton",
-       .member = member(&SolverSettings::newton, &UsedSettings::newton), .default_value = std::string("reduced"),
+      {.id = Setting::newton,
+       .key = "newton",
+       .option = "--newton",
+       .member = member(&SolverSettings::newton, &UsedSettings::newton),
+       .default_value = std::string("reduced"),
        .choices = {"reduced", "dense"},
        .description = "Newton linear solver: reduced (n x n) or dense (2n x 2n LU)",
        .details = "`reduced` solves the exact n×n structural system with the analytic Jacobian (by a sparse LU in "
                   "the physical form, O(n)); `dense` is SUNDIALS' dense LU of the 2n×2n matrix (slower; results "
                   "agree to the tolerance)"},
-      {.id = Setting::form, .key = "form", .option = "--form",
-       .member = member(&SolverSettings::form, &UsedSettings::form), .default_value = std::string("physical"),
+      {.id = Setting::form,
+       .key = "form",
+       .option = "--form",
+       .member = member(&SolverSettings::form, &UsedSettings::form),
+       .default_value = std::string("physical"),
        .choices = {"physical", "modal"},
        .description = "state integrated: physical (q, q') or modal (each building's modal coordinates)",
        .details = "`modal` integrates each building's mass-normalised modal coordinates (η, η̇), q = Φη, in which "
@@ -64,40 +80,68 @@ const std::vector<SettingSpec>& specs() {
                   "an LU); while a contact force acts (a hold, a compliant contact) the physical equations are "
                   "mapped through the modes. Tolerances below. Results agree with `physical` to the tolerance "
                   "(tests/solvers/test_modal_form.cpp)"},
-      {.id = Setting::hold_rtol, .key = "hold_rtol", .option = "--hold-rtol",
-       .member = member(&SolverSettings::hold_rtol, &UsedSettings::hold_rtol), .default_value = 1e-12,
-       .range = Range{1e-14, 1e-6}, .description = "relative tolerance of held stretches (CVODE BDF)",
+      {.id = Setting::hold_rtol,
+       .key = "hold_rtol",
+       .option = "--hold-rtol",
+       .member = member(&SolverSettings::hold_rtol, &UsedSettings::hold_rtol),
+       .default_value = 1e-12,
+       .range = Range{1e-14, 1e-6},
+       .description = "relative tolerance of held stretches (CVODE BDF)",
        .details = "held stretches are the one part of the exact path integrated numerically (CVODE BDF, atol = "
                   "hold_rtol/100 m, per component as below): a held contact rotates with the slabs, so it is not "
                   "linear. Free flight is exact whatever this is"},
-      {.id = Setting::modes_cutoff_hz, .key = "modes_cutoff_hz", .option = "--modes-cutoff",
-       .member = member(&SolverSettings::modes_cutoff_hz, &UsedSettings::modes_cutoff_hz), .default_value = 0.0,
+      {.id = Setting::modes_cutoff_hz,
+       .key = "modes_cutoff_hz",
+       .option = "--modes-cutoff",
+       .member = member(&SolverSettings::modes_cutoff_hz, &UsedSettings::modes_cutoff_hz),
+       .default_value = 0.0,
        .range = Range{0.0, 1e4, "Hz"},
-       .description = "keep each building's modes below this frequency (Hz), the rest as their static response; 0: every mode",
+       .description =
+           "keep each building's modes below this frequency (Hz), the rest as their static response; 0: every mode",
        .details = "modal truncation: the other modes are taken as their quasi-static response to the ground, "
                   "R a_g(t) (residual flexibility, added to every displacement the run forms: gaps, impacts, "
                   "outputs). An approximation, not the exact path: what it neglects is in docs/model.md (\"Modal "
                   "truncation\"), and `pounding study` measures its error on the scene (`truncation.csv`). A "
                   "cut-off that keeps no mode of a building is refused"},
-      {.id = Setting::dt_s, .key = "dt_s", .option = "--dt",
-       .member = member(&SolverSettings::dt_s, &UsedSettings::dt_s), .default_value = 0.05,  // the published value
-       .range = Range{0.0, 0.1, "s", true}, .description = "fixed time step (s)"},
-      {.id = Setting::alpha, .key = "alpha", .option = "--alpha",
-       .member = member(&SolverSettings::alpha, &UsedSettings::alpha), .default_value = -0.05,
-       .range = Range{-1.0 / 3.0, 0.0, {}, false, "[-1/3, 0]"}, .description = "HHT alpha in [-1/3, 0]",
+      {.id = Setting::dt_s,
+       .key = "dt_s",
+       .option = "--dt",
+       .member = member(&SolverSettings::dt_s, &UsedSettings::dt_s),
+       .default_value = 0.05,  // the published value
+       .range = Range{0.0, 0.1, "s", true},
+       .description = "fixed time step (s)"},
+      {.id = Setting::alpha,
+       .key = "alpha",
+       .option = "--alpha",
+       .member = member(&SolverSettings::alpha, &UsedSettings::alpha),
+       .default_value = -0.05,
+       .range = Range{-1.0 / 3.0, 0.0, {}, false, "[-1/3, 0]"},
+       .description = "HHT alpha in [-1/3, 0]",
        .details = "β = (1 − α)²/4, γ = (1 − 2α)/2"},
-      {.id = Setting::contact_tolerance_m, .key = "contact_tolerance_m", .option = "--contact-tol",
+      {.id = Setting::contact_tolerance_m,
+       .key = "contact_tolerance_m",
+       .option = "--contact-tol",
        .member = member(&SolverSettings::contact_tolerance_m, &UsedSettings::contact_tolerance_m),
-       .default_value = 1e-4, .range = Range{0.0, 0.01, "m", true}, .description = "gap that counts as contact (m)",
+       .default_value = 1e-4,
+       .range = Range{0.0, 0.01, "m", true},
+       .description = "gap that counts as contact (m)",
        .details = "an approaching pair in this band takes an impact once it touches (g ≤ 0) or would within a step, "
                   "and a pair deeper than it ends the run as `unresolved_overlap`"},
-      {.id = Setting::max_halvings, .key = "max_halvings", .option = "--max-halvings",
-       .member = member(&SolverSettings::max_halvings, &UsedSettings::max_halvings), .default_value = 30,
-       .range = Range{0, 60}, .description = "deepest step halving"},
-      {.id = Setting::event_location, .key = "event_location", .option = "--event-location",
+      {.id = Setting::max_halvings,
+       .key = "max_halvings",
+       .option = "--max-halvings",
+       .member = member(&SolverSettings::max_halvings, &UsedSettings::max_halvings),
+       .default_value = 30,
+       .range = Range{0, 60},
+       .description = "deepest step halving"},
+      {.id = Setting::event_location,
+       .key = "event_location",
+       .option = "--event-location",
        .member = member(&SolverSettings::event_location, &UsedSettings::event_location),
-       .default_value = std::string("halving"), .choices = {"halving", "end-of-step", "interpolate"},
-       .description = "halving, end-of-step or interpolate", .details = "how the contact instant is found (`--halving off` is `end-of-step`)"},
+       .default_value = std::string("halving"),
+       .choices = {"halving", "end-of-step", "interpolate"},
+       .description = "halving, end-of-step or interpolate",
+       .details = "how the contact instant is found (`--halving off` is `end-of-step`)"},
   };
   return kSpecs;
 }
@@ -257,7 +301,8 @@ void validate_value(const MethodInfo& info, const SettingSpec& s, const SettingV
     if (std::find(info.orders.begin(), info.orders.end(), given) == info.orders.end()) {
       std::vector<std::string> offered;
       for (int o : info.orders) offered.push_back(std::to_string(o));
-      throw InputError(key_of(order), std::to_string(given), fmt::format("{} offers order {}", info.name, or_list(offered)));
+      throw InputError(key_of(order), std::to_string(given),
+                       fmt::format("{} offers order {}", info.name, or_list(offered)));
     }
   } else if (const auto* text = std::get_if<std::string>(&value)) {
     if (std::find(s.choices.begin(), s.choices.end(), *text) == s.choices.end()) {
@@ -430,7 +475,8 @@ void SolverSettings::set(Setting setting, const SettingValue& value) {
           }
         }
         const bool text = std::holds_alternative<std::string>(value);
-        throw InputError(key_of(setting), text ? quoted(text_of(value)) : text_of(value), "expected " + expected_text(s));
+        throw InputError(key_of(setting), text ? quoted(text_of(value)) : text_of(value),
+                         "expected " + expected_text(s));
       },
       s.member);
 }

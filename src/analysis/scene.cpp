@@ -25,30 +25,43 @@ constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
 // Built on first use, so other files' static initialisers may read it.
 const std::vector<ContactSettingSpec>& contact_specs() {
   static const std::vector<ContactSettingSpec> kSpecs = {
-      {.key = "gap_m", .option = "--gap", .member = &ContactSettings::gap_m, .required = true,
+      {.key = "gap_m",
+       .option = "--gap",
+       .member = &ContactSettings::gap_m,
+       .required = true,
        .range = Range{0.0, 10.0, "m"},
        .description = "clear distance along x between the facing sides at rest (m)",
        .details = "it must equal what the slab outlines show (to 1 µm); `--gap` moves building 2 (slab, CM, "
                   "columns) along x to another gap"},
-      {.key = "restitution", .option = "--restitution", .member = &ContactSettings::restitution, .required = true,
-       .range = Range{0.0, 1.0}, .description = "Newton coefficient k"},
-      {.key = "candidate_margin_m", .member = &ContactSettings::candidate_margin_m,
+      {.key = "restitution",
+       .option = "--restitution",
+       .member = &ContactSettings::restitution,
+       .required = true,
+       .range = Range{0.0, 1.0},
+       .description = "Newton coefficient k"},
+      {.key = "candidate_margin_m",
+       .member = &ContactSettings::candidate_margin_m,
        .range = Range{0.0, 10.0, "m", true},
        .description = "reach of the candidate search (m)",
        .details = "a vertex is a candidate against an edge facing it when, at rest, it lies in front of the edge "
                   "at most `gap_m` + margin away and projects onto the edge or at most margin beyond an end. 1 m is "
                   "far above storey drifts and far below slab sizes; raise it only for very large motions"},
-      {.key = "hold_velocity_mps", .member = &ContactSettings::hold_velocity_mps,
+      {.key = "hold_velocity_mps",
+       .member = &ContactSettings::hold_velocity_mps,
        .range = Range{0.0, 0.1, "m/s", true},
        .description = "sticking threshold (m/s)",
        .details = "after an impact, a pair that separates slower than this while pressed together is held in "
                   "sustained contact instead of bouncing on (docs/model.md §7)"},
-      {.key = "hold_height_m", .member = &ContactSettings::hold_height_m, .range = Range{0.0, 1e-3, "m", true},
+      {.key = "hold_height_m",
+       .member = &ContactSettings::hold_height_m,
+       .range = Range{0.0, 1e-3, "m", true},
        .description = "a pressed pair whose next flight would rise less than this (m), v⁺²/(2|g̈|), is held",
        .details = "whatever `hold_velocity_mps` says: such a bounce is below what the integrators resolve at their "
                   "default tolerances, and chasing it only accumulates round-off (and energy). Raise it towards "
                   "the tolerance of a loose run; at most 1 mm, far below any flight that matters"},
-      {.key = "law", .option = "--contact-law", .member = &ContactSettings::law,
+      {.key = "law",
+       .option = "--contact-law",
+       .member = &ContactSettings::law,
        .description = "how contacts push",
        .details = "`impulse` is the paper's rigid impact with restitution and held contacts; `kelvin` a "
                   "spring–dashpot element while the slabs overlap; `hertzdamp` a Hertz spring with damping ∝ δ^1.5 "
@@ -57,24 +70,30 @@ const std::vector<ContactSettingSpec>& contact_specs() {
                   "which also says which law to use for what). The compliant laws run on cvode-bdf, cvode-adams, "
                   "arkode-erk and arkode-dirk; hht and exact refuse them (exit 2). `jankowski` refuses "
                   "`restitution = 0` (its damping ratio is infinite there)"},
-      {.key = "stiffness_kN_per_m", .option = "--contact-stiffness", .member = &ContactSettings::stiffness_kN_per_m,
+      {.key = "stiffness_kN_per_m",
+       .option = "--contact-stiffness",
+       .member = &ContactSettings::stiffness_kN_per_m,
        .range = Range{1.0, 1e12, "kN/m", false, "[1, 1e12]"},
        .description = "kelvin only: the element's spring k (kN/m)",
        .details = "refused for the other laws, naming the law and its key, like a solver setting the method does "
                   "not use. The default is Jankowski's (2005) linear viscoelastic fit to concrete-on-concrete "
                   "impact tests, 93.5 kN/mm, as quoted: not checked against the paper here; the dashpot follows "
                   "from `restitution`"},
-      {.key = "stiffness_kN_per_m1_5", .option = "--contact-stiffness",
-       .member = &ContactSettings::stiffness_kN_per_m1_5, .range = Range{1.0, 1e13, "kN/m^1.5", false, "[1, 1e13]"},
+      {.key = "stiffness_kN_per_m1_5",
+       .option = "--contact-stiffness",
+       .member = &ContactSettings::stiffness_kN_per_m1_5,
+       .range = Range{1.0, 1e13, "kN/m^1.5", false, "[1, 1e13]"},
        .description = "hertzdamp's k_h or jankowski's β (kN/m^1.5)",
        .details = "refused for impulse and kelvin; `--contact-stiffness` sets it when one of these laws is in "
                   "force. Defaults as quoted, not checked against the papers: hertzdamp 25 000 kip/in^1.5 "
                   "(Muthukumar & DesRoches 2006, concrete bridge decks), jankowski 2.75e9 N/m^1.5 (Jankowski 2005, "
                   "the same concrete tests as kelvin's default). The damping follows from `restitution` (and for "
                   "hertzdamp the approach speed at onset)"},
-      {.key = "level_tolerance_m", .member = &ContactSettings::level_tolerance_m,
+      {.key = "level_tolerance_m",
+       .member = &ContactSettings::level_tolerance_m,
        .range = Range{0.0, 0.5, "m", true},
-       .description = "floors of the two buildings whose elevations differ by at most this form a level and can touch (m)",
+       .description =
+           "floors of the two buildings whose elevations differ by at most this form a level and can touch (m)",
        .details = "must also lie below half of every storey height. 1 mm is far above the round-off of summed "
                   "storey heights (3.3 + 3.3 + 3.3 against 4.95 + 4.95) and far below any offset a designer would "
                   "mean, so floors match exactly when the file puts them at one height. Raise it (e.g. to a slab "

@@ -20,10 +20,6 @@ double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * 
 
 }  // namespace
 
-Point2 current_position(const SlabMotion& slab, const Point2& point_rest) {
-  return slab.centre_rest + slab.q.head<2>() + rotation(slab.q[2]) * (point_rest - slab.centre_rest);
-}
-
 GapState evaluate_gap(const Candidate& c, const SlabMotion& a, const SlabMotion& b) {
   const Eigen::Matrix2d rot_a = rotation(a.q[2]), rot_b = rotation(b.q[2]);
   const Point2 arm_p = rot_a * (c.vertex_rest - a.centre_rest);      // P from A's CM

@@ -107,8 +107,8 @@ contact::Vector6d CoupledSystem::pair_inverse_mass(const std::array<int, 2>& flo
   return contact::inverse_mass(mass_[i], mass_[i + 2], mass_[j], mass_[j + 2]);
 }
 
-void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held,
-                                    MatrixXd& rows, VectorXd& bias, bool drift_correction) const {
+void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows,
+                                    VectorXd& bias, bool drift_correction) const {
   const Eigen::Index k = static_cast<Eigen::Index>(held.size());
   rows = MatrixXd::Zero(k, dof_);
   bias.resize(k);

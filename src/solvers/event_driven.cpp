@@ -1,6 +1,5 @@
 #include "pounding/solvers/event_driven.hpp"
 
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -844,10 +843,10 @@ void EventDrivenRun::report_overlap() {
   if (result_.status != RunStatus::completed || !(stats.max_interpenetration_m > options_.contact_tolerance_m)) return;
   const contact::Candidate& c = system_.candidates()[static_cast<std::size_t>(stats.max_interpenetration_candidate)];
   result_.status = RunStatus::unresolved_overlap;
-  result_.status_detail =
-      fmt::format("slabs sank {:.3g} m into each other at {:.6f} s (deeper than contact_tolerance_m {} m), level {}: {}",
-                  stats.max_interpenetration_m, stats.max_interpenetration_t_s, options_.contact_tolerance_m, c.level,
-                  contact::describe(c));
+  result_.status_detail = fmt::format(
+      "slabs sank {:.3g} m into each other at {:.6f} s (deeper than contact_tolerance_m {} m), level {}: {}",
+      stats.max_interpenetration_m, stats.max_interpenetration_t_s, options_.contact_tolerance_m, c.level,
+      contact::describe(c));
 }
 
 void EventDrivenRun::update_hold_records(double t, const VectorXd& y) {

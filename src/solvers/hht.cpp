@@ -1,6 +1,5 @@
 #include "pounding/solvers/hht.hpp"
 
-
 #include <chrono>
 #include <cmath>
 #include <limits>

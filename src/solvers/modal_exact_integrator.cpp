@@ -221,9 +221,9 @@ double ModalExactIntegrator::earliest_root(double t_end, const Eigen::VectorXd& 
     for (Eigen::Index i = 0; i < roots_high.size(); ++i) {
       if (located[static_cast<std::size_t>(i)] || !(roots_start_[i] > 0.0 && roots_high[i] <= 0.0)) continue;
       located[static_cast<std::size_t>(i)] = located_new = true;
-      const double b = find_root(
-          [&](double t) { return roots_at(t, contact_state(modal_at(t, probe_)), roots_probe_)[i]; }, t_s_, t_high,
-          roots_start_[i], roots_high[i]);
+      const double b =
+          find_root([&](double t) { return roots_at(t, contact_state(modal_at(t, probe_)), roots_probe_)[i]; }, t_s_,
+                    t_high, roots_start_[i], roots_high[i]);
       t_root = std::min(t_root, b);  // the root function has reached ≤ 0 there
     }
     if (!located_new || !(t_root < t_high)) return t_root;

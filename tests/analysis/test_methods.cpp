@@ -246,13 +246,17 @@ BOOST_AUTO_TEST_CASE(EverySettingRowIsConsistent) {
         s.method = std::string(method.name);
         s.set(spec.id, spec.default_value);
         BOOST_TEST(reason_of(s) == "");
-        const analysis::UsedSettings defaulted = analysis::resolve(analysis::SolverSettings{.method = s.method});
+        analysis::SolverSettings method_only;
+        method_only.method = s.method;
+        const analysis::UsedSettings defaulted = analysis::resolve(method_only);
         const analysis::UsedSettings given = analysis::resolve(s);
         BOOST_TEST(analysis::describe_used_settings(defaulted) == analysis::describe_used_settings(given));
         if (spec.range) {
           for (double outside : {spec.range->min - 1.0, spec.range->max * 2.0 + 1.0}) {
-            if (spec.member.index() == 0) s.set(spec.id, static_cast<int>(outside));
-            else s.set(spec.id, outside);
+            if (spec.member.index() == 0)
+              s.set(spec.id, static_cast<int>(outside));
+            else
+              s.set(spec.id, outside);
             std::string where;
             BOOST_TEST(reason_of(s, &where).rfind("must lie in", 0) == 0u);
             BOOST_TEST(where == key);
@@ -300,7 +304,8 @@ BOOST_AUTO_TEST_CASE(EveryContactRowIsCheckedByItsOwnRange) {
                 scene.contact.*member = outside;
                 if constexpr (std::is_same_v<std::decay_t<decltype(defaults.*member)>, double>) {
                   const double default_value = defaults.*member;
-                  if (!spec.required) BOOST_TEST(default_value == std::clamp(default_value, spec.range->min, spec.range->max));
+                  if (!spec.required)
+                    BOOST_TEST(default_value == std::clamp(default_value, spec.range->min, spec.range->max));
                 }
               }
             },

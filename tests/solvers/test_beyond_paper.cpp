@@ -107,8 +107,8 @@ BOOST_AUTO_TEST_CASE(AGentlyPressedPairIsHeldByItsPhysicalForceNotTheDriftCorrec
   BOOST_TEST_REQUIRE(index < system.candidates().size());
   const int n = system.dof();
   Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
-  y[system.floor_index(0, 1)] = 0.02;     // at contact
-  y[system.floor_index(0, 2)] = 0.06;     // storey 2 pulls floor 1 harder than storey 1 holds it back
+  y[system.floor_index(0, 1)] = 0.02;  // at contact
+  y[system.floor_index(0, 2)] = 0.06;  // storey 2 pulls floor 1 harder than storey 1 holds it back
   const double pressing_kN = direct_hold_force(system, y, index, false);
   BOOST_TEST_REQUIRE(pressing_kN > 0.0);
   // A slow separation whose correction outweighs the press: ġ = 2 λ W τ / 3.
@@ -131,8 +131,8 @@ BOOST_AUTO_TEST_CASE(TwoIdenticalBuildingsShakenAlikePressNothing) {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
   for (int b = 0; b < 2; ++b) {
     for (int f = 1; f <= 10; ++f) {
-      y[system.floor_index(b, f)] = 0.01 * f;       // u: a first-mode-like sway, no turn
-      y[n + system.floor_index(b, f)] = 0.05 * f;   // and its rate
+      y[system.floor_index(b, f)] = 0.01 * f;      // u: a first-mode-like sway, no turn
+      y[n + system.floor_index(b, f)] = 0.05 * f;  // and its rate
     }
   }
   std::vector<std::size_t> level_one;

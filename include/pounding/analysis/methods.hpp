@@ -50,11 +50,11 @@ struct SettingSpec {
   std::string_view key;          // [solver] key, the key in summary.json and the Python keyword
   std::string_view option;       // `pounding run` option that sets it
   std::variant<SettingMember<int>, SettingMember<double>, SettingMember<std::string>> member;  // its type
-  SettingValue default_value;    // what a run uses when it is not given (order: the method's first)
+  SettingValue default_value;                 // what a run uses when it is not given (order: the method's first)
   std::optional<Range> range = std::nullopt;  // numbers: the values accepted (integers are whole numbers in it)
-  std::vector<std::string> choices{};  // text: the values accepted
-  std::string_view description;  // one line, with units: `--help`
-  std::string_view details{};    // the docs' meaning column (docs/scene-format.md), after the description
+  std::vector<std::string> choices{};         // text: the values accepted
+  std::string_view description;               // one line, with units: `--help`
+  std::string_view details{};                 // the docs' meaning column (docs/scene-format.md), after the description
 };
 
 /// Every setting, in enum order.
@@ -126,7 +126,7 @@ struct MethodInfo;
 /// `order` is the method's first order). resolve() makes it.
 struct UsedSettings {
   const MethodInfo* method = nullptr;
-  int order = 0;                 // the real table order; 0 for methods without one
+  int order = 0;  // the real table order; 0 for methods without one
   double rtol = 0.0;
   double atol = 0.0;             // m (ComponentAtol derives the rest)
   std::string newton;            // reduced | dense

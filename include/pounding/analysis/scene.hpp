@@ -46,8 +46,9 @@ struct ContactSettings {
 /// defaults are ContactSettings' initialisers (a required key has none).
 struct ContactSettingSpec {
   std::string_view key;     // [contact] key, as `contact.<key>` in errors and summary.json
-  std::string_view option;  // the `run`/`check` option that replaces it; empty: none
-  std::variant<double ContactSettings::*, std::optional<double> ContactSettings::*, std::string ContactSettings::*> member;
+  std::string_view option{};  // the `run`/`check` option that replaces it; empty: none
+  std::variant<double ContactSettings::*, std::optional<double> ContactSettings::*, std::string ContactSettings::*>
+      member;
   bool required = false;
   std::optional<Range> range = std::nullopt;  // numbers: the values accepted
   std::string_view description{};             // one line, with units

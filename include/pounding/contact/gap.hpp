@@ -40,7 +40,4 @@ struct GapState {
 /// Evaluates the candidate for the given slab motions. No preconditions; O(1).
 GapState evaluate_gap(const Candidate& candidate, const SlabMotion& striking, const SlabMotion& struck);
 
-/// Current position of a material point of a slab given at rest as `point_rest` (m).
-model::Point2 current_position(const SlabMotion& slab, const model::Point2& point_rest);
-
 }  // namespace pounding::contact

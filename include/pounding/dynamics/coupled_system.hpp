@@ -137,8 +137,8 @@ class CoupledSystem {
   Eigen::RowVectorXd full_row(ConstVectorRef y, std::size_t index) const;
   /// Rows G (one per held contact, over all n velocities) and g̈'s velocity-only part.
   /// With `drift_correction` false, the bias is the curvature term alone.
-  void constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows,
-                       VectorXd& bias, bool drift_correction = true) const;
+  void constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows, VectorXd& bias,
+                       bool drift_correction = true) const;
   /// M⁻¹Gᵀ G [k, c] (n × 2n, 36 entries): the acceleration rows of the force −k g − c ġ of
   /// candidate `index` with its row G frozen at y, to be subtracted.
   Eigen::SparseMatrix<double> contact_force_rows(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,

@@ -24,7 +24,6 @@ class ModalSystem {
   int dof() const { return system_.dof(); }
   int state_size() const { return system_.state_size(); }
   const VectorXd& omega_rad_s() const { return omega_rad_s_; }        // ωᵢ
-  const VectorXd& damping_per_s() const { return damping_per_s_; }    // 2ζᵢωᵢ
   const VectorXd& participation() const { return participation_; }    // Γᵢ = φᵢᵀ M r (√t)
 
   /// Free motion ż = (η̇, −Ω²η − 2ZΩη̇ − Γ a_g(t)): O(n).

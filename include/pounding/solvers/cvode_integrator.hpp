@@ -44,12 +44,12 @@ class CvodeIntegrator final : public SundialsIntegrator {
   IntegratorCounters counters() override;
 
  private:
-  void* memory_ = nullptr;
   sundials::Matrix matrix_;                         // dense Newton solver only
   sundials::LinearSolver linear_solver_;            // dense Newton solver only
   std::unique_ptr<SecondOrderLinearSolver> second_order_;
   long factorizations_at_restart_ = 0;  // counters() counts from the last restart, like CVODE's
   bool stepped_since_restart_ = false;   // CVODE's linear-solver counters reset at the first step
+  sundials::IntegratorMemory memory_;    // last: freed first, before the solvers it refers to
 };
 
 }  // namespace pounding::solvers

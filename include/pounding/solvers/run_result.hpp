@@ -14,14 +14,14 @@
 namespace pounding::solvers {
 
 enum class RunStatus {
-  completed,       // reached the end of the record
-  solver_failure,  // the integrator gave up; detail names its flag
-  event_limit,     // more events per simulated second than allowed: an unresolved accumulation
-  step_limit,      // more internal steps than allowed
+  completed,           // reached the end of the record
+  solver_failure,      // the integrator gave up; detail names its flag
+  event_limit,         // more events per simulated second than allowed: an unresolved accumulation
+  step_limit,          // more internal steps than allowed
   unresolved_overlap,  // slabs not held sank into each other deeper than the contact tolerance; not trustworthy
-  time_limit,      // the run's wall-time budget was used up
-  interrupted,     // stopped by SIGINT/SIGTERM; the outputs hold everything up to end_s
-  non_finite,      // the state or time became NaN or infinite: the solution diverged
+  time_limit,          // the run's wall-time budget was used up
+  interrupted,         // stopped by SIGINT/SIGTERM; the outputs hold everything up to end_s
+  non_finite,          // the state or time became NaN or infinite: the solution diverged
 };
 std::string_view to_string(RunStatus status);
 

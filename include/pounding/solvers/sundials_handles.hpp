@@ -23,7 +23,15 @@ struct LinearSolverDeleter {
   void operator()(SUNLinearSolver solver) const { SUNLinSolFree(solver); }
 };
 
+/// Frees a package's integrator memory with that package's function (CVodeFree, ERKStepFree, ...).
+struct IntegratorMemoryDeleter {
+  void (*free)(void**) = nullptr;
+  void operator()(void* memory) const { free(&memory); }
+};
+
 using Context = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+/// Owned from creation on, so a set-up call that throws after CVodeCreate/…StepCreate frees it.
+using IntegratorMemory = std::unique_ptr<void, IntegratorMemoryDeleter>;
 using Vector = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
 using Matrix = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
 using LinearSolver = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
