@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
-#include <set>
 #include <optional>
 
 #include "pounding/analysis/contact_laws.hpp"
@@ -137,42 +136,21 @@ void apply_output_options(const RunCommand& command, analysis::OutputSettings& o
   }
 }
 
-/// The option that sets a [solver] key or a run limit, for error messages about a value given on
-/// the command line.
-/// The options of `run` that the user gave, by their flags.
-std::set<std::string> given_options(const RunCommand& c) {
-  const std::pair<bool, const char*> options[] = {
-      {c.method.has_value(), "--method"},        {c.history.has_value(), "--history"},
-      {c.peaks.has_value(), "--peaks"},          {c.max_steps.has_value(), "--max-steps"},
-      {c.max_wall_time_s.has_value(), "--max-wall-time"}, {c.max_history_values.has_value(), "--max-history-values"}};
-  std::set<std::string> given;
-  for (const auto& [set, flag] : options) {
-    if (set) given.insert(flag);
+/// The options `command` names scene keys and run limits by: `--rtol` for `solver.rtol` when the
+/// user gave --rtol (a value from the scene file keeps its key). The run limits have no scene key:
+/// their options are named whether given or defaulted.
+std::map<std::string, std::string> option_names(const RunCommand& c) {
+  std::map<std::string, std::string> names = {{"limits.max_steps", "--max-steps"},
+                                              {"limits.max_wall_time_s", "--max-wall-time"},
+                                              {"limits.max_history_values", "--max-history-values"}};
+  if (c.method) names["solver.method"] = "--method";
+  if (c.history) names["output.history"] = "--history";
+  if (c.peaks) names["output.peaks"] = "--peaks";
+  for (const auto& entry : c.settings) {
+    const analysis::SettingSpec& setting = analysis::spec(entry.first);
+    names["solver." + std::string(setting.key)] = setting.option;
   }
-  for (const auto& entry : c.settings) given.emplace(analysis::spec(entry.first).option);
-  return given;
-}
-
-/// The option that set `key` when the user gave it; otherwise the key itself, so that a value
-/// from the scene file is blamed on the file's key, not on an option nobody typed. The run limits
-/// have no scene key: their option is named whether given or defaulted.
-std::string option_for(const std::string& key, const RunCommand& command) {
-  static const std::map<std::string, std::string> kOptions = [] {
-    std::map<std::string, std::string> options = {{"limits.max_steps", "--max-steps"},
-                                                  {"limits.max_wall_time_s", "--max-wall-time"},
-                                                  {"limits.max_history_values", "--max-history-values"},
-                                                  {"solver.method", "--method"},
-                                                  {"output.history", "--history"},
-                                                  {"output.peaks", "--peaks"}};
-    for (const analysis::SettingSpec& s : analysis::setting_specs()) {
-      options["solver." + std::string(s.key)] = std::string(s.option);
-    }
-    return options;
-  }();
-  const auto found = kOptions.find(key.substr(0, key.find('[')));  // output.peaks[2]: --peaks
-  if (found == kOptions.end()) return key;
-  const bool limit = key.rfind("limits.", 0) == 0;
-  return limit || given_options(command).count(found->second) ? found->second : key;
+  return names;
 }
 
 analysis::RunLimits run_limits(const RunCommand& command) {
@@ -193,7 +171,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
     apply_run_options(command, scene.solver);
     apply_output_options(command, scene.output);
   } catch (const InputError& error) {
-    throw InputError(option_for(error.key(), command), error.value(), error.reason(), command.scene);
+    throw error.renamed(option_names(command)).in_context(command.scene);
   }
   const analysis::RunLimits limits = run_limits(command);
   const std::filesystem::path folder =
@@ -219,9 +197,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
       throw InputError("--contact-law", error.value(), error.reason() + (command.method ? " (--method)" : ""),
                        command.scene);
     }
-    const std::string option = option_for(error.key(), command);
-    if (option == error.key()) throw;
-    throw InputError(option, error.value(), error.reason(), command.scene);
+    throw error.renamed(option_names(command), command.scene);
   }
   files.finish(*report, provenance);
   fmt::print("{}", io::full_report(*report));

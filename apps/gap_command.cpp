@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <thread>
 #include <utility>
 
@@ -170,11 +171,10 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   try {
     scene.validate();
   } catch (const InputError& error) {  // an option's value is blamed on the option
-    using analysis::Setting;
-    const bool rtol = command.rtol && error.key() == "solver.rtol", atol = command.atol && error.key() == "solver.atol";
-    const std::string key = rtol ? std::string(analysis::spec(Setting::rtol).option)
-                            : atol ? std::string(analysis::spec(Setting::atol).option) : error.key();
-    throw InputError(key, error.value(), error.reason(), command.scene);
+    std::map<std::string, std::string> names;
+    if (command.rtol) names["solver.rtol"] = analysis::spec(analysis::Setting::rtol).option;
+    if (command.atol) names["solver.atol"] = analysis::spec(analysis::Setting::atol).option;
+    throw error.renamed(names).in_context(command.scene);
   }
   if (!command.records.empty()) return run_record_set(command, scene, command_line);
   // A scene name is text, not a path; the folder must take files before the runs, not after them.

@@ -37,12 +37,18 @@ InputError InputError::in_context(const std::string& file, const std::string& ke
   return InputError(key, value_, reason_, file_.empty() ? file : file_);
 }
 
+InputError InputError::renamed(const std::map<std::string, std::string>& names, const std::string& file) const {
+  const auto found = names.find(key_.substr(0, key_.find('[')));
+  if (found == names.end()) return *this;
+  return InputError(found->second, value_, reason_, file_.empty() ? file : file_);
+}
+
 std::string format_value(double value) { return fmt::format("{}", value); }
 
 std::string range_text(const Range& range) {
   const std::string interval = range.shown.empty() ? fmt::format("{}{}, {}]", range.min_open ? "(" : "[",
-                                                                  format_value(range.min), format_value(range.max))
-                                                    : std::string(range.shown);
+                                                                 format_value(range.min), format_value(range.max))
+                                                   : std::string(range.shown);
   return range.unit.empty() ? interval : interval + " " + std::string(range.unit);
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The one exception type for bad input: every layer that validates user data throws it.
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -24,6 +25,12 @@ class InputError : public std::runtime_error {
   /// `key_prefix` (e.g. `building[1]`) is put in front of the key.
   InputError in_context(const std::string& file, const std::string& key_prefix = {}) const;
 
+  /// The same error blamed on what the user typed: when `names` (key → the CLI option or other
+  /// name the user gave that key's value under) holds this error's key, indexes dropped
+  /// (`output.peaks[2]` → `output.peaks`), the key becomes that name and `file` is set if it was
+  /// empty; otherwise the error is returned unchanged, so a scene file's value keeps its key.
+  InputError renamed(const std::map<std::string, std::string>& names, const std::string& file = {}) const;
+
  private:
   std::string file_, key_, value_, reason_;
 };
@@ -37,7 +44,7 @@ struct Range {
   double max;
   std::string_view unit = {};  // as printed after the bounds, e.g. "m" or "s"
   bool min_open = false;       // (min, …]: the bound itself is refused (e.g. a mass of 0)
-  std::string_view shown = {}; // the interval as stated instead of the bounds' digits, e.g. "[-1/3, 0]"
+  std::string_view shown = {};  // the interval as stated instead of the bounds' digits, e.g. "[-1/3, 0]"
 };
 
 /// "[min, max] unit" or "(min, max] unit", or `shown` with the unit.

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 namespace pounding::io::detail {
@@ -477,9 +478,15 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   for (const analysis::SettingSpec& spec : analysis::setting_specs()) {
     std::optional<analysis::SettingValue> value;
     switch (spec.member.index()) {  // the setting's type (SettingSpec::member)
-      case 0: value = table->optional_integer(spec.key); break;
-      case 1: value = table->optional_number(spec.key); break;
-      default: value = table->optional_string(spec.key); break;
+      case 0:
+        value = table->optional_integer(spec.key);
+        break;
+      case 1:
+        value = table->optional_number(spec.key);
+        break;
+      default:
+        value = table->optional_string(spec.key);
+        break;
     }
     if (value) solver.set(spec.id, *value);
   }
@@ -575,19 +582,22 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   }
 }
 
-/// The option that set the excitation key `key`, if one did; empty otherwise.
-std::string record_option(const std::string& key, const excitation::RecordChoice& choice) {
-  const std::map<std::string, std::pair<bool, const char*>> options = {
-      {"excitation.file", {choice.file.has_value(), "--record"}},
-      {"excitation.format", {choice.format.has_value(), "--record-format"}},
-      {"excitation.units", {choice.units.has_value(), "--units"}},
-      {"excitation.dt_s", {choice.dt_s.has_value(), "--record-dt"}},
-      {"excitation.accel_column", {choice.accel_column.has_value(), "--record-column"}},
-      {"excitation.scale_factor", {choice.scale_factor.has_value(), "--scale"}},
-      {"excitation.scale_to_pga_g", {choice.pga_g.has_value(), "--pga-g"}},
-      {"excitation.direction_deg", {choice.direction_deg.has_value(), "--direction-deg"}}};
-  const auto found = options.find(key);
-  return found != options.end() && found->second.first ? found->second.second : "";
+/// The options that set excitation keys, by key: only those the user gave.
+std::map<std::string, std::string> record_option_names(const excitation::RecordChoice& choice) {
+  const std::tuple<const char*, bool, const char*> options[] = {
+      {"excitation.file", choice.file.has_value(), "--record"},
+      {"excitation.format", choice.format.has_value(), "--record-format"},
+      {"excitation.units", choice.units.has_value(), "--units"},
+      {"excitation.dt_s", choice.dt_s.has_value(), "--record-dt"},
+      {"excitation.accel_column", choice.accel_column.has_value(), "--record-column"},
+      {"excitation.scale_factor", choice.scale_factor.has_value(), "--scale"},
+      {"excitation.scale_to_pga_g", choice.pga_g.has_value(), "--pga-g"},
+      {"excitation.direction_deg", choice.direction_deg.has_value(), "--direction-deg"}};
+  std::map<std::string, std::string> names;
+  for (const auto& [key, given, option] : options) {
+    if (given) names[key] = option;
+  }
+  return names;
 }
 
 /// Applies the record options and reads the record they make, so that its errors arrive now,
@@ -603,9 +613,7 @@ void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice
       throw InputError("--record-dt", "missing", "the record is read as format 'single', which needs its sample spacing (s)",
                        scene.file.string());
     }
-    const std::string option = record_option(error.key(), choice);
-    if (option.empty()) throw;
-    throw InputError(option, error.value(), error.reason(), error.file().empty() ? scene.file.string() : error.file());
+    throw error.renamed(record_option_names(choice), scene.file.string());
   }
 }
 
