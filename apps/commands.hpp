@@ -24,8 +24,13 @@ struct MethodsCommand {
 };
 
 struct SettingsCommand {
-  bool json = false;      // the table as JSON on stdout (for scripts)
+  bool json = false;                    // the table as JSON on stdout (for scripts)
   std::optional<std::string> markdown;  // solver | contact: that section's tables of docs/scene-format.md
+};
+
+struct OutputsCommand {
+  bool json = false;                    // every field as JSON on stdout (for scripts)
+  std::optional<std::string> markdown;  // history | impacts | peaks | energy: a table of output-columns.md
 };
 
 struct LawsCommand {
@@ -49,7 +54,7 @@ struct RunCommand {
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
   std::map<analysis::Setting, analysis::SettingValue> settings;  // the [solver] options given (--rtol, --dt, ...)
-  std::optional<std::string> halving;         // on | off
+  std::optional<std::string> halving;                            // on | off
   std::optional<std::string> history;  // on | off: replaces output.history
   std::optional<std::string> peaks;    // none, all or a comma-separated list of groups: replaces output.peaks
   std::string out_dir;  // empty: out/<scene name, made safe as a folder name>
@@ -116,6 +121,9 @@ int run_check(const CheckCommand& command);
 int run_methods(const MethodsCommand& command);
 /// `pounding settings`: every [solver] setting with its option, type, default, range and methods.
 int run_settings(const SettingsCommand& command);
+/// `pounding outputs`: every output field (history.csv columns, impacts, peaks, energy) with its
+/// unit and meaning.
+int run_outputs(const OutputsCommand& command);  // in outputs_command.cpp
 /// The contact laws: name, description, keys, default stiffness and its source, methods, and the
 /// rebound a lone contact achieves at the given restitution.
 int run_laws(const LawsCommand& command);

@@ -52,7 +52,8 @@ std::map<std::string, std::pair<long long, long long>> integer_ranges_of_options
       {"--threads", {0, 4096}}};
   for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
     if (spec.member.index() == 0 && spec.range) {
-      ranges[std::string(spec.option)] = {static_cast<long long>(spec.range->min), static_cast<long long>(spec.range->max)};
+      ranges[std::string(spec.option)] = {static_cast<long long>(spec.range->min),
+                                          static_cast<long long>(spec.range->max)};
     }
   }
   return ranges;
@@ -112,10 +113,21 @@ int main(int argc, char** argv) {
   methods_app->add_flag("--json", methods.json, "As JSON (name, description, settings, study ladder and plot styles)");
 
   pounding::cli::SettingsCommand settings;
-  CLI::App* settings_app =
-      app.add_subcommand("settings", "The [solver] and [contact] settings: key, option, type, default, range (and the methods using each)");
-  settings_app->add_flag("--json", settings.json, "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
-  settings_app->add_option("--markdown", settings.markdown, "solver or contact: that section's tables in docs/scene-format.md");
+  CLI::App* settings_app = app.add_subcommand(
+      "settings",
+      "The [solver] and [contact] settings: key, option, type, default, range (and the methods using each)");
+  settings_app->add_flag("--json", settings.json,
+                         "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
+  settings_app->add_option("--markdown", settings.markdown,
+                           "solver or contact: that section's tables in docs/scene-format.md");
+
+  pounding::cli::OutputsCommand outputs;
+  CLI::App* outputs_app = app.add_subcommand(
+      "outputs",
+      "Every output field: history.csv's columns, impacts, per-floor peaks and the energy audit, with units");
+  outputs_app->add_flag("--json", outputs.json, "As JSON (history, impacts, peaks, energy: name, unit, description)");
+  outputs_app->add_option("--markdown", outputs.markdown,
+                          "history, impacts, peaks or energy: that table of docs/guide/output-columns.md");
 
   pounding::cli::LawsCommand laws;
   CLI::App* laws_app = app.add_subcommand("laws", "The contact laws, their default stiffness and the rebound each achieves");
@@ -150,13 +162,15 @@ int main(int argc, char** argv) {
         },
         spec.member);
   }
-  run_app->add_option("--halving", run.halving, "hht: on (default) or off (impacts at the end of the overlapping step)");
+  run_app->add_option("--halving", run.halving,
+                      "hht: on (default) or off (impacts at the end of the overlapping step)");
   run_app->add_option("--history", run.history,
                       "on or off: write history.csv and contacts_history.csv (replaces output.history; off computes "
                       "neither)");
-  run_app->add_option("--peaks", run.peaks,
-                      "Peak groups in summary.json: none, all or a comma-separated list of displacements, accelerations, "
-                      "drifts (replaces output.peaks)");
+  run_app->add_option(
+      "--peaks", run.peaks,
+      "Peak groups in summary.json: none, all or a comma-separated list of displacements, accelerations, "
+      "drifts (replaces output.peaks)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
   run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
@@ -253,6 +267,7 @@ int main(int argc, char** argv) {
     if (*methods_app) return pounding::cli::run_methods(methods);
     if (*laws_app) return pounding::cli::run_laws(laws);
     if (*settings_app) return pounding::cli::run_settings(settings);
+    if (*outputs_app) return pounding::cli::run_outputs(outputs);
     if (*run_app) return pounding::cli::run_run(run, command_line);
     if (*study_app) return pounding::cli::run_study(study, command_line);
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);

@@ -24,6 +24,7 @@
 #include "pounding/io/gap_writer.hpp"
 #include "pounding/io/impact_schema.hpp"
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_schema.hpp"
 #include "pounding/io/provenance.hpp"
 #include "pounding/io/record_list.hpp"
 #include "pounding/io/run_report.hpp"
@@ -357,6 +358,7 @@ PYBIND11_MODULE(_pounding, m) {
   m.def("record_list", &record_list, py::arg("scene"), py::arg("list_or_folder"));
 
   m.def("building_matrices", &building_matrices, py::arg("scene"));
+  m.def("output_schema_json", [] { return pounding::io::output_schema_json().dump(); });
   m.def("modes_json", [](const Scene& scene) {
     return pounding::io::modes_json(pounding::analysis::summarise_buildings(scene)).dump();
   });

@@ -20,7 +20,7 @@ import json as _json
 import numpy as _np
 
 __all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "record_list", "modes", "modes_frame",
-           "run", "needed_gap", "methods", "settings", "sweep", "__version__"]
+           "run", "needed_gap", "methods", "settings", "output_schema", "sweep", "__version__"]
 
 
 class InputError(ValueError):
@@ -140,6 +140,14 @@ def methods():
 def settings():
     """The [solver] settings run() accepts as keywords, in registry order."""
     return _pounding.setting_keys()
+
+
+def output_schema():
+    """Every output field, as `pounding outputs --json` prints it: {"history": [{column, unit,
+    per, description}], "impacts": [{key, csv_columns, unit, description}], "peaks": [{key, unit,
+    group, description}], "energy": [{key, unit, description}]}. history.csv's columns (and
+    RunResult.history's keys) are `B{b}_f{f}_` patterns with {n} the vertex or corner number."""
+    return _json.loads(_pounding.output_schema_json())
 
 
 def modes(scene):

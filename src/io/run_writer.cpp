@@ -7,6 +7,7 @@
 #include "pounding/analysis/contact_laws.hpp"
 #include "pounding/io/impact_schema.hpp"
 #include "pounding/io/json_report.hpp"
+#include "pounding/io/output_schema.hpp"
 #include "pounding/io/output_files.hpp"
 #include "run_csv.hpp"
 
@@ -17,7 +18,6 @@ namespace {
 using json = nlohmann::ordered_json;
 
 json point(const model::Point2& p) { return json::array({p.x(), p.y()}); }
-json peak(const solvers::Peak& p) { return {{"value", p.value}, {"t_s", p.t_s}}; }
 
 /// Where the contact is (its level, the floor of each building there, building 1's first, and
 /// the level's elevation), then `fields`. Candidates and every contact record carry these three.
@@ -55,22 +55,6 @@ json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
   return list;
 }
 
-/// An acceleration peak (m/s²) also in g.
-json peak_in_g(const solvers::Peak& p, double g_mps2) {
-  return {{"value", p.value}, {"value_g", p.value / g_mps2}, {"t_s", p.t_s}};
-}
-
-json peak_list(const std::vector<solvers::Peak>& peaks) {
-  json list = json::array();
-  for (const auto& p : peaks) list.push_back(peak(p));
-  return list;
-}
-
-json worst_corner_json(const solvers::FloorPeaks& f) {
-  const solvers::WorstCornerDrift w = solvers::worst_corner_drift(f);
-  return {{"corner", w.corner}, {"axis", std::string(1, w.axis)}, {"value", w.peak.value}, {"t_s", w.peak.t_s}};
-}
-
 /// Per building (with its contact vertices) and floor, the peak groups `outputs` asked for.
 json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers::OutputSelection& outputs, double g_mps2) {
   json list = json::array();
@@ -79,23 +63,8 @@ json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers:
     for (const auto& v : building.contact_vertices_rest) vertices.push_back(point(v));
     for (const auto& f : building.floors) {
       json floor = {{"floor", f.floor}};
-      if (outputs.displacement_peaks) {
-        floor.update({{"u_m", peak(f.u_m)},
-                      {"v_m", peak(f.v_m)},
-                      {"phi_rad", peak(f.phi_rad)},
-                      {"vertex_dx_m", peak_list(f.vertex_dx_m)}});
-      }
-      if (outputs.acceleration_peaks) {
-        floor.update({{"ax_abs_mps2", peak_in_g(f.ax_abs_mps2, g_mps2)},
-                      {"ay_abs_mps2", peak_in_g(f.ay_abs_mps2, g_mps2)},
-                      {"phi_ddot_radps2", peak(f.phi_ddot_radps2)}});
-      }
-      if (outputs.drift_peaks) {
-        floor.update({{"drift_x", peak(f.drift_x)},
-                      {"drift_y", peak(f.drift_y)},
-                      {"corner_drift_x", peak_list(f.corner_drift_x)},
-                      {"corner_drift_y", peak_list(f.corner_drift_y)},
-                      {"worst_corner_drift", worst_corner_json(f)}});
+      for (const PeakField& field : peak_fields()) {
+        if (asked(outputs, field.group)) floor[std::string(field.key)] = field.value(f, g_mps2);
       }
       floors.push_back(floor);
     }
@@ -116,15 +85,9 @@ json outputs_json(const solvers::OutputSelection& outputs) {
 }
 
 json energy_json(const solvers::EnergyAudit& e) {
-  return {{"input_kJ", e.input_kJ},
-          {"kinetic_final_kJ", e.kinetic_kJ},
-          {"strain_final_kJ", e.strain_kJ},
-          {"damping_kJ", e.damping_kJ},
-          {"impact_loss_kJ", e.impact_loss_kJ},
-          {"constraint_work_kJ", e.constraint_work_kJ},
-          {"algorithmic_dissipation_kJ", e.algorithmic_dissipation_kJ},
-          {"residual_kJ", e.residual_kJ()},
-          {"relative_residual", e.input_kJ != 0.0 ? e.residual_kJ() / e.input_kJ : 0.0}};
+  json energy;
+  for (const EnergyField& field : energy_fields()) energy[std::string(field.key)] = field.value(e);
+  return energy;
 }
 
 json statistics_json(const solvers::SolverStatistics& s, const std::vector<contact::Candidate>& candidates) {

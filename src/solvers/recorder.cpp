@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "pounding/solvers/history_schema.hpp"
 #include "pounding/solvers/root_finding.hpp"
 
 namespace pounding::solvers {
@@ -93,15 +94,11 @@ std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, 
   for (const contact::Level& level : chosen_levels(system, history_levels)) {
     for (int b = 0; b < 2; ++b) {
       const std::string prefix = fmt::format("B{}_f{}_", b + 1, level.floors[b]);
-      for (const char* name : {"u_m", "v_m", "phi_rad"}) columns.push_back(prefix + name);
-      for (const int number : numbers[b]) columns.push_back(fmt::format("{}vtx{}_dx_m", prefix, number));
-      for (const char* name : {"ax_abs_mps2", "ay_abs_mps2", "phi_ddot_radps2", "drift_x", "drift_y"}) {
-        columns.push_back(prefix + name);
-      }
-      for (std::size_t corner = 1; corner <= system.building(b).definition.slab.size(); ++corner) {
-        columns.push_back(fmt::format("{}c{}_drift_x", prefix, corner));
-        columns.push_back(fmt::format("{}c{}_drift_y", prefix, corner));
-      }
+      const std::size_t corners = system.building(b).definition.slab.size();
+      for_each_slab_column(numbers[b].size(), corners, [&](const HistoryQuantity& quantity, std::size_t k) {
+        const bool vertex = quantity.per == HistoryQuantity::Per::contact_vertex;
+        columns.push_back(prefix + quantity.column(vertex ? numbers[b][k] : static_cast<int>(k) + 1));
+      });
     }
   }
   return columns;
@@ -115,6 +112,7 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynam
       outputs_(outputs),
       history_levels_(chosen_levels(system, history_levels)),
       interval_s_(history_interval_s),
+      energy_(system),
       sink_(sink) {
   next_sample_s_ = system.ground_motion().start_s();
   if (outputs_.history) {
@@ -432,15 +430,14 @@ void Recorder::append_row(const Instant& at) {
   for (const contact::Level& level : history_levels_) {
     for (int b = 0; b < 2; ++b) {
       const int i = system_.floor_index(b, level.floors[b]);
-      row_[c++] = y[i];
-      row_[c++] = y[i + 1];
-      row_[c++] = y[i + 2];
-      const model::Point2 centre = system_.building(b).definition.centre_of_mass;
-      for (const model::Point2& vertex : vertices_[b]) row_[c++] = vertex_dx(vertex, centre, y[i], y[i + 2]);
-      for (int k = 0; k < 3; ++k) row_[c++] = at.accel[i + k];
-      for (std::size_t slot = 0; slot < drift_slots(b); ++slot) {
-        row_[c++] = at.drifts.value[static_cast<Eigen::Index>(drift_index(b, level.floors[b], slot))];
-      }
+      const SlabSample slab{.q = &y[i],
+                            .accel = &at.accel[i],
+                            .drift = &at.drifts.value[static_cast<Eigen::Index>(drift_index(b, level.floors[b], 0))],
+                            .contact_vertices = vertices_[b],
+                            .centre = system_.building(b).definition.centre_of_mass};
+      for_each_slab_column(
+          vertices_[b].size(), system_.building(b).definition.slab.size(),
+          [&](const HistoryQuantity& quantity, std::size_t k) { row_[c++] = quantity.value(slab, k); });
     }
   }
   std::vector<ContactForceSample> forces;
@@ -487,22 +484,7 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                        const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
                        const std::optional<StretchEnergy>& closed_form, const ComponentsAt& components_at) {
   if (!(t_b > t_a)) return;
-  if (closed_form) {
-    energy_.input_kJ += closed_form->input_kJ;
-    energy_.damping_kJ += closed_form->damping_kJ;
-  }
-  // 3-point Gauss–Legendre on [t_a, t_b]: exact for the input power of a degree-5 interpolant
-  // times the linear a_g of one record interval.
-  static constexpr double kNodes[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-  static constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-  const double half = 0.5 * (t_b - t_a), mid = 0.5 * (t_a + t_b);
-  for (int k = 0; k < (closed_form ? 0 : 3); ++k) {
-    const double t = mid + half * kNodes[k];
-    const dynamics::VectorXd y = at(t);
-    energy_.input_kJ += half * kWeights[k] * system_.input_power(t, y);
-    energy_.damping_kJ += half * kWeights[k] * system_.damping_power(y);
-    energy_.constraint_work_kJ += half * kWeights[k] * constraint_power(t, y);
-  }
+  energy_.add_stretch(t_a, t_b, at, constraint_power, closed_form);
   // The stretch starts where the last instant recorded left off: the previous step's end or an
   // event's state after the event, with the dynamics that go on from there. Swapped out before the
   // samples inside the stretch take the place of the latest instant.
@@ -544,9 +526,7 @@ void Recorder::stream_new_impacts(const std::vector<ImpactRecord>& impacts) {
 
 void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result) {
   stream_new_impacts(result.impacts);
-  energy_.kinetic_kJ = system_.kinetic_energy(final_state);
-  energy_.strain_kJ = system_.strain_energy(final_state);
-  result.energy = energy_;
+  result.energy = energy_.close(final_state);
   result.outputs = outputs_;
   result.peaks = std::move(peaks_);
   result.history = std::move(history_);

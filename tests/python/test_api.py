@@ -85,3 +85,34 @@ def test_frames_hold_the_arrays(scene):
     gap = pounding.needed_gap(scene)
     frame = gap.history_frame()
     assert np.array_equal(frame.to_numpy(), gap.history_touch_gap_m) and frame.index.name == "t_s"
+
+
+def test_output_schema_names_every_output_of_a_run_and_nothing_else():
+    """pounding.output_schema() (`pounding outputs --json`) is the writers' own list: a run's
+    history columns, impacts.csv header, per-floor peak keys and energy keys are exactly its
+    fields, in its order. A column written but not declared (or the reverse) fails."""
+    import re
+    schema = pounding.output_schema()
+    result = pounding.run(pounding.load_scene(PAPER, gap=0.05), method="cvode-bdf")
+    patterns = [re.escape(f["column"]).replace(r"\{b\}", "[12]").replace(r"\{f\}", "[0-9]+")
+                .replace(r"\{n\}", "[0-9]+") for f in schema["history"]]
+    columns = list(result.history)
+    assert columns[0] == "t_s" and schema["history"][0]["column"] == "t_s"
+    slab = re.compile("^B[12]_f[0-9]+_")
+    order = []
+    for column in columns[1:]:
+        matched = [k for k, p in enumerate(patterns) if re.fullmatch(p, column)]
+        assert len(matched) == 1, column
+        order.append(matched[0])
+        assert slab.match(column)
+    assert set(order) == set(range(1, len(patterns)))  # every declared quantity is written
+    summary = result.summary
+    assert list(summary["impacts"][0]) == [f["key"] for f in schema["impacts"]]
+    header = [c for f in schema["impacts"] for c in f["csv_columns"]]
+    assert list(result.impacts_array.dtype.names) == header
+    floor = summary["peaks"][0]["floors"][0]
+    assert list(floor)[1:] == [f["key"] for f in schema["peaks"]]
+    assert list(summary["energy"]) == [f["key"] for f in schema["energy"]]
+    for section in schema.values():
+        for field in section:
+            assert field["description"].strip(), field

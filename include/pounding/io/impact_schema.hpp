@@ -25,6 +25,7 @@ struct ImpactField {
   Type type = Type::real;
   /// The field's value (a scalar) or values (one per component) for an impact.
   std::vector<double> (*values)(const solvers::ImpactRecord& impact) = nullptr;
+  std::string_view description{};  // one line, for `pounding outputs` and the docs
 
   /// The JSON key: `name_unit` for a scalar with a unit, else `name`.
   std::string json_key() const;

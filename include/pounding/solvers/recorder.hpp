@@ -2,7 +2,9 @@
 // Collects what a run reports from its states: the peaks and the sampled history that its
 // OutputSelection asks for, and the energy integrals (always). Shared by every solution path so
 // their outputs compare column for column. With a RunSink the history rows and impacts go to the
-// sink as they come and the history is not kept.
+// sink as they come and the history is not kept. Its parts: the history's columns and row values
+// are declared once in history_schema.hpp, the energy integrals are EnergyBalance's
+// (energy_balance.hpp); the peaks, located on the same instants the history samples, stay here.
 
 #include <functional>
 #include <optional>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/energy_balance.hpp"
 #include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/run_result.hpp"
 #include "pounding/solvers/run_sink.hpp"
@@ -38,10 +41,8 @@ struct RecordedDynamics {
 RecordedDynamics free_dynamics(const dynamics::CoupledSystem& system);
 
 /// The columns of history.csv for the levels `history_levels` (1-based; empty: every level),
-/// `t_s` first. Per level, building 1's slab then building 2's, each: u_m, v_m, phi_rad, the
-/// contact vertices' vtxN_dx_m, the CM's absolute accelerations ax_abs_mps2, ay_abs_mps2 and
-/// phi_ddot_radps2, the storey drift ratios drift_x and drift_y at the CM and cN_drift_x,
-/// cN_drift_y at each slab corner N. @pre indices valid.
+/// `t_s` first, then per level building 1's slab then building 2's, each with the columns of
+/// history_quantities() (history_schema.hpp). @pre indices valid.
 std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels);
 
 class Recorder {
@@ -82,12 +83,12 @@ class Recorder {
   /// paths whose steps may span more than a quarter of the shortest oscillation period (the exact
   /// path's clearance steps): within a quarter period no rate changes sign twice unseen.
   void set_peak_step(double peak_step_s) { peak_step_s_ = peak_step_s; }
-  void add_impact_loss(double energy_kJ) { energy_.impact_loss_kJ += energy_kJ; }
+  void add_impact_loss(double energy_kJ) { energy_.add_impact_loss(energy_kJ); }
   /// Passes the impacts appended to `impacts` since the last call to the sink (if any). Call it
   /// once an event's records are final.
   void stream_new_impacts(const std::vector<ImpactRecord>& impacts);
   /// HHT: energy a step's update removed (kJ), see HhtStepper::algorithmic_dissipation.
-  void add_algorithmic_dissipation(double energy_kJ) { energy_.algorithmic_dissipation_kJ += energy_kJ; }
+  void add_algorithmic_dissipation(double energy_kJ) { energy_.add_algorithmic_dissipation(energy_kJ); }
 
   /// Moves the collected peaks, history and energy (with the final state's energies) and the
   /// output selection into `result`, and streams any impact of `result` not streamed yet.
@@ -160,7 +161,7 @@ class Recorder {
   std::array<std::vector<FloorComponents>, 2> components_;  // per building and floor, as peaks_
   std::vector<BuildingPeaks> peaks_;
   History history_;
-  EnergyAudit energy_;
+  EnergyBalance energy_;
   RunSink* sink_;
   bool started_ = false;                // the sink has its columns
   std::optional<double> last_row_t_s_;  // a row is written once per instant

@@ -1,0 +1,39 @@
+#pragma once
+// The energy audit's part of the recorder: the work and dissipation integrals of a run (kJ),
+// accumulated stretch by stretch and impact by impact, and closed with the final state's
+// energies. Shared by every solution path, so their audits compare term by term.
+
+#include <functional>
+#include <optional>
+
+#include "pounding/dynamics/coupled_system.hpp"
+#include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::solvers {
+
+class EnergyBalance {
+ public:
+  /// @pre `system` outlives the balance.
+  explicit EnergyBalance(const dynamics::CoupledSystem& system) : system_(system) {}
+
+  /// Adds the smooth stretch (t_a, t_b] whose states `at(t)` returns: input and damping from
+  /// `closed_form` when given (the integrator's own, for a stretch without contact forces), else
+  /// by 3-point Gauss–Legendre on `at`, as is the work of the sustained-contact forces whose
+  /// power (kW) `constraint_power(t, y)` gives. @pre t_b > t_a.
+  void add_stretch(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+                   const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
+                   const std::optional<StretchEnergy>& closed_form);
+  void add_impact_loss(double energy_kJ) { audit_.impact_loss_kJ += energy_kJ; }
+  /// HHT: energy a step's update removed (kJ), see HhtStepper::algorithmic_dissipation.
+  void add_algorithmic_dissipation(double energy_kJ) { audit_.algorithmic_dissipation_kJ += energy_kJ; }
+
+  /// The audit, with the kinetic and strain energy of `final_state`.
+  EnergyAudit close(const dynamics::VectorXd& final_state) const;
+
+ private:
+  const dynamics::CoupledSystem& system_;
+  EnergyAudit audit_;
+};
+
+}  // namespace pounding::solvers
