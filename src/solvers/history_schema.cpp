@@ -13,6 +13,12 @@ double vertex_dx(const SlabSample& s, std::size_t k) {
   return s.q[0] + (std::cos(s.q[2]) - 1.0) * arm.x() - std::sin(s.q[2]) * arm.y();
 }
 
+/// y-displacement (m) of the contact vertex k, exact rotation about the CM.
+double vertex_dy(const SlabSample& s, std::size_t k) {
+  const model::Point2 arm = s.contact_vertices[k] - s.centre;
+  return s.q[1] + std::sin(s.q[2]) * arm.x() + (std::cos(s.q[2]) - 1.0) * arm.y();
+}
+
 }  // namespace
 
 std::string HistoryQuantity::column(int n) const {
@@ -45,6 +51,7 @@ const std::vector<HistoryQuantity>& history_quantities() {
        [](const SlabSample& s, std::size_t k) { return s.drift[2 * k + 2]; }},
       {"c{n}_drift_y", "", Per::corner, "y-drift ratio of the storey below at slab corner n",
        [](const SlabSample& s, std::size_t k) { return s.drift[2 * k + 3]; }},
+      {"vtx{n}_dy", "m", Per::contact_vertex, "y-displacement of contact vertex n, exact rotation", vertex_dy},
   };
   return quantities;
 }

@@ -116,3 +116,29 @@ def test_output_schema_names_every_output_of_a_run_and_nothing_else():
     for section in schema.values():
         for field in section:
             assert field["description"].strip(), field
+
+
+def test_contact_vertex_columns_are_the_exact_rigid_motion_of_the_slab():
+    """history.csv's vtx{n}_dx_m and vtx{n}_dy_m against the slab's own u, v, phi: a point at
+    rest r, a distance a = r - c from the centre of mass c, moves by (u, v) + (R(phi) - I) a.
+    The centres are the paper scene's (examples/paper/paper.toml, at its gap 0.20 m; building 2
+    moves by the change of gap); tolerance 1e-12 m."""
+    import re
+    result = pounding.run(pounding.load_scene(PAPER, gap=0.05), method="cvode-bdf")
+    centres = {1: np.array([-10.8, 11.0]), 2: np.array([12.8 + (0.05 - 0.20), 19.25])}
+    checked = 0
+    for b, peaks in enumerate(result.summary["peaks"], start=1):
+        rest = dict(zip(peaks["contact_vertices"], peaks["contact_vertices_rest"]))
+        for column in result.history:
+            found = re.fullmatch(rf"B{b}_f([0-9]+)_vtx([0-9]+)_dy_m", column)
+            if not found:
+                continue
+            prefix = f"B{b}_f{found.group(1)}_"
+            u, v, phi = (result.history[prefix + q] for q in ("u_m", "v_m", "phi_rad"))
+            ax, ay = np.array(rest[int(found.group(2))]) - centres[b]
+            dx = u + (np.cos(phi) - 1.0) * ax - np.sin(phi) * ay
+            dy = v + np.sin(phi) * ax + (np.cos(phi) - 1.0) * ay
+            assert np.max(np.abs(result.history[prefix + f"vtx{found.group(2)}_dx_m"] - dx)) < 1e-12
+            assert np.max(np.abs(result.history[column] - dy)) < 1e-12
+            checked += 1
+    assert checked >= 2 * 7  # every contact vertex of every level

@@ -41,7 +41,7 @@ struct HistoryQuantity {
 };
 
 /// In column order: u, v, phi, vtx{n}_dx, ax_abs, ay_abs, phi_ddot, drift_x, drift_y,
-/// c{n}_drift_x, c{n}_drift_y.
+/// c{n}_drift_x, c{n}_drift_y, vtx{n}_dy.
 const std::vector<HistoryQuantity>& history_quantities();
 
 /// Calls `visit(quantity, k)` for each column of one slab, in column order: `contact_vertices`
