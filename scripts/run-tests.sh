@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Sets up (bootstrap.sh) and runs the whole test suite with CTest; then, unless --quick, the same
-# suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and a short smoke run
-# of each fuzz target (FUZZ_SECONDS, default 20; scripts/fuzz.sh runs them for an hour).
+# Sets up (bootstrap.sh) and runs the whole test suite with CTest; then, unless --quick,
+# clang-format and clang-tidy on what the last commit changed (scripts/lint.sh), the same suite
+# under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and a short smoke run of each
+# fuzz target (FUZZ_SECONDS, default 20; scripts/fuzz.sh runs them for an hour).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/bootstrap.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 [ "${1:-}" = "--quick" ] && exit 0
+./scripts/lint.sh
 ./scripts/run-sanitized-tests.sh
 ./scripts/fuzz.sh "${FUZZ_SECONDS:-20}"
