@@ -14,8 +14,6 @@
 namespace pounding::cli {
 namespace {
 
-constexpr const char* kSections[] = {"history", "impacts", "peaks", "energy"};
-
 /// A unit token of the column names ("mps2") as a reader writes it ("m/s²"); none: "–".
 std::string unit_text(const std::string& unit) {
   static const std::map<std::string, std::string> kReadable = {
@@ -69,9 +67,9 @@ int run_outputs(const OutputsCommand& command) {
     fmt::print("{}\n", schema.dump(2));
     return 0;
   }
-  for (const char* section : kSections) {
+  for (const auto& [section, fields] : schema.items()) {
     fmt::print("{}:\n", section);
-    for (const auto& field : schema[section]) {
+    for (const auto& field : fields) {
       fmt::print("  {:<28} {:<7} {}\n", name_of(field), unit_text(field["unit"]),
                  field["description"].get<std::string>());
     }

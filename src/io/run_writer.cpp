@@ -77,9 +77,8 @@ json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers:
 /// Which outputs the run computed ([output] history and peaks).
 json outputs_json(const solvers::OutputSelection& outputs) {
   json groups = json::array();
-  const bool asked[3] = {outputs.displacement_peaks, outputs.acceleration_peaks, outputs.drift_peaks};
   for (std::size_t k = 0; k < analysis::kPeakGroups.size(); ++k) {
-    if (asked[k]) groups.push_back(analysis::kPeakGroups[k]);
+    if (asked(outputs, static_cast<PeakField::Group>(k))) groups.push_back(analysis::kPeakGroups[k]);
   }
   return {{"history", outputs.history}, {"peaks", groups}};
 }

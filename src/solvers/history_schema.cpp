@@ -7,17 +7,13 @@ namespace {
 
 using Per = HistoryQuantity::Per;
 
-/// x-displacement (m) of the contact vertex k, exact rotation about the CM.
-double vertex_dx(const SlabSample& s, std::size_t k) {
-  const model::Point2 arm = s.contact_vertices[k] - s.centre;
-  return s.q[0] + (std::cos(s.q[2]) - 1.0) * arm.x() - std::sin(s.q[2]) * arm.y();
+/// Displacement (m) of the contact vertex k, exact rotation about the CM.
+model::Point2 vertex_displacement(const SlabSample& s, std::size_t k) {
+  return point_displacement(s.contact_vertices[k] - s.centre, s.q[0], s.q[1], std::cos(s.q[2]), std::sin(s.q[2]));
 }
 
-/// y-displacement (m) of the contact vertex k, exact rotation about the CM.
-double vertex_dy(const SlabSample& s, std::size_t k) {
-  const model::Point2 arm = s.contact_vertices[k] - s.centre;
-  return s.q[1] + std::sin(s.q[2]) * arm.x() + (std::cos(s.q[2]) - 1.0) * arm.y();
-}
+double vertex_dx(const SlabSample& s, std::size_t k) { return vertex_displacement(s, k).x(); }
+double vertex_dy(const SlabSample& s, std::size_t k) { return vertex_displacement(s, k).y(); }
 
 }  // namespace
 

@@ -15,13 +15,8 @@ void add_unique(std::vector<model::Point2>& points, const model::Point2& p) {
   if (std::find(points.begin(), points.end(), p) == points.end()) points.push_back(p);
 }
 
-/// Displacement (m) of a slab point given at rest, `arm` from the CM, with exact rotation, and
-/// its rate (m/s), from the slab's (u, v), its rates and φ̇; c, s: cos φ and sin φ, which the
-/// caller takes once per slab.
-model::Point2 point_displacement(const model::Point2& arm, double u, double v, double c, double s) {
-  return {u + (c - 1.0) * arm.x() - s * arm.y(), v + s * arm.x() + (c - 1.0) * arm.y()};
-}
-
+/// The velocity (m/s) of a slab point given at rest, `arm` from the CM, from the slab's (u̇, v̇)
+/// and φ̇; c, s: cos φ and sin φ (point_displacement's rate).
 model::Point2 point_velocity(const model::Point2& arm, double c, double s, double u_rate, double v_rate,
                              double phi_rate) {
   return {u_rate - phi_rate * (s * arm.x() + c * arm.y()), v_rate + phi_rate * (c * arm.x() - s * arm.y())};

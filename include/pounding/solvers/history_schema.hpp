@@ -17,6 +17,12 @@
 
 namespace pounding::solvers {
 
+/// Displacement (m) of a slab point given at rest, `arm` from the CM, with exact rotation, from
+/// the slab's (u, v); c, s: cos φ and sin φ, which the caller takes once per slab.
+inline model::Point2 point_displacement(const model::Point2& arm, double u, double v, double c, double s) {
+  return {u + (c - 1.0) * arm.x() - s * arm.y(), v + s * arm.x() + (c - 1.0) * arm.y()};
+}
+
 /// One slab at one instant, as the history reads it.
 struct SlabSample {
   const double* q = nullptr;      // u (m), v (m), φ (rad) of the slab's CM
