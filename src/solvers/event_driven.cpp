@@ -12,11 +12,11 @@
 #include <set>
 
 #include "pounding/input_error.hpp"
+#include "pounding/solvers/contact_states.hpp"
+#include "pounding/solvers/event_step_bound.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
-#include "pounding/solvers/gap_clearance.hpp"
-#include "pounding/solvers/gap_mode_bound.hpp"
+#include "pounding/solvers/missed_contacts.hpp"
 #include "pounding/solvers/recorder.hpp"
-#include "pounding/solvers/root_finding.hpp"
 
 namespace pounding::solvers {
 
@@ -69,10 +69,6 @@ namespace {
 using dynamics::VectorXd;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// compliant: a compliant law's force acts (δ > 0). released: its force turned tensile while the
-// slabs still overlap; they fly apart until the gap opens (or the force would push again).
-enum class Mode { armed, masked, held, compliant, released };
-
 /// Per candidate, the components of y its gap reads: (u, v, φ) of its two floors and their rates.
 std::vector<std::vector<int>> gap_components(const dynamics::CoupledSystem& system) {
   std::vector<std::vector<int>> components;
@@ -101,9 +97,8 @@ class EventDrivenRun final : public OdeFunctions {
       : system_(system),
         options_(options),
         count_(system.candidates().size()),
-        modes_(count_, Mode::armed),
-        reopen_at_m_(count_, options.reopen_gap_m),
-        mask_floor_m_(count_, -options.overlap_allowance_m),
+        states_(count_, options.overlap_allowance_m),
+        witnesses_(count_),
         hold_record_(count_, -1),
         open_(count_),
         gap_components_(gap_components(system)),
@@ -111,14 +106,14 @@ class EventDrivenRun final : public OdeFunctions {
                   options.sink) {}
 
   int state_size() const override { return system_.state_size(); }
-  int root_count() const override { return static_cast<int>(3 * count_); }
+  int root_count() const override { return witnesses_.size(); }
   bool is_linear() const override { return is_free_motion(); }
-  bool is_free_motion() const override { return held_.empty() && active_.empty(); }
+  bool is_free_motion() const override { return states_.free_motion(); }
 
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
-    forces_.resize(static_cast<Eigen::Index>(held_.size()));
-    system_.constrained_rhs(t, y, held_, y_dot, forces_);
-    for (std::size_t i : active_) system_.add_contact_force(y, i, compliant_force(i, y), y_dot);
+    forces_.resize(static_cast<Eigen::Index>(states_.held().size()));
+    system_.constrained_rhs(t, y, states_.held(), y_dot, forces_);
+    for (std::size_t i : states_.acting()) system_.add_contact_force(y, i, compliant_force(i, y), y_dot);
   }
 
   void jacobian(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
@@ -131,8 +126,8 @@ class EventDrivenRun final : public OdeFunctions {
   }
 
   bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
-    system_.constrained_acceleration_jacobian(y, held_, rows);
-    for (std::size_t i : active_) {
+    system_.constrained_acceleration_jacobian(y, states_.held(), rows);
+    for (std::size_t i : states_.acting()) {
       const contact::GapState s = system_.gap(y, i);
       const contact::ForceSlopes slopes = open_[i]->law.slopes(-s.gap_m, -s.gap_rate_mps);
       system_.add_contact_force_jacobian(y, i, slopes.per_overlap_kN_per_m, slopes.per_rate_kNs_per_m, rows);
@@ -140,53 +135,45 @@ class EventDrivenRun final : public OdeFunctions {
     return true;
   }
 
-  // Root vector: [0, n) gaps of armed candidates, and of masked ones shifted down to their
-  // floor (a masked pair sinking past it is a re-closure the loop locates); [n, 2n) forces of
-  // held ones; [2n, 3n) how far a held contact point is from the nearer end of its edge
-  // (fraction of the edge), shifted by on_segment()'s tolerance so that a contact at a corner does
-  // not start at a root. Components that do not apply are held at +1, so they never cross.
+  // The witnesses (contact_states.hpp, Witness): gap roots of armed and masked pairs; for a
+  // compliant contact from onset until its gap opens, the overlap and the law's switch function
+  // (released where the force turns tensile, acting again where it would push: the jankowski
+  // phases); for a held one its force; for both, the edge root while the contact point is on it.
   void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
     g.setConstant(1.0);
     for (std::size_t i = 0; i < count_; ++i) {
-      if (modes_[i] == Mode::armed) g[i] = system_.gap(y, i).gap_m;
-      if (modes_[i] == Mode::masked && mask_floor_m_[i] > -kInfinity) g[i] = system_.gap(y, i).gap_m - mask_floor_m_[i];
+      if (states_.is(i, ContactMode::armed) || states_.is(i, ContactMode::masked)) {
+        g[witnesses_.at(Witness::gap, i)] = states_.gap_witness(i, system_.gap(y, i).gap_m);
+      }
     }
-    // Compliant laws, for every contact from onset until its gap opens: the overlap −g in
-    // [0, n) (it falls through zero where the gap opens) and the law's switch function in
-    // [n, 2n) (released where the force turns tensile, acting again where it would push, the
-    // jankowski phases), each written to fall at its switch: the integrators report falling
-    // crossings only. [2n, 3n) as for held contacts, while the force acts.
     for (std::size_t i = 0; i < count_; ++i) {
       if (!open_[i]) continue;
       const contact::GapState s = system_.gap(y, i);
-      g[i] = -s.gap_m;
-      g[count_ + i] = open_[i]->law.switch_value(-s.gap_m, -s.gap_rate_mps);
+      g[witnesses_.at(Witness::gap, i)] = -s.gap_m;
+      g[witnesses_.at(Witness::force, i)] = open_[i]->law.switch_value(-s.gap_m, -s.gap_rate_mps);
     }
-    for (std::size_t i : active_) {
-      const double s = system_.gap(y, i).segment_param;
-      g[2 * count_ + i] = std::min(s, 1.0 - s) + contact::kOnSegmentTolerance;
-    }
-    if (held_.empty()) return;
+    for (std::size_t i : states_.acting()) g[witnesses_.at(Witness::edge, i)] = edge_witness(y, i);
+    const std::vector<std::size_t>& held = states_.held();
+    if (held.empty()) return;
     const VectorXd forces = hold_forces(t, y);
-    for (std::size_t r = 0; r < held_.size(); ++r) {
-      const std::size_t i = held_[r];
-      const double s = system_.gap(y, i).segment_param;
-      g[count_ + i] = forces[r];
-      g[2 * count_ + i] = std::min(s, 1.0 - s) + contact::kOnSegmentTolerance;
+    for (std::size_t r = 0; r < held.size(); ++r) {
+      g[witnesses_.at(Witness::force, held[r])] = forces[static_cast<Eigen::Index>(r)];
+      g[witnesses_.at(Witness::edge, held[r])] = edge_witness(y, held[r]);
     }
   }
 
   RunResult run(const IntegratorFactory& make_integrator, const std::string& method);
 
  private:
-  struct Hidden {
-    double t_s;
-    std::size_t candidate;
-  };
-
+  /// How far candidate i's contact point is from the nearer end of its edge (fraction of the
+  /// edge), shifted by on_segment()'s tolerance so that a contact at a corner does not start at a root.
+  double edge_witness(const Eigen::Ref<const VectorXd>& y, std::size_t i) const {
+    const double s = system_.gap(y, i).segment_param;
+    return std::min(s, 1.0 - s) + contact::kOnSegmentTolerance;
+  }
   VectorXd hold_forces(double t, const Eigen::Ref<const VectorXd>& y) const {
-    VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(held_.size()));
-    system_.constrained_rhs(t, y, held_, y_dot, forces);
+    VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(states_.held().size()));
+    system_.constrained_rhs(t, y, states_.held(), y_dot, forces);
     return forces;
   }
   /// The law's force of compliant contact i (kN) at δ = −g.
@@ -207,28 +194,29 @@ class EventDrivenRun final : public OdeFunctions {
     return {.derivative = [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); },
             .contact_forces = [this](double t, const VectorXd& y) {
               std::vector<ContactForce> forces;
-              for (std::size_t i : active_) forces.push_back({i, compliant_force(i, y)});
-              if (held_.empty()) return forces;
+              for (std::size_t i : states_.acting()) forces.push_back({i, compliant_force(i, y)});
+              const std::vector<std::size_t>& held = states_.held();
+              if (held.empty()) return forces;
               const VectorXd held_forces = hold_forces(t, y);
-              for (std::size_t r = 0; r < held_.size(); ++r) forces.push_back({held_[r], held_forces[static_cast<Eigen::Index>(r)]});
+              for (std::size_t r = 0; r < held.size(); ++r) forces.push_back({held[r], held_forces[static_cast<Eigen::Index>(r)]});
               return forces;
             },
             .free_motion = [this] { return is_free_motion(); }};
   }
   double constraint_power(double t, const VectorXd& y) const {
-    if (held_.empty()) return 0.0;
+    const std::vector<std::size_t>& held = states_.held();
+    if (held.empty()) return 0.0;
     const VectorXd forces = hold_forces(t, y);
     double power = 0.0;
-    for (std::size_t r = 0; r < held_.size(); ++r) power += forces[r] * system_.gap(y, held_[r]).gap_rate_mps;
+    for (std::size_t r = 0; r < held.size(); ++r) power += forces[r] * system_.gap(y, held[r]).gap_rate_mps;
     return power;
   }
 
   void start(double t, VectorXd& y);
   bool step_once();
-  /// Uses the gaps at the step's two ends, prev_gaps_ and gaps_.
-  std::optional<Hidden> hidden_contact(double t);
-  std::optional<double> reclosure(std::size_t i, double t, const contact::GapState& start,
-                                  const contact::GapState& end);
+  /// scan_missed_contacts over the step (prev_t_, t], whose ends' gaps are prev_gaps_ and gaps_;
+  /// its grazes become touches.
+  std::optional<MissedContact> missed_contact(double t);
   void settle_holds(double t, const VectorXd& y);
   void note_overlaps(double t);
   void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots,
@@ -250,14 +238,8 @@ class EventDrivenRun final : public OdeFunctions {
   void stick(const FloorContacts& contacts, const std::vector<bool>& holding, VectorXd& y,
              contact::ImpulseSolution& solution) const;
   void resolve_floor(double t, VectorXd& y, int level, const std::set<std::size_t>& fired);
-  /// Masks candidate i until its gap exceeds reopen_m. A contact (watch = true) keeps a root at
-  /// its floor, so a re-closure cannot be stepped over; a crossing of an edge's extension does not
-  /// (its gap goes on falling while the vertex passes beside the edge).
-  void mask(std::size_t i, double reopen_m, const VectorXd& y, bool watch = true) {
-    modes_[i] = Mode::masked;
-    reopen_at_m_[i] = reopen_m;
-    mask_floor_m_[i] = watch ? std::min(system_.gap(y, i).gap_m, 0.0) - options_.overlap_allowance_m : -kInfinity;
-  }
+  /// Masks candidate i until its gap exceeds reopen_m, with a root at its floor.
+  void mask(std::size_t i, double reopen_m, const VectorXd& y) { states_.mask(i, reopen_m, system_.gap(y, i).gap_m); }
   void hold(std::size_t i, double t);
   bool compliant() const { return options_.law != contact::ContactLaw::impulse; }
   /// Compliant laws: the events at t (gap, force and edge roots) instead of impulses and holds.
@@ -284,17 +266,12 @@ class EventDrivenRun final : public OdeFunctions {
     }
     return false;
   }
-  /// The longest step from (t, y) in free flight over which every gap provably stays above
-  /// contact_tolerance_m (GapClearance), up to the next record sample.
-  double clear_step_s(double t, const VectorXd& y);
   /// Every candidate's gap in state y, into `gaps`.
   void evaluate_gaps(const VectorXd& y, std::vector<contact::GapState>& gaps) const {
     gaps.resize(count_);
     for (std::size_t i = 0; i < count_; ++i) gaps[i] = system_.gap(y, i);
   }
   void update_hold_records(double t, const VectorXd& y);
-  /// Gives a root at its floor to each pair masked beside its edge whose vertex is now on it.
-  void watch_arrivals(const std::vector<contact::GapState>& gaps);
   /// Ends a completed run as unresolved_overlap if a pair not held sank past the touch band.
   void report_overlap();
   void count_event(double t);
@@ -305,22 +282,16 @@ class EventDrivenRun final : public OdeFunctions {
   const EventOptions& options_;
   BudgetClock budget_{options_.budget};
   std::size_t count_;
-  std::vector<Mode> modes_;
-  std::vector<double> reopen_at_m_;  // gap beyond which a masked candidate is re-armed
-  std::vector<double> mask_floor_m_;  // gap below which a masked candidate's root fires
-  std::vector<std::size_t> held_;
+  ContactStates states_;
+  WitnessLayout witnesses_;
   std::vector<int> hold_record_;  // index into result_.sustained_contacts while held
   std::vector<std::optional<OpenContact>> open_;  // compliant contacts: set from onset until the gap opens
-  std::vector<std::size_t> active_;                // compliant contacts whose force acts
   std::vector<std::vector<int>> gap_components_;   // per candidate, the components of y its gap reads
   VectorXd forces_;
   Recorder recorder_;
   RunResult result_;
   std::unique_ptr<Integrator> integrator_;
-  std::optional<GapModeBound> mode_bound_;  // when options_.max_step_s is automatic
-  std::optional<GapClearance> clearance_;   // when options_.clearance_steps applies
-  std::vector<bool> watched_;               // scratch: the candidates clearance_ watches
-  double open_until_s_ = -kInfinity;        // clearance_ proved every gap open up to here
+  std::optional<EventStepBound> step_bound_;
   double current_max_step_s_ = 0.0;
   double prev_t_ = 0.0;
   VectorXd prev_y_;
@@ -350,7 +321,7 @@ void EventDrivenRun::begin_phase(double t, const VectorXd& y) {
   current_max_step_s_ = -1.0;  // force update_step_bound to hand the integrator its bound
   set_next_stop(t);
   evaluate_gaps(y, prev_gaps_);
-  watch_arrivals(prev_gaps_);
+  states_.watch_arrivals(prev_gaps_);
   update_step_bound(t, y, prev_gaps_);
   prev_t_ = t;
   prev_y_ = y;
@@ -376,9 +347,7 @@ void EventDrivenRun::count_event(double t) {
 }
 
 void EventDrivenRun::hold(std::size_t i, double t) {
-  if (modes_[i] == Mode::held) return;
-  modes_[i] = Mode::held;
-  held_.push_back(i);
+  if (!states_.hold(i)) return;
   const contact::Candidate& c = system_.candidates()[i];
   SustainedContactRecord record;
   record.level = c.level;
@@ -393,9 +362,8 @@ void EventDrivenRun::hold(std::size_t i, double t) {
 }
 
 void EventDrivenRun::release(std::size_t i, double t, const VectorXd& y, const std::string& reason) {
-  if (modes_[i] != Mode::held) return;
-  mask(i, options_.contact_tolerance_m, y);  // at g ≈ 0, opening slowly: re-armed once clearly open
-  held_.erase(std::find(held_.begin(), held_.end(), i));
+  // At g ≈ 0, opening slowly: armed again once clearly open.
+  if (!states_.release_hold(i, options_.contact_tolerance_m, system_.gap(y, i).gap_m)) return;
   SustainedContactRecord& record = result_.sustained_contacts[hold_record_[i]];
   record.release_s = t;
   record.release_reason = reason;
@@ -427,7 +395,7 @@ void EventDrivenRun::handle_event(double t, VectorXd& y, const std::vector<std::
   for (std::size_t i : gap_roots) {
     const contact::GapState s = system_.gap(y, i);
     if (!s.on_segment()) {
-      mask(i, options_.reopen_gap_m, y, false);  // the vertex crossed the edge's extension, not the edge
+      states_.mask_beside_edge(i, options_.reopen_gap_m);  // the vertex crossed the edge's extension
       ++result_.statistics.off_segment_crossings;
       continue;
     }
@@ -449,7 +417,7 @@ void EventDrivenRun::handle_compliant_event(double t, const VectorXd& y, const s
   // of its switch (closing gap, falling switch function, opening gap).
   count_event(t);
   for (std::size_t i : edge_roots) {
-    if (modes_[i] == Mode::compliant) end_contact(i, t, y);
+    if (states_.is(i, ContactMode::compliant)) end_contact(i, t, y);
   }
   for (std::size_t i : force_roots) {
     if (!open_[i] || switch_rate(t, y, i) >= 0.0) continue;
@@ -458,24 +426,22 @@ void EventDrivenRun::handle_compliant_event(double t, const VectorXd& y, const s
     if (!acted && system_.gap(y, i).gap_m >= 0.0) continue;  // already open: the gap root ends it
     law.toggle();
     if (acted && !law.acts()) {
-      modes_[i] = Mode::released;  // tensile from here on: the slabs fly apart while still overlapping
-      active_.erase(std::find(active_.begin(), active_.end(), i));
+      states_.stop_acting(i);  // tensile from here on: the slabs fly apart while still overlapping
       open_[i]->record.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
       open_[i]->record.duration_s = t - open_[i]->record.t_s;
     } else if (!acted) {
-      modes_[i] = Mode::compliant;  // pushing again before the gap opened: the same contact goes on
-      active_.push_back(i);
+      states_.start_acting(i);  // pushing again before the gap opened: the same contact goes on
     }  // else a jankowski contact changed phase and acts on
   }
   for (std::size_t i : gap_roots) {
     const contact::GapState s = system_.gap(y, i);
-    if (modes_[i] == Mode::released || modes_[i] == Mode::compliant) {
+    if (states_.is(i, ContactMode::released) || states_.is(i, ContactMode::compliant)) {
       if (s.gap_rate_mps >= 0.0) end_contact(i, t, y);  // the gap opened: the contact is over
       continue;
     }
-    if (modes_[i] != Mode::armed && modes_[i] != Mode::masked) continue;
+    if (!states_.is(i, ContactMode::armed) && !states_.is(i, ContactMode::masked)) continue;
     if (!s.on_segment()) {
-      mask(i, options_.reopen_gap_m, y, false);  // the vertex crossed the edge's extension, not the edge
+      states_.mask_beside_edge(i, options_.reopen_gap_m);  // the vertex crossed the edge's extension
       ++result_.statistics.off_segment_crossings;
     } else if (s.gap_rate_mps < 0.0) {
       begin_contact(i, t, y);
@@ -495,14 +461,12 @@ void EventDrivenRun::begin_contact(std::size_t i, double t, const VectorXd& y) {
                                                          -s.gap_rate_mps, system_.normal_inverse_mass(y, i)),
                                impact_at(system_, t, i, s)});
   open_[i]->record.peak_force_kN = std::max(0.0, compliant_force(i, y));
-  modes_[i] = Mode::compliant;
-  active_.push_back(i);
+  states_.start_acting(i);
 }
 
 void EventDrivenRun::end_contact(std::size_t i, double t, const VectorXd& y) {
   ImpactRecord& r = open_[i]->record;
-  if (modes_[i] == Mode::compliant) {  // slid off the edge or the run ended while pushing
-    active_.erase(std::find(active_.begin(), active_.end(), i));
+  if (states_.is(i, ContactMode::compliant)) {  // slid off the edge or the run ended while pushing
     r.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
     r.duration_s = t - r.t_s;
   }
@@ -519,7 +483,7 @@ void EventDrivenRun::end_contact(std::size_t i, double t, const VectorXd& y) {
 void EventDrivenRun::integrate_contacts(double t_a, double t_b, const VectorXd& y_b) {
   // Composite Simpson on the step's interpolant: its error is of the interpolant's order, far
   // below the solver tolerance for the smooth force inside a contact (no switch inside a step).
-  if (active_.empty() || !(t_b > t_a)) return;
+  if (states_.acting().empty() || !(t_b > t_a)) return;
   constexpr int kIntervals = 16;
   VectorXd y(system_.state_size());
   const double h = (t_b - t_a) / kIntervals;
@@ -530,7 +494,7 @@ void EventDrivenRun::integrate_contacts(double t_a, double t_b, const VectorXd& 
       integrator_->interpolate(t_a + k * h, y);
     }
     const double weight = (k == 0 || k == kIntervals ? 1.0 : k % 2 ? 4.0 : 2.0) * h / 3.0;
-    for (std::size_t i : active_) {
+    for (std::size_t i : states_.acting()) {
       const double force = compliant_force(i, y);
       OpenContact& open = *open_[i];
       open.record.peak_force_kN = std::max(open.record.peak_force_kN, force);
@@ -546,15 +510,16 @@ void EventDrivenRun::settle_holds(double t, const VectorXd& y) {
   // jumped to tensile at the restart. So after every event the held set is settled again, all
   // together: the held contacts that the complementarity problem leaves without force while
   // their gap would open are released.
-  if (held_.empty()) return;
+  const std::vector<std::size_t>& held = states_.held();
+  if (held.empty()) return;
   // A twin held beside its contact (coincident corners: the same row twice) gets no force and
   // zero acceleration; only an opening acceleration clearly above round-off releases a pair.
-  const contact::LcpSolution solution = system_.hold_complementarity(t, y, held_);
+  const contact::LcpSolution solution = system_.hold_complementarity(t, y, held);
   const double round_off = 1e-9 * (1.0 + solution.w.cwiseAbs().maxCoeff());
   std::vector<std::size_t> separating;
-  for (std::size_t r = 0; r < held_.size(); ++r) {
+  for (std::size_t r = 0; r < held.size(); ++r) {
     const auto k = static_cast<Eigen::Index>(r);
-    if (solution.x[k] <= 0.0 && solution.w[k] > round_off) separating.push_back(held_[r]);
+    if (solution.x[k] <= 0.0 && solution.w[k] > round_off) separating.push_back(held[r]);
   }
   for (std::size_t i : separating) release(i, t, y, "tensile force");
 }
@@ -564,7 +529,7 @@ FloorContacts EventDrivenRun::floor_contacts(const VectorXd& y, int level, const
   // contacts are solved together, never one after another.
   return gather_floor_contacts(system_, y, level, options_.restitution, [&](std::size_t i, const contact::GapState& s) {
     const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
-    return modes_[i] == Mode::held || fired.count(i) || closed;
+    return states_.is(i, ContactMode::held) || fired.count(i) || closed;
   });
 }
 
@@ -584,7 +549,7 @@ std::vector<bool> EventDrivenRun::settle_floor(double t, VectorXd& y, FloorConta
     const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.floors);
 
     std::vector<std::size_t> trial;  // held elsewhere, plus this floor's slow separations
-    for (std::size_t i : held_) {
+    for (std::size_t i : states_.held()) {
       if (system_.candidates()[i].level != contacts.level) trial.push_back(i);
     }
     const std::size_t others = trial.size();
@@ -642,7 +607,7 @@ void EventDrivenRun::resolve_floor(double t, VectorXd& y, int level, const std::
   const VectorXd y_before = y;
   contact::ImpulseSolution solution;
   std::vector<bool> were_held(contacts.members.size());
-  for (std::size_t k = 0; k < contacts.members.size(); ++k) were_held[k] = modes_[contacts.members[k]] == Mode::held;
+  for (std::size_t k = 0; k < contacts.members.size(); ++k) were_held[k] = states_.is(contacts.members[k], ContactMode::held);
   const std::vector<bool> holding = settle_floor(t, y, contacts, solution);
   recorder_.add_impact_loss(
       record_floor_outcome(system_, t, contacts, solution, y_before, y, fired, holding, were_held, result_));
@@ -652,7 +617,7 @@ void EventDrivenRun::resolve_floor(double t, VectorXd& y, int level, const std::
     if (were_held[k]) result_.sustained_contacts[hold_record_[i]].impulse_kNs += solution.impulses_kNs[k];
     if (holding[k]) {
       hold(i, t);
-    } else if (modes_[i] == Mode::held) {
+    } else if (states_.is(i, ContactMode::held)) {
       release(i, t, y, "separated by an impact");
     } else {
       mask(i, options_.reopen_gap_m, y);
@@ -660,178 +625,60 @@ void EventDrivenRun::resolve_floor(double t, VectorXd& y, int level, const std::
   }
 }
 
-std::optional<EventDrivenRun::Hidden> EventDrivenRun::hidden_contact(double t) {
-  // CVODE sees a root only where a gap changes sign between step ends. A gap that dips below
-  // zero and recovers within one step (or just grazes zero) does not; it shows as a minimum
-  // inside the step: ġ < 0 at the start, ġ > 0 at the end. Examine that minimum on the
-  // integrator's interpolant.
-  if (t <= open_until_s_) return std::nullopt;  // every gap stayed above the touch tolerance
-  std::optional<Hidden> earliest;
-  VectorXd at(system_.state_size());
-  auto keep_earliest = [&](double t_hit, std::size_t i) {
-    if (!earliest || t_hit < earliest->t_s) earliest = Hidden{t_hit, i};
-  };
-  for (std::size_t i = 0; i < count_; ++i) {
-    const contact::GapState &s0 = prev_gaps_[i], &s1 = gaps_[i];
-    if (modes_[i] == Mode::masked) {
-      if (const std::optional<double> t_hit = reclosure(i, t, s0, s1)) keep_earliest(*t_hit, i);
-      continue;
+std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
+  if (t <= step_bound_->open_until_s()) return std::nullopt;  // every gap stayed above the touch band
+  // The step's interpolant, evaluated only in the components a candidate's gap reads.
+  class Interpolant final : public StepGaps {
+   public:
+    explicit Interpolant(EventDrivenRun& run) : run_(run), at_(run.system_.state_size()) {}
+    contact::GapState at(std::size_t i, double t_s) override {
+      run_.integrator_->interpolate_components(t_s, run_.gap_components_[i], at_);
+      return run_.system_.gap(at_, i);
     }
-    if (modes_[i] != Mode::armed) continue;
-    if (!(s0.gap_m > 0.0 && s1.gap_m > 0.0 && s0.gap_rate_mps < 0.0 && s1.gap_rate_mps > 0.0)) continue;
-    auto state_at = [&](double time) {
-      integrator_->interpolate_components(time, gap_components_[i], at);
-      return system_.gap(at, i);
-    };
-    const double t_min = find_root([&](double time) { return state_at(time).gap_rate_mps; }, prev_t_, t,
-                                   s0.gap_rate_mps, s1.gap_rate_mps);
-    const contact::GapState lowest = state_at(t_min);
-    if (!lowest.on_segment()) continue;
-    // A minimum below zero is where the path would have gone without the impact at t_cross: it is
-    // not an overlap of the computed motion (handle_event notes the gap at the crossing).
-    if (lowest.gap_m < 0.0) {
-      const double t_cross =
-          find_root([&](double time) { return state_at(time).gap_m; }, prev_t_, t_min, s0.gap_m, lowest.gap_m);
-      keep_earliest(t_cross, i);
-    } else if (lowest.gap_m <= options_.contact_tolerance_m) {
-      result_.touches.push_back(touch_record(system_, t_min, i, lowest));
-    }
-  }
-  return earliest;
-}
+    double rate_round_off_mps(std::size_t i) override { return run_.system_.gap_rate_round_off_mps(at_, i); }
 
-std::optional<double> EventDrivenRun::reclosure(std::size_t i, double t, const contact::GapState& start,
-                                                const contact::GapState& end) {
-  // A masked pair sinking at the step end (g < 0, ġ < 0) closed again after it was handled. If
-  // the gap rose to g ≥ 0 inside the step, the re-closure is the last crossing of zero, at any
-  // height (a flight from rest at ġ⁺ ≈ 0 rises only by nanometres, and its rate may change sign
-  // twice in the step: rounding leaves ġ⁺ at −1e−17 while g̈ lifts the pair). The step is scanned
-  // on the interpolant, the highest sample polished to the maximum. If the gap never rose, the
-  // pair has been in contact (within the allowance) since before the step; once past its floor,
-  // the contact is taken at the step end, where its own root stopped the integrator.
-  if (!end.on_segment()) return std::nullopt;
-  // Masked after crossing the edge's extension, the vertex has come onto the edge inside the
-  // other slab: a contact now, wherever it is heading.
-  if (mask_floor_m_[i] == -kInfinity && end.gap_m < -options_.overlap_allowance_m) return t;
-  if (!(end.gap_m < 0.0 && end.gap_rate_mps < 0.0)) return std::nullopt;
-  VectorXd at(system_.state_size());
-  auto state_at = [&](double time) {
-    integrator_->interpolate_components(time, gap_components_[i], at);
-    return system_.gap(at, i);
-  };
-  constexpr int kSamples = 32;
-  std::array<double, kSamples + 1> times{}, gaps{}, rates{};
-  for (int k = 0; k <= kSamples; ++k) {
-    times[k] = k == kSamples ? t : prev_t_ + (t - prev_t_) * k / kSamples;
-    const contact::GapState s = k == 0 ? start : k == kSamples ? end : state_at(times[k]);
-    gaps[k] = s.gap_m;
-    rates[k] = s.gap_rate_mps;
-  }
-  int last_open = -1;
-  for (int k = 0; k < kSamples; ++k) {
-    if (gaps[k] >= 0.0) last_open = k;
-  }
-  double t_open = last_open >= 0 ? times[last_open] : 0.0, g_open = last_open >= 0 ? gaps[last_open] : 0.0;
-  int after = last_open + 1;
-  if (last_open < 0) {
-    // No sample open: the top of a flight lower than the samples resolve may still be above zero.
-    const int top = static_cast<int>(std::max_element(gaps.begin(), gaps.end()) - gaps.begin());
-    for (int k : {top - 1, top}) {
-      if (k < 0 || k >= kSamples || !(rates[k] > 0.0 && rates[k + 1] < 0.0)) continue;
-      const double t_top = find_root([&](double time) { return state_at(time).gap_rate_mps; }, times[k],
-                                     times[k + 1], rates[k], rates[k + 1]);
-      const double g_top = state_at(t_top).gap_m;
-      if (g_top >= 0.0) t_open = t_top, g_open = g_top, after = k + 1;
-    }
-  }
-  // The root stops the integrator with g at the floor to within its own tolerance.
-  const bool at_floor = end.gap_m <= mask_floor_m_[i] + 1e-9 * std::abs(mask_floor_m_[i]);
-  if (after > 0) {
-    const double t_hit =
-        find_root([&](double time) { return state_at(time).gap_m; }, t_open, times[after], g_open, gaps[after]);
-    const contact::GapState hit = state_at(t_hit);
-    // Rising and falling by rounding alone (two identical buildings at zero gap) is no flight;
-    // a pair that really sinks reaches its floor.
-    if (!at_floor && -hit.gap_rate_mps <= system_.gap_rate_round_off_mps(at, i)) return std::nullopt;
-    return hit.on_segment() ? t_hit : t;  // closed beside the edge, then slid onto it
-  }
-  return at_floor ? std::optional<double>(t) : std::nullopt;
+   private:
+    EventDrivenRun& run_;
+    VectorXd at_;
+  } path(*this);
+  std::vector<Graze> grazes;
+  const std::optional<MissedContact> missed = scan_missed_contacts(
+      states_, path, prev_t_, t, prev_gaps_, gaps_,
+      {.contact_tolerance_m = options_.contact_tolerance_m, .overlap_allowance_m = options_.overlap_allowance_m},
+      grazes);
+  for (const Graze& graze : grazes) result_.touches.push_back(touch_record(system_, graze.t_s, graze.candidate, graze.gap));
+  return missed;
 }
 
 void EventDrivenRun::update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps) {
-  // After an impact the next flight of that pair can be far shorter than the last step. While it
-  // is masked, bound the step by a quarter of the predicted time until its gap reaches its mask
-  // floor (where its root fires), from (g − floor) + ġτ + ½g̈τ² = 0, so that the interpolant
-  // that locates the re-closure spans a short stretch of a smooth flight.
-  double bound = options_.max_step_s > 0.0 ? options_.max_step_s : mode_bound_->max_step_s(y);
-  open_until_s_ = -kInfinity;
-  if (clearance_ && is_free_motion()) bound = std::max(bound, clear_step_s(t, y));
-  VectorXd y_dot(system_.state_size());
-  bool have_accel = false;
-  for (std::size_t i = 0; i < count_; ++i) {
-    if (modes_[i] != Mode::masked) continue;
-    const contact::GapState& s = gaps[i];
-    const double height = s.gap_m - mask_floor_m_[i];
-    if (!s.on_segment() || !(height > 0.0) || std::isinf(height)) continue;
-    if (!have_accel) {
+  VectorXd y_dot;
+  auto gap_acceleration = [&](std::size_t i) {
+    if (y_dot.size() == 0) {
+      y_dot.resize(system_.state_size());
       rhs(t, y, y_dot);
-      have_accel = true;
     }
-    const double accel = system_.gap_acceleration(y, y_dot, i);
-    if (accel >= 0.0) continue;
-    const double rate = s.gap_rate_mps;
-    const double reclose = (rate + std::sqrt(rate * rate - 2.0 * height * accel)) / (-accel);
-    bound = std::min(bound, reclose / 4.0);
-  }
+    return system_.gap_acceleration(y, y_dot, i);
+  };
+  const double bound = step_bound_->max_step_s(t, y, gaps, states_, gap_acceleration);
   if (bound != current_max_step_s_) {
     integrator_->set_max_step(bound);
     current_max_step_s_ = bound;
   }
 }
 
-double EventDrivenRun::clear_step_s(double t, const VectorXd& y) {
-  // Steps end at record samples, so the window ends at the next one and a_g is one straight
-  // piece over it: its largest |a_g| is at an end.
-  const std::optional<double> next = system_.ground_motion().next_sample_after(t);
-  if (!next) return 0.0;
-  const double horizon_s = *next - t;
-  const double peak_accel_mps2 =
-      std::max(std::abs(system_.ground_motion().accel_at(t)), std::abs(system_.ground_motion().accel_at(*next)));
-  for (std::size_t i = 0; i < count_; ++i) watched_[i] = modes_[i] == Mode::armed || modes_[i] == Mode::masked;
-  // Above contact_tolerance_m throughout, a gap can neither close nor touch inside the step.
-  const double open_s = clearance_->open_time_s(y, watched_, options_.contact_tolerance_m, horizon_s, peak_accel_mps2);
-  open_until_s_ = t + open_s;
-  // Open up to the stop time: a bound past it lets the stop time end the step (t + horizon may
-  // round below it).
-  return open_s >= horizon_s ? 2.0 * horizon_s : open_s;
-}
-
 void EventDrivenRun::note_overlaps(double t) {
   for (std::size_t i = 0; i < count_; ++i) {
-    if (modes_[i] == Mode::held) continue;  // a held gap's drift is reported with its hold
-    if (modes_[i] == Mode::compliant || modes_[i] == Mode::released) continue;  // penetration is the law's
+    if (!states_.is(i, ContactMode::armed) && !states_.is(i, ContactMode::masked)) {
+      continue;  // a held gap's drift is reported with its hold, a compliant one's penetration is the law's
+    }
     const contact::GapState& s = gaps_[i];
     if (s.on_segment()) result_.statistics.note_overlap(s.gap_m, t, i);
   }
 }
 
-void EventDrivenRun::watch_arrivals(const std::vector<contact::GapState>& gaps) {
-  // Masked as it passed beside the edge, the vertex has come onto it: from here on its gap is a
-  // depth into the other slab, watched by a root as a contact's is.
-  for (std::size_t i = 0; i < count_; ++i) {
-    if (modes_[i] == Mode::masked && mask_floor_m_[i] == -kInfinity && gaps[i].on_segment()) {
-      mask_floor_m_[i] = std::min(gaps[i].gap_m, 0.0) - options_.overlap_allowance_m;
-    }
-  }
-}
-
 void EventDrivenRun::after_step(double t, const VectorXd& y) {
   note_overlaps(t);
-  for (std::size_t i = 0; i < count_; ++i) {
-    if (modes_[i] != Mode::masked) continue;
-    if (gaps_[i].gap_m > reopen_at_m_[i]) modes_[i] = Mode::armed;
-  }
-  watch_arrivals(gaps_);
+  states_.rearm(gaps_);
   update_hold_records(t, y);
   update_step_bound(t, y, gaps_);
 }
@@ -850,12 +697,13 @@ void EventDrivenRun::report_overlap() {
 }
 
 void EventDrivenRun::update_hold_records(double t, const VectorXd& y) {
-  if (held_.empty()) return;
+  const std::vector<std::size_t>& held = states_.held();
+  if (held.empty()) return;
   const VectorXd forces = hold_forces(t, y);
-  for (std::size_t r = 0; r < held_.size(); ++r) {
-    SustainedContactRecord& record = result_.sustained_contacts[hold_record_[held_[r]]];
+  for (std::size_t r = 0; r < held.size(); ++r) {
+    SustainedContactRecord& record = result_.sustained_contacts[hold_record_[held[r]]];
     record.max_force_kN = std::max(record.max_force_kN, forces[r]);
-    record.max_gap_drift_m = std::max(record.max_gap_drift_m, std::abs(system_.gap(y, held_[r]).gap_m));
+    record.max_gap_drift_m = std::max(record.max_gap_drift_m, std::abs(system_.gap(y, held[r]).gap_m));
   }
 }
 
@@ -883,7 +731,7 @@ bool EventDrivenRun::step_once() {
     integrator_->interpolate_components(time, indices, state);
   };
 
-  if (const std::optional<Hidden> hidden = hidden_contact(t)) {
+  if (const std::optional<MissedContact> hidden = missed_contact(t)) {
     ++result_.statistics.interpolant_events;
     VectorXd y_event = interpolated(hidden->t_s);
     recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power,
@@ -901,27 +749,25 @@ bool EventDrivenRun::step_once() {
   integrate_contacts(prev_t_, t, y);
 
   if (outcome.kind == StepKind::root) {
-    const std::vector<int> found = integrator_->roots_found();
-    std::vector<std::size_t> gap_roots, force_roots, edge_roots;
+    const std::vector<int> flags = integrator_->roots_found();
+    WitnessLayout::Crossed crossed = witnesses_.crossed(flags);
+    // An integrator flags the functions whose crossing it located; one that went through zero
+    // at the same instant by a rounding (g = −5e-16 m) can go unflagged, and after the restart
+    // it would start below zero, where its root can no longer fire.
     for (std::size_t i = 0; i < count_; ++i) {
-      if (found[i] != 0) gap_roots.push_back(i);
-      if (found[count_ + i] != 0) force_roots.push_back(i);
-      if (found[2 * count_ + i] != 0) edge_roots.push_back(i);
-      // An integrator flags the functions whose crossing it located; one that went through zero
-      // at the same instant by a rounding (g = −5e-16 m) can go unflagged, and after the restart
-      // it would start below zero, where its root can no longer fire.
-      if (found[i] == 0 && modes_[i] == Mode::armed && gaps_[i].gap_m <= 0.0 && gaps_[i].on_segment() &&
-          gaps_[i].gap_rate_mps < 0.0) {
-        gap_roots.push_back(i);
+      if (!witnesses_.flagged(flags, Witness::gap, i) && states_.is(i, ContactMode::armed) && gaps_[i].gap_m <= 0.0 &&
+          gaps_[i].on_segment() && gaps_[i].gap_rate_mps < 0.0) {
+        crossed.gap.push_back(i);
       }
     }
+    std::sort(crossed.gap.begin(), crossed.gap.end());
     if (compliant()) {
-      handle_compliant_event(t, y, gap_roots, force_roots, edge_roots);
+      handle_compliant_event(t, y, crossed.gap, crossed.force, crossed.edge);
       restart(t, y);
       return !stop_;
     }
-    for (std::size_t i : edge_roots) release(i, t, y, "slid off the edge");
-    handle_event(t, y, gap_roots, force_roots, "tensile force");
+    for (std::size_t i : crossed.edge) release(i, t, y, "slid off the edge");
+    handle_event(t, y, crossed.gap, crossed.force, "tensile force");
     restart(t, y);
     return !stop_;
   }
@@ -944,19 +790,16 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   const double t0 = system_.ground_motion().start_s();
   result_.start_s = t0;
   VectorXd y = options_.initial_state.size() ? options_.initial_state : VectorXd::Zero(system_.state_size());
-  if (options_.max_step_s == 0.0) {
-    mode_bound_.emplace(system_, options_.overlap_allowance_m, options_.steps_per_period, options_.modes_cutoff_hz);
-  }
+  step_bound_.emplace(system_, options_);
 
   recorder_.sample(t0, y);
   start(t0, y);
   try {
     // A truncated run's dropped modes move as R a_g, which GapClearance does not bound.
     if (options_.max_step_s == 0.0 && options_.clearance_steps && !compliant() && !drops_modes()) {
-      clearance_.emplace(system_);  // throws, as the exact path does, if a building's damping is not classical
-      watched_.resize(count_);
-      // Its steps may span whole record intervals: the peaks are located on quarter periods.
-      recorder_.set_peak_step(clearance_->shortest_damped_period_s() / 4.0);
+      // Throws, as the exact path does, if a building's damping is not classical. Its steps may
+      // span whole record intervals: the peaks are located on quarter periods.
+      recorder_.set_peak_step(step_bound_->enable_clearance() / 4.0);
     }
     integrator_ = make_integrator(*this, t0, y);
     begin_phase(t0, y);
@@ -973,7 +816,7 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   }
   result_.end_s = prev_t_;
   report_overlap();
-  for (std::size_t i : std::vector<std::size_t>(held_)) release(i, prev_t_, prev_y_, "end of run");
+  for (std::size_t i : std::vector<std::size_t>(states_.held())) release(i, prev_t_, prev_y_, "end of run");
   for (std::size_t i = 0; i < count_; ++i) {
     if (open_[i]) end_contact(i, prev_t_, prev_y_);
   }

@@ -1,7 +1,36 @@
 #pragma once
 // The event-driven solution: an ODE integrator (behind the Integrator seam) advances the smooth
 // motion, its root finder stops at each contact, the impact module resets the velocities, and
-// the integrator restarts there. README.md, "Event handling", lists the pitfalls handled here.
+// the integrator restarts there. docs/guide/event-handling.md gives the rules and their reasons.
+//
+// The loop, phase by phase (src/solvers/event_driven.cpp):
+//  1. Start. Contacts that exist at rest (|g| within the touch band, on the edge) are an event
+//     at t0: integrators report no root at their initial time.
+//  2. Phase begins (at t0 and after every event). The next record sample becomes the stop time;
+//     every gap is evaluated; pairs masked beside an edge whose vertex is now on it get a floor
+//     root (ContactStates); the step bound is set (EventStepBound).
+//  3. Step. The integrator advances to a root, a stop time or its own step end.
+//  4. Missed contacts. Unless the step bound proved every gap open over the step, the step is
+//     scanned on the interpolant (scan_missed_contacts): a dip below zero or a re-closure inside
+//     the step is an event at its first crossing, the step is cut there (the recorder advances
+//     to it) and the loop goes to 6.
+//  5. Record. The recorder integrates history, peaks and energy over the step; compliant
+//     contacts integrate their force, impulse and work.
+//  6. Event (a root, or a missed contact). The crossed witnesses (WitnessLayout) are decoded.
+//     impulse law: holds that slid off their edge or whose force turned tensile are released;
+//       each level with a closing pair on its edge is solved as one complementarity problem over
+//       all its closed contacts (floor_impacts), slow separations held, the rest masked; then
+//       every hold is settled again together (an impulse on one floor changes the force that
+//       holds the next).
+//     compliant laws: a closing pair starts a contact, the law's switch releases or re-engages
+//       it, an opening gap or a slide off the edge ends it.
+//     Then the integrator restarts at the event with the new velocities: back to 2.
+//  7. After a step without event: overlaps of pairs not held are noted, masked pairs whose gap
+//     reopened are armed again, holds' peak force and drift are updated, the step bound is
+//     re-evaluated; at a record sample the next becomes the stop time. Back to 3 until the
+//     record ends, the budget, the step or the event limit stops the run.
+//  8. End. A completed run whose pairs sank deeper than the touch band becomes
+//     unresolved_overlap; holds and compliant contacts still open are closed as "end of run".
 
 #include <functional>
 #include <memory>

@@ -1,0 +1,61 @@
+#include "pounding/solvers/event_step_bound.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pounding/solvers/event_driven.hpp"
+
+namespace pounding::solvers {
+
+EventStepBound::EventStepBound(const dynamics::CoupledSystem& system, const EventOptions& options)
+    : system_(system), options_(options) {
+  if (options.max_step_s == 0.0) {
+    mode_bound_.emplace(system, options.overlap_allowance_m, options.steps_per_period, options.modes_cutoff_hz);
+  }
+}
+
+double EventStepBound::enable_clearance() {
+  clearance_.emplace(system_);
+  watched_.resize(system_.candidates().size());
+  return clearance_->shortest_damped_period_s();
+}
+
+double EventStepBound::max_step_s(double t, const Eigen::VectorXd& y, const std::vector<contact::GapState>& gaps,
+                                  const ContactStates& states, const GapAcceleration& gap_acceleration) {
+  double bound = mode_bound_ ? mode_bound_->max_step_s(y) : options_.max_step_s;
+  open_until_s_ = -std::numeric_limits<double>::infinity();
+  if (clearance_ && states.free_motion()) bound = std::max(bound, clear_step_s(t, y, states));
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    if (!states.is(i, ContactMode::masked)) continue;
+    const contact::GapState& s = gaps[i];
+    const double height = s.gap_m - states.mask_floor_m(i);
+    if (!s.on_segment() || !(height > 0.0) || std::isinf(height)) continue;
+    const double accel = gap_acceleration(i);
+    if (accel >= 0.0) continue;
+    const double rate = s.gap_rate_mps;
+    const double reclose = (rate + std::sqrt(rate * rate - 2.0 * height * accel)) / (-accel);
+    bound = std::min(bound, reclose / 4.0);
+  }
+  return bound;
+}
+
+double EventStepBound::clear_step_s(double t, const Eigen::VectorXd& y, const ContactStates& states) {
+  // Steps end at record samples, so the window ends at the next one and a_g is one straight
+  // piece over it: its largest |a_g| is at an end.
+  const excitation::GroundMotion& motion = system_.ground_motion();
+  const std::optional<double> next = motion.next_sample_after(t);
+  if (!next) return 0.0;
+  const double horizon_s = *next - t;
+  const double peak_accel_mps2 = std::max(std::abs(motion.accel_at(t)), std::abs(motion.accel_at(*next)));
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    watched_[i] = states.is(i, ContactMode::armed) || states.is(i, ContactMode::masked);
+  }
+  // Above contact_tolerance_m throughout, a gap can neither close nor touch inside the step.
+  const double open_s = clearance_->open_time_s(y, watched_, options_.contact_tolerance_m, horizon_s, peak_accel_mps2);
+  open_until_s_ = t + open_s;
+  // Open up to the stop time: a bound past it lets the stop time end the step (t + horizon may
+  // round below it).
+  return open_s >= horizon_s ? 2.0 * horizon_s : open_s;
+}
+
+}  // namespace pounding::solvers
