@@ -15,9 +15,8 @@ namespace {
 std::optional<double> dip(StepGaps& path, std::size_t i, double t_start, double t_end, const contact::GapState& s0,
                           const contact::GapState& s1, double contact_tolerance_m, std::vector<Graze>& grazes) {
   if (!(s0.gap_m > 0.0 && s1.gap_m > 0.0 && s0.gap_rate_mps < 0.0 && s1.gap_rate_mps > 0.0)) return std::nullopt;
-  const double t_min =
-      find_root([&](double time) { return path.at(i, time).gap_rate_mps; }, t_start, t_end, s0.gap_rate_mps,
-                s1.gap_rate_mps);
+  const double t_min = find_root([&](double time) { return path.at(i, time).gap_rate_mps; }, t_start, t_end,
+                                 s0.gap_rate_mps, s1.gap_rate_mps);
   const contact::GapState lowest = path.at(i, t_min);
   if (!lowest.on_segment()) return std::nullopt;
   // A minimum below zero is where the path would have gone without the impact at t_cross: it is
@@ -64,8 +63,8 @@ std::optional<double> reclosure(const ContactStates& states, StepGaps& path, std
     const int top = static_cast<int>(std::max_element(gaps.begin(), gaps.end()) - gaps.begin());
     for (int k : {top - 1, top}) {
       if (k < 0 || k >= kSamples || !(rates[k] > 0.0 && rates[k + 1] < 0.0)) continue;
-      const double t_top = find_root([&](double time) { return state_at(time).gap_rate_mps; }, times[k],
-                                     times[k + 1], rates[k], rates[k + 1]);
+      const double t_top = find_root([&](double time) { return state_at(time).gap_rate_mps; }, times[k], times[k + 1],
+                                     rates[k], rates[k + 1]);
       const double g_top = state_at(t_top).gap_m;
       if (g_top >= 0.0) t_open = t_top, g_open = g_top, after = k + 1;
     }

@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(ContactStatesFollowTheirNamedTransitions) {
   states.stop_acting(2);
   BOOST_TEST(states.is(2, ContactMode::released));
   BOOST_TEST(states.acting().empty());
-  states.start_acting(2);  // pushing again before the gap opened
+  states.start_acting(2);      // pushing again before the gap opened
   states.mask(2, 1e-10, 0.0);  // the contact is over
   BOOST_TEST(states.acting().empty());
   BOOST_TEST(states.is(2, ContactMode::masked));
@@ -115,8 +115,7 @@ BOOST_AUTO_TEST_CASE(ADipBelowZeroInsideAStepIsAContactAtItsFirstCrossing) {
   ClosedFormPath path = parabola(-depth, 0.5, a);
   solvers::ContactStates states(1, kAllowance_m);
   std::vector<solvers::Graze> grazes;
-  const auto missed =
-      solvers::scan_missed_contacts(states, path, 0.0, 1.0, {path.at(0.0)}, {path.at(1.0)}, {}, grazes);
+  const auto missed = solvers::scan_missed_contacts(states, path, 0.0, 1.0, {path.at(0.0)}, {path.at(1.0)}, {}, grazes);
   BOOST_TEST_REQUIRE(missed.has_value());
   BOOST_TEST(missed->t_s == 0.5 - std::sqrt(2.0 * depth / a), tt::tolerance(1e-12));
   BOOST_TEST(path.at(missed->t_s).gap_m <= 0.0);  // the root comes back on the closed side
@@ -146,16 +145,15 @@ BOOST_AUTO_TEST_CASE(AMaskedPairThatFliesAndSinksAgainRecloseAtTheLastCrossing) 
   solvers::ContactStates states(1, kAllowance_m);
   states.mask(0, 1e-10, 0.0);
   std::vector<solvers::Graze> grazes;
-  const auto missed =
-      solvers::scan_missed_contacts(states, path, 0.0, 1.0, {path.at(0.0)}, {path.at(1.0)}, {}, grazes);
+  const auto missed = solvers::scan_missed_contacts(states, path, 0.0, 1.0, {path.at(0.0)}, {path.at(1.0)}, {}, grazes);
   BOOST_TEST_REQUIRE(missed.has_value());
   BOOST_TEST(missed->t_s == 2.0 / 3.0, tt::tolerance(1e-12));
   // A flight lower than the 32 samples resolve: g = 1e-12 − (t − 0.51)²·(…) with only its top
   // above zero, between two samples; the apex is polished and the crossing after it found.
   const double apex_t = 0.5105, apex_g = 1e-12, a = 1.0;
   ClosedFormPath low = parabola(apex_g, apex_t, -a);
-  const auto low_missed = solvers::scan_missed_contacts(states, low, 0.5, 0.52, {low.at(0.5)},
-                                                        {low.at(0.52)}, {}, grazes);
+  const auto low_missed =
+      solvers::scan_missed_contacts(states, low, 0.5, 0.52, {low.at(0.5)}, {low.at(0.52)}, {}, grazes);
   BOOST_TEST_REQUIRE(low_missed.has_value());
   BOOST_TEST(low_missed->t_s == apex_t + std::sqrt(2.0 * apex_g / a), tt::tolerance(1e-9));
 }

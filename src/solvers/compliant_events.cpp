@@ -1,0 +1,197 @@
+// The compliant laws' events (law_events.hpp): contacts that begin, release and end at roots,
+// their force integrated with the motion.
+#include <algorithm>
+#include <optional>
+
+#include "law_events.hpp"
+#include "pounding/contact/compliant_law.hpp"
+#include "pounding/solvers/floor_impacts.hpp"
+
+namespace pounding::solvers {
+
+namespace {
+
+using dynamics::VectorXd;
+
+/// A compliant contact in progress: its law, its record and the integrals over it.
+struct OpenContact {
+  contact::CompliantContact law;
+  ImpactRecord record;
+  double work_kJ = 0.0;  // ∫F ġ dt: the contact's work on the slabs (−energy lost)
+};
+
+class CompliantEvents final : public LawEvents {
+ public:
+  explicit CompliantEvents(const EventContext& context)
+      : context_(context),
+        system_(context.system),
+        options_(context.options),
+        states_(context.states),
+        recorder_(context.recorder),
+        result_(context.result),
+        open_(system_.candidates().size()) {}
+
+  void add_forces(const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) const override {
+    for (std::size_t i : states_.acting()) system_.add_contact_force(y, i, force_kN(i, y), y_dot);
+  }
+  void add_force_jacobian(const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) const override {
+    for (std::size_t i : states_.acting()) {
+      const contact::GapState s = system_.gap(y, i);
+      const contact::ForceSlopes slopes = open_[i]->law.slopes(-s.gap_m, -s.gap_rate_mps);
+      system_.add_contact_force_jacobian(y, i, slopes.per_overlap_kN_per_m, slopes.per_rate_kNs_per_m, rows);
+    }
+  }
+  // From onset until its gap opens: the overlap −g (it falls through zero where the gap opens)
+  // and the law's switch function; while the force acts, the edge root.
+  void write_witnesses(double, const Eigen::Ref<const VectorXd>& y, const WitnessLayout& layout,
+                       Eigen::Ref<VectorXd> g) const override {
+    for (std::size_t i = 0; i < open_.size(); ++i) {
+      if (!open_[i]) continue;
+      const contact::GapState s = system_.gap(y, i);
+      g[layout.at(Witness::gap, i)] = -s.gap_m;
+      g[layout.at(Witness::force, i)] = open_[i]->law.switch_value(-s.gap_m, -s.gap_rate_mps);
+    }
+    for (std::size_t i : states_.acting()) g[layout.at(Witness::edge, i)] = edge_witness(system_.gap(y, i));
+  }
+  std::vector<ContactForce> contact_forces(double, const VectorXd& y) const override {
+    std::vector<ContactForce> forces;
+    for (std::size_t i : states_.acting()) forces.push_back({i, force_kN(i, y)});
+    return forces;
+  }
+  double constraint_power(double, const VectorXd&) const override { return 0.0; }
+  void on_event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) override;
+  void integrate(double t_a, double t_b, const VectorXd& y_b, const StateInterpolant& at) override;
+  void after_step(double, const VectorXd&) override {}
+  void finish(double t, const VectorXd& y) override;
+
+ private:
+  /// The law's force of compliant contact i (kN) at δ = −g.
+  double force_kN(std::size_t i, const Eigen::Ref<const VectorXd>& y) const {
+    const contact::GapState s = system_.gap(y, i);
+    return open_[i]->law.force_kN(-s.gap_m, -s.gap_rate_mps);
+  }
+  /// The rate of compliant contact i's switch function in state y (its unit per s).
+  double switch_rate(double t, const VectorXd& y, std::size_t i) const {
+    VectorXd y_dot(system_.state_size());
+    context_.derivative(t, y, y_dot);
+    const contact::GapState s = system_.gap(y, i);
+    return open_[i]->law.switch_rate(-s.gap_m, -s.gap_rate_mps, -system_.gap_acceleration(y, y_dot, i));
+  }
+  void begin_contact(std::size_t i, double t, const VectorXd& y);
+  void end_contact(std::size_t i, double t, const VectorXd& y);
+
+  EventContext context_;
+  const dynamics::CoupledSystem& system_;
+  const EventOptions& options_;
+  ContactStates& states_;
+  Recorder& recorder_;
+  RunResult& result_;
+  std::vector<std::optional<OpenContact>> open_;  // set from onset until the gap opens
+};
+
+void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
+  // A root is located to the solver's tolerance on either side of zero, so after the restart the
+  // same function may cross again: each root acts only if the state at it moves in the direction
+  // of its switch (closing gap, falling switch function, opening gap).
+  for (std::size_t i : crossed.edge) {
+    if (states_.is(i, ContactMode::compliant)) end_contact(i, t, y);
+  }
+  for (std::size_t i : crossed.force) {
+    if (!open_[i] || switch_rate(t, y, i) >= 0.0) continue;
+    contact::CompliantContact& law = open_[i]->law;
+    const bool acted = law.acts();
+    if (!acted && system_.gap(y, i).gap_m >= 0.0) continue;  // already open: the gap root ends it
+    law.toggle();
+    if (acted && !law.acts()) {
+      states_.stop_acting(i);  // tensile from here on: the slabs fly apart while still overlapping
+      open_[i]->record.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
+      open_[i]->record.duration_s = t - open_[i]->record.t_s;
+    } else if (!acted) {
+      states_.start_acting(i);  // pushing again before the gap opened: the same contact goes on
+    }                           // else a jankowski contact changed phase and acts on
+  }
+  for (std::size_t i : crossed.gap) {
+    const contact::GapState s = system_.gap(y, i);
+    if (states_.is(i, ContactMode::released) || states_.is(i, ContactMode::compliant)) {
+      if (s.gap_rate_mps >= 0.0) end_contact(i, t, y);  // the gap opened: the contact is over
+      continue;
+    }
+    if (!states_.is(i, ContactMode::armed) && !states_.is(i, ContactMode::masked)) continue;
+    if (!s.on_segment()) {
+      context_.passed_beside_edge(i);
+    } else if (s.gap_rate_mps < 0.0) {
+      begin_contact(i, t, y);
+    } else if (s.gap_m <= options_.contact_tolerance_m) {
+      result_.touches.push_back(touch_record(system_, t, i, s));
+      context_.mask(i, options_.reopen_gap_m, y);  // grazed: armed again once clearly open
+    }
+  }
+}
+
+void CompliantEvents::begin_contact(std::size_t i, double t, const VectorXd& y) {
+  // The effective mass and approach speed at onset, held for the contact so that the damping
+  // (and the Jacobian) stay smooth.
+  const contact::GapState s = system_.gap(y, i);
+  open_[i].emplace(OpenContact{contact::CompliantContact(options_.law, options_.contact_stiffness, options_.restitution,
+                                                         -s.gap_rate_mps, system_.normal_inverse_mass(y, i)),
+                               impact_at(system_, t, i, s)});
+  open_[i]->record.peak_force_kN = std::max(0.0, force_kN(i, y));
+  states_.start_acting(i);
+}
+
+void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
+  ImpactRecord& r = open_[i]->record;
+  if (states_.is(i, ContactMode::compliant)) {  // slid off the edge or the run ended while pushing
+    r.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
+    r.duration_s = t - r.t_s;
+  }
+  // What the contact took from the slabs (dissipated, or still in its spring at the run's end)
+  // counts as impact loss, as an impulse's does.
+  r.energy_lost_kJ = -open_[i]->work_kJ;
+  recorder_.add_impact_loss(r.energy_lost_kJ);
+  result_.impacts.push_back(r);
+  recorder_.stream_new_impacts(result_.impacts);
+  open_[i].reset();
+  context_.mask(i, options_.reopen_gap_m, y);
+}
+
+void CompliantEvents::integrate(double t_a, double t_b, const VectorXd& y_b, const StateInterpolant& at) {
+  // Composite Simpson on the step's interpolant: its error is of the interpolant's order, far
+  // below the solver tolerance for the smooth force inside a contact (no switch inside a step).
+  if (states_.acting().empty() || !(t_b > t_a)) return;
+  constexpr int kIntervals = 16;
+  VectorXd y(system_.state_size());
+  const double h = (t_b - t_a) / kIntervals;
+  for (int k = 0; k <= kIntervals; ++k) {
+    if (k == kIntervals) {
+      y = y_b;
+    } else {
+      at(t_a + k * h, y);
+    }
+    const double weight = (k == 0 || k == kIntervals ? 1.0 : k % 2 ? 4.0 : 2.0) * h / 3.0;
+    for (std::size_t i : states_.acting()) {
+      const double force = force_kN(i, y);
+      OpenContact& open = *open_[i];
+      open.record.peak_force_kN = std::max(open.record.peak_force_kN, force);
+      open.record.impulse_kNs += weight * force;
+      open.work_kJ += weight * force * system_.gap(y, i).gap_rate_mps;
+    }
+  }
+}
+
+void CompliantEvents::finish(double t, const VectorXd& y) {
+  for (std::size_t i = 0; i < open_.size(); ++i) {
+    if (open_[i]) end_contact(i, t, y);
+  }
+  // Compliant impacts are complete, so streamed, at their release; the result lists them by onset.
+  std::stable_sort(result_.impacts.begin(), result_.impacts.end(),
+                   [](const ImpactRecord& a, const ImpactRecord& b) { return a.t_s < b.t_s; });
+}
+
+}  // namespace
+
+std::unique_ptr<LawEvents> make_compliant_events(const EventContext& context) {
+  return std::make_unique<CompliantEvents>(context);
+}
+
+}  // namespace pounding::solvers
