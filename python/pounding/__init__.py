@@ -211,8 +211,8 @@ class RunResult:
     def __init__(self, run):
         self._run = run
         self.summary = _json.loads(run.summary_json())
-        for key in ("status", "status_detail", "impacts", "touches", "sustained_contacts", "peaks", "energy",
-                    "statistics"):
+        for key in ("status", "status_detail", "warnings", "impacts", "touches", "sustained_contacts", "peaks",
+                    "energy", "statistics"):
             setattr(self, key, self.summary[key])
         self._impacts_array = None
         self._history = None

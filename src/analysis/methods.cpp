@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <string>
 
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/dynamics/modal_system.hpp"
@@ -109,7 +110,10 @@ const std::vector<SettingSpec>& specs() {
        .member = member(&SolverSettings::dt_s, &UsedSettings::dt_s),
        .default_value = 0.05,  // the published value
        .range = Range{0.0, 0.1, "s", true},
-       .description = "fixed time step (s)"},
+       .description = "fixed time step (s)",
+       .details = "when not given: 0.05 s, or the record's sample spacing if that is shorter. A step longer than "
+                  "the spacing sees the record only at its ends, so the run answers for a record with the samples "
+                  "between left out; such a run carries the warning `record_undersampled`"},
       {.id = Setting::alpha,
        .key = "alpha",
        .option = "--alpha",
@@ -380,6 +384,16 @@ SolverSettings with_method(const SolverSettings& given, std::string_view method)
   return result;
 }
 
+/// hht's step when none is given: the published 0.05 s, or the record's sample spacing where that
+/// is shorter. A longer step sees the record only at its ends and leaves out the samples between.
+/// A spacing that is a short decimal up to round-off (0.019999999999999997) is taken as that decimal.
+double default_dt_s(const dynamics::CoupledSystem& system, double published_s) {
+  const double spacing_s = system.ground_motion().sample_spacing_s();
+  if (!(spacing_s < published_s * (1.0 - 1e-9))) return published_s;
+  const double decimal_s = std::stod(fmt::format("{:.6g}", spacing_s));
+  return std::abs(decimal_s - spacing_s) <= 1e-9 * spacing_s ? decimal_s : spacing_s;
+}
+
 UsedSettings resolve(const SolverSettings& given, const dynamics::CoupledSystem* system) {
   UsedSettings used;
   used.method = &method_info(given.method);
@@ -394,6 +408,7 @@ UsedSettings resolve(const SolverSettings& given, const dynamics::CoupledSystem*
         s.member);
   }
   if (system) {
+    if (applies(*used.method, dt_s) && !given.dt_s) used.dt_s = default_dt_s(*system, used.dt_s);
     if (applies(*used.method, atol)) used.atol_components = component_atol(*system, used.atol);
     if (applies(*used.method, hold_rtol)) used.atol_components = component_atol(*system, used.hold_rtol / 100);
   }

@@ -110,6 +110,21 @@ void check_modes_kept(const Scene& scene, const UsedSettings& used, const dynami
   }
 }
 
+/// A fixed step longer than the record's sample spacing leaves samples out of the forcing.
+std::vector<RunWarning> settings_warnings(const UsedSettings& used, const dynamics::CoupledSystem& system) {
+  std::vector<RunWarning> warnings;
+  const double spacing_s = system.ground_motion().sample_spacing_s();
+  if (applies(*used.method, Setting::dt_s) && system.ground_motion().skips_samples(used.dt_s)) {
+    warnings.push_back(
+        {"record_undersampled",
+         fmt::format("dt_s = {} s is longer than the record's sample spacing {:.6g} s: the scheme sees a_g only at its "
+                     "step ends (about 1 sample in {:.3g}), so the response and the energy audit are those of a record "
+                     "with the samples between left out; give dt_s <= {:.6g} s (the default when dt_s is not given)",
+                     used.dt_s, spacing_s, used.dt_s / spacing_s, spacing_s)});
+  }
+  return warnings;
+}
+
 }  // namespace
 
 void RunLimits::validate() const {
@@ -130,7 +145,7 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
     estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
     estimate.history_columns = static_cast<double>(solvers::history_columns(system, scene.output.history_floors).size());
   }
-  const UsedSettings used = resolve(scene.solver);
+  const UsedSettings used = resolve(scene.solver, &system);
   if (!used.method->event_driven) {
     estimate.min_steps = std::ceil(estimate.duration_s / used.dt_s);
   } else {
@@ -182,6 +197,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   report.g_mps2 = scene.excitation.g_mps2;
   report.contact_stiffness = scene.contact.used_stiffness();
   report.contact_damping = contact_damping(law, scene.contact.restitution);
+  report.warnings = settings_warnings(used, system);
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
   const std::string method(used.method->name);
   if (used.method->factory) {

@@ -144,6 +144,14 @@ std::optional<double> GroundMotion::next_sample_after(double t_s) const {
   return *next;
 }
 
+double GroundMotion::sample_spacing_s() const {
+  std::vector<double> intervals(time_s_.size() - 1);
+  for (std::size_t k = 0; k + 1 < time_s_.size(); ++k) intervals[k] = time_s_[k + 1] - time_s_[k];
+  const auto middle = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
+  std::nth_element(intervals.begin(), middle, intervals.end());
+  return *middle;
+}
+
 double GroundMotion::peak_mps2() const { return std::abs(accel_mps2_[peak_index_]); }
 double GroundMotion::peak_time_s() const { return time_s_[peak_index_]; }
 

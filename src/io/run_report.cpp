@@ -127,6 +127,14 @@ void append_solver(const analysis::RunReport& report, std::string& text) {
   }
 }
 
+/// One line per warning, each after a line break (the brief report has no final one).
+void append_warnings(const analysis::RunReport& report, std::string& text) {
+  for (const analysis::RunWarning& warning : report.warnings) {
+    if (!text.empty() && text.back() != '\n') text += '\n';
+    fmt::format_to(std::back_inserter(text), "Warning ({}): {}", warning.code, warning.message);
+  }
+}
+
 }  // namespace
 
 std::string method_settings_text(const analysis::RunReport& report) {
@@ -136,8 +144,11 @@ std::string method_settings_text(const analysis::RunReport& report) {
 std::string brief_report(const analysis::RunReport& report) {
   const solvers::RunResult& r = report.result;
   const std::string first = r.impacts.empty() ? "" : fmt::format(", first at t = {:.6f} s", r.impacts.front().t_s);
-  return fmt::format("{}: {}, {}, {} impact{}{}, run time {:.3f} s", report.scene, r.method, solvers::to_string(r.status),
-                     r.impacts.size(), r.impacts.size() == 1 ? "" : "s", first, r.statistics.wall_time_s);
+  std::string text =
+      fmt::format("{}: {}, {}, {} impact{}{}, run time {:.3f} s", report.scene, r.method, solvers::to_string(r.status),
+                  r.impacts.size(), r.impacts.size() == 1 ? "" : "s", first, r.statistics.wall_time_s);
+  append_warnings(report, text);
+  return text;
 }
 
 std::string full_report(const analysis::RunReport& report) {
@@ -155,6 +166,8 @@ std::string full_report(const analysis::RunReport& report) {
   append_contacts(report, text);
   append_response(report, text);
   append_solver(report, text);
+  append_warnings(report, text);
+  if (!report.warnings.empty()) text += '\n';
   return text;
 }
 

@@ -141,6 +141,12 @@ json setting_json(const analysis::SettingValue& value) {
 
 /// What the user gave, what the run used (the registry's settings of its method, with the real
 /// order, Newton solver and absolute tolerances per component) and what was given but not used.
+json warnings_json(const std::vector<analysis::RunWarning>& warnings) {
+  json list = json::array();
+  for (const analysis::RunWarning& w : warnings) list.push_back({{"code", w.code}, {"message", w.message}});
+  return list;
+}
+
 json settings_json(const analysis::RunReport& report) {
   json given = json::object(), used = json::object();
   for (const analysis::SettingEntry& e : analysis::given_entries(report.solver)) given[std::string(e.key)] = setting_json(e.value);
@@ -178,6 +184,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
           {"method", r.method},
           {"status", solvers::to_string(r.status)},
           {"status_detail", r.status_detail},
+          {"warnings", warnings_json(report.warnings)},
           {"settings", settings_json(report)},
           {"gap_m", report.gap_m},
           {"restitution", report.restitution},

@@ -10,17 +10,13 @@ void EnergyBalance::add_stretch(double t_a, double t_b, const std::function<dyna
     audit_.damping_kJ += closed_form->damping_kJ;
     return;
   }
-  // 3-point Gauss–Legendre on [t_a, t_b]: exact for the input power of a degree-5 interpolant
-  // times the linear a_g of one record interval.
-  static constexpr double kNodes[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-  static constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   const double half = 0.5 * (t_b - t_a), mid = 0.5 * (t_a + t_b);
   for (int k = 0; k < 3; ++k) {
-    const double t = mid + half * kNodes[k];
+    const double t = mid + half * kGaussNodes[k];
     const dynamics::VectorXd y = at(t);
-    audit_.input_kJ += half * kWeights[k] * system_.input_power(t, y);
-    audit_.damping_kJ += half * kWeights[k] * system_.damping_power(y);
-    audit_.constraint_work_kJ += half * kWeights[k] * constraint_power(t, y);
+    audit_.input_kJ += half * kGaussWeights[k] * system_.input_power(t, y);
+    audit_.damping_kJ += half * kGaussWeights[k] * system_.damping_power(y);
+    audit_.constraint_work_kJ += half * kGaussWeights[k] * constraint_power(t, y);
   }
 }
 

@@ -51,6 +51,13 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
 void check_work(const WorkEstimate& estimate, const RunLimits& limits);
 
 /// A run together with what it was run on, for writers and printers.
+/// Something about a completed run that its numbers alone do not say. `code` is stable (for
+/// scripts); `message` says what and what to do.
+struct RunWarning {
+  std::string code;  // record_undersampled
+  std::string message;
+};
+
 struct RunReport {
   std::string scene;
   double gap_m = 0.0;
@@ -66,6 +73,7 @@ struct RunReport {
   /// The law's damping from the restitution (contact_damping() in contact_laws.hpp); 0 for impulse.
   double contact_damping = 0.0;
   double g_mps2 = 9.81;                     // the scene's gravity: accelerations are also reported in g
+  std::vector<RunWarning> warnings = {};
 };
 
 /// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and

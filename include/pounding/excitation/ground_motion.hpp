@@ -64,6 +64,11 @@ class GroundMotion {
   /// no integrator step may cross. Empty past the last sample.
   std::optional<double> next_sample_after(double t_s) const;
   double end_s() const { return time_s_.back(); }
+  /// The record's sample spacing (s): the median interval, so that the short last interval of a
+  /// cut or an uneven sampling does not stand for the whole record.
+  double sample_spacing_s() const;
+  /// A fixed step of step_s (s) is longer than the sample spacing: it leaves samples out.
+  bool skips_samples(double step_s) const { return step_s > sample_spacing_s() * (1.0 + 1e-9); }
   /// max |a_g| (m/s²) and the time of that sample (s).
   double peak_mps2() const;
   double peak_time_s() const;

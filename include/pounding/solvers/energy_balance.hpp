@@ -3,6 +3,7 @@
 // accumulated stretch by stretch and impact by impact, and closed with the final state's
 // energies. Shared by every solution path, so their audits compare term by term.
 
+#include <array>
 #include <functional>
 #include <optional>
 
@@ -11,6 +12,11 @@
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::solvers {
+
+/// 3-point Gauss–Legendre on [−1, 1]: exact for the input power of a degree-5 interpolant times
+/// the linear a_g of one record interval.
+inline constexpr std::array<double, 3> kGaussNodes{-0.7745966692414834, 0.0, 0.7745966692414834};
+inline constexpr std::array<double, 3> kGaussWeights{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
 class EnergyBalance {
  public:
