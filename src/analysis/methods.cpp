@@ -12,7 +12,6 @@
 #include "pounding/model/mode.hpp"
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
-#include "pounding/solvers/exact_integrator.hpp"
 #include "pounding/solvers/modal_exact_integrator.hpp"
 #include "pounding/solvers/modal_integrator.hpp"
 

@@ -10,6 +10,21 @@
 
 namespace pounding::solvers {
 
+void start_held_stretch(std::unique_ptr<Integrator>& held, OdeFunctions& functions, const ExactSettings& settings,
+                        double t, const Eigen::VectorXd& y, double max_step_s) {
+  if (held) {
+    held->restart(t, y);
+  } else {
+    CvodeSettings tight;
+    tight.method = CvodeMethod::bdf;  // a stiff storey makes Adams crawl
+    tight.rtol = settings.hold_rtol;
+    tight.atol = settings.hold_atol;
+    tight.atol_vector = settings.hold_atol_vector;
+    held = std::make_unique<CvodeIntegrator>(functions, tight, t, y);
+  }
+  held->set_max_step(max_step_s);
+}
+
 ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynamics::CoupledSystem& system, double t0,
                                            const Eigen::VectorXd& y0, ExactSettings settings)
     : functions_(functions), system_(system), settings_(std::move(settings)) {

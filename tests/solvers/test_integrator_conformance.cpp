@@ -27,7 +27,7 @@
 
 #include "pounding/solvers/arkode_integrator.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
-#include "pounding/solvers/exact_integrator.hpp"
+#include "../support/state_space_exact.hpp"
 
 namespace bdata = boost::unit_test::data;
 namespace tt = boost::test_tools;
@@ -136,7 +136,9 @@ Factory sparse_rows(Factory make) {
 }
 
 Factory exact() {
-  return [](OdeFunctions& f, double t0, const VectorXd& y0) { return std::make_unique<ExactIntegrator>(f, t0, y0); };
+  return [](OdeFunctions& f, double t0, const VectorXd& y0) {
+    return std::make_unique<pounding::testing::StateSpaceExactIntegrator>(f, t0, y0);
+  };
 }
 
 std::vector<Method> methods() {

@@ -1,6 +1,6 @@
 // The exact path in modal form (ModalExactIntegrator): its oscillator step against a long-double
 // matrix exponential, its modal basis against the Rayleigh closed form, and its impacts against
-// the state-space exact path (ExactIntegrator) on the paper scene and a torsional scene.
+// the state-space exact path (pounding::testing::StateSpaceExactIntegrator) on the paper scene and a torsional scene.
 #define BOOST_TEST_MODULE modal_exact
 #include <boost/test/unit_test.hpp>
 
@@ -13,7 +13,7 @@
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/io/scene_reader.hpp"
 #include "pounding/model/modal_basis.hpp"
-#include "pounding/solvers/exact_integrator.hpp"
+#include "../support/state_space_exact.hpp"
 #include "pounding/solvers/modal_exact_integrator.hpp"
 #include "pounding/solvers/modal_propagator.hpp"
 
@@ -69,7 +69,7 @@ solvers::RunResult run_exact(const std::string& file, Form form, const io::Scene
   const solvers::IntegratorFactory factory = [&](solvers::OdeFunctions& f, double t0, const Eigen::VectorXd& y0)
       -> std::unique_ptr<solvers::Integrator> {
     if (form == Form::modal) return std::make_unique<solvers::ModalExactIntegrator>(f, system, t0, y0);
-    return std::make_unique<solvers::ExactIntegrator>(f, t0, y0);
+    return std::make_unique<pounding::testing::StateSpaceExactIntegrator>(f, t0, y0);
   };
   solvers::RunResult result = solvers::run_event_driven(system, exact_options(scene, form == Form::modal), factory, "exact");
   BOOST_TEST_REQUIRE(solvers::to_string(result.status) == "completed");

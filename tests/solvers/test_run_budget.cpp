@@ -2,7 +2,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "../support/two_slabs.hpp"
-#include "pounding/solvers/exact_integrator.hpp"
+#include "../support/state_space_exact.hpp"
 #include "pounding/solvers/hht.hpp"
 #include "pounding/solvers/run_budget.hpp"
 
@@ -54,7 +54,7 @@ class InterruptWhenHeld final : public solvers::Integrator {
 
  private:
   solvers::OdeFunctions& functions_;
-  solvers::ExactIntegrator exact_;
+  pounding::testing::StateSpaceExactIntegrator exact_;
 };
 
 }  // namespace

@@ -11,7 +11,7 @@
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
-#include "pounding/solvers/exact_integrator.hpp"
+#include "state_space_exact.hpp"
 #include "pounding/solvers/modal_exact_integrator.hpp"
 
 namespace pounding::testing {
@@ -68,8 +68,9 @@ inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Poly
 }
 
 inline solvers::IntegratorFactory exact(solvers::ExactSettings settings = {}) {
-  return [=](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
-    return std::make_unique<solvers::ExactIntegrator>(functions, t0, y0, settings);
+  return [=](solvers::OdeFunctions& functions, double t0,
+             const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+    return std::make_unique<testing::StateSpaceExactIntegrator>(functions, t0, y0, settings);
   };
 }
 

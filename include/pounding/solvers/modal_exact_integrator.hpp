@@ -10,13 +10,13 @@
 //
 // The physical state is built on demand: in full (Φη) at step ends and on interpolate(), and for
 // the root functions only at the contact floors (their rows of Φ), so locating a crossing costs
-// O(modes × contact floors) per evaluation, not O(n²). Roots are found as by ExactIntegrator: a
+// O(modes × contact floors) per evaluation, not O(n²). Roots are found as a
 // sign change over each step (the loop bounds steps to a fraction of the shortest period that
 // moves a gap, and examines every interior minimum through interpolate()) polished to round-off.
 //
-// Held stretches are integrated by CVODE BDF at ExactSettings' tolerances, as in ExactIntegrator
-// (exact_integrator.hpp says why); ExactIntegrator remains the path for ODEs that are not a
-// CoupledSystem's free flight.
+// Held stretches are integrated by CVODE BDF at ExactSettings' tolerances (exact_settings.hpp
+// says why). The tests check this form against a state-space exact propagator of the whole J
+// (tests/support/state_space_exact.hpp).
 //
 // Truncation (ExactSettings::modes_cutoff_hz > 0, off by default): only each building's modes
 // below the cut-off are advanced; the others are taken as their quasi-static response R a_g(t)
@@ -35,7 +35,7 @@
 
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/model/modal_basis.hpp"
-#include "pounding/solvers/exact_integrator.hpp"
+#include "pounding/solvers/exact_settings.hpp"
 #include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/modal_propagator.hpp"
 

@@ -1,5 +1,8 @@
 #pragma once
-// The exact propagator (ground truth for the linear model) behind the Integrator seam.
+// The state-space exact propagator, for tests: an independent reference for the exact path
+// (ModalExactIntegrator, which propagates each building's real modes instead) and an exact
+// integrator for any linear OdeFunctions, as the integrator conformance suite uses it. Not part
+// of the library: every run's `exact` method is the modal form.
 //
 // Free flight (OdeFunctions::is_linear()) is linear with piecewise-linear forcing: at every
 // (re)start the phase is frozen as ẏ = J y + b(t) with J = OdeFunctions::jacobian(t₀, y₀) and
@@ -25,31 +28,22 @@
 #include <memory>
 
 #include "pounding/solvers/cvode_integrator.hpp"
+#include "pounding/solvers/exact_settings.hpp"
 #include "pounding/solvers/integrator.hpp"
 
-namespace pounding::solvers {
+namespace pounding::testing {
 
-/// Tolerances of the held stretches, the part of the exact path that is integrated numerically,
-/// and the modal form's truncation.
-struct ExactSettings {
-  double hold_rtol = 1e-12;
-  double hold_atol = 1e-14;  // every component (m, rad and their rates) unless hold_atol_vector is set
-  Eigen::VectorXd hold_atol_vector{};  // per state component; empty: hold_atol for every one
-  /// ModalExactIntegrator only: keep each building's modes below this frequency (Hz), the rest as
-  /// their quasi-static response (model::keep_modes_below). 0: every mode, the exact path.
-  double modes_cutoff_hz = 0.0;
-};
+using solvers::ExactSettings;
+using solvers::Integrator;
+using solvers::IntegratorCounters;
+using solvers::OdeFunctions;
+using solvers::StepOutcome;
 
-/// Starts a held stretch at (t, y) with at most `max_step_s` per step: restarts `held`, or first
-/// creates it as CVODE BDF at `settings`' tolerances. Both forms of the exact path call it.
-void start_held_stretch(std::unique_ptr<Integrator>& held, OdeFunctions& functions, const ExactSettings& settings,
-                        double t, const Eigen::VectorXd& y, double max_step_s);
-
-class ExactIntegrator final : public Integrator {
+class StateSpaceExactIntegrator final : public Integrator {
  public:
   /// `functions` must outlive the integrator.
   /// @throws std::runtime_error if a free-flight J cannot be diagonalised.
-  ExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0, ExactSettings settings = {});
+  StateSpaceExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0, ExactSettings settings = {});
 
   void restart(double t, const Eigen::VectorXd& y) override;
   void set_max_step(double h_s) override;
@@ -74,7 +68,7 @@ class ExactIntegrator final : public Integrator {
   void freeze_phase(double t, const Eigen::VectorXd& y);
   void keep_one_of_each_pair(const Eigen::VectorXcd& eigenvalues, const Eigen::MatrixXcd& vectors,
                              const Eigen::MatrixXcd& inverse);
-  Eigen::VectorXd forcing(double t);   // b(t) = f(t, y_phase) − J y_phase
+  Eigen::VectorXd forcing(double t);  // b(t) = f(t, y_phase) − J y_phase
   Segment segment_from(double t, const ComplexVector& eta, double t_end);
   ComplexVector modal(const Segment& segment, double t) const;
   Eigen::VectorXd physical(const ComplexVector& eta) const { return (vectors_ * eta).real(); }
@@ -86,15 +80,15 @@ class ExactIntegrator final : public Integrator {
   bool held_phase_ = false;
   Eigen::MatrixXd jacobian_;
   Eigen::MatrixXd decomposed_jacobian_;  // the J that eigenvalues_ and vectors_ decompose
-  Eigen::VectorXd y_phase_;           // the linearisation point of this phase
+  Eigen::VectorXd y_phase_;              // the linearisation point of this phase
   // The modes advanced: one of each conjugate pair and the real ones (keep_one_of_each_pair).
   Eigen::VectorXcd eigenvalues_;
-  Eigen::MatrixXcd vectors_;       // columns v_k scaled by their weight (2 for a pair), n × m
-  Eigen::MatrixXcd inverse_rows_;  // the matching rows of V⁻¹, m × n
+  Eigen::MatrixXcd vectors_;          // columns v_k scaled by their weight (2 for a pair), n × m
+  Eigen::MatrixXcd inverse_rows_;     // the matching rows of V⁻¹, m × n
   Segment segment_;                   // the last step's forcing, for interpolation inside it
   double forcing_fitted_to_s_ = 0.0;  // segment_'s forcing holds up to this stop time (NaN: refit)
   Eigen::VectorXd state_;
-  Eigen::VectorXd roots_start_;       // root functions at the current time
+  Eigen::VectorXd roots_start_;  // root functions at the current time
   std::vector<int> roots_found_;
   double t_s_ = 0.0;
   double max_step_s_ = 0.01;
@@ -102,4 +96,4 @@ class ExactIntegrator final : public Integrator {
   IntegratorCounters counters_;
 };
 
-}  // namespace pounding::solvers
+}  // namespace pounding::testing

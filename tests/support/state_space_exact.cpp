@@ -1,4 +1,4 @@
-#include "pounding/solvers/exact_integrator.hpp"
+#include "state_space_exact.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -7,7 +7,9 @@
 
 #include "pounding/solvers/root_finding.hpp"
 
-namespace pounding::solvers {
+namespace pounding::testing {
+
+using namespace pounding::solvers;
 namespace {
 
 using Complex = std::complex<double>;
@@ -31,27 +33,13 @@ std::pair<Complex, Complex> phi_functions(Complex z) {
 
 }  // namespace
 
-void start_held_stretch(std::unique_ptr<Integrator>& held, OdeFunctions& functions, const ExactSettings& settings,
-                        double t, const Eigen::VectorXd& y, double max_step_s) {
-  if (held) {
-    held->restart(t, y);
-  } else {
-    CvodeSettings tight;
-    tight.method = CvodeMethod::bdf;  // a stiff storey makes Adams crawl
-    tight.rtol = settings.hold_rtol;
-    tight.atol = settings.hold_atol;
-    tight.atol_vector = settings.hold_atol_vector;
-    held = std::make_unique<CvodeIntegrator>(functions, tight, t, y);
-  }
-  held->set_max_step(max_step_s);
-}
-
-ExactIntegrator::ExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0, ExactSettings settings)
+StateSpaceExactIntegrator::StateSpaceExactIntegrator(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0,
+                                                     ExactSettings settings)
     : functions_(functions), settings_(settings), jacobian_(functions.state_size(), functions.state_size()) {
   restart(t0, y0);
 }
 
-void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
+void StateSpaceExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   counters_ = {};  // like CVODE's, the counters run from the last restart
   held_phase_ = !functions_.is_linear();
   if (held_phase_) {
@@ -66,17 +54,17 @@ void ExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   roots_start_ = roots_at(t, y);
 }
 
-void ExactIntegrator::set_max_step(double h_s) {
+void StateSpaceExactIntegrator::set_max_step(double h_s) {
   max_step_s_ = h_s;
   if (held_phase_) held_->set_max_step(h_s);
 }
 
-void ExactIntegrator::set_stop_time(double t_s) {
+void StateSpaceExactIntegrator::set_stop_time(double t_s) {
   stop_time_s_ = t_s;
   if (held_phase_) held_->set_stop_time(t_s);
 }
 
-void ExactIntegrator::freeze_phase(double t, const Eigen::VectorXd& y) {
+void StateSpaceExactIntegrator::freeze_phase(double t, const Eigen::VectorXd& y) {
   functions_.jacobian(t, y, jacobian_);
   ++counters_.jacobian_evaluations;
   y_phase_ = y;
@@ -98,8 +86,9 @@ void ExactIntegrator::freeze_phase(double t, const Eigen::VectorXd& y) {
   decomposed_jacobian_ = jacobian_;
 }
 
-void ExactIntegrator::keep_one_of_each_pair(const Eigen::VectorXcd& eigenvalues, const Eigen::MatrixXcd& vectors,
-                                            const Eigen::MatrixXcd& inverse) {
+void StateSpaceExactIntegrator::keep_one_of_each_pair(const Eigen::VectorXcd& eigenvalues,
+                                                      const Eigen::MatrixXcd& vectors,
+                                                      const Eigen::MatrixXcd& inverse) {
   // J is real, so its complex eigenvalues come in conjugate pairs with conjugate eigenvectors
   // (Eigen stores them side by side), and a real state has conjugate modal coordinates on them:
   // y = Re(Σ w_k v_k η_k) over one member of each pair (w = 2) and the real eigenvalues (w = 1).
@@ -131,14 +120,15 @@ void ExactIntegrator::keep_one_of_each_pair(const Eigen::VectorXcd& eigenvalues,
   }
 }
 
-Eigen::VectorXd ExactIntegrator::forcing(double t) {
+Eigen::VectorXd StateSpaceExactIntegrator::forcing(double t) {
   Eigen::VectorXd f(y_phase_.size());
   functions_.rhs(t, y_phase_, f);
   ++counters_.rhs_evaluations;
   return f - jacobian_ * y_phase_;
 }
 
-ExactIntegrator::Segment ExactIntegrator::segment_from(double t, const ComplexVector& eta, double t_end) {
+StateSpaceExactIntegrator::Segment StateSpaceExactIntegrator::segment_from(double t, const ComplexVector& eta,
+                                                                           double t_end) {
   // b is linear between record samples and no step crosses one (they are stop times), so two
   // values inside the step fix it exactly.
   const Eigen::VectorXd b0 = forcing(t);
@@ -147,7 +137,7 @@ ExactIntegrator::Segment ExactIntegrator::segment_from(double t, const ComplexVe
   return {t, eta, inverse_rows_ * b0.cast<Complex>(), inverse_rows_ * b1.cast<Complex>()};
 }
 
-ExactIntegrator::ComplexVector ExactIntegrator::modal(const Segment& segment, double t) const {
+StateSpaceExactIntegrator::ComplexVector StateSpaceExactIntegrator::modal(const Segment& segment, double t) const {
   const double tau = t - segment.t_start_s;
   ComplexVector eta(eigenvalues_.size());
   for (Eigen::Index k = 0; k < eta.size(); ++k) {
@@ -158,14 +148,14 @@ ExactIntegrator::ComplexVector ExactIntegrator::modal(const Segment& segment, do
   return eta;
 }
 
-Eigen::VectorXd ExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
+Eigen::VectorXd StateSpaceExactIntegrator::roots_at(double t, const Eigen::VectorXd& y) {
   Eigen::VectorXd g(functions_.root_count());
   functions_.roots(t, y, g);
   ++counters_.root_evaluations;
   return g;
 }
 
-StepOutcome ExactIntegrator::step(double t_final) {
+StepOutcome StateSpaceExactIntegrator::step(double t_final) {
   if (held_phase_) return held_->step(t_final);
   const double t_end = std::min({t_s_ + max_step_s_, stop_time_s_, t_final});
   if (forcing_fitted_to_s_ == stop_time_s_) {
@@ -210,7 +200,7 @@ StepOutcome ExactIntegrator::step(double t_final) {
   return {StepKind::stop_time, t_end, {}};
 }
 
-void ExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
+void StateSpaceExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
   if (held_phase_) {
     held_->interpolate(t, y);
   } else {
@@ -218,4 +208,4 @@ void ExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
   }
 }
 
-}  // namespace pounding::solvers
+}  // namespace pounding::testing
