@@ -1,5 +1,6 @@
 #include "commands.hpp"
 #include "interrupts.hpp"
+#include "progress_line.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -182,6 +183,12 @@ int run_run(const RunCommand& command, const std::string& command_line) {
   // History and impacts reach the folder as they are computed: a run killed outright leaves them
   // as .partial files (and no summary.json); an orderly end renames them and adds the summary.
   io::StreamedRunFiles files(folder);
+  std::optional<ProgressLine> progress;
+  if (ProgressLine::wanted(command.no_progress)) {
+    progress.emplace();
+    files.on_progress(
+        [&progress](double t_s, double end_s, std::size_t impacts) { progress->update(t_s, end_s, impacts); });
+  }
   try {
     scene.validate();
     limits.validate();
@@ -199,6 +206,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
     }
     throw error.renamed(option_names(command), command.scene);
   }
+  if (progress) progress->clear();
   files.finish(*report, provenance);
   fmt::print("{}", io::full_report(*report));
   fmt::print("Wrote {}/summary.json, impacts.csv{}\n", folder.string(),
@@ -330,6 +338,9 @@ int run_check(const CheckCommand& command) {
   for (const auto& c : candidates) fmt::print("  level {}: {}\n", c.level, contact::describe(c));
   const analysis::UsedSettings used = analysis::resolve(scene.solver, &system);
   fmt::print("Solver: {} ({}): {}\n", scene.solver.method, used.method->description, analysis::describe_used_settings(used));
+  for (const analysis::RunWarning& warning : analysis::scene_warnings(scene)) {
+    fmt::print("Warning ({}): {}\n", warning.code, warning.message);
+  }
   return 0;
 }
 
@@ -377,8 +388,13 @@ int run_laws(const LawsCommand& command) {
           law.stiffness_key.empty() ? "no stiffness"
                                     : fmt::format("default {} = {:g} {} ({})", law.stiffness_key, law.default_stiffness,
                                                   law.stiffness_unit, law.stiffness_source);
+      // Without a closed form the rebound depends on the masses and the approach speed: say where it is measured.
+      const std::string rebound_text =
+          law.rebound
+              ? rebound.dump()
+              : "no closed form (measured on a two-slab impact: docs/guide/contact-laws.md, 'Which law for what')";
       fmt::print("{:<12} {}\n{:<12} {}; rebound at e = {}: {}\n", law.name, law.description, "", stiffness,
-                 command.restitution, rebound.dump());
+                 command.restitution, rebound_text);
       continue;
     }
     const auto or_null = [](std::string_view text) { return text.empty() ? nlohmann::json(nullptr) : nlohmann::json(text); };

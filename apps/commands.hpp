@@ -62,6 +62,7 @@ struct RunCommand {
   std::optional<long> max_steps;
   std::optional<double> max_wall_time_s;
   std::optional<double> max_history_values;
+  bool no_progress = false;  // no progress line even on a terminal
 };
 
 struct StudyCommand {

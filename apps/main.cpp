@@ -29,7 +29,8 @@ void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& r
       "Record file replacing the scene's (path from the current folder); the scene's format, units, scaling and "
       "direction still apply, its dt_s, columns and cut do not");
   command.add_option("--record-format", record.format, "Format of the record: peer-at2, columns or single");
-  command.add_option("--units", record.units, "Units of the record's accelerations: g, m/s2 or cm/s2");
+  command.add_option("--units", record.units,
+                     "Units of the record's accelerations: " + std::string(pounding::excitation::kAccelUnitChoices));
   command.add_option("--record-dt", record.dt_s, "single: the record's sample spacing (s); other formats: re-spaces it");
   command.add_option("--record-column", record.accel_column, "Column of the acceleration in the record (from 1)");
   command.add_option("--scale", record.scale_factor, "Multiply the record by this (replaces the scene's scaling)");
@@ -176,6 +177,9 @@ int main(int argc, char** argv) {
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
   run_app->add_option("--max-history-values", run.max_history_values,
                       "Refuse a run whose history.csv would hold more values (default 2e7)");
+  run_app->add_flag("--no-progress", run.no_progress,
+                    "No progress line (simulated time, impacts) on the terminal while the run goes; it is never "
+                    "shown when stderr is not a terminal");
 
   pounding::cli::StudyCommand study;
   CLI::App* study_app =
@@ -216,7 +220,9 @@ int main(int argc, char** argv) {
   spectrum_app->add_option("--format", spectrum.format,
                            "Format of the records: peer-at2, columns or single (default: peer-at2 for .AT2 files, "
                            "else columns)");
-  spectrum_app->add_option("--units", spectrum.units, "Units of the records' accelerations: g, m/s2 or cm/s2")
+  spectrum_app
+      ->add_option("--units", spectrum.units,
+                   "Units of the records' accelerations: " + std::string(pounding::excitation::kAccelUnitChoices))
       ->capture_default_str();
   spectrum_app->add_option("--record-dt", spectrum.dt_s, "single: the records' sample spacing (s); other formats: re-spaces them");
   spectrum_app->add_option("--record-column", spectrum.accel_columns,

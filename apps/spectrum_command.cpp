@@ -35,7 +35,7 @@ excitation::ExcitationSpec record_spec(const SpectrumCommand& command, std::size
   if (!parsed_format) throw InputError("--format", format, "must be peer-at2, columns or single");
   spec.read.format = *parsed_format;
   const auto units = excitation::parse_accel_units(command.units);
-  if (!units) throw InputError("--units", command.units, "must be g, m/s2 or cm/s2");
+  if (!units) throw InputError("--units", command.units, fmt::format("must be {}", excitation::kAccelUnitChoices));
   spec.units = *units;
   if (!command.accel_columns.empty()) {
     spec.read.accel_column = command.accel_columns[command.accel_columns.size() == 1 ? 0 : index];

@@ -93,6 +93,7 @@ solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
   options.modes_cutoff_hz = used.modes_cutoff_hz;
   options.clearance_steps = method.clearance_steps;
+  options.max_events_per_s = used.max_events_per_s;
   return options;
 }
 
@@ -109,6 +110,32 @@ void check_modes_kept(const Scene& scene, const UsedSettings& used, const dynami
                      scene.file.string());
   }
 }
+
+}  // namespace
+
+std::vector<RunWarning> scene_warnings(const Scene& scene) {
+  constexpr double kLightest_t_per_m2 = 0.1, kHeaviest_t_per_m2 = 10.0;
+  std::vector<RunWarning> warnings;
+  for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
+    const model::BuildingDefinition& building = scene.buildings[b];
+    const double area_m2 = std::abs(building.slab.signed_area());
+    for (std::size_t f = 0; f < building.mass_t.size(); ++f) {
+      const double per_area = building.mass_t[f] / area_m2;
+      if (per_area >= kLightest_t_per_m2 && per_area <= kHeaviest_t_per_m2) continue;
+      warnings.push_back({
+          "implausible_floor_mass",
+          fmt::format("building[{}] '{}' floor {}: mass_t = {:.6g} t on {:.6g} m² of slab is {:.3g} t/m² (floors weigh "
+                      "about 0.5-2 t/m²{}); fine if the slab stands in for a rigid wall or a massless one on purpose",
+                      b + 1, building.name, f + 1, building.mass_t[f], area_m2, per_area,
+                      per_area >= 500.0 ? ": a thousand times that is kilograms given as tonnes?" : ""),
+      });
+      break;  // once per building
+    }
+  }
+  return warnings;
+}
+
+namespace {
 
 /// A fixed step longer than the record's sample spacing leaves samples out of the forcing.
 std::vector<RunWarning> settings_warnings(const UsedSettings& used, const dynamics::CoupledSystem& system) {
@@ -197,7 +224,8 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   report.g_mps2 = scene.excitation.g_mps2;
   report.contact_stiffness = scene.contact.used_stiffness();
   report.contact_damping = contact_damping(law, scene.contact.restitution);
-  report.warnings = settings_warnings(used, system);
+  report.warnings = scene_warnings(scene);
+  for (RunWarning& warning : settings_warnings(used, system)) report.warnings.push_back(std::move(warning));
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
   const std::string method(used.method->name);
   if (used.method->factory) {

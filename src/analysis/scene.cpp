@@ -153,7 +153,7 @@ void validate_levels(const Scene& scene) {
   const auto elevations = [&](std::size_t b) { return model::floor_elevations(scene.buildings[b]); };
   throw InputError(building_key(1) + ".storey_height_m", fmt::format("[{}]", fmt::join(scene.buildings[1].storey_height_m, ", ")),
                    fmt::format("no floor of building 2 stands at the elevation of a floor of building 1 "
-                               "(building 1's floors at {} m, building 2's at {} m, matched within "
+                               "(building 1's floors at {:.6g} m, building 2's at {:.6g} m, matched within "
                                "contact.level_tolerance_m = {} m): their slabs could only strike columns, and "
                                "slab-to-column impacts are outside this model",
                                fmt::join(elevations(0), ", "), fmt::join(elevations(1), ", "), tolerance));

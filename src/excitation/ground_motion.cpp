@@ -15,6 +15,10 @@ double unit_to_mps2(AccelUnits units, double g_mps2) {
     case AccelUnits::g: return g_mps2;
     case AccelUnits::m_per_s2: return 1.0;
     case AccelUnits::cm_per_s2: return 0.01;
+    case AccelUnits::in_per_s2:
+      return 0.0254;  // exact, by the definition of the inch
+    case AccelUnits::ft_per_s2:
+      return 0.3048;
   }
   return 1.0;
 }
@@ -84,6 +88,8 @@ std::optional<AccelUnits> parse_accel_units(std::string_view name) {
   if (name == "g") return AccelUnits::g;
   if (name == "m/s2") return AccelUnits::m_per_s2;
   if (name == "cm/s2") return AccelUnits::cm_per_s2;
+  if (name == "in/s2") return AccelUnits::in_per_s2;
+  if (name == "ft/s2") return AccelUnits::ft_per_s2;
   return std::nullopt;
 }
 

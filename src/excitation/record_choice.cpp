@@ -35,7 +35,7 @@ ExcitationSpec with_record(ExcitationSpec spec, const RecordChoice& choice) {
   }
   if (choice.units) {
     const auto units = parse_accel_units(*choice.units);
-    if (!units) throw InputError("excitation.units", *choice.units, "expected g, m/s2 or cm/s2");
+    if (!units) throw InputError("excitation.units", *choice.units, fmt::format("expected {}", kAccelUnitChoices));
     spec.units = *units;
   }
   if (choice.dt_s) (spec.read.format == RecordFormat::single ? spec.read.dt_s : spec.dt_override_s) = *choice.dt_s;

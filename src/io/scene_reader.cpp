@@ -448,7 +448,8 @@ excitation::ExcitationSpec read_excitation(TableReader table, const std::filesys
   spec.read.format = *format;
   const toml::node& units_node = table.require("units");
   const auto units = excitation::parse_accel_units(table.string_of(units_node, table.key_path("units")));
-  if (!units) throw table.error(units_node, table.key_path("units"), "expected g, m/s2 or cm/s2");
+  if (!units)
+    throw table.error(units_node, table.key_path("units"), fmt::format("expected {}", excitation::kAccelUnitChoices));
   spec.units = *units;
 
   const std::optional<double> dt = table.optional_number("dt_s");

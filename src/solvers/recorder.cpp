@@ -130,6 +130,7 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                        const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
                        const std::optional<StretchEnergy>& closed_form, const ComponentsAt& components_at) {
   if (!(t_b > t_a)) return;
+  if (sink_ != nullptr) sink_->progress(t_b, system_.ground_motion().end_s(), impacts_streamed_);
   energy_.add_stretch(t_a, t_b, at, constraint_power, closed_form);
   // The stretch starts where the last instant recorded left off: the previous step's end or an
   // event's state after the event, with the dynamics that go on from there. Swapped out before the

@@ -34,6 +34,9 @@ void give(analysis::SolverSettings& s, const analysis::MethodInfo& method, Setti
     case Setting::contact_tolerance_m: s.contact_tolerance_m = 1e-3; break;
     case Setting::max_halvings: s.max_halvings = 10; break;
     case Setting::event_location: s.event_location = "interpolate"; break;
+    case Setting::max_events_per_s:
+      s.max_events_per_s = 500.0;
+      break;
   }
 }
 
@@ -144,13 +147,15 @@ BOOST_AUTO_TEST_CASE(UsedSettingsAreTheRealOnes) {
   BOOST_TEST(erk.order == 5);
   std::set<std::string_view> keys;
   for (const auto& entry : analysis::used_entries(erk)) keys.insert(entry.key);
-  BOOST_TEST((keys == std::set<std::string_view>{"order", "rtol", "atol", "form"}));  // no Newton iterations
+  BOOST_TEST((keys == std::set<std::string_view>{"order", "rtol", "atol", "form",
+                                                 "max_events_per_s"}));  // no Newton iterations
   s = {};
   s.newton = "dense";
   const analysis::UsedSettings bdf = analysis::resolve(s);
   BOOST_TEST(bdf.newton == "dense");
   BOOST_TEST(bdf.order == 0);
-  BOOST_TEST(analysis::describe_used_settings(bdf) == "rtol 1e-08, atol 1e-10, newton dense, form physical");
+  BOOST_TEST(analysis::describe_used_settings(bdf) ==
+             "rtol 1e-08, atol 1e-10, newton dense, form physical, max_events_per_s 2000");
   BOOST_TEST(analysis::given_entries(s).size() == 1u);
   s.form = "modal";
   BOOST_TEST(analysis::resolve(s).form == "modal");

@@ -47,6 +47,13 @@ BOOST_AUTO_TEST_CASE(ConvertsUnitsToMetresPerSecondSquared) {
   ExcitationSpec in_g = spec_in(AccelUnits::g);
   in_g.g_mps2 = 9.80665;
   BOOST_TEST(process_record(ramp(3, 0.01), in_g).accel_mps2()[2] == 2 * 9.80665, tt::tolerance(1e-15));
+  // US customary records: the inch is 0.0254 m and the foot 0.3048 m exactly.
+  BOOST_TEST(process_record(ramp(3, 0.01), spec_in(AccelUnits::in_per_s2)).accel_mps2()[2] == 2 * 0.0254,
+             tt::tolerance(1e-15));
+  BOOST_TEST(process_record(ramp(3, 0.01), spec_in(AccelUnits::ft_per_s2)).accel_mps2()[2] == 2 * 0.3048,
+             tt::tolerance(1e-15));
+  BOOST_TEST((parse_accel_units("in/s2") == AccelUnits::in_per_s2));
+  BOOST_TEST(!parse_accel_units("in/s^2").has_value());
 }
 
 BOOST_AUTO_TEST_CASE(TimeStepOverrideRespacesTheSamples) {

@@ -83,7 +83,7 @@ BOOST_AUTO_TEST_CASE(ErrorsNameTheListFileTheLineAndTheField) {
   require_list_error("a.AT2\n\n# fine so far\na.AT2 pga_g=abc\n", 4, "pga_g", "abc");
   require_list_error("a.AT2 colour=red\n", 1, "colour", "red");
   require_list_error("a.AT2 format=csv\n", 1, "format", "csv");
-  require_list_error("a.AT2 units=ft/s2\n", 1, "units", "ft/s2");
+  require_list_error("a.AT2 units=furlong/s2\n", 1, "units", "furlong/s2");
   require_list_error("a.AT2 pga_g=0.3 scale=2\n", 1, "scale", "2");
   require_list_error("a.AT2 pga_g=0.3 pga_g=0.2\n", 1, "pga_g", "0.2");
   require_list_error("a.AT2 dt_s=2\n", 1, "dt_s", "2");

@@ -29,7 +29,21 @@ class CoupledSystem;
 namespace pounding::analysis {
 
 /// The keys of [solver] (docs/scene-format.md), in the order they are listed and written.
-enum class Setting { order, rtol, atol, newton, form, hold_rtol, modes_cutoff_hz, dt_s, alpha, contact_tolerance_m, max_halvings, event_location };
+enum class Setting {
+  order,
+  rtol,
+  atol,
+  newton,
+  form,
+  hold_rtol,
+  modes_cutoff_hz,
+  dt_s,
+  alpha,
+  contact_tolerance_m,
+  max_halvings,
+  event_location,
+  max_events_per_s
+};
 
 struct SolverSettings;
 struct UsedSettings;
@@ -85,6 +99,7 @@ struct SolverSettings {
   std::optional<double> contact_tolerance_m;
   std::optional<int> max_halvings;
   std::optional<std::string> event_location;  // halving | end-of-step | interpolate
+  std::optional<double> max_events_per_s;     // event-driven: more in one simulated second stops the run
   /// Given settings this method does not use, with their values as text: what a scene file set
   /// for its own method when the command line runs another (with_method()). Never used.
   std::map<std::string, std::string> not_used;
@@ -138,6 +153,7 @@ struct UsedSettings {
   double contact_tolerance_m = 0.0;
   int max_halvings = 0;
   std::string event_location;
+  double max_events_per_s = 0.0;  // 1/s
   /// Per component, of atol (or of hold_rtol / 100 for exact); set by resolve() given a system.
   std::optional<ComponentAtol> atol_components;
 };

@@ -54,7 +54,7 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits);
 /// Something about a completed run that its numbers alone do not say. `code` is stable (for
 /// scripts); `message` says what and what to do.
 struct RunWarning {
-  std::string code;  // record_undersampled
+  std::string code;  // record_undersampled, implausible_floor_mass
   std::string message;
 };
 
@@ -84,6 +84,12 @@ struct RunReport {
 ///   a contact law the method does not run)
 ///   or a run whose estimate exceeds the limits; numerical
 ///   trouble, an exhausted budget or an interrupt come back in the status.
+/// What a valid scene may still have got wrong: a floor whose mass per slab area lies outside
+/// 0.1–10 t/m² (floors weigh about 0.5–2 t/m²; 1000 times that is kilograms given as tonnes),
+/// once per building. A rigid-wall stand-in (a huge mass on purpose) is flagged too; its message
+/// says so. `pounding check` prints them and every run's report carries them.
+std::vector<RunWarning> scene_warnings(const Scene& scene);
+
 RunReport run_scene(const Scene& scene, const RunLimits& limits = {}, solvers::RunSink* sink = nullptr);
 
 }  // namespace pounding::analysis

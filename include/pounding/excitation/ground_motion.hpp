@@ -5,14 +5,17 @@
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include "pounding/excitation/record_reader.hpp"
 
 namespace pounding::excitation {
 
-enum class AccelUnits { g, m_per_s2, cm_per_s2 };
-/// Parses "g", "m/s2", "cm/s2"; empty when the name is unknown.
+enum class AccelUnits { g, m_per_s2, cm_per_s2, in_per_s2, ft_per_s2 };
+/// The unit names parse_accel_units() takes, for messages and help.
+inline constexpr std::string_view kAccelUnitChoices = "g, m/s2, cm/s2, in/s2 or ft/s2";
+/// Parses "g", "m/s2", "cm/s2", "in/s2", "ft/s2"; empty when the name is unknown.
 std::optional<AccelUnits> parse_accel_units(std::string_view name);
 
 // Physical ranges of the excitation (docs/scene-format.md lists them next to their keys).

@@ -17,7 +17,7 @@ struct RecordChoice {
   /// start_s, duration_s (the fields below may set dt_s and accel_column again).
   std::optional<std::filesystem::path> file{};
   std::optional<std::string> format{};   // "peer-at2", "columns", "single"
-  std::optional<std::string> units{};    // "g", "m/s2", "cm/s2"
+  std::optional<std::string> units{};    // kAccelUnitChoices (ground_motion.hpp)
   std::optional<double> dt_s{};          // as the key excitation.dt_s
   std::optional<int> accel_column{};     // as the key excitation.accel_column
   std::optional<double> scale_factor{};  // replaces scale_factor and drops scale_to_pga_g

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include "pounding/analysis/run_scene.hpp"
@@ -31,6 +32,13 @@ class StreamedRunFiles final : public solvers::RunSink {
   void history_row(double t_s, const Eigen::VectorXd& values) override;
   void impact(const solvers::ImpactRecord& impact) override;
   void contact_force(const solvers::ContactForceSample& sample) override;
+  void progress(double t_s, double end_s, std::size_t impacts) override {
+    if (on_progress_) on_progress_(t_s, end_s, impacts);
+  }
+  /// Passes the run's progress (RunSink::progress) to `callback` (to show it; null: to nobody).
+  void on_progress(std::function<void(double t_s, double end_s, std::size_t impacts)> callback) {
+    on_progress_ = std::move(callback);
+  }
 
   /// Renames the streamed files to history.csv, contacts_history.csv and impacts.csv, then
   /// writes summary.json.
@@ -50,6 +58,7 @@ class StreamedRunFiles final : public solvers::RunSink {
   std::unique_ptr<ExclusiveOutput> history_, contacts_, impacts_;
   bool opened_ = false;
   bool with_history_ = false;  // history.csv and contacts_history.csv are written
+  std::function<void(double, double, std::size_t)> on_progress_;
 };
 
 }  // namespace pounding::io

@@ -24,6 +24,10 @@ class RunSink {
   virtual void impact(const ImpactRecord& impact) = 0;
   /// One contact's force at a history row's instant, after that row.
   virtual void contact_force(const ContactForceSample& sample) = 0;
+  /// After each stretch of the run: the simulated time reached and the record's end (s), and the
+  /// impacts passed to impact() so far. Called once per solver step: a sink that shows it must
+  /// throttle itself.
+  virtual void progress(double /*t_s*/, double /*end_s*/, std::size_t /*impacts*/) {}
 };
 
 }  // namespace pounding::solvers
