@@ -116,7 +116,7 @@ void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Cross
       if (s.gap_rate_mps >= 0.0) end_contact(i, t, y);  // the gap opened: the contact is over
       continue;
     }
-    if (!states_.is(i, ContactMode::armed) && !states_.is(i, ContactMode::masked)) continue;
+    if (!states_.open(i)) continue;
     if (!s.on_segment()) {
       context_.passed_beside_edge(i);
     } else if (s.gap_rate_mps < 0.0) {

@@ -126,7 +126,7 @@ class EventDrivenRun final : public OdeFunctions {
   void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
     g.setConstant(1.0);
     for (std::size_t i = 0; i < count_; ++i) {
-      if (states_.is(i, ContactMode::armed) || states_.is(i, ContactMode::masked)) {
+      if (states_.open(i)) {
         g[witnesses_.at(Witness::gap, i)] = states_.gap_witness(i, system_.gap(y, i).gap_m);
       }
     }
@@ -259,7 +259,7 @@ void EventDrivenRun::start(double t, VectorXd& y) {
     const contact::GapState s = system_.gap(y, i);
     if (s.gap_m <= options_.contact_tolerance_m && s.on_segment()) touching.push_back(i);
   }
-  if (!touching.empty()) event(t, y, {.gap = touching, .force = {}, .edge = {}});
+  if (!touching.empty()) event(t, y, {.gap = touching});
 }
 
 void EventDrivenRun::event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
@@ -312,9 +312,8 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y, const std::v
 
 void EventDrivenRun::note_overlaps(double t) {
   for (std::size_t i = 0; i < count_; ++i) {
-    if (!states_.is(i, ContactMode::armed) && !states_.is(i, ContactMode::masked)) {
-      continue;  // a held gap's drift is reported with its hold, a compliant one's penetration is the law's
-    }
+    // A held gap's drift is reported with its hold, a compliant one's penetration is the law's.
+    if (!states_.open(i)) continue;
     const contact::GapState& s = gaps_[i];
     if (s.on_segment()) result_.statistics.note_overlap(s.gap_m, t, i);
   }
@@ -371,7 +370,7 @@ bool EventDrivenRun::step_once() {
     recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power,
                       integrator_->energy_between(prev_t_, hidden->t_s), components);
     law_->integrate(prev_t_, hidden->t_s, y_event, interpolate);
-    event(hidden->t_s, y_event, {.gap = {hidden->candidate}, .force = {}, .edge = {}});
+    event(hidden->t_s, y_event, {.gap = {hidden->candidate}});
     restart(hidden->t_s, y_event);
     return !stop_;
   }

@@ -48,7 +48,7 @@ double EventStepBound::clear_step_s(double t, const Eigen::VectorXd& y, const Co
   const double horizon_s = *next - t;
   const double peak_accel_mps2 = std::max(std::abs(motion.accel_at(t)), std::abs(motion.accel_at(*next)));
   for (std::size_t i = 0; i < states.size(); ++i) {
-    watched_[i] = states.is(i, ContactMode::armed) || states.is(i, ContactMode::masked);
+    watched_[i] = states.open(i);
   }
   // Above contact_tolerance_m throughout, a gap can neither close nor touch inside the step.
   const double open_s = clearance_->open_time_s(y, watched_, options_.contact_tolerance_m, horizon_s, peak_accel_mps2);

@@ -38,6 +38,8 @@ class ContactStates {
   std::size_t size() const { return modes_.size(); }
   ContactMode mode(std::size_t i) const { return modes_[i]; }
   bool is(std::size_t i, ContactMode mode) const { return modes_[i] == mode; }
+  /// Armed or masked: no contact holds it or acts on it, its gap is watched by a root.
+  bool open(std::size_t i) const { return modes_[i] == ContactMode::armed || modes_[i] == ContactMode::masked; }
   /// Held candidates, in the order they were held: the rows of the hold constraint.
   const std::vector<std::size_t>& held() const { return held_; }
   /// Compliant candidates whose force acts, in the order they began acting.
@@ -106,7 +108,7 @@ class WitnessLayout {
   }
   /// The candidates whose witnesses an integrator flagged (roots_found(): non-zero = crossed).
   struct Crossed {
-    std::vector<std::size_t> gap, force, edge;
+    std::vector<std::size_t> gap = {}, force = {}, edge = {};
   };
   Crossed crossed(const std::vector<int>& flags) const;
   bool flagged(const std::vector<int>& flags, Witness witness, std::size_t i) const {
