@@ -96,7 +96,7 @@ def _refuse_nul(file, value, key=""):
     items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, list) else ()
     for part, item in items:
         _refuse_nul(file, item, f"{key}.{part}" if isinstance(part, str) and key else
-                    part if isinstance(part, str) else f"{key}[{part}]")
+                    part if isinstance(part, str) else f"{key}[{part + 1}]")
 
 
 class Sweep:
@@ -162,11 +162,11 @@ class Sweep:
         values = self._list(key, required)
         for index, value in enumerate(values):
             if not isinstance(value, str) or not value:
-                raise _error(self.file, f"{key}[{index}]", _text(value), "expected a file's path")
+                raise _error(self.file, f"{key}[{index + 1}]", _text(value), "expected a file's path")
             if not os.path.isfile(self._resolve(value)):
-                raise _error(self.file, f"{key}[{index}]", _text(value), "no such file")
+                raise _error(self.file, f"{key}[{index + 1}]", _text(value), "no such file")
             if self._resolve(value) in map(self._resolve, values[:index]):
-                raise _error(self.file, f"{key}[{index}]", _text(value), "given twice")
+                raise _error(self.file, f"{key}[{index + 1}]", _text(value), "given twice")
         return values
 
     def _numbers(self, key):
@@ -176,12 +176,12 @@ class Sweep:
         option = {"gaps_m": "gap", "restitutions": "restitution"}[key]
         for index, value in enumerate(values):
             if not _is_number(value):
-                raise _error(self.file, f"{key}[{index}]", _text(value), "expected a number")
+                raise _error(self.file, f"{key}[{index + 1}]", _text(value), "expected a number")
             for scene_file in self.scene_files:  # each scene checks its own range (a gap must fit its plan)
                 try:
                     pounding.load_scene(self._resolve(scene_file), **{option: float(value)})
                 except InputError as error:
-                    raise _error(self.file, f"{key}[{index}]", _text(value),
+                    raise _error(self.file, f"{key}[{index + 1}]", _text(value),
                                  f"{error.reason} (scene {scene_file})") from None
         if len(set(values)) != len(values):
             raise _error(self.file, key, _text(values), "a value is given twice")
@@ -197,7 +197,7 @@ class Sweep:
         """A list of names or tables {name, ...}; returns dicts with a name."""
         entries = []
         for index, item in enumerate(self._list(key)):
-            where = f"{key}[{index}]"
+            where = f"{key}[{index + 1}]"
             if isinstance(item, str):
                 item = {"name": item}
             if not isinstance(item, dict) or not isinstance(item.get("name"), str):
@@ -221,10 +221,10 @@ class Sweep:
                                         contact_stiffness=law["stiffness"])
                 except InputError as error:
                     field = _stiffness_field(entry) if error.key == "--contact-stiffness" else "name"
-                    raise _error(self.file, f"contact_laws[{index}].{field}", error.value,
+                    raise _error(self.file, f"contact_laws[{index + 1}].{field}", error.value,
                                  f"{error.reason} (scene {scene_file})") from None
             if law in laws:
-                raise _error(self.file, f"contact_laws[{index}]", _text(entry), "given twice")
+                raise _error(self.file, f"contact_laws[{index + 1}]", _text(entry), "given twice")
             laws.append(law)
         return laws
 
@@ -237,12 +237,12 @@ class Sweep:
         try:
             expected = pounding._pounding.contact_law_stiffness_key(entry["name"])
         except InputError as error:
-            raise _error(self.file, f"contact_laws[{index}].name", error.value, error.reason) from None
+            raise _error(self.file, f"contact_laws[{index + 1}].name", error.value, error.reason) from None
         if field != expected:
-            raise _error(self.file, f"contact_laws[{index}].{field}", _text(stiffness),
+            raise _error(self.file, f"contact_laws[{index + 1}].{field}", _text(stiffness),
                          f"not a stiffness of {entry['name']}" + (f" (its key is {expected})" if expected else ""))
         if not _is_number(stiffness):
-            raise _error(self.file, f"contact_laws[{index}].{field}", _text(stiffness), "expected a number")
+            raise _error(self.file, f"contact_laws[{index + 1}].{field}", _text(stiffness), "expected a number")
         return float(stiffness)
 
     def _methods(self):
@@ -258,10 +258,10 @@ class Sweep:
                 except InputError as error:
                     field = error.key.removeprefix("solver.")
                     field = "name" if field == "method" else field
-                    raise _error(self.file, f"methods[{index}].{field}", error.value,
+                    raise _error(self.file, f"methods[{index + 1}].{field}", error.value,
                                  f"{error.reason} (scene {scene_file})") from None
             if method in methods:
-                raise _error(self.file, f"methods[{index}]", _text(method["name"]), "given twice")
+                raise _error(self.file, f"methods[{index + 1}]", _text(method["name"]), "given twice")
             methods.append(method)
         return methods
 
@@ -274,7 +274,7 @@ class Sweep:
             return self._record_list(value)
         records = []
         for index, item in enumerate(self._list("records")):
-            where = f"records[{index}]"
+            where = f"records[{index + 1}]"
             if isinstance(item, str):
                 item = {"file": item}
             if not isinstance(item, dict) or not isinstance(item.get("file"), str):
@@ -300,8 +300,8 @@ class Sweep:
         for index, record in enumerate(records):  # the same file with the same options: one run twice
             same = tuple(sorted((k, str(v)) for k, v in record.items() if k not in ("name", "source")))
             if same in seen:
-                raise _error(self.file, f"records[{index}]", _text(value[index]),
-                             f"the same record as records[{seen[same]}]: a record is given twice")
+                raise _error(self.file, f"records[{index + 1}]", _text(value[index]),
+                             f"the same record as records[{seen[same] + 1}]: a record is given twice")
             seen[same] = index
         return records
 
@@ -333,8 +333,8 @@ class Sweep:
                     try:
                         scene.with_method(method["name"], **method["settings"])
                     except InputError as error:
-                        raise _error(self.file, f"methods[{method_index}]", _text(method["name"]),
-                                     f"{error.reason} (contact_laws[{law_index}], scene {scene_file})") from None
+                        raise _error(self.file, f"methods[{method_index + 1}]", _text(method["name"]),
+                                     f"{error.reason} (contact_laws[{law_index + 1}], scene {scene_file})") from None
 
     def columns(self):
         return [*PARAMETERS, *self.setting_keys, *RESULTS, *(NEEDED_GAP if self.needed_gap else ()), *TIMINGS]

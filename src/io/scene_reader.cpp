@@ -335,8 +335,12 @@ std::vector<model::Column> read_columns(TableReader& table) {
                           fmt::format("{} x {} = {} columns (with those listed before): a storey may have at most {}",
                                       xs.size(), ys.size(), xs.size() * ys.size(), model::kMaxColumns));
       }
-      for (double y : ys) {
-        for (double x : xs) columns.push_back({Point2(x, y), b, h});
+      // Each named by its grid lines, so a message points at the x or y value to change.
+      for (std::size_t iy = 0; iy < ys.size(); ++iy) {
+        for (std::size_t ix = 0; ix < xs.size(); ++ix) {
+          columns.push_back(
+              {Point2(xs[ix], ys[iy]), b, h, fmt::format("column_grid[{}] x[{}] y[{}]", g + 1, ix + 1, iy + 1)});
+        }
       }
     }
   }

@@ -87,14 +87,13 @@ void validate_columns(const BuildingDefinition& b) {
   }
   for (std::size_t i = 0; i < b.columns.size(); ++i) {
     const Column& c = b.columns[i];
-    if (!c.position_m.allFinite()) {
-      throw InputError(indexed("columns", i), point_text(c.position_m), "position must be finite");
-    }
+    const std::string key = c.key.empty() ? indexed("columns", i) : c.key;
+    if (!c.position_m.allFinite()) throw InputError(key, point_text(c.position_m), "position must be finite");
     if (!b.slab.contains(c.position_m, kColumnOutsideTolerance_m)) {
-      throw InputError(indexed("columns", i), point_text(c.position_m), "the column stands outside its slab");
+      throw InputError(key, point_text(c.position_m), "the column stands outside its slab");
     }
-    require_range(indexed("columns", i) + ".b", c.b_m, kColumnSize);
-    require_range(indexed("columns", i) + ".h", c.h_m, kColumnSize);
+    require_range(key + ".b", c.b_m, kColumnSize);
+    require_range(key + ".h", c.h_m, kColumnSize);
   }
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
   if (b.target_period_s) {

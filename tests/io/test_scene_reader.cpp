@@ -380,6 +380,13 @@ BOOST_AUTO_TEST_CASE(AbsurdBuildingValuesNameTheirRange) {
                       {"building[1].target_period_s = 1e-09", "[0.02, 20] s"}));
   BOOST_TEST(mentions(error_of(edited("[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0", "[-10.0, 0.0, 0.4, 0.4], [5.0, 0.0")),
                       {"building[1].columns[2] = [5, 0]", "outside its slab"}));
+  // A grid's column is named by the grid lines that place it: the x value to change is x[3].
+  const std::string grid = "column_grid = [{x = [-10.0, 0.0, 5.0], y = [0.0, 8.0], b_m = 0.4, h_m = 0.4}]";
+  BOOST_TEST(mentions(
+      error_of(edited(
+          "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]",
+          grid)),
+      {"building[1].column_grid[1] x[3] y[1] = [5, 0]", "outside its slab"}));
   BOOST_TEST(mentions(error_of(edited("centre_of_mass = [-5.0, 4.0]", "centre_of_mass = [-5.0, 0.0]")),
                       {"building[1].centre_of_mass = [-5, 0]", "slab's edge", "0.001 m inside"}));
   BOOST_TEST(mentions(error_of(edited("name = \"small\"", "name = \"\"")), {"name = \"\"", "must not be empty"}));

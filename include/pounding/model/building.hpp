@@ -40,6 +40,8 @@ struct Column {
   Point2 position_m = Point2::Zero();
   double b_m = 0.0;
   double h_m = 0.0;
+  /// Where the scene gave it, for messages ("column_grid[1] x[5] y[2]"); empty: columns[i].
+  std::string key = {};
 };
 
 /// Rayleigh damping C = a0 M + a1 K fitted to one ratio at two modes (1-based, sorted by period
