@@ -28,7 +28,8 @@ constexpr double kColumnOutsideTolerance_m = 1e-6;  // columns on the slab's edg
 double distance_to_boundary(const Polygon& slab, const Point2& p) {
   double distance = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < slab.size(); ++i) {
-    const Point2 a = slab.vertex(i), edge = slab.edge_end(i) - a;
+    const Point2& a = slab.vertex(i);
+    const Point2 edge = slab.edge_end(i) - a;
     const double s = std::clamp((p - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
     distance = std::min(distance, (a + s * edge - p).norm());
   }
