@@ -63,7 +63,8 @@ void print_levels(const analysis::Scene& scene) {
         alone.push_back(f);
       }
     }
-    if (!alone.empty()) fmt::print("  B{} floors at no level (no slab of the other building there): {}\n", b + 1, fmt::join(alone, ", "));
+    if (!alone.empty())
+      fmt::print("  B{} floors at no level (no slab of the other building there): {}\n", b + 1, fmt::join(alone, ", "));
   }
 }
 
@@ -175,8 +176,9 @@ int run_run(const RunCommand& command, const std::string& command_line) {
     throw error.renamed(option_names(command)).in_context(command.scene);
   }
   const analysis::RunLimits limits = run_limits(command);
-  const std::filesystem::path folder =
-      command.out_dir.empty() ? std::filesystem::path("out") / io::folder_name(scene.name) : std::filesystem::path(command.out_dir);
+  const std::filesystem::path folder = command.out_dir.empty()
+                                           ? std::filesystem::path("out") / io::folder_name(scene.name)
+                                           : std::filesystem::path(command.out_dir);
   std::optional<analysis::RunReport> report;
   io::Provenance provenance;
   std::filesystem::path created;
@@ -220,7 +222,8 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
   options.repeat = command.repeat;
   options.quick = command.quick;
   options.validate();
-  const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
+  const std::string folder =
+      command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");
   const io::Provenance provenance = io::make_provenance(scene, command_line);
   fmt::print("Work-precision study of '{}' at gap {} m; every run against the exact path; run time = median of {}\n",
@@ -277,12 +280,13 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
                study.rows.size() + study.stiffness_rows.size() + study.truncation_rows.size(), folder);
     return 3;
   }
-  fmt::print("Reference: exact path, {} impacts, {:.3f} s; its own error estimate (against held stretches at "
-             "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv, stiffness.csv, truncation.csv and "
-             "study.json; "
-             "draw them with tools/plot_study.py {}\n",
-             study.reference.impacts.size(), study.reference_run_time_s, study.reference_error.impact_time_all_s,
-             study.reference_error.history_u_m, folder, folder);
+  fmt::print(
+      "Reference: exact path, {} impacts, {:.3f} s; its own error estimate (against held stretches at "
+      "hold_rtol x 100): impact times {:.3e} s, u {:.3e} m. Wrote {}/study.csv, stiffness.csv, truncation.csv and "
+      "study.json; "
+      "draw them with tools/plot_study.py {}\n",
+      study.reference.impacts.size(), study.reference_run_time_s, study.reference_error.impact_time_all_s,
+      study.reference_error.history_u_m, folder, folder);
   return 0;
 }
 
@@ -337,7 +341,8 @@ int run_check(const CheckCommand& command) {
              candidates.size());
   for (const auto& c : candidates) fmt::print("  level {}: {}\n", c.level, contact::describe(c));
   const analysis::UsedSettings used = analysis::resolve(scene.solver, &system);
-  fmt::print("Solver: {} ({}): {}\n", scene.solver.method, used.method->description, analysis::describe_used_settings(used));
+  fmt::print("Solver: {} ({}): {}\n", scene.solver.method, used.method->description,
+             analysis::describe_used_settings(used));
   for (const analysis::RunWarning& warning : analysis::scene_warnings(scene)) {
     fmt::print("Warning ({}): {}\n", warning.code, warning.message);
   }
@@ -382,7 +387,8 @@ int run_laws(const LawsCommand& command) {
   require_range("--restitution", command.restitution, *analysis::contact_setting_spec("restitution").range);
   nlohmann::json list = nlohmann::json::array();
   for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
-    const nlohmann::json rebound = law.rebound ? nlohmann::json(law.rebound(command.restitution)) : nlohmann::json(nullptr);
+    const nlohmann::json rebound =
+        law.rebound ? nlohmann::json(law.rebound(command.restitution)) : nlohmann::json(nullptr);
     if (!command.json) {
       const std::string stiffness =
           law.stiffness_key.empty() ? "no stiffness"
@@ -397,7 +403,9 @@ int run_laws(const LawsCommand& command) {
                  command.restitution, rebound_text);
       continue;
     }
-    const auto or_null = [](std::string_view text) { return text.empty() ? nlohmann::json(nullptr) : nlohmann::json(text); };
+    const auto or_null = [](std::string_view text) {
+      return text.empty() ? nlohmann::json(nullptr) : nlohmann::json(text);
+    };
     list.push_back({{"name", law.name},
                     {"description", law.description},
                     {"stiffness_key", or_null(law.stiffness_key)},

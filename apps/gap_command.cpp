@@ -104,7 +104,9 @@ void print_set_statistics(const analysis::RecordSetResult& set) {
   }
   // Per rule, under how many records it asks for less than the needed gap.
   const std::array<std::pair<const char*, double analysis::GapRules::*>, 3> rules{
-      {{"ABS", &analysis::GapRules::abs_m}, {"SRSS", &analysis::GapRules::srss_m}, {"DDC", &analysis::GapRules::ddc_m}}};
+      {{"ABS", &analysis::GapRules::abs_m},
+       {"SRSS", &analysis::GapRules::srss_m},
+       {"DDC", &analysis::GapRules::ddc_m}}};
   for (const auto& [name, field] : rules) {
     int short_of = 0, compared = 0;
     for (const analysis::RecordGap& r : set.records) {

@@ -31,10 +31,12 @@ void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& r
   command.add_option("--record-format", record.format, "Format of the record: peer-at2, columns or single");
   command.add_option("--units", record.units,
                      "Units of the record's accelerations: " + std::string(pounding::excitation::kAccelUnitChoices));
-  command.add_option("--record-dt", record.dt_s, "single: the record's sample spacing (s); other formats: re-spaces it");
+  command.add_option("--record-dt", record.dt_s,
+                     "single: the record's sample spacing (s); other formats: re-spaces it");
   command.add_option("--record-column", record.accel_column, "Column of the acceleration in the record (from 1)");
   command.add_option("--scale", record.scale_factor, "Multiply the record by this (replaces the scene's scaling)");
-  command.add_option("--pga-g", record.pga_g, "Scale the record to this peak |a_g| in g (replaces the scene's scaling)");
+  command.add_option("--pga-g", record.pga_g,
+                     "Scale the record to this peak |a_g| in g (replaces the scene's scaling)");
   command.add_option("--direction-deg", record.direction_deg, "Direction of the shaking in plan (degrees from +x)");
 }
 
@@ -131,7 +133,8 @@ int main(int argc, char** argv) {
                           "history, impacts, peaks or energy: that table of docs/guide/output-columns.md");
 
   pounding::cli::LawsCommand laws;
-  CLI::App* laws_app = app.add_subcommand("laws", "The contact laws, their default stiffness and the rebound each achieves");
+  CLI::App* laws_app =
+      app.add_subcommand("laws", "The contact laws, their default stiffness and the rebound each achieves");
   laws_app->add_flag("--json", laws.json, "As JSON (name, description, keys, default stiffness, methods, rebound)");
   laws_app->add_option("--restitution", laws.restitution, "Restitution e at which to give each law's rebound")
       ->capture_default_str();
@@ -207,8 +210,9 @@ int main(int argc, char** argv) {
                       "folder's .AT2 files, with the set's statistics")
       ->excludes(curve)->excludes("--record");
   gap_app->add_option("--threads", gap.threads, "Runs of --curve or --records at a time (default: every core)");
-  gap_app->add_option("--max-wall-time", gap.max_wall_time_s,
-                      "Stop each contact-free run after this many seconds (default 3600); SIGINT/SIGTERM stop them too");
+  gap_app->add_option(
+      "--max-wall-time", gap.max_wall_time_s,
+      "Stop each contact-free run after this many seconds (default 3600); SIGINT/SIGTERM stop them too");
   gap_app->add_option("--out", gap.out_dir,
                       "Output folder (default out/<scene name>-gap, or out/<scene name>-records with --records)");
 
@@ -224,17 +228,21 @@ int main(int argc, char** argv) {
       ->add_option("--units", spectrum.units,
                    "Units of the records' accelerations: " + std::string(pounding::excitation::kAccelUnitChoices))
       ->capture_default_str();
-  spectrum_app->add_option("--record-dt", spectrum.dt_s, "single: the records' sample spacing (s); other formats: re-spaces them");
+  spectrum_app->add_option("--record-dt", spectrum.dt_s,
+                           "single: the records' sample spacing (s); other formats: re-spaces them");
   spectrum_app->add_option("--record-column", spectrum.accel_columns,
                            "Column of the acceleration (from 1): one for every record, or one per record, "
                            "comma-separated (a pair from one file: 1,2)")
       ->delimiter(',');
   spectrum_app->add_option("--damping", spectrum.damping_ratio, "Critical damping ratio of the oscillators, in [0, 1)")
       ->capture_default_str();
-  spectrum_app->add_option("--periods", spectrum.periods_s, "Periods (s), comma-separated (default 0.01-10 s, 61 log-spaced)")
+  spectrum_app
+      ->add_option("--periods", spectrum.periods_s, "Periods (s), comma-separated (default 0.01-10 s, 61 log-spaced)")
       ->delimiter(',');
-  spectrum_app->add_flag("--rotd", spectrum.rotd, "With two records (a pair of horizontal components): RotD50 and RotD100");
-  spectrum_app->add_option("--angle-step", spectrum.angle_step_deg, "Angle step of RotD (degrees)")->capture_default_str();
+  spectrum_app->add_flag("--rotd", spectrum.rotd,
+                         "With two records (a pair of horizontal components): RotD50 and RotD100");
+  spectrum_app->add_option("--angle-step", spectrum.angle_step_deg, "Angle step of RotD (degrees)")
+      ->capture_default_str();
   spectrum_app->add_option("--scene", spectrum.scene, "Scene whose buildings' first three periods are marked");
   spectrum_app->add_option("--out", spectrum.out_dir, "Output folder")->capture_default_str();
   spectrum_app->add_flag("--no-plot", spectrum.no_plot, "Do not draw spectrum.png (tools/plot_spectrum.py)");

@@ -78,7 +78,8 @@ std::vector<io::MarkedPeriod> building_periods(const std::string& scene_file) {
 void print_spectra(const io::SpectrumReport& report) {
   fmt::print("Pseudo-acceleration spectra, {:g} % damping (PSA in g, Sd in m):\n", 100.0 * report.damping_ratio);
   std::string header = fmt::format("  {:>9}", "T (s)");
-  for (std::size_t r = 0; r < report.records.size(); ++r) header += fmt::format("  {:>9} {:>10}", fmt::format("PSA{}", r + 1), fmt::format("Sd{}", r + 1));
+  for (std::size_t r = 0; r < report.records.size(); ++r)
+    header += fmt::format("  {:>9} {:>10}", fmt::format("PSA{}", r + 1), fmt::format("Sd{}", r + 1));
   if (!report.rotd.empty()) header += fmt::format("  {:>9} {:>9} {:>6}", "RotD50", "RotD100", "θ100");
   fmt::print("{}\n", header);
   for (std::size_t i = 0; i < report.records.front().ordinates.size(); ++i) {
@@ -157,13 +158,15 @@ int run_spectrum(const SpectrumCommand& command, const std::string& command_line
     const excitation::GroundMotion motion = excitation::load_ground_motion(spec);
     histories.push_back(history_of(motion));
     report.records.push_back({file, io::sha256_file_hex(file), spec.read.accel_column.value_or(0), motion.peak_mps2(),
-                              shortest_spacing_s(motion.time_s()), excitation::response_spectrum(histories.back(), options)});
+                              shortest_spacing_s(motion.time_s()),
+                              excitation::response_spectrum(histories.back(), options)});
     for (io::MarkedPeriod& m : report.marked) {
       const excitation::SpectrumOptions at{.periods_s = {m.period_s}, .damping_ratio = options.damping_ratio};
       m.psa_mps2.push_back(excitation::response_spectrum(histories.back(), at).front().psa_mps2);
     }
   }
-  if (command.rotd) report.rotd = excitation::rotd_spectrum(histories[0], histories[1], options, command.angle_step_deg);
+  if (command.rotd)
+    report.rotd = excitation::rotd_spectrum(histories[0], histories[1], options, command.angle_step_deg);
   print_spectra(report);
   io::write_spectrum(command.out_dir, report);
   fmt::print("Wrote {}/spectrum.csv{}, spectrum.json\n", command.out_dir, command.rotd ? ", rotd.csv" : "");

@@ -197,8 +197,8 @@ py::array_t<double> history_table(const Run& run) {
 }
 
 /// contacts_history.csv's columns, in its order, and its rows (one per contact and instant).
-const std::vector<std::string> kContactForceColumns{"t_s",         "candidate", "level",        "striking_building", "vertex",
-                                                   "struck_edge", "gap_m",     "gap_rate_mps", "force_kN"};
+const std::vector<std::string> kContactForceColumns{
+    "t_s", "candidate", "level", "striking_building", "vertex", "struck_edge", "gap_m", "gap_rate_mps", "force_kN"};
 py::array_t<double> contact_force_table(const Run& run) {
   const auto& samples = run.report.result.history.contact_forces;
   return matrix(samples.size(), kContactForceColumns.size(), [&](std::size_t r, std::size_t c) {
@@ -228,7 +228,8 @@ py::array_t<double> touch_gap_table(const Gap& gap) {
 /// Scene.with_record's arguments (file resolved against the list's folder; None: the scene's).
 py::list record_list(const Scene& scene, const std::filesystem::path& list_or_folder) {
   py::list entries;
-  for (const pounding::analysis::RecordEntry& entry : pounding::io::read_record_list(list_or_folder, scene.excitation)) {
+  for (const pounding::analysis::RecordEntry& entry :
+       pounding::io::read_record_list(list_or_folder, scene.excitation)) {
     const pounding::excitation::RecordChoice& choice = entry.choice;
     py::dict item;
     item["name"] = entry.name;
@@ -248,8 +249,9 @@ py::list record_list(const Scene& scene, const std::filesystem::path& list_or_fo
 
 /// An Eigen matrix as a numpy array (a copy).
 py::array_t<double> array_of(const Eigen::MatrixXd& m) {
-  return matrix(static_cast<std::size_t>(m.rows()), static_cast<std::size_t>(m.cols()),
-                [&](std::size_t r, std::size_t c) { return m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)); });
+  return matrix(
+      static_cast<std::size_t>(m.rows()), static_cast<std::size_t>(m.cols()),
+      [&](std::size_t r, std::size_t c) { return m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)); });
 }
 
 /// Each building's assembled model, as the runs build it (model::make_building): M, K, C (3N×3N,
@@ -264,7 +266,8 @@ py::list building_matrices(const Scene& scene) {
       throw error.in_context(scene.file.string(), "building[" + std::to_string(i + 1) + "]");
     }
     Eigen::MatrixXd shapes(building.dof(), static_cast<Eigen::Index>(building.modes.size()));
-    for (std::size_t j = 0; j < building.modes.size(); ++j) shapes.col(static_cast<Eigen::Index>(j)) = building.modes[j].shape;
+    for (std::size_t j = 0; j < building.modes.size(); ++j)
+      shapes.col(static_cast<Eigen::Index>(j)) = building.modes[j].shape;
     py::dict item;
     item["M"] = array_of(building.mass_diagonal.asDiagonal().toDenseMatrix());
     item["K"] = array_of(building.stiffness);
@@ -305,18 +308,26 @@ PYBIND11_MODULE(_pounding, m) {
   });
   m.def("impact_columns", &impact_columns);
 
-  py::class_<Scene>(m, "Scene", "A scene read and checked by pounding.load_scene(); its with_* methods return changed copies")
+  py::class_<Scene>(m, "Scene",
+                    "A scene read and checked by pounding.load_scene(); its with_* methods return changed copies")
       .def_readonly("name", &Scene::name, "The scene's name (its file's `name`)")
-      .def_property_readonly("file", [](const Scene& s) { return s.file; }, "The scene file it was read from")
-      .def_property_readonly("gap_m", [](const Scene& s) { return s.contact.gap_m; }, "contact.gap_m: the clear gap at rest (m)")
-      .def_property_readonly("restitution", [](const Scene& s) { return s.contact.restitution; },
-                             "contact.restitution: the coefficient of restitution")
-      .def_property_readonly("method", [](const Scene& s) { return s.solver.method; }, "solver.method (pounding.methods())")
-      .def_property_readonly("contact_law", [](const Scene& s) { return s.contact.law; }, "contact.law")
-      .def_property_readonly("record_file", [](const Scene& s) { return s.excitation.file; }, "excitation.file: the record")
-      .def_property_readonly("history", [](const Scene& s) { return s.output.history; },
-                             "output.history: whether runs keep the history")
-      .def_property_readonly("peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
+      .def_property_readonly(
+          "file", [](const Scene& s) { return s.file; }, "The scene file it was read from")
+      .def_property_readonly(
+          "gap_m", [](const Scene& s) { return s.contact.gap_m; }, "contact.gap_m: the clear gap at rest (m)")
+      .def_property_readonly(
+          "restitution", [](const Scene& s) { return s.contact.restitution; },
+          "contact.restitution: the coefficient of restitution")
+      .def_property_readonly(
+          "method", [](const Scene& s) { return s.solver.method; }, "solver.method (pounding.methods())")
+      .def_property_readonly(
+          "contact_law", [](const Scene& s) { return s.contact.law; }, "contact.law")
+      .def_property_readonly(
+          "record_file", [](const Scene& s) { return s.excitation.file; }, "excitation.file: the record")
+      .def_property_readonly(
+          "history", [](const Scene& s) { return s.output.history; }, "output.history: whether runs keep the history")
+      .def_property_readonly(
+          "peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
       .def("with_gap", &with_gap, py::arg("gap_m"),
            "The scene with building 2 moved along x to the clear gap gap_m (m), as `run --gap`")
       .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),
@@ -327,9 +338,9 @@ PYBIND11_MODULE(_pounding, m) {
       .def(
           "_with_record",
           [](const Scene& scene, std::filesystem::path file, std::optional<std::string> format,
-             std::optional<std::string> units, std::optional<double> scale_factor,
-             std::optional<double> scale_to_pga_g, std::optional<double> direction_deg,
-             std::optional<double> dt_s, std::optional<int> accel_column, bool read) {
+             std::optional<std::string> units, std::optional<double> scale_factor, std::optional<double> scale_to_pga_g,
+             std::optional<double> direction_deg, std::optional<double> dt_s, std::optional<int> accel_column,
+             bool read) {
             return with_record(scene,
                                {.file = std::move(file), .format = std::move(format), .units = std::move(units),
                                 .dt_s = dt_s, .accel_column = accel_column, .scale_factor = scale_factor,
@@ -353,7 +364,9 @@ PYBIND11_MODULE(_pounding, m) {
       py::arg("contact_stiffness"));
   m.def(
       "contact_law_stiffness_key",
-      [](const std::string& law) { return std::string(pounding::analysis::contact_law_info(law, "contact_law").stiffness_key); },
+      [](const std::string& law) {
+        return std::string(pounding::analysis::contact_law_info(law, "contact_law").stiffness_key);
+      },
       py::arg("law"));
   m.def("record_list", &record_list, py::arg("scene"), py::arg("list_or_folder"));
 
@@ -382,7 +395,10 @@ PYBIND11_MODULE(_pounding, m) {
 
   py::class_<Gap>(m, "Gap")
       .def("gap_json", [](const Gap& g) { return pounding::io::gap_json(g.scene, g.gap).dump(); })
-      .def("history_t_s", [](const Gap& g) { return py::array_t<double>(py::ssize_t(g.gap.history_t_s.size()), g.gap.history_t_s.data()); })
+      .def("history_t_s",
+           [](const Gap& g) {
+             return py::array_t<double>(py::ssize_t(g.gap.history_t_s.size()), g.gap.history_t_s.data());
+           })
       .def("touch_gap_table", &touch_gap_table);
   m.def(
       "needed_gap",

@@ -523,7 +523,8 @@ ComponentAtol component_atol(const dynamics::CoupledSystem& system, double atol_
   for (int b = 0; b < 2; ++b) {
     const model::BuildingDefinition& d = system.building(b).definition;
     double farthest_m = 0.0;
-    for (const model::Point2& corner : d.slab.vertices()) farthest_m = std::max(farthest_m, (corner - d.centre_of_mass).norm());
+    for (const model::Point2& corner : d.slab.vertices())
+      farthest_m = std::max(farthest_m, (corner - d.centre_of_mass).norm());
     result.rotation_rad[static_cast<std::size_t>(b)] = atol_m / farthest_m;
     lowest_omega = std::min(lowest_omega, system.building(b).modes.front().omega_rad_s);
   }

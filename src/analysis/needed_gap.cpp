@@ -75,7 +75,9 @@ class FreeRun final : public solvers::OdeFunctions {
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(counted_.size() + points_.size()); }
   bool is_linear() const override { return true; }
-  void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override { system_.rhs(t, y, y_dot); }
+  void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
+    system_.rhs(t, y, y_dot);
+  }
   void jacobian(double, const Eigen::Ref<const VectorXd>&, Eigen::Ref<Eigen::MatrixXd> jac) override {
     jac = system_.jacobian();
   }
@@ -87,7 +89,8 @@ class FreeRun final : public solvers::OdeFunctions {
   // Every root falls through zero at a maximum: a pair's touch gap (−ġ at its touch geometry),
   // a facing vertex's displacement towards the other building (its velocity that way).
   void roots(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
-    for (std::size_t i = 0; i < counted_.size(); ++i) g[static_cast<Eigen::Index>(i)] = counted_[i] ? touch(y, i).rate : 1.0;
+    for (std::size_t i = 0; i < counted_.size(); ++i)
+      g[static_cast<Eigen::Index>(i)] = counted_[i] ? touch(y, i).rate : 1.0;
     for (std::size_t k = 0; k < points_.size(); ++k) {
       g[static_cast<Eigen::Index>(counted_.size() + k)] = towards(y, points_[k]).second;
     }
@@ -130,7 +133,8 @@ class FreeRun final : public solvers::OdeFunctions {
 
 std::vector<bool> counted_pairs(const CoupledSystem& system) {
   std::vector<bool> counted;
-  for (const contact::Candidate& c : system.candidates()) counted.push_back(shift_sign(c) * c.normal_rest.x() > kMinimumOpeningRate);
+  for (const contact::Candidate& c : system.candidates())
+    counted.push_back(shift_sign(c) * c.normal_rest.x() > kMinimumOpeningRate);
   return counted;
 }
 
@@ -147,9 +151,10 @@ std::vector<FacingPoint> facing_points(const CoupledSystem& system, const std::v
   for (std::size_t i = 0; i < counted.size(); ++i) {
     if (!counted[i]) continue;
     const contact::Candidate& c = system.candidates()[i];
-    const std::size_t slot = static_cast<std::size_t>(std::find_if(system.levels().begin(), system.levels().end(),
-                                                                    [&](const contact::Level& l) { return l.index == c.level; }) -
-                                                       system.levels().begin());
+    const std::size_t slot =
+        static_cast<std::size_t>(std::find_if(system.levels().begin(), system.levels().end(),
+                                              [&](const contact::Level& l) { return l.index == c.level; }) -
+                                 system.levels().begin());
     add(c.striking_building, c.floors[c.striking_building], slot, c.vertex_rest);
     add(c.struck_building, c.floors[c.struck_building], slot, c.edge_start_rest);
     add(c.struck_building, c.floors[c.struck_building], slot, c.edge_end_rest);
@@ -288,8 +293,9 @@ NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
   const auto clock_start = std::chrono::steady_clock::now();
   const CoupledSystem system = build_system(scene);
   const UsedSettings used = resolve(scene.solver);  // the scene's tolerances, or the defaults
-  NeededGap result = needed_gap(system, scene.contact.gap_m,
-                                {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol, .budget = budget});
+  NeededGap result = needed_gap(
+      system, scene.contact.gap_m,
+      {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol, .budget = budget});
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }

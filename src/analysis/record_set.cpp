@@ -88,7 +88,8 @@ SetStatistic set_statistic(const std::vector<double>& values) {
 }
 
 RecordSetResult record_set_gaps(const Scene& scene, const std::vector<RecordEntry>& records, unsigned threads,
-                                const std::function<void(const RecordGap&)>& progress, const solvers::RunBudget& budget) {
+                                const std::function<void(const RecordGap&)>& progress,
+                                const solvers::RunBudget& budget) {
   if (records.empty()) throw InputError("records", "none", "a record set needs at least one record");
   const auto clock_start = std::chrono::steady_clock::now();
   RecordSetResult result;

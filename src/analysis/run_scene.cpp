@@ -170,7 +170,8 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   estimate.duration_s = system.ground_motion().end_s() - system.ground_motion().start_s();
   if (scene.output.history) {
     estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
-    estimate.history_columns = static_cast<double>(solvers::history_columns(system, scene.output.history_floors).size());
+    estimate.history_columns =
+        static_cast<double>(solvers::history_columns(system, scene.output.history_floors).size());
   }
   const UsedSettings used = resolve(scene.solver, &system);
   if (!used.method->event_driven) {

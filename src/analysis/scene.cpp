@@ -151,7 +151,8 @@ void validate_levels(const Scene& scene) {
   }
   if (!scene.levels().empty()) return;
   const auto elevations = [&](std::size_t b) { return model::floor_elevations(scene.buildings[b]); };
-  throw InputError(building_key(1) + ".storey_height_m", fmt::format("[{}]", fmt::join(scene.buildings[1].storey_height_m, ", ")),
+  throw InputError(building_key(1) + ".storey_height_m",
+                   fmt::format("[{}]", fmt::join(scene.buildings[1].storey_height_m, ", ")),
                    fmt::format("no floor of building 2 stands at the elevation of a floor of building 1 "
                                "(building 1's floors at {:.6g} m, building 2's at {:.6g} m, matched within "
                                "contact.level_tolerance_m = {} m): their slabs could only strike columns, and "
@@ -175,7 +176,8 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
   for (std::size_t i = 0; i < output.peaks.size(); ++i) {
     const std::string key = fmt::format("output.peaks[{}]", i + 1), value = fmt::format("\"{}\"", output.peaks[i]);
     if (std::find(kPeakGroups.begin(), kPeakGroups.end(), output.peaks[i]) == kPeakGroups.end()) {
-      throw InputError(key, value, fmt::format("expected one of {} (or an empty list for no peaks)", fmt::join(kPeakGroups, ", ")));
+      throw InputError(key, value,
+                       fmt::format("expected one of {} (or an empty list for no peaks)", fmt::join(kPeakGroups, ", ")));
     }
     if (std::find(output.peaks.begin(), output.peaks.begin() + static_cast<std::ptrdiff_t>(i), output.peaks[i]) !=
         output.peaks.begin() + static_cast<std::ptrdiff_t>(i)) {
@@ -224,7 +226,8 @@ const ContactSettingSpec& contact_setting_spec(std::string_view key) {
 
 double ContactSettings::used_stiffness() const {
   const ContactLawInfo& info = contact_law_info(law);
-  const std::optional<double>& given = info.stiffness_key == "stiffness_kN_per_m1_5" ? stiffness_kN_per_m1_5 : stiffness_kN_per_m;
+  const std::optional<double>& given =
+      info.stiffness_key == "stiffness_kN_per_m1_5" ? stiffness_kN_per_m1_5 : stiffness_kN_per_m;
   return given.value_or(info.default_stiffness);
 }
 

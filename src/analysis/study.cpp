@@ -112,7 +112,8 @@ RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunRe
 
 std::vector<double> stiffness_ladder(const ContactLawInfo& law, bool quick) {
   if (law.stiffness_key.empty() || (quick && law.law != contact::ContactLaw::kelvin)) return {};
-  const std::vector<double> factors = quick ? std::vector<double>{1.0, 100.0} : std::vector<double>{0.1, 1, 10, 100, 1000};
+  const std::vector<double> factors =
+      quick ? std::vector<double>{1.0, 100.0} : std::vector<double>{0.1, 1, 10, 100, 1000};
   std::vector<double> ladder;
   for (double factor : factors) ladder.push_back(factor * law.default_stiffness);
   return ladder;
@@ -151,7 +152,8 @@ void add_stiffness_ladder(const Scene& scene, const StudyOptions& options, Study
         row.rhs_evaluations = result.statistics.rhs_evaluations;
         row.jacobian_evaluations = result.statistics.jacobian_evaluations;
         row.impacts = result.impacts.size();
-        for (const solvers::ImpactRecord& i : result.impacts) row.peak_force_kN = std::max(row.peak_force_kN, i.peak_force_kN);
+        for (const solvers::ImpactRecord& i : result.impacts)
+          row.peak_force_kN = std::max(row.peak_force_kN, i.peak_force_kN);
         if (progress) progress(row);
         study.stiffness_rows.push_back(std::move(row));
       }

@@ -56,7 +56,8 @@ std::vector<Level> common_levels(const std::array<std::vector<double>, 2>& eleva
   std::size_t i = 0, j = 0;
   while (i < z1.size() && j < z2.size()) {
     if (std::abs(z1[i] - z2[j]) <= tolerance_m) {
-      levels.push_back({static_cast<int>(levels.size()) + 1, {static_cast<int>(i) + 1, static_cast<int>(j) + 1}, z1[i]});
+      levels.push_back(
+          {static_cast<int>(levels.size()) + 1, {static_cast<int>(i) + 1, static_cast<int>(j) + 1}, z1[i]});
       ++i;
       ++j;
     } else if (z1[i] < z2[j]) {

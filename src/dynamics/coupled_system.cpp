@@ -79,7 +79,9 @@ contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
 double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const {
   const contact::Candidate& c = candidates_[index];
   const contact::GapState s = gap(y, index);
-  const auto accel_of = [&](int building) { return y_dot.segment<3>(dof_ + floor_index(building, c.floors[building])); };
+  const auto accel_of = [&](int building) {
+    return y_dot.segment<3>(dof_ + floor_index(building, c.floors[building]));
+  };
   return s.striking_row.dot(accel_of(c.striking_building)) + s.struck_row.dot(accel_of(c.struck_building)) +
          s.curvature_mps2;
 }

@@ -34,10 +34,11 @@ json level_json(const analysis::NeededGap& gap, const analysis::LevelGap& l) {
 void write_levels_csv(const analysis::NeededGap& gap, std::ostream& out) {
   out << "level,floor_b1,floor_b2,elevation_m,needed_gap_m,t_s,delta_b1_m,delta_b2_m,abs_m,srss_m,ddc_m,pair\n";
   for (const analysis::LevelGap& l : gap.levels) {
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", l.level.index, l.level.floors[0],
-                       l.level.floors[1], l.level.elevation_m, l.needed_gap_m, l.t_s, l.peak_towards_m[0],
-                       l.peak_towards_m[1], l.rules.abs_m, l.rules.srss_m, l.rules.ddc_m,
-                       l.candidate >= 0 ? contact::describe(gap.candidates[static_cast<std::size_t>(l.candidate)]) : "");
+    out << fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n", l.level.index, l.level.floors[0], l.level.floors[1],
+        l.level.elevation_m, l.needed_gap_m, l.t_s, l.peak_towards_m[0], l.peak_towards_m[1], l.rules.abs_m,
+        l.rules.srss_m, l.rules.ddc_m,
+        l.candidate >= 0 ? contact::describe(gap.candidates[static_cast<std::size_t>(l.candidate)]) : "");
   }
 }
 

@@ -42,7 +42,8 @@ std::string ImpactField::json_key() const {
 std::vector<std::string> ImpactField::csv_columns() const {
   if (components.empty()) return {json_key()};
   std::vector<std::string> columns;
-  for (std::string_view component : components) columns.push_back(suffixed(suffixed(std::string(name), component), unit));
+  for (std::string_view component : components)
+    columns.push_back(suffixed(suffixed(std::string(name), component), unit));
   return columns;
 }
 
@@ -118,7 +119,8 @@ std::vector<std::string> impact_csv_columns() {
 std::string impact_csv_row(const ImpactRecord& impact) {
   std::string row;
   for (const ImpactField& field : impact_fields()) {
-    for (double value : field.values(impact)) row += fmt::format("{}{}", row.empty() ? "" : ",", csv_text(field.type, value));
+    for (double value : field.values(impact))
+      row += fmt::format("{}{}", row.empty() ? "" : ",", csv_text(field.type, value));
   }
   return row;
 }

@@ -87,7 +87,8 @@ void set_field(const ListLine& line, const std::string& field, const std::string
   if (field == "scale") return once(choice.scale_factor, line.number<double>(field, value));
   if (field == "pga_g") return once(choice.pga_g, line.number<double>(field, value));
   if (field == "direction_deg") return once(choice.direction_deg, line.number<double>(field, value));
-  throw line.error(field, value, "unknown field (expected format, units, dt_s, accel_column, scale, pga_g or direction_deg)");
+  throw line.error(field, value,
+                   "unknown field (expected format, units, dt_s, accel_column, scale, pga_g or direction_deg)");
 }
 
 /// `base` with `choice` applied; errors name the list line and the field.

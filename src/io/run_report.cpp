@@ -36,9 +36,9 @@ void append_contacts(const analysis::RunReport& report, std::string& text) {
   text += '\n';
   if (!r.impacts.empty()) {
     const auto& first = r.impacts.front();
-    fmt::format_to(out, "  first at t = {:.6f} s on {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
-                   first.t_s, where(first), first.striking_building, first.vertex, first.approach_velocity_mps,
-                   first.impulse_kNs);
+    fmt::format_to(
+        out, "  first at t = {:.6f} s on {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
+        first.t_s, where(first), first.striking_building, first.vertex, first.approach_velocity_mps, first.impulse_kNs);
   }
   fmt::format_to(out, "Touches (contact without impact): {}\n", r.touches.size());
   for (const auto& t : r.touches) {
@@ -58,7 +58,8 @@ void append_design_peaks(const analysis::RunReport& report, std::string& text) {
   if (!outputs.acceleration_peaks && !outputs.drift_peaks) return;
   auto out = std::back_inserter(text);
   const double g = report.g_mps2;
-  const char* part = report.contact_law == "impulse" ? "smooth part: each impact adds an impulse (impacts)" : "contact forces included";
+  const char* part = report.contact_law == "impulse" ? "smooth part: each impact adds an impulse (impacts)"
+                                                     : "contact forces included";
   for (const auto& building : report.result.peaks) {
     if (outputs.acceleration_peaks) {
       fmt::format_to(out, "{} of {} (absolute accelerations, {}):\n",
@@ -92,25 +93,27 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   for (std::size_t b = 0; b < r.peaks.size() && !report.levels.empty() && r.outputs.displacement_peaks; ++b) {
     const auto& building = r.peaks[b];
     const auto& top = building.floors.at(static_cast<std::size_t>(report.levels.back().floors[b] - 1));
-    fmt::format_to(out, "Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",
-                   building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
-                   top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
+    fmt::format_to(
+        out, "Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",
+        building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
+        top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
   }
   append_design_peaks(report, text);
   const auto& st = r.statistics;
   if (st.max_interpenetration_candidate >= 0) {
-    fmt::format_to(out, "Largest overlap: {:.3e} m at {:.6f} s, {}\n", st.max_interpenetration_m,
-                   st.max_interpenetration_t_s,
-                   contact::describe(report.candidates.at(static_cast<std::size_t>(st.max_interpenetration_candidate))));
+    fmt::format_to(
+        out, "Largest overlap: {:.3e} m at {:.6f} s, {}\n", st.max_interpenetration_m, st.max_interpenetration_t_s,
+        contact::describe(report.candidates.at(static_cast<std::size_t>(st.max_interpenetration_candidate))));
   } else {
     text += "Largest overlap: none\n";
   }
   const auto& e = r.energy;
   const std::string algorithmic =
       fixed_step(report) ? fmt::format(", algorithmic dissipation {:.3f} kJ", e.algorithmic_dissipation_kJ) : "";
-  fmt::format_to(out, "Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ{}, residual {:.3e} kJ ({:.2e} of input)\n",
-                 e.input_kJ, e.damping_kJ, e.impact_loss_kJ, algorithmic, e.residual_kJ(),
-                 e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
+  fmt::format_to(
+      out, "Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ{}, residual {:.3e} kJ ({:.2e} of input)\n",
+      e.input_kJ, e.damping_kJ, e.impact_loss_kJ, algorithmic, e.residual_kJ(),
+      e.input_kJ != 0 ? e.residual_kJ() / e.input_kJ : 0.0);
 }
 
 void append_solver(const analysis::RunReport& report, std::string& text) {
@@ -118,9 +121,12 @@ void append_solver(const analysis::RunReport& report, std::string& text) {
   const auto& s = r.statistics;
   auto out = std::back_inserter(text);
   if (fixed_step(report)) {
-    fmt::format_to(out, "Solver: {} steps ({} solves), {} factorisations, {} halvings, smallest step {:.3e} s, {} unresolved; "
-                   "run time {:.3f} s\n", s.steps, s.rhs_evaluations, s.jacobian_evaluations, s.halvings,
-                   s.smallest_step_s, s.unresolved_contacts, s.wall_time_s);
+    fmt::format_to(
+        out,
+        "Solver: {} steps ({} solves), {} factorisations, {} halvings, smallest step {:.3e} s, {} unresolved; "
+        "run time {:.3f} s\n",
+        s.steps, s.rhs_evaluations, s.jacobian_evaluations, s.halvings, s.smallest_step_s, s.unresolved_contacts,
+        s.wall_time_s);
   } else {
     fmt::format_to(out, "Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
                    s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
@@ -160,9 +166,10 @@ std::string full_report(const analysis::RunReport& report) {
                                             report.contact_stiffness, info.stiffness_unit,
                                             info.damping_key == "damping_ratio" ? "xi" : "xi v0/k_h",
                                             report.contact_damping);
-  std::string text = fmt::format("Run '{}' with {} ({}), gap {} m, k = {}{}: {}{}\n", report.scene, r.method,
-                                 method_settings_text(report), report.gap_m, report.restitution, law,
-                                 solvers::to_string(r.status), r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
+  std::string text =
+      fmt::format("Run '{}' with {} ({}), gap {} m, k = {}{}: {}{}\n", report.scene, r.method,
+                  method_settings_text(report), report.gap_m, report.restitution, law, solvers::to_string(r.status),
+                  r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
   append_contacts(report, text);
   append_response(report, text);
   append_solver(report, text);

@@ -56,7 +56,8 @@ json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
 }
 
 /// Per building (with its contact vertices) and floor, the peak groups `outputs` asked for.
-json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers::OutputSelection& outputs, double g_mps2) {
+json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers::OutputSelection& outputs,
+                double g_mps2) {
   json list = json::array();
   for (const auto& building : peaks) {
     json vertices = json::array(), floors = json::array();
@@ -149,8 +150,10 @@ json warnings_json(const std::vector<analysis::RunWarning>& warnings) {
 
 json settings_json(const analysis::RunReport& report) {
   json given = json::object(), used = json::object();
-  for (const analysis::SettingEntry& e : analysis::given_entries(report.solver)) given[std::string(e.key)] = setting_json(e.value);
-  for (const analysis::SettingEntry& e : analysis::used_entries(report.used)) used[std::string(e.key)] = setting_json(e.value);
+  for (const analysis::SettingEntry& e : analysis::given_entries(report.solver))
+    given[std::string(e.key)] = setting_json(e.value);
+  for (const analysis::SettingEntry& e : analysis::used_entries(report.used))
+    used[std::string(e.key)] = setting_json(e.value);
   if (const auto& c = report.used.atol_components) {
     used["atol_per_component"] = {{"u_m", c->displacement_m}, {"v_m", c->displacement_m},
                                   {"phi_rad", c->rotation_rad}, {"rates_factor_per_s", c->rate_per_s}};
@@ -251,7 +254,8 @@ void write_run(const analysis::RunReport& report, const Provenance& provenance, 
   if (r.outputs.history) {
     write_atomically(folder / "history.csv", [&](std::ostream& out) {
       write_csv_header(r.history.columns, out);
-      for (std::size_t k = 0; k < r.history.time_s.size(); ++k) write_history_row(r.history.time_s[k], r.history.rows[k], out);
+      for (std::size_t k = 0; k < r.history.time_s.size(); ++k)
+        write_history_row(r.history.time_s[k], r.history.rows[k], out);
     });
     write_atomically(folder / "contacts_history.csv", [&](std::ostream& out) {
       write_contact_forces_header(out);

@@ -574,7 +574,8 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   }
   const detail::AsciiToml ascii = detail::ascii_toml(text);
   if (const auto& at = ascii.stray_non_ascii) {
-    throw InputError("", "", "a non-ASCII character outside a string or comment (or escaped by a backslash) is not TOML",
+    throw InputError("", "",
+                     "a non-ASCII character outside a string or comment (or escaped by a backslash) is not TOML",
                      fmt::format("{}:{}:{}", file, at->line, at->column));
   }
   try {
@@ -615,7 +616,8 @@ void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice
     // A record the options chose as format 'single' without its spacing: say which option is
     // missing, in the scene's name (the key excitation.dt_s was never typed).
     if (error.key() == "excitation.dt_s" && error.value() == "missing" && (choice.format || choice.file)) {
-      throw InputError("--record-dt", "missing", "the record is read as format 'single', which needs its sample spacing (s)",
+      throw InputError("--record-dt", "missing",
+                       "the record is read as format 'single', which needs its sample spacing (s)",
                        scene.file.string());
     }
     throw error.renamed(record_option_names(choice), scene.file.string());

@@ -13,7 +13,8 @@ namespace {
 
 const char* kCsvHeader =
     "method,setting,value,status,run_time_s,steps,rhs_evaluations,restarts,impacts,matched,missing,extra,"
-    "impact_time_error_s,impact_time_error_all_s,impact_time_error_before_hold_s,impulse_relative_error,history_u_error_m,history_v_error_m,history_phi_error_rad,"
+    "impact_time_error_s,impact_time_error_all_s,impact_time_error_before_hold_s,impulse_relative_error,history_u_"
+    "error_m,history_v_error_m,history_phi_error_rad,"
     "peak_u_error_m,peak_v_error_m,peak_phi_error_rad,impact_time_at_reference,history_u_at_reference\n";
 
 /// The error columns a study row and a truncation row share, in their CSV order.
@@ -134,7 +135,8 @@ nlohmann::json study_json(const analysis::StudyResult& study) {
           {"styles", styles_json()}};
 }
 
-void write_study(const analysis::StudyResult& study, const Provenance& provenance, const std::filesystem::path& folder) {
+void write_study(const analysis::StudyResult& study, const Provenance& provenance,
+                 const std::filesystem::path& folder) {
   std::filesystem::create_directories(folder);
   nlohmann::json document = study_json(study);
   document["provenance"] = provenance_json(provenance);

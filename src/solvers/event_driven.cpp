@@ -45,7 +45,8 @@ void EventOptions::validate() const {
   positive(hold_height_m, "hold_height_m");
   positive(max_events_per_s, "max_events_per_s");
   positive(history_interval_s, "history_interval_s");
-  if (max_step_s < 0.0) throw InputError("max_step_s", format_value(max_step_s), "must be zero (automatic) or positive");
+  if (max_step_s < 0.0)
+    throw InputError("max_step_s", format_value(max_step_s), "must be zero (automatic) or positive");
   if (!(modes_cutoff_hz >= 0.0) || !std::isfinite(modes_cutoff_hz)) {
     throw InputError("modes_cutoff_hz", format_value(modes_cutoff_hz), "must be zero (every mode) or positive");
   }

@@ -23,8 +23,8 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
 TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
                          const contact::GapState& gap) {
   const contact::Candidate& c = system.candidates()[index];
-  return {t, c.level, c.floors, c.elevation_m, c.striking_building + 1, c.vertex_index + 1, index, gap.contact_point, gap.gap_rate_mps,
-          gap.gap_m};
+  return {t,     c.level,           c.floors,         c.elevation_m, c.striking_building + 1, c.vertex_index + 1,
+          index, gap.contact_point, gap.gap_rate_mps, gap.gap_m};
 }
 
 ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,

@@ -40,7 +40,8 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
     amplitude_[b].resize(n);
     eta_[b].resize(n);
     eta_rate_[b].resize(n);
-    for (auto* bound : {&rate_bound_, &rate_growth_, &displacement_bound_, &displacement_growth_}) (*bound)[b].resize(rows);
+    for (auto* bound : {&rate_bound_, &rate_growth_, &displacement_bound_, &displacement_growth_})
+      (*bound)[b].resize(rows);
   }
   for (const contact::Candidate& c : candidates) {
     Pair pair;
@@ -80,8 +81,10 @@ double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, con
     const int a = pair.striking, b = 1 - a;
     // The bound L(τ) on |ġ| over a window τ (the header's), nondecreasing in τ.
     auto rate_bound_mps = [&](double tau_s) {
-      const Eigen::Vector3d rate_a = rate_bound_[a].segment<3>(pair.row[a]) + tau_s * rate_growth_[a].segment<3>(pair.row[a]);
-      const Eigen::Vector3d rate_b = rate_bound_[b].segment<3>(pair.row[b]) + tau_s * rate_growth_[b].segment<3>(pair.row[b]);
+      const Eigen::Vector3d rate_a =
+          rate_bound_[a].segment<3>(pair.row[a]) + tau_s * rate_growth_[a].segment<3>(pair.row[a]);
+      const Eigen::Vector3d rate_b =
+          rate_bound_[b].segment<3>(pair.row[b]) + tau_s * rate_growth_[b].segment<3>(pair.row[b]);
       const Eigen::Vector3d shift_a =
           displacement_bound_[a].segment<3>(pair.row[a]) + tau_s * displacement_growth_[a].segment<3>(pair.row[a]);
       const Eigen::Vector3d shift_b =

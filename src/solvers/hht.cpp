@@ -341,7 +341,8 @@ State HhtRun::settle(const State& s) {
         [&](std::size_t i, const contact::GapState&) { return in_contact[i]; });
     const VectorXd before = y;
     const contact::ImpulseSolution solution = apply_impulses(system_, y, contacts);
-    recorder_.add_impact_loss(record_floor_outcome(system_, s.t_s, contacts, solution, before, y, new_touches, {}, {}, result_));
+    recorder_.add_impact_loss(
+        record_floor_outcome(system_, s.t_s, contacts, solution, before, y, new_touches, {}, {}, result_));
     recorder_.stream_new_impacts(result_.impacts);
     ++result_.statistics.restarts;
     ++result_.statistics.events;
@@ -455,7 +456,8 @@ RunResult HhtRun::run(const std::string& method) {
   result_.statistics.jacobian_evaluations = stepper_.factorizations();
   recorder_.finish(first_order(s), result_);
   report_overlaps();
-  result_.statistics.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  result_.statistics.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return std::move(result_);
 }
 

@@ -90,7 +90,8 @@ void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   for (int b = 0; b < 2; ++b) {
     const int size = bases_[b].size(), dofs = system_.building(b).dof();
     modal.eta.segment(mode_offset_[b], size).noalias() = bases_[b].projection * y.segment(dof_offset_[b], dofs);
-    modal.eta_rate.segment(mode_offset_[b], size).noalias() = bases_[b].projection * y.segment(n + dof_offset_[b], dofs);
+    modal.eta_rate.segment(mode_offset_[b], size).noalias() =
+        bases_[b].projection * y.segment(n + dof_offset_[b], dofs);
   }
   segment_.t_start_s = t;
   end_t_s_ = std::numeric_limits<double>::quiet_NaN();

@@ -19,7 +19,8 @@ RecordedDynamics free_dynamics(const dynamics::CoupledSystem& system) {
 
 namespace {
 
-std::vector<contact::Level> chosen_levels(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels) {
+std::vector<contact::Level> chosen_levels(const dynamics::CoupledSystem& system,
+                                          const std::vector<int>& history_levels) {
   if (history_levels.empty()) return system.levels();
   std::vector<contact::Level> levels;
   for (int level : history_levels) levels.push_back(system.levels().at(static_cast<std::size_t>(level - 1)));
@@ -28,7 +29,8 @@ std::vector<contact::Level> chosen_levels(const dynamics::CoupledSystem& system,
 
 }  // namespace
 
-std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels) {
+std::vector<std::string> history_columns(const dynamics::CoupledSystem& system,
+                                         const std::vector<int>& history_levels) {
   std::vector<std::string> columns{"t_s"};
   std::array<std::vector<int>, 2> numbers;
   for (int b = 0; b < 2; ++b) {
@@ -145,8 +147,9 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
   if (outputs_.history || peaks) {
     while (next_sample_s_ <= t_b) {
       if (next_sample_s_ > t_a) sample(next_sample_s_, at(next_sample_s_));
-      next_sample_s_ = system_.ground_motion().start_s() +
-                       interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
+      next_sample_s_ =
+          system_.ground_motion().start_s() +
+          interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
     }
   }
   if (!peaks) return;

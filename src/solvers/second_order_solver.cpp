@@ -132,7 +132,8 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
     auto out = view(x);
     const double g = me->gamma_;  // solve the system that was factored, consistently
     if (me->sparse_) {
-      const Eigen::VectorXd x2 = me->sparse_reduced_.solve(rhs.tail(n) + g * (me->sparse_rows_.leftCols(n) * rhs.head(n)));
+      const Eigen::VectorXd x2 =
+          me->sparse_reduced_.solve(rhs.tail(n) + g * (me->sparse_rows_.leftCols(n) * rhs.head(n)));
       out.head(n) = rhs.head(n) + g * x2;
       out.tail(n) = x2;
       return SUNLS_SUCCESS;
@@ -144,7 +145,8 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
       out.head(n) = rhs.head(n) + g * out.tail(n);
       return SUNLS_SUCCESS;
     }
-    const Eigen::VectorXd x2 = me->reduced_.solve(rhs.tail(n) + g * (me->jacobian_.bottomLeftCorner(n, n) * rhs.head(n)));
+    const Eigen::VectorXd x2 =
+        me->reduced_.solve(rhs.tail(n) + g * (me->jacobian_.bottomLeftCorner(n, n) * rhs.head(n)));
     out.head(n) = rhs.head(n) + g * x2;
     out.tail(n) = x2;
     return SUNLS_SUCCESS;

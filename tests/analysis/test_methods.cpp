@@ -70,7 +70,8 @@ BOOST_AUTO_TEST_CASE(EveryMethodHasAFactoryADescriptionSettingsAndALadder) {
         BOOST_TEST(static_cast<bool>(method.factory(analysis::resolve(given, &system), system)));
       }
       BOOST_TEST(method.orders.empty() == !analysis::applies(method, Setting::order));
-      for (std::size_t i = 1; i < method.settings.size(); ++i) BOOST_TEST((method.settings[i - 1] < method.settings[i]));
+      for (std::size_t i = 1; i < method.settings.size(); ++i)
+        BOOST_TEST((method.settings[i - 1] < method.settings[i]));
       if (method.reference) {
         ++references;
         BOOST_TEST(method.ladder.empty());  // the study measures the others against it

@@ -80,7 +80,8 @@ BOOST_AUTO_TEST_CASE(FullRunsJustAboveTheNeededGapHaveNoContactAndJustBelowOne) 
   // The needed gap is a property of the full (event-driven) model: at it + 1e-7 m not even a
   // touch, at it − 1e-7 m a contact. CVODE BDF at rtol 1e-10 for both, so both are far more
   // accurate than the tolerance. The torsion scene's governing pair is a corner on a rotating edge.
-  for (const char* file : {POUNDING_EXAMPLES_DIR "/paper/paper.toml", POUNDING_EXAMPLES_DIR "/beyond-paper/torsion.toml"}) {
+  for (const char* file :
+       {POUNDING_EXAMPLES_DIR "/paper/paper.toml", POUNDING_EXAMPLES_DIR "/beyond-paper/torsion.toml"}) {
     BOOST_TEST_CONTEXT(file) {
       const analysis::Scene scene = tight(file);
       const analysis::NeededGap gap = analysis::needed_gap(scene);

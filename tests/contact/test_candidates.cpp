@@ -42,8 +42,9 @@ BOOST_AUTO_TEST_CASE(PaperSceneHasTwoCandidatesPerCommonFloor) {
 
 BOOST_AUTO_TEST_CASE(AlignedEqualSlabsGiveFourFaceCandidates) {
   // Two 10 × 10 slabs face to face: each slab's two facing corners against the other's edge.
-  const PairGeometry pair{{Polygon({{-10, 0}, {0, 0}, {0, 10}, {-10, 10}}), Polygon({{0.1, 0}, {10.1, 0}, {10.1, 10}, {0.1, 10}})},
-                          {Point2(-5, 5), Point2(5.1, 5)}};
+  const PairGeometry pair{
+      {Polygon({{-10, 0}, {0, 0}, {0, 10}, {-10, 10}}), Polygon({{0.1, 0}, {10.1, 0}, {10.1, 10}, {0.1, 10}})},
+      {Point2(-5, 5), Point2(5.1, 5)}};
   BOOST_TEST(find_candidates(pair, matching_floors(1), {.margin_m = 1.0, .gap_m = 0.1}).size() == 4u);
 }
 
@@ -106,7 +107,8 @@ BOOST_AUTO_TEST_CASE(CandidatesCarryEachLevelsFloorsAndElevation) {
 BOOST_AUTO_TEST_CASE(UniformTallerStoreysMeetOnlyWhereTheirSumsAgree) {
   // Issue 8's case: B1 seven 3 m storeys, B2 ten 4.5 m storeys. Floors meet where 3 i = 4.5 j:
   // 9 m (B1 3, B2 2) and 18 m (B1 6, B2 4); floor 7 (21 m) and floor 7 (31.5 m) do not.
-  const auto levels = common_levels({elevations(std::vector<double>(7, 3.0)), elevations(std::vector<double>(10, 4.5))}, 1e-3);
+  const auto levels =
+      common_levels({elevations(std::vector<double>(7, 3.0)), elevations(std::vector<double>(10, 4.5))}, 1e-3);
   BOOST_TEST_REQUIRE(levels.size() == 2u);
   BOOST_TEST((levels[0].floors == std::array<int, 2>{3, 2}));
   BOOST_TEST(levels[0].elevation_m == 9.0);

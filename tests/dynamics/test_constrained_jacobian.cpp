@@ -56,7 +56,8 @@ dynamics::CoupledSystem touching_slabs() {
   std::array<model::Building, 2> buildings{building("A", left, left_cm, 100.0), building("B", right, right_cm, 60.0)};
   const std::vector<contact::Level> levels{{.index = 1, .floors = {1, 1}, .elevation_m = 3.0},
                                            {.index = 2, .floors = {2, 2}, .elevation_m = 6.0}};
-  auto candidates = contact::find_candidates({{left, right}, {left_cm, right_cm}}, levels, {.margin_m = 1.0, .gap_m = 0.0});
+  auto candidates =
+      contact::find_candidates({{left, right}, {left_cm, right_cm}}, levels, {.margin_m = 1.0, .gap_m = 0.0});
   return dynamics::CoupledSystem(std::move(buildings), excitation::GroundMotion({0.0, 1.0, 2.0}, {0.0, 2.0, 0.0}, 0.3),
                                  levels, std::move(candidates));
 }

@@ -96,7 +96,8 @@ BOOST_AUTO_TEST_CASE(impacts_csv_is_summary_impacts_flattened) {
       }
     }
     BOOST_REQUIRE(row.size() == from_json.size());
-    for (std::size_t c = 0; c < row.size(); ++c) BOOST_TEST(std::stod(row[c]) == from_json[c], "impact " << k << " column " << c);
+    for (std::size_t c = 0; c < row.size(); ++c)
+      BOOST_TEST(std::stod(row[c]) == from_json[c], "impact " << k << " column " << c);
   }
   BOOST_TEST(k == report.result.impacts.size());
   fs::remove_all(folder);
@@ -140,7 +141,8 @@ BOOST_AUTO_TEST_CASE(history_columns_use_slab_outline_numbers) {
     BOOST_REQUIRE(peaks.contact_vertices.size() == peaks.contact_vertices_rest.size());
     for (std::size_t k = 0; k < peaks.contact_vertices.size(); ++k) {
       const int number = peaks.contact_vertices[k];
-      BOOST_TEST(peaks.contact_vertices_rest[k] == scene.buildings[b].slab.vertex(static_cast<std::size_t>(number - 1)));
+      BOOST_TEST(peaks.contact_vertices_rest[k] ==
+                 scene.buildings[b].slab.vertex(static_cast<std::size_t>(number - 1)));
       BOOST_TEST(has_column(static_cast<int>(b) + 1, 7, static_cast<std::size_t>(number)));
     }
   }
@@ -157,11 +159,13 @@ BOOST_AUTO_TEST_CASE(brief_and_full_reports) {
              std::string::npos, brief);
   const std::string full = io::full_report(report);
   BOOST_TEST(full.ends_with("\n"));
-  BOOST_TEST(full.starts_with(fmt::format("Run 'paper' with cvode-bdf ({}), gap 0.2 m", io::method_settings_text(report))));
+  BOOST_TEST(
+      full.starts_with(fmt::format("Run 'paper' with cvode-bdf ({}), gap 0.2 m", io::method_settings_text(report))));
   BOOST_TEST(full.find(fmt::format("\nImpacts: {};", r.impacts.size())) != std::string::npos);
   BOOST_TEST(full.find(fmt::format("\nSustained contacts: {}\n", r.sustained_contacts.size())) != std::string::npos);
   const auto& first = r.impacts.front();
-  BOOST_TEST(full.find(fmt::format("(B{} vertex {} strikes)", first.striking_building, first.vertex)) != std::string::npos);
+  BOOST_TEST(full.find(fmt::format("(B{} vertex {} strikes)", first.striking_building, first.vertex)) !=
+             std::string::npos);
   BOOST_TEST(full.find("\nSolver: ") != std::string::npos);
 }
 
@@ -185,7 +189,8 @@ BOOST_AUTO_TEST_CASE(provenance_of_a_scene) {
 
 // The command line as written splits back, in a POSIX shell, into the very same arguments.
 BOOST_AUTO_TEST_CASE(command_line_quoting_round_trips_through_a_shell) {
-  const std::vector<std::string> arguments = {"pounding", "run", "my scene.toml", "--out", "it's here", "", "$HOME", "a\"b"};
+  const std::vector<std::string> arguments = {"pounding",  "run", "my scene.toml", "--out",
+                                              "it's here", "",    "$HOME",         "a\"b"};
   const std::string line = io::command_line_text(arguments);
   BOOST_TEST(line.starts_with("pounding run 'my scene.toml' --out "));
   std::string expected;

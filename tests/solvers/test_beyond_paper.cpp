@@ -252,7 +252,8 @@ BOOST_AUTO_TEST_CASE(TinyStickingThresholdEndsLikeTheDefault) {
       BOOST_TEST(solvers::to_string(b.status) == "completed");
       BOOST_TEST(b.statistics.max_interpenetration_m < 1e-9);
       BOOST_TEST_REQUIRE(a.impacts.size() == b.impacts.size());
-      for (std::size_t k = 0; k < a.impacts.size(); ++k) BOOST_TEST(std::abs(a.impacts[k].t_s - b.impacts[k].t_s) < 1e-9);
+      for (std::size_t k = 0; k < a.impacts.size(); ++k)
+        BOOST_TEST(std::abs(a.impacts[k].t_s - b.impacts[k].t_s) < 1e-9);
     }
   }
 }

@@ -28,7 +28,9 @@ solvers::IntegratorFactory arkode_dirk(double rtol, double atol) {
 }
 
 /// ξ of the Kelvin element, written out here (not the library's function): −ln e/√(π² + ln² e).
-double damping_ratio(double e) { return e == 0.0 ? 1.0 : -std::log(e) / std::sqrt(kPi * kPi + std::log(e) * std::log(e)); }
+double damping_ratio(double e) {
+  return e == 0.0 ? 1.0 : -std::log(e) / std::sqrt(kPi * kPi + std::log(e) * std::log(e));
+}
 
 /// The closed form of a lone Kelvin–Voigt contact (ω = 1, v₀ = 1), ξ < 1: δ = e^{−ξt} sin(ω_d t)/ω_d.
 struct Oscillator {
@@ -164,7 +166,8 @@ BOOST_AUTO_TEST_CASE(StiffKelvinContactTendsToTheImpulseLaw) {
     options.contact_stiffness = k;
     const solvers::RunResult r = solvers::run_event_driven(system, options, cvode(1e-11, 1e-13), "kelvin");
     BOOST_TEST_REQUIRE(r.impacts.size() == 1u);
-    const double velocity_error = std::abs(r.impacts[0].separation_velocity_mps - reference.impacts[0].separation_velocity_mps);
+    const double velocity_error =
+        std::abs(r.impacts[0].separation_velocity_mps - reference.impacts[0].separation_velocity_mps);
     const double impulse_error = std::abs(r.impacts[0].impulse_kNs - reference.impacts[0].impulse_kNs) / 200.0;
     errors.push_back(std::max(velocity_error, impulse_error));
     BOOST_TEST_MESSAGE("k = " << k << " kN/m: post-impact velocity error " << errors.back() << " m/s");
@@ -210,7 +213,8 @@ BOOST_AUTO_TEST_CASE(PaperSceneRunsWithKelvinOnEventDrivenMethods) {
 }
 
 BOOST_AUTO_TEST_CASE(CompliantLawsAreRefusedWhereTheyCannotRun) {
-  analysis::Scene scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string("kelvin")});
+  analysis::Scene scene =
+      io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string("kelvin")});
   for (const char* method : {"hht", "exact"}) {
     scene.solver = analysis::with_method(scene.solver, method);
     try {

@@ -34,9 +34,12 @@ struct StepResponse {
   double A, omega, zeta;
   double wd() const { return omega * std::sqrt(1 - zeta * zeta); }
   double x(double t) const {
-    return -A / (omega * omega) * (1 - std::exp(-zeta * omega * t) * (std::cos(wd() * t) + zeta * omega / wd() * std::sin(wd() * t)));
+    return -A / (omega * omega) *
+           (1 - std::exp(-zeta * omega * t) * (std::cos(wd() * t) + zeta * omega / wd() * std::sin(wd() * t)));
   }
-  double rate(double t) const { return -A / (omega * omega) * std::exp(-zeta * omega * t) * omega * omega / wd() * std::sin(wd() * t); }
+  double rate(double t) const {
+    return -A / (omega * omega) * std::exp(-zeta * omega * t) * omega * omega / wd() * std::sin(wd() * t);
+  }
   /// Absolute acceleration x'' + A = −ω²x − 2ζωx'.
   double absolute_accel(double t) const { return -omega * omega * x(t) - 2 * zeta * omega * rate(t); }
 };
@@ -112,8 +115,9 @@ BOOST_AUTO_TEST_CASE(FreeVibrationAccelerationIsMinusOmegaSquaredXMinusDamping) 
     const double rate = v0 * decay * (std::cos(wd * t) - zeta * omega / wd * std::sin(wd * t));
     BOOST_TEST(r.history.rows[k][static_cast<Eigen::Index>(ax)] == -omega * omega * x - 2 * zeta * omega * rate,
                tt::tolerance(1e-6 * v0 * omega));
-    BOOST_TEST(r.history.rows[k][static_cast<Eigen::Index>(drift)] == r.history.rows[k][static_cast<Eigen::Index>(u)] / 3.0,
-               tt::tolerance(1e-15));  // a one-storey building of height 3 m
+    BOOST_TEST(
+        r.history.rows[k][static_cast<Eigen::Index>(drift)] == r.history.rows[k][static_cast<Eigen::Index>(u)] / 3.0,
+        tt::tolerance(1e-15));  // a one-storey building of height 3 m
   }
 }
 
@@ -121,7 +125,8 @@ BOOST_AUTO_TEST_CASE(FreeVibrationAccelerationIsMinusOmegaSquaredXMinusDamping) 
 // displacement difference of the point over the storey height, computed here from the history's
 // own u, v, φ with exact rotation; and no sample beats the summary's peaks.
 BOOST_AUTO_TEST_CASE(DriftRatiosAreRelativeDisplacementOverStoreyHeight) {
-  const analysis::RunReport report = analysis::run_scene(io::read_scene(POUNDING_EXAMPLES_DIR "/levels/unequal-storeys.toml"));
+  const analysis::RunReport report =
+      analysis::run_scene(io::read_scene(POUNDING_EXAMPLES_DIR "/levels/unequal-storeys.toml"));
   const solvers::History& h = report.result.history;
   BOOST_REQUIRE(!h.rows.empty());
   // Levels j = B1 floor j + 1 and B2 floor j, so B2 floors 1-6 and B1 floors 2-7 are written.
@@ -140,10 +145,12 @@ BOOST_AUTO_TEST_CASE(DriftRatiosAreRelativeDisplacementOverStoreyHeight) {
       const double u = row[static_cast<Eigen::Index>(column(h, prefix + "u_m"))];
       const double v = row[static_cast<Eigen::Index>(column(h, prefix + "v_m"))];
       const double phi = row[static_cast<Eigen::Index>(column(h, prefix + "phi_rad"))];
-      return {u + (std::cos(phi) - 1) * arm.x() - std::sin(phi) * arm.y(), v + std::sin(phi) * arm.x() + (std::cos(phi) - 1) * arm.y()};
+      return {u + (std::cos(phi) - 1) * arm.x() - std::sin(phi) * arm.y(),
+              v + std::sin(phi) * arm.x() + (std::cos(phi) - 1) * arm.y()};
     };
     const std::string prefix = "B" + std::to_string(c.building) + "_f" + std::to_string(c.floor) + "_";
-    const solvers::FloorPeaks& peaks = report.result.peaks[static_cast<std::size_t>(c.building - 1)].floors[static_cast<std::size_t>(c.floor - 1)];
+    const solvers::FloorPeaks& peaks =
+        report.result.peaks[static_cast<std::size_t>(c.building - 1)].floors[static_cast<std::size_t>(c.floor - 1)];
     double largest_x = 0.0, largest_corner = 0.0;
     for (std::size_t k = 0; k < h.rows.size(); ++k) {
       const Eigen::VectorXd& row = h.rows[k];

@@ -183,7 +183,9 @@ BOOST_AUTO_TEST_CASE(AlgorithmicDissipationIsWhatTheStepRemovesFromTheDiscreteWo
     k << 300.0, -100.0, -100.0, 200.0;
     const Eigen::Vector2d m(1.0, 2.0);
     const Eigen::MatrixXd c = 0.2 * Eigen::MatrixXd(m.asDiagonal()) + 0.002 * k;
-    auto energy_of = [&](const HhtStepper::State& s) { return 0.5 * s.v.dot(m.cwiseProduct(s.v)) + 0.5 * s.d.dot(k * s.d); };
+    auto energy_of = [&](const HhtStepper::State& s) {
+      return 0.5 * s.v.dot(m.cwiseProduct(s.v)) + 0.5 * s.d.dot(k * s.d);
+    };
     auto force = [](double t) { return Eigen::Vector2d(std::sin(7 * t), 2 * std::cos(3 * t)); };
     HhtStepper::State s = stepper.at(0.0, Eigen::Vector2d(0.01, -0.02), Eigen::Vector2d(0.3, 0.1));
     double largest = 0.0, total = 0.0;

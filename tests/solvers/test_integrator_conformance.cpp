@@ -114,7 +114,9 @@ class WithSparseRows final : public Integrator {
     void jacobian(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
       inner_.jacobian(t, y, jac);
     }
-    void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override { inner_.roots(t, y, g); }
+    void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
+      inner_.roots(t, y, g);
+    }
     bool acceleration_jacobian(double t, const Eigen::Ref<const VectorXd>& y,
                                Eigen::SparseMatrix<double>& rows) override {
       Eigen::MatrixXd dense(state_size(), state_size());
@@ -132,7 +134,8 @@ class WithSparseRows final : public Integrator {
 };
 
 Factory sparse_rows(Factory make) {
-  return [=](OdeFunctions& f, double t0, const VectorXd& y0) { return std::make_unique<WithSparseRows>(f, make, t0, y0); };
+  return
+      [=](OdeFunctions& f, double t0, const VectorXd& y0) { return std::make_unique<WithSparseRows>(f, make, t0, y0); };
 }
 
 Factory exact() {
@@ -443,7 +446,8 @@ BOOST_DATA_TEST_CASE(ReportsRootsOnlyWhenClosing, bdata::make(methods()), method
   begin(*integrator, kFar, 0.02);
 
   // Position error → time error through the closing speed |ẋ| = Aω cos(π/6).
-  const double t_tolerance = method.global_error_factor * (method.rtol * amplitude + method.atol) / (amplitude * omega * 0.866);
+  const double t_tolerance =
+      method.global_error_factor * (method.rtol * amplitude + method.atol) / (amplitude * omega * 0.866);
   for (double expected : {5.0 * kPi / (6.0 * omega), 17.0 * kPi / (6.0 * omega)}) {
     StepOutcome out;
     for (int i = 0; i < 10000 && out.kind == StepKind::step; ++i) out = integrator->step(kFar);
@@ -474,7 +478,8 @@ BOOST_DATA_TEST_CASE(ListsCoincidentRootsTogether, bdata::make(methods()), metho
   for (int i = 0; i < 10000 && out.kind == StepKind::step; ++i) out = integrator->step(kFar);
   BOOST_TEST_REQUIRE((out.kind == StepKind::root), out.failure);
   const VectorXd expected = f.exact(0.0, y0, out.t_s);
-  BOOST_TEST(std::abs(expected[0] + amplitude / 2) <= method.global_error_factor * (method.rtol * amplitude + method.atol));
+  BOOST_TEST(std::abs(expected[0] + amplitude / 2) <=
+             method.global_error_factor * (method.rtol * amplitude + method.atol));
   BOOST_TEST(integrator->roots_found() == (std::vector<int>{-1, -1, 0, 0}), tt::per_element());
 }
 
@@ -545,7 +550,8 @@ void check_bounces(const Method& method, bool alternate_phases) {
     for (int i = 0; i < 10000 && out.kind == StepKind::step; ++i) out = integrator->step(kFar);
     BOOST_TEST_REQUIRE((out.kind == StepKind::root), "bounce " << bounce << ": " << out.failure);
     // Errors of the earlier flights carry over: allow the tolerance once per flight flown.
-    const double t_tolerance = (bounce + 1) * method.global_error_factor * (method.rtol * 1.0 + method.atol) / impact_speed;
+    const double t_tolerance =
+        (bounce + 1) * method.global_error_factor * (method.rtol * 1.0 + method.atol) / impact_speed;
     BOOST_TEST(std::abs(out.t_s - landing) <= t_tolerance,
                "bounce " << bounce << " at " << out.t_s << ", expected " << landing);
     BOOST_TEST(integrator->roots_found() == std::vector<int>{-1}, tt::per_element());

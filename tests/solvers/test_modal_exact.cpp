@@ -71,7 +71,8 @@ solvers::RunResult run_exact(const std::string& file, Form form, const io::Scene
     if (form == Form::modal) return std::make_unique<solvers::ModalExactIntegrator>(f, system, t0, y0);
     return std::make_unique<pounding::testing::StateSpaceExactIntegrator>(f, t0, y0);
   };
-  solvers::RunResult result = solvers::run_event_driven(system, exact_options(scene, form == Form::modal), factory, "exact");
+  solvers::RunResult result =
+      solvers::run_event_driven(system, exact_options(scene, form == Form::modal), factory, "exact");
   BOOST_TEST_REQUIRE(solvers::to_string(result.status) == "completed");
   return result;
 }
@@ -135,7 +136,8 @@ bool same_bits(const Matrix& a, const Matrix& b) {
 BOOST_AUTO_TEST_CASE(ARunSharesOneModalBasisPerBuilding) {
   // The system's basis of each building is model::modal_basis of that building along its part of
   // r, bit for bit; built once, whichever thread asks first, and shared by copies of the system.
-  const dynamics::CoupledSystem system = analysis::build_system(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml"));
+  const dynamics::CoupledSystem system =
+      analysis::build_system(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml"));
   std::array<std::array<const model::ModalBasis*, 2>, 4> seen{};
   std::vector<std::thread> threads;
   for (std::size_t k = 0; k < seen.size(); ++k) {

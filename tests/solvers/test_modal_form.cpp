@@ -106,7 +106,8 @@ BOOST_AUTO_TEST_CASE(ModalToleranceKeepsEveryContactFloorDisplacementWithinItsPh
       for (int b = 0; b < 2; ++b) {
         const int i = system.floor_index(b, c.floors[b]);
         for (int k = 0; k < 3; ++k) {
-          worst = std::max(worst, std::abs(displacement[i + k]) / (std::sqrt(static_cast<double>(size)) * physical[i + k]));
+          worst =
+              std::max(worst, std::abs(displacement[i + k]) / (std::sqrt(static_cast<double>(size)) * physical[i + k]));
         }
       }
     }

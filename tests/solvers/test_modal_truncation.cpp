@@ -126,7 +126,8 @@ BOOST_AUTO_TEST_CASE(TruncatedFreeFlightDiffersFromTheFullOneByTheDroppedModesTr
             const std::complex<double> root = w * std::sqrt(std::complex<double>(zeta * zeta - 1.0));
             const std::complex<double> l1 = -zeta * w + root, l2 = -zeta * w - root;
             const double e0 = basis.participation[i] * kAccel_mps2 / (w * w);
-            expected += basis.shapes(dof, i) * e0 * ((l2 * std::exp(l1 * t) - l1 * std::exp(l2 * t)) / (l2 - l1)).real();
+            expected +=
+                basis.shapes(dof, i) * e0 * ((l2 * std::exp(l1 * t) - l1 * std::exp(l2 * t)) / (l2 - l1)).real();
           }
           const double measured = full.history.rows[row][column] - truncated.history.rows[row][column];
           worst = std::max(worst, std::abs(measured - expected));

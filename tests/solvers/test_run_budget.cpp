@@ -127,8 +127,9 @@ BOOST_AUTO_TEST_CASE(TheStepBudgetEndsTheExactPathInsideAHeldStretch) {
 
 BOOST_AUTO_TEST_CASE(AnInterruptEndsTheExactPathInsideAHeldStretch) {
   const ClearInterrupt cleanup;
-  const solvers::IntegratorFactory interrupting = [](solvers::OdeFunctions& functions, double t0,
-                                                     const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
+  const solvers::IntegratorFactory interrupting =
+      [](solvers::OdeFunctions& functions, double t0,
+         const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
     return std::make_unique<InterruptWhenHeld>(functions, t0, y0);
   };
   const auto result = solvers::run_event_driven(pressed_into_hold(), plastic(), interrupting, "exact");

@@ -41,7 +41,8 @@ class ExclusiveOutput {
 void write_atomically(const std::filesystem::path& file, const std::function<void(std::ostream&)>& write);
 
 /// Makes a finished `partial` file durable (fsync) and renames it over `file` (rename replaces a
-/// link at `file` and never writes through it), then syncs the folder. @throws std::runtime_error naming `file` if the data cannot be synced or renamed.
+/// link at `file` and never writes through it), then syncs the folder. @throws std::runtime_error naming `file` if the
+/// data cannot be synced or renamed.
 void commit_partial(const std::filesystem::path& partial, const std::filesystem::path& file);
 
 /// Creates `folder` if missing and proves that files can be created in it (writes and removes

@@ -11,7 +11,8 @@ namespace pounding::io {
 
 nlohmann::json study_json(const analysis::StudyResult& study);
 
-/// Writes study.csv, stiffness.csv, truncation.csv and study.json (study_json() plus "provenance") into `folder` (created if missing).
+/// Writes study.csv, stiffness.csv, truncation.csv and study.json (study_json() plus "provenance") into `folder`
+/// (created if missing).
 /// @throws std::runtime_error naming a file that cannot be written.
 void write_study(const analysis::StudyResult& study, const Provenance& provenance, const std::filesystem::path& folder);
 

@@ -28,7 +28,8 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
 
 /// An impact of candidate `index` at t where `gap` was evaluated: where it is (level, floors,
 /// vertex, edge, contact point) and its approach velocity; the caller fills in the outcome.
-ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index, const contact::GapState& gap);
+ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,
+                       const contact::GapState& gap);
 
 /// The record of candidate `index` touching (no impulse) at t in the state `gap`.
 TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,

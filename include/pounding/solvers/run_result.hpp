@@ -110,7 +110,8 @@ struct WorstCornerDrift {
 inline WorstCornerDrift worst_corner_drift(const FloorPeaks& floor) {
   WorstCornerDrift worst;
   for (std::size_t k = 0; k < floor.corner_drift_x.size(); ++k) {
-    for (const auto& [axis, peak] : {std::pair{'x', floor.corner_drift_x[k]}, std::pair{'y', floor.corner_drift_y[k]}}) {
+    for (const auto& [axis, peak] :
+         {std::pair{'x', floor.corner_drift_x[k]}, std::pair{'y', floor.corner_drift_y[k]}}) {
       if (worst.corner == 0 || std::abs(peak.value) > std::abs(worst.peak.value)) worst = {k + 1, axis, peak};
     }
   }
