@@ -6,6 +6,11 @@ it. Middle: the touch gap of the governing pair over time (the clear gap at whic
 would just touch at each instant; its largest value is the needed gap, marked). Right, when the
 folder holds gap_curve.csv (`--curve N`): impacts and energy lost against the gap.
 
+A folder of `pounding gap --records LIST|FOLDER` (records.json, records.csv) is drawn as the
+record set instead: each record's needed gap beside the three rules at its governing level, and
+the set's median and lognormal 84th percentile; records that did not complete are named in the
+title and left out.
+
     tools/plot_gap.py out/paper-gap [--out gap.png]
 """
 import argparse
@@ -31,6 +36,8 @@ def main():
     parser.add_argument("folder", type=Path)
     parser.add_argument("--out", type=Path, help="image file (default: FOLDER/gap.png)")
     args = parser.parse_args()
+    if (args.folder / "records.json").is_file() and not (args.folder / "gap.json").is_file():
+        return plot_record_set(args.folder, args.out)
     summary_file = args.folder / "gap.json"
     if not summary_file.is_file():
         sys.exit(f"error: {summary_file} not found (is {args.folder} the output folder of `pounding gap`?)")
@@ -83,6 +90,40 @@ def main():
 
     fig.tight_layout()
     out = args.out or args.folder / "gap.png"
+    fig.savefig(out, dpi=120)
+    print(f"Wrote {out}")
+
+
+def plot_record_set(folder, out):
+    summary = json.load((folder / "records.json").open())
+    done = [r for r in summary["records"] if r["status"] == "completed"]
+    if not done:
+        sys.exit(f"error: no record of {folder / 'records.json'} completed: nothing to draw")
+    done.sort(key=lambda r: r["needed_gap_m"])
+    fig, ax = plt.subplots(figsize=(max(8.0, 0.9 * len(done) + 3.0), 5.5))
+    rows = range(len(done))
+    # Four bars a record, 0.2 high: the needed gap on top, the three rules under it.
+    ax.barh([i + 0.3 for i in rows], [r["needed_gap_m"] for r in done], height=0.2, color="k", label="needed (exact)")
+    for offset, key, label, colour in ((0.1, "abs_m", "ABS", "tab:red"), (-0.1, "srss_m", "SRSS", "tab:blue"),
+                                       (-0.3, "ddc_m", "DDC", "tab:green")):
+        ax.barh([i + offset for i in rows], [r["rules"][key] for r in done], height=0.2, color=colour, alpha=0.7,
+                label=label)
+    ax.set_yticks([i for i in rows], [f"{r['record']}\n(level {r['level']}, {r['pga_g']:.2f} g)" for r in done],
+                  fontsize=7)
+    stats = summary["statistics"]["needed_gap_m"]
+    for key, style, label in (("median", "--", "median"), ("p84_lognormal", ":", "84th percentile (lognormal)")):
+        if stats.get(key) is not None:  # a set of one record has no spread
+            ax.axvline(stats[key], color="k", ls=style, lw=1, label=f"{label} {stats[key]:.4f} m")
+    failed = [r["record"] for r in summary["records"] if r["status"] != "completed"]
+    title = f"{summary['scene']}: needed gap over {len(done)} records; worst {summary['worst']}"
+    if failed:
+        title += f"\nnot completed (left out): {', '.join(failed)}"
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel("gap [m]")
+    ax.grid(alpha=0.3, axis="x")
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    out = out or folder / "records.png"
     fig.savefig(out, dpi=120)
     print(f"Wrote {out}")
 

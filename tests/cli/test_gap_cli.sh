@@ -109,6 +109,11 @@ printf 'elcentro1940_ns_0.02s.AT2\nset.txt\n' > "$work/list/unreadable.txt"
 [ $? -eq 3 ] || fail "a set with a failed record should exit 3"
 grep -q '^"set.txt",.*,failed,' "$work/unreadable/records.csv" || fail "no failed row: $(cat "$work/unreadable/records.csv")"
 grep -q '^"elcentro1940_ns_0.02s.AT2",.*,completed,' "$work/unreadable/records.csv" || fail "no completed row"
+# plot_gap.py draws a record-set folder as the set (records.png), naming what did not complete.
+/usr/bin/python3 "$source_dir/tools/plot_gap.py" "$work/set" > /dev/null || fail "plot_gap.py on a record set exited $?"
+[ -s "$work/set/records.png" ] || fail "no records.png for the record set"
+/usr/bin/python3 "$source_dir/tools/plot_gap.py" "$work/unreadable" --out "$work/unreadable.png" > /dev/null ||
+  fail "plot_gap.py on a set with a failed record exited $?"
 # The record options of run/check/gap name the option in their errors.
 "$pounding" check "$true_time" --pga-g -0.3 > /dev/null 2> "$work/bad-pga.txt"
 [ $? -eq 2 ] || fail "a bad --pga-g should exit 2"
