@@ -98,22 +98,31 @@ def by_gap(rows, column):
     return lines
 
 
-def draw_probability(axis, rows, gaps, fit, d_max):
-    if gaps:
+def draw_probability(axis, rows, gaps, fit, d_max, repeated_from=None):
+    """The share of records whose needed gap exceeds d, its lognormal fit and the observed share
+    of runs with an impact. `repeated_from`: the title of an earlier panel with the same needed
+    gaps (the needed gap is contact-free, so restitution, law and method do not change it): the
+    curve is then drawn there only, and here in grey for reference."""
+    if repeated_from is not None:
+        if fit:
+            grid = [d_max * k / 400 for k in range(401)]
+            fraction = fit["count"] / len(gaps)
+            axis.plot(grid, [exceedance(fit, g, fraction) for g in grid], color="0.7", lw=1,
+                      label=f"lognormal fit as for {repeated_from}")
+    elif gaps:
         # The fraction exceeding d, constant from one needed gap to the next (right-continuous).
         n = len(gaps)
         x = [0.0, *sorted(v for v in gaps if 0 < v < d_max), d_max]
         y = [sum(v > xi for v in gaps) / n for xi in x]
         axis.step(x, y, where="post", color="k", lw=1.5, label=f"records ({n}) whose needed gap > d")
-    if fit:
+    if fit and repeated_from is None:
         fraction = fit["count"] / len(gaps)
         grid = [d_max * k / 400 for k in range(401)]
         axis.plot(grid, [exceedance(fit, g, fraction) for g in grid], color="C3", lw=1.2, label="lognormal fit")
+        # The values go in the legend: text beside two close lines would overlap.
         for value, name, style in ((fit["median_lognormal_m"], "median", "--"),
                                    (fit["p84_lognormal_m"], "84th percentile", ":")):
-            axis.axvline(value, color="C3", ls=style, lw=1)
-            axis.annotate(f"{name} {value:.3f} m", (value, 0.97), rotation=90, ha="right", va="top", fontsize=7,
-                          color="C3")
+            axis.axvline(value, color="C3", ls=style, lw=1, label=f"{name} {value:.3f} m")
     observed = {}
     for row in rows:
         if row["status"] == "completed":
@@ -152,11 +161,14 @@ def main():
     all_gaps = needed_gaps(rows)
     d_max = 1.15 * max([d_max, *all_gaps])
     fits = []
+    drawn = {}  # needed gaps already drawn -> the title of their panel
     for column, (key, group) in enumerate(groups.items()):
         gaps = needed_gaps(group)
         fit = lognormal(gaps)
         fits.append({"panel": dict(zip(varying, key)), "records": len(gaps), "fit": fit})
-        draw_probability(axes[0, column], group, gaps, fit, d_max)
+        same = tuple(sorted(gaps))
+        draw_probability(axes[0, column], group, gaps, fit, d_max, drawn.get(same))
+        drawn.setdefault(same, titles[key])
         axes[0, column].set_title(titles[key], fontsize=9)
         draw_severity(axes[1, column], group, "max_impulse_kNs", "largest impulse [kN·s]")
         draw_severity(axes[2, column], group, "max_approach_speed_mps", "largest approach speed [m/s]")
