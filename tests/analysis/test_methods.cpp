@@ -162,7 +162,7 @@ BOOST_AUTO_TEST_CASE(UsedSettingsAreTheRealOnes) {
   BOOST_TEST(analysis::resolve(s).form == "modal");
   s.form = "eigen";
   std::string key;
-  BOOST_TEST(reason_of(s, &key) == "expected physical or modal");
+  BOOST_TEST(reason_of(s, &key) == "expected physical, modal or deviation");
   BOOST_TEST(key == "solver.form");
 }
 

@@ -41,8 +41,8 @@ std::vector<Case> registry_cases() {
     std::vector<int> orders(method.orders.begin(), method.orders.end());
     if (orders.empty()) orders.push_back(0);
     for (int order : orders) {
-      for (const char* form : {"physical", "modal"}) {
-        if (!has_form && std::string(form) == "modal") continue;
+      for (const char* form : {"physical", "modal", "deviation"}) {
+        if (!has_form && std::string(form) != "physical") continue;
         Case c{std::string(method.name), {}};
         c.settings.method = std::string(method.name);
         if (!method.orders.empty()) c.settings.order = order, c.name += "/order " + std::to_string(order);

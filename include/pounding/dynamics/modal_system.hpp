@@ -21,10 +21,12 @@ class ModalSystem {
   /// not diagonal in its modes (Rayleigh damping always is, to round-off).
   explicit ModalSystem(const CoupledSystem& system);
 
+  const CoupledSystem& system() const { return system_; }
   int dof() const { return system_.dof(); }
   int state_size() const { return system_.state_size(); }
   const VectorXd& omega_rad_s() const { return omega_rad_s_; }        // ωᵢ
   const VectorXd& participation() const { return participation_; }    // Γᵢ = φᵢᵀ M r (√t)
+  const VectorXd& damping_per_s() const { return damping_per_s_; }    // 2ζᵢωᵢ
 
   /// Free motion ż = (η̇, −Ω²η − 2ZΩη̇ − Γ a_g(t)): O(n).
   void rhs(double t, ConstVectorRef z, Eigen::Ref<VectorXd> z_dot) const;

@@ -1,0 +1,85 @@
+#pragma once
+// The form "deviation": an integrator of z = y − y_p(t), where y_p is the contact-free response
+// from the run's start, propagated exactly over the record's linear pieces (FreeResponse). The
+// record's kinks at every sample are in y_p, so what the inner integrator (CVODE, ARKODE) sees
+// is smooth: z ≡ 0 until the first contact, afterwards the homogeneous motion the impacts and
+// contact forces started, ż = A z (+ contact terms). BDF's steps then no longer shrink at every
+// sample of a dense record. The event loop hands it and reads from it physical states, as from
+// the other forms. Needs classical damping (Rayleigh damping is), as the modal form does.
+
+#include <memory>
+#include <vector>
+
+#include "pounding/dynamics/modal_system.hpp"
+#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/integrator.hpp"
+
+namespace pounding::solvers {
+
+/// The free response y_p(t) of a system from (t0, y0) under its whole record, exact to
+/// round-off at any t in the record: each mode advanced over each linear piece of a_g by
+/// oscillator_step (modal_propagator.hpp), the modal state kept at every sample.
+class FreeResponse {
+ public:
+  /// @pre `modes` outlives this; t0 is the record's start or later.
+  FreeResponse(const dynamics::ModalSystem& modes, double t0, const Eigen::VectorXd& y0);
+  /// y_p(t) and ẏ_p(t) (physical, as the system's state), t ∈ [t0, end of record].
+  void at(double t, Eigen::VectorXd& y, Eigen::VectorXd& y_dot) const;
+
+ private:
+  /// The modal state (η, η̇) and its rate at t, into z and z_dot.
+  void modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot) const;
+
+  const dynamics::ModalSystem& modes_;
+  std::vector<double> times_;            // t0, then every record sample after it
+  std::vector<Eigen::VectorXd> states_;  // (η, η̇) at each of times_
+  Eigen::VectorXd damping_ratio_;
+  mutable Eigen::VectorXd z_, z_dot_;  // scratch
+};
+
+class DeviationIntegrator final : public Integrator {
+ public:
+  /// `modes`, `physical` and `inner` must outlive the integrator; `inner` is called once, with
+  /// the deviation's functions and z₀ = 0 (its tolerances apply to z, in the units of y).
+  DeviationIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical, const IntegratorFactory& inner,
+                      double t0, const Eigen::VectorXd& y0);
+
+  void restart(double t, const Eigen::VectorXd& y) override;
+  void set_max_step(double h_s) override { inner_->set_max_step(h_s); }
+  void set_stop_time(double t_s) override { inner_->set_stop_time(t_s); }
+  StepOutcome step(double t_final) override;
+  const Eigen::VectorXd& state() const override { return state_; }
+  void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
+  std::vector<int> roots_found() override { return inner_->roots_found(); }
+  IntegratorCounters counters() override { return inner_->counters(); }
+
+ private:
+  /// The loop's functions seen through z = y − y_p(t).
+  class Functions final : public OdeFunctions {
+   public:
+    Functions(const FreeResponse& free, OdeFunctions& physical);
+    int state_size() const override { return physical_.state_size(); }
+    int root_count() const override { return physical_.root_count(); }
+    bool is_linear() const override { return physical_.is_linear(); }
+    bool is_free_motion() const override { return physical_.is_free_motion(); }
+    void rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> z_dot) override;
+    void jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> jac) override;
+    bool acceleration_jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
+                               Eigen::SparseMatrix<double>& rows) override;
+    void roots(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g) override;
+
+   private:
+    /// y = y_p(t) + z into y_, and ẏ_p(t) into yp_dot_.
+    void physical_state(double t, const Eigen::Ref<const Eigen::VectorXd>& z);
+    const FreeResponse& free_;
+    OdeFunctions& physical_;
+    Eigen::VectorXd y_, yp_, yp_dot_, y_dot_;  // scratch
+  };
+
+  FreeResponse free_;
+  Functions functions_;
+  std::unique_ptr<Integrator> inner_;
+  Eigen::VectorXd state_, yp_, yp_dot_, z_;
+};
+
+}  // namespace pounding::solvers

@@ -1,0 +1,138 @@
+#include "pounding/solvers/deviation_integrator.hpp"
+
+#include <algorithm>
+
+#include "pounding/solvers/modal_propagator.hpp"
+
+namespace pounding::solvers {
+
+FreeResponse::FreeResponse(const dynamics::ModalSystem& modes, double t0, const Eigen::VectorXd& y0)
+    : modes_(modes), z_(y0.size()), z_dot_(y0.size()) {
+  const int n = modes.dof();
+  damping_ratio_ = modes.damping_per_s().cwiseQuotient(2.0 * modes.omega_rad_s());
+  const excitation::GroundMotion& motion = modes.system().ground_motion();
+  Eigen::VectorXd z(y0.size());
+  modes.to_modal(y0, z);
+  times_.push_back(t0);
+  states_.push_back(z);
+  for (double t : motion.time_s()) {
+    if (t <= t0) continue;
+    // Over [t_a, t]: η̈ + 2ζωη̇ + ω²η = −Γ a_g, a_g linear.
+    const double t_a = times_.back(), tau = t - t_a;
+    const double a_start = motion.accel_at(t_a), slope = (motion.accel_at(t) - a_start) / tau;
+    const Eigen::VectorXd& from = states_.back();
+    Eigen::VectorXd next(y0.size());
+    for (int i = 0; i < n; ++i) {
+      const OscillatorStep step = oscillator_step(modes.omega_rad_s()[i], damping_ratio_[i], tau);
+      const double gamma = modes.participation()[i];
+      const Eigen::Vector2d moved = step.free * Eigen::Vector2d(from[i], from[n + i]) +
+                                    step.start * (-gamma * a_start) + step.slope * (-gamma * slope);
+      next[i] = moved[0];
+      next[n + i] = moved[1];
+    }
+    times_.push_back(t);
+    states_.push_back(std::move(next));
+  }
+}
+
+void FreeResponse::modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot) const {
+  const int n = modes_.dof();
+  const excitation::GroundMotion& motion = modes_.system().ground_motion();
+  // The piece [t_k, t_k+1] holding t (the last one for t at or past the end).
+  const auto after = std::upper_bound(times_.begin(), times_.end(), t);
+  const std::size_t k =
+      after == times_.begin() ? 0 : std::min<std::size_t>(after - times_.begin() - 1, times_.size() - 2);
+  const double t_a = times_[k], tau = t - t_a;
+  const double a_start = motion.accel_at(t_a),
+               slope = (motion.accel_at(times_[k + 1]) - a_start) / (times_[k + 1] - t_a);
+  const Eigen::VectorXd& from = states_[k];
+  const double a_now = a_start + slope * tau;
+  for (int i = 0; i < n; ++i) {
+    const double omega = modes_.omega_rad_s()[i], gamma = modes_.participation()[i];
+    const OscillatorStep step = oscillator_step(omega, damping_ratio_[i], tau);
+    const Eigen::Vector2d moved = step.free * Eigen::Vector2d(from[i], from[n + i]) + step.start * (-gamma * a_start) +
+                                  step.slope * (-gamma * slope);
+    z[i] = moved[0];
+    z[n + i] = moved[1];
+    z_dot[i] = moved[1];
+    z_dot[n + i] = -omega * omega * moved[0] - modes_.damping_per_s()[i] * moved[1] - gamma * a_now;
+  }
+}
+
+void FreeResponse::at(double t, Eigen::VectorXd& y, Eigen::VectorXd& y_dot) const {
+  modal_at(t, z_, z_dot_);
+  modes_.to_physical(z_, y);
+  modes_.to_physical(z_dot_, y_dot);
+}
+
+DeviationIntegrator::Functions::Functions(const FreeResponse& free, OdeFunctions& physical)
+    : free_(free),
+      physical_(physical),
+      y_(physical.state_size()),
+      yp_(physical.state_size()),
+      yp_dot_(physical.state_size()),
+      y_dot_(physical.state_size()) {}
+
+void DeviationIntegrator::Functions::physical_state(double t, const Eigen::Ref<const Eigen::VectorXd>& z) {
+  free_.at(t, yp_, yp_dot_);
+  y_ = yp_ + z;
+}
+
+void DeviationIntegrator::Functions::rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
+                                         Eigen::Ref<Eigen::VectorXd> z_dot) {
+  physical_state(t, z);
+  physical_.rhs(t, y_, y_dot_);
+  z_dot = y_dot_ - yp_dot_;
+}
+
+void DeviationIntegrator::Functions::jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
+                                              Eigen::Ref<Eigen::MatrixXd> jac) {
+  physical_state(t, z);
+  physical_.jacobian(t, y_, jac);
+}
+
+bool DeviationIntegrator::Functions::acceleration_jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
+                                                           Eigen::SparseMatrix<double>& rows) {
+  physical_state(t, z);
+  return physical_.acceleration_jacobian(t, y_, rows);
+}
+
+void DeviationIntegrator::Functions::roots(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
+                                           Eigen::Ref<Eigen::VectorXd> g) {
+  physical_state(t, z);
+  physical_.roots(t, y_, g);
+}
+
+DeviationIntegrator::DeviationIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical,
+                                         const IntegratorFactory& inner, double t0, const Eigen::VectorXd& y0)
+    : free_(modes, t0, y0),
+      functions_(free_, physical),
+      state_(y0),
+      yp_(y0.size()),
+      yp_dot_(y0.size()),
+      z_(Eigen::VectorXd::Zero(y0.size())) {
+  inner_ = inner(functions_, t0, z_);
+}
+
+void DeviationIntegrator::restart(double t, const Eigen::VectorXd& y) {
+  free_.at(t, yp_, yp_dot_);
+  z_ = y - yp_;
+  inner_->restart(t, z_);
+  state_ = y;
+}
+
+StepOutcome DeviationIntegrator::step(double t_final) {
+  const StepOutcome outcome = inner_->step(t_final);
+  if (outcome.kind == StepKind::failure) return outcome;
+  free_.at(outcome.t_s, yp_, yp_dot_);
+  state_ = yp_ + inner_->state();
+  return outcome;
+}
+
+void DeviationIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
+  inner_->interpolate(t, z_);
+  free_.at(t, yp_, yp_dot_);
+  y = yp_ + z_;
+}
+
+}  // namespace pounding::solvers
