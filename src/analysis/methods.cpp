@@ -174,24 +174,16 @@ Eigen::VectorXd atol_vector(const UsedSettings& used, const dynamics::CoupledSys
   return used.atol_components ? used.atol_components->vector(system) : Eigen::VectorXd();
 }
 
-/// `make(functions, settings, t0, y0)` on the physical state, or for form "modal" on the modal
-/// coordinates behind a ModalIntegrator, its atol vector mapped by ModalSystem::atol.
+/// `make(functions, settings, t0, y0)` on the physical state; for form "modal" on the modal
+/// coordinates behind a ModalIntegrator, its atol vector mapped by ModalSystem::atol; for form
+/// "deviation" on the deviation from the free response behind a DeviationIntegrator (atol as is:
+/// the deviation is in the units of y).
 template <typename Settings, typename Make>
 solvers::IntegratorFactory in_form(const UsedSettings& used, const dynamics::CoupledSystem& system, Settings settings,
                                    Make make) {
   std::shared_ptr<const dynamics::ModalSystem> modes;
-  if (used.form == "deviation") {
-    modes = std::make_shared<const dynamics::ModalSystem>(system);
-    solvers::IntegratorFactory inner = [settings, make](solvers::OdeFunctions& functions, double t0,
-                                                        const Eigen::VectorXd& z0) -> IntegratorPtr {
-      return make(functions, settings, t0, z0);
-    };
-    return [modes, inner](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
-      return std::make_unique<solvers::DeviationIntegrator>(*modes, functions, inner, t0, y0);
-    };
-  }
+  if (used.form != "physical") modes = std::make_shared<const dynamics::ModalSystem>(system);
   if (used.form == "modal") {
-    modes = std::make_shared<const dynamics::ModalSystem>(system);
     const Eigen::VectorXd physical_atol = settings.atol_vector.size()
                                               ? settings.atol_vector
                                               : Eigen::VectorXd::Constant(system.state_size(), settings.atol);
@@ -202,6 +194,11 @@ solvers::IntegratorFactory in_form(const UsedSettings& used, const dynamics::Cou
     return make(functions, settings, t0, y0);
   };
   if (!modes) return inner;
+  if (used.form == "deviation") {
+    return [modes, inner](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
+      return std::make_unique<solvers::DeviationIntegrator>(*modes, functions, inner, t0, y0);
+    };
+  }
   return [modes, inner](solvers::OdeFunctions& functions, double t0, const Eigen::VectorXd& y0) -> IntegratorPtr {
     return std::make_unique<solvers::ModalIntegrator>(*modes, functions, inner, t0, y0);
   };

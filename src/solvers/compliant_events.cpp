@@ -22,14 +22,7 @@ struct OpenContact {
 
 class CompliantEvents final : public LawEvents {
  public:
-  explicit CompliantEvents(const EventContext& context)
-      : context_(context),
-        system_(context.system),
-        options_(context.options),
-        states_(context.states),
-        recorder_(context.recorder),
-        result_(context.result),
-        open_(system_.candidates().size()) {}
+  explicit CompliantEvents(const EventContext& context) : LawEvents(context), open_(system_.candidates().size()) {}
 
   void add_forces(const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) const override {
     for (std::size_t i : states_.acting()) system_.add_contact_force(y, i, force_kN(i, y), y_dot);
@@ -80,12 +73,6 @@ class CompliantEvents final : public LawEvents {
   void begin_contact(std::size_t i, double t, const VectorXd& y);
   void end_contact(std::size_t i, double t, const VectorXd& y);
 
-  EventContext context_;
-  const dynamics::CoupledSystem& system_;
-  const EventOptions& options_;
-  ContactStates& states_;
-  Recorder& recorder_;
-  RunResult& result_;
   std::vector<std::optional<OpenContact>> open_;  // set from onset until the gap opens
 };
 

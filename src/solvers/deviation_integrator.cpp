@@ -59,6 +59,11 @@ void FreeResponse::modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot
   }
 }
 
+void FreeResponse::at(double t, Eigen::VectorXd& y) const {
+  modal_at(t, z_, z_dot_);
+  modes_.to_physical(z_, y);
+}
+
 void FreeResponse::at(double t, Eigen::VectorXd& y, Eigen::VectorXd& y_dot) const {
   modal_at(t, z_, z_dot_);
   modes_.to_physical(z_, y);
@@ -74,13 +79,14 @@ DeviationIntegrator::Functions::Functions(const FreeResponse& free, OdeFunctions
       y_dot_(physical.state_size()) {}
 
 void DeviationIntegrator::Functions::physical_state(double t, const Eigen::Ref<const Eigen::VectorXd>& z) {
-  free_.at(t, yp_, yp_dot_);
+  free_.at(t, yp_);
   y_ = yp_ + z;
 }
 
 void DeviationIntegrator::Functions::rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
                                          Eigen::Ref<Eigen::VectorXd> z_dot) {
-  physical_state(t, z);
+  free_.at(t, yp_, yp_dot_);
+  y_ = yp_ + z;
   physical_.rhs(t, y_, y_dot_);
   z_dot = y_dot_ - yp_dot_;
 }
@@ -109,13 +115,12 @@ DeviationIntegrator::DeviationIntegrator(const dynamics::ModalSystem& modes, Ode
       functions_(free_, physical),
       state_(y0),
       yp_(y0.size()),
-      yp_dot_(y0.size()),
       z_(Eigen::VectorXd::Zero(y0.size())) {
   inner_ = inner(functions_, t0, z_);
 }
 
 void DeviationIntegrator::restart(double t, const Eigen::VectorXd& y) {
-  free_.at(t, yp_, yp_dot_);
+  free_.at(t, yp_);
   z_ = y - yp_;
   inner_->restart(t, z_);
   state_ = y;
@@ -124,14 +129,14 @@ void DeviationIntegrator::restart(double t, const Eigen::VectorXd& y) {
 StepOutcome DeviationIntegrator::step(double t_final) {
   const StepOutcome outcome = inner_->step(t_final);
   if (outcome.kind == StepKind::failure) return outcome;
-  free_.at(outcome.t_s, yp_, yp_dot_);
+  free_.at(outcome.t_s, yp_);
   state_ = yp_ + inner_->state();
   return outcome;
 }
 
 void DeviationIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
   inner_->interpolate(t, z_);
-  free_.at(t, yp_, yp_dot_);
+  free_.at(t, yp_);
   y = yp_ + z_;
 }
 

@@ -19,13 +19,7 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 class ImpulseEvents final : public LawEvents {
  public:
   explicit ImpulseEvents(const EventContext& context)
-      : context_(context),
-        system_(context.system),
-        options_(context.options),
-        states_(context.states),
-        recorder_(context.recorder),
-        result_(context.result),
-        hold_record_(system_.candidates().size(), -1) {}
+      : LawEvents(context), hold_record_(system_.candidates().size(), -1) {}
 
   void add_forces(const Eigen::Ref<const VectorXd>&, Eigen::Ref<VectorXd>) const override {}
   void add_force_jacobian(const Eigen::Ref<const VectorXd>&, Eigen::SparseMatrix<double>&) const override {}
@@ -62,12 +56,6 @@ class ImpulseEvents final : public LawEvents {
     return forces;
   }
 
-  EventContext context_;
-  const dynamics::CoupledSystem& system_;
-  const EventOptions& options_;
-  ContactStates& states_;
-  Recorder& recorder_;
-  RunResult& result_;
   std::vector<int> hold_record_;  // index into result_.sustained_contacts while held
 };
 

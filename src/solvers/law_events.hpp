@@ -54,6 +54,13 @@ using StateInterpolant = std::function<void(double t_s, dynamics::VectorXd& y)>;
 
 class LawEvents {
  public:
+  explicit LawEvents(const EventContext& context)
+      : context_(context),
+        system_(context.system),
+        options_(context.options),
+        states_(context.states),
+        recorder_(context.recorder),
+        result_(context.result) {}
   virtual ~LawEvents() = default;
   /// Adds the acting contacts' forces to ẏ (the holds are the system's constraint).
   virtual void add_forces(const Eigen::Ref<const dynamics::VectorXd>& y,
@@ -77,6 +84,15 @@ class LawEvents {
   virtual void after_step(double t, const dynamics::VectorXd& y) = 0;
   /// Closes what is still open at the end of the run (t, y).
   virtual void finish(double t, const dynamics::VectorXd& y) = 0;
+
+ protected:
+  // What both laws work on, by the names their functions use.
+  EventContext context_;
+  const dynamics::CoupledSystem& system_;
+  const EventOptions& options_;
+  ContactStates& states_;
+  Recorder& recorder_;
+  RunResult& result_;
 };
 
 std::unique_ptr<LawEvents> make_impulse_events(const EventContext& context);

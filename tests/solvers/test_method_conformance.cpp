@@ -123,6 +123,24 @@ Made make(const analysis::UsedSettings& used, FreeMotion& motion, const VectorXd
 
 VectorXd pushed_state() { return testing::pushed(system(), kVelocity); }
 
+/// Steps towards t_final until a step of kind `until` (StepKind::failure: to t_final); a failure is reported and
+/// ends the stepping. `step_start`, when given, receives the time the last step started from.
+solvers::StepOutcome step_until(solvers::Integrator& integrator, double t_final, solvers::StepKind until,
+                                double* step_start = nullptr) {
+  solvers::StepOutcome out{};
+  double t = 0.0;
+  do {
+    t = out.t_s;
+    out = integrator.step(t_final);
+    if (out.kind == solvers::StepKind::failure) {
+      BOOST_ERROR(out.failure);
+      break;
+    }
+  } while (out.kind != until && out.t_s < t_final);
+  if (step_start) *step_start = t;
+  return out;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(StateAndInterpolantFollowTheClosedForm) {
@@ -133,15 +151,8 @@ BOOST_AUTO_TEST_CASE(StateAndInterpolantFollowTheClosedForm) {
       FreeMotion motion(1.0);  // out of reach: no root
       auto integrator = make(used, motion, pushed_state());
       integrator->set_max_step(0.01);
-      double t_prev = 0.0, t = 0.0;
-      while (t < 0.8) {
-        const solvers::StepOutcome out = integrator->step(0.8);
-        if (out.kind == solvers::StepKind::failure) {
-          BOOST_ERROR(out.failure);
-          break;
-        }
-        t_prev = t, t = out.t_s;
-      }
+      double t_prev = 0.0;
+      const double t = step_until(*integrator.integrator, 0.8, solvers::StepKind::failure, &t_prev).t_s;
       const int x = FreeMotion::x_index(), n = system().dof();
       const auto [u, v] = closed_form(0.0, kVelocity, t);
       BOOST_TEST(std::abs(integrator->state()[x] - u) <= tol.displacement_m);
@@ -166,14 +177,7 @@ BOOST_AUTO_TEST_CASE(AStopTimeEndsAStepExactlyThere) {
       auto integrator = make(used, motion, pushed_state());
       integrator->set_max_step(0.05);
       integrator->set_stop_time(0.123);
-      solvers::StepOutcome out{};
-      do {
-        out = integrator->step(1.0);
-        if (out.kind == solvers::StepKind::failure) {
-          BOOST_ERROR(out.failure);
-          break;
-        }
-      } while (out.kind != solvers::StepKind::stop_time && out.t_s < 1.0);
+      const solvers::StepOutcome out = step_until(*integrator.integrator, 1.0, solvers::StepKind::stop_time);
       BOOST_TEST((out.kind == solvers::StepKind::stop_time));
       BOOST_TEST(out.t_s == 0.123);
     }
@@ -197,14 +201,7 @@ BOOST_AUTO_TEST_CASE(ARootIsLocatedOnTheTrajectoryAndARestartTakesTheNewState) {
       FreeMotion motion(level_m);
       auto integrator = make(used, motion, pushed_state());
       integrator->set_max_step(0.01);
-      solvers::StepOutcome out{};
-      do {
-        out = integrator->step(1.0);
-        if (out.kind == solvers::StepKind::failure) {
-          BOOST_ERROR(out.failure);
-          break;
-        }
-      } while (out.kind != solvers::StepKind::root && out.t_s < 1.0);
+      solvers::StepOutcome out = step_until(*integrator.integrator, 1.0, solvers::StepKind::root);
       BOOST_TEST_REQUIRE((out.kind == solvers::StepKind::root));
       const double speed = closed_form(0.0, kVelocity, t_cross).second;
       BOOST_TEST(std::abs(out.t_s - t_cross) <= tol.displacement_m / speed + 1e-12);
@@ -218,13 +215,7 @@ BOOST_AUTO_TEST_CASE(ARootIsLocatedOnTheTrajectoryAndARestartTakesTheNewState) {
       y[n + x] = 0.0;
       integrator->restart(out.t_s, y);
       const double t_restart = out.t_s, t_end = t_restart + 0.3;
-      do {
-        out = integrator->step(t_end);
-        if (out.kind == solvers::StepKind::failure) {
-          BOOST_ERROR(out.failure);
-          break;
-        }
-      } while (out.t_s < t_end);
+      out = step_until(*integrator.integrator, t_end, solvers::StepKind::failure);
       const auto [u, v] = closed_form(u_restart, 0.0, out.t_s - t_restart);
       BOOST_TEST(std::abs(integrator->state()[x] - u) <= tol.displacement_m);
       BOOST_TEST(std::abs(integrator->state()[n + x] - v) <= tol.velocity_mps);

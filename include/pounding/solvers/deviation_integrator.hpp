@@ -23,7 +23,9 @@ class FreeResponse {
  public:
   /// @pre `modes` outlives this; t0 is the record's start or later.
   FreeResponse(const dynamics::ModalSystem& modes, double t0, const Eigen::VectorXd& y0);
-  /// y_p(t) and ẏ_p(t) (physical, as the system's state), t ∈ [t0, end of record].
+  /// y_p(t) (physical, as the system's state), t ∈ [t0, end of record].
+  void at(double t, Eigen::VectorXd& y) const;
+  /// y_p(t) and ẏ_p(t).
   void at(double t, Eigen::VectorXd& y, Eigen::VectorXd& y_dot) const;
 
  private:
@@ -69,7 +71,7 @@ class DeviationIntegrator final : public Integrator {
     void roots(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g) override;
 
    private:
-    /// y = y_p(t) + z into y_, and ẏ_p(t) into yp_dot_.
+    /// y = y_p(t) + z into y_ (only roots, Jacobians and rhs need y; rhs also ẏ_p, in yp_dot_).
     void physical_state(double t, const Eigen::Ref<const Eigen::VectorXd>& z);
     const FreeResponse& free_;
     OdeFunctions& physical_;
@@ -79,7 +81,7 @@ class DeviationIntegrator final : public Integrator {
   FreeResponse free_;
   Functions functions_;
   std::unique_ptr<Integrator> inner_;
-  Eigen::VectorXd state_, yp_, yp_dot_, z_;
+  Eigen::VectorXd state_, yp_, z_;
 };
 
 }  // namespace pounding::solvers
