@@ -10,6 +10,20 @@ void EnergyBalance::add_stretch(double t_a, double t_b, const std::function<dyna
     audit_.damping_kJ += closed_form->damping_kJ;
     return;
   }
+  double piece_start_s = t_a;
+  if (split_at_samples_) {
+    const excitation::GroundMotion& motion = system_.ground_motion();
+    for (auto sample = motion.next_sample_after(t_a); sample && *sample < t_b;
+         sample = motion.next_sample_after(*sample)) {
+      add_piece(piece_start_s, *sample, at, constraint_power);
+      piece_start_s = *sample;
+    }
+  }
+  add_piece(piece_start_s, t_b, at, constraint_power);
+}
+
+void EnergyBalance::add_piece(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+                              const std::function<double(double, const dynamics::VectorXd&)>& constraint_power) {
   const double half = 0.5 * (t_b - t_a), mid = 0.5 * (t_a + t_b);
   for (int k = 0; k < 3; ++k) {
     const double t = mid + half * kGaussNodes[k];

@@ -209,8 +209,14 @@ class EventDrivenRun final : public OdeFunctions {
 };
 
 void EventDrivenRun::set_next_stop(double t) {
-  // Record samples are where the forcing's slope changes: never step across one.
-  if (const auto next = system_.ground_motion().next_sample_after(t)) integrator_->set_stop_time(*next);
+  // Record samples are where the forcing's slope changes: never step across one, unless the
+  // integrator carries the forcing itself; then only the record's end bounds its steps.
+  const excitation::GroundMotion& motion = system_.ground_motion();
+  if (integrator_->steps_across_samples()) {
+    if (t < motion.end_s()) integrator_->set_stop_time(motion.end_s());
+  } else if (const auto next = motion.next_sample_after(t)) {
+    integrator_->set_stop_time(*next);
+  }
 }
 
 void EventDrivenRun::accumulate_counters() {
@@ -427,6 +433,7 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
       recorder_.set_peak_step(step_bound_->enable_clearance() / 4.0);
     }
     integrator_ = make_integrator(*this, t0, y);
+    recorder_.split_energy_at_samples(integrator_->steps_across_samples());
     begin_phase(t0, y);
     while (!stop_ && step_once()) {
     }

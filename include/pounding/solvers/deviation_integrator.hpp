@@ -4,8 +4,9 @@
 // record's kinks at every sample are in y_p, so what the inner integrator (CVODE, ARKODE) sees
 // is smooth: z ≡ 0 until the first contact, afterwards the homogeneous motion the impacts and
 // contact forces started, ż = A z (+ contact terms). BDF's steps then no longer shrink at every
-// sample of a dense record. The event loop hands it and reads from it physical states, as from
-// the other forms. Needs classical damping (Rayleigh damping is), as the modal form does.
+// sample of a dense record, and the loop lets them cross the samples (steps_across_samples).
+// The event loop hands it and reads from it physical states, as from the other forms. Needs
+// classical damping (Rayleigh damping is), as the modal form does.
 
 #include <memory>
 #include <vector>
@@ -54,6 +55,7 @@ class DeviationIntegrator final : public Integrator {
   void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
   std::vector<int> roots_found() override { return inner_->roots_found(); }
   IntegratorCounters counters() override { return inner_->counters(); }
+  bool steps_across_samples() const override { return true; }
 
  private:
   /// The loop's functions seen through z = y − y_p(t).

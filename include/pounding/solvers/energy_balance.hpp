@@ -27,6 +27,10 @@ class EnergyBalance {
   /// `closed_form` when given (the integrator's own, for a stretch without contact forces), else
   /// by 3-point Gauss–Legendre on `at`, as is the work of the sustained-contact forces whose
   /// power (kW) `constraint_power(t, y)` gives. @pre t_b > t_a.
+  /// The record samples inside (t_a, t_b) of a stretch are where a_g kinks: the quadrature is
+  /// split there if the stretches may span samples (the deviation form's steps). Off by default,
+  /// as every other path's stretches end at samples or treat a_g as linear between step ends.
+  void split_at_samples(bool on) { split_at_samples_ = on; }
   void add_stretch(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
                    const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
                    const std::optional<StretchEnergy>& closed_form);
@@ -38,8 +42,13 @@ class EnergyBalance {
   EnergyAudit close(const dynamics::VectorXd& final_state) const;
 
  private:
+  /// The Gauss–Legendre sums over [t_a, t_b], on which a_g is linear.
+  void add_piece(double t_a, double t_b, const std::function<dynamics::VectorXd(double)>& at,
+                 const std::function<double(double, const dynamics::VectorXd&)>& constraint_power);
+
   const dynamics::CoupledSystem& system_;
   EnergyAudit audit_;
+  bool split_at_samples_ = false;
 };
 
 }  // namespace pounding::solvers

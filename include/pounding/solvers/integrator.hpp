@@ -96,6 +96,10 @@ class Integrator {
   /// step, where the integrator has them in closed form (the exact path's free flight, in which
   /// no contact force acts); empty: the caller integrates them on the interpolant.
   virtual std::optional<StretchEnergy> energy_between(double /*t_a*/, double /*t_b*/) { return std::nullopt; }
+  /// True if the integrator carries the record's forcing itself, so its steps stay accurate
+  /// across the kink of a_g at a record sample (the deviation form): the loop then stops it only
+  /// at the record's end instead of at every sample.
+  virtual bool steps_across_samples() const { return false; }
 };
 
 }  // namespace pounding::solvers

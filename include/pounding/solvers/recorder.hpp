@@ -66,6 +66,8 @@ class Recorder {
   /// paths whose steps may span more than a quarter of the shortest oscillation period (the exact
   /// path's clearance steps): within a quarter period no rate changes sign twice unseen.
   void set_peak_step(double peak_step_s) { peak_step_s_ = peak_step_s; }
+  /// See EnergyBalance::split_at_samples.
+  void split_energy_at_samples(bool on) { energy_.split_at_samples(on); }
   void add_impact_loss(double energy_kJ) { energy_.add_impact_loss(energy_kJ); }
   /// Passes the impacts appended to `impacts` since the last call to the sink (if any). Call it
   /// once an event's records are final.
