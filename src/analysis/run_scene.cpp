@@ -111,6 +111,33 @@ void check_modes_kept(const Scene& scene, const UsedSettings& used, const dynami
   }
 }
 
+/// Yielding columns run only on methods that locate their branch changes, in the physical form.
+/// @throws InputError naming the first yielding building's hysteresis.law.
+void require_yielding_supported(const Scene& scene, const UsedSettings& used) {
+  for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
+    if (!scene.buildings[b].hysteresis.yields()) continue;
+    std::vector<std::string_view> able;
+    for (const MethodInfo& method : methods()) {
+      if (method.yielding_columns) able.push_back(method.name);
+    }
+    const std::string key = fmt::format("building[{}].hysteresis.law", b + 1);
+    if (!used.method->yielding_columns) {
+      throw InputError(key, "\"bilinear\"",
+                       fmt::format("yielding columns do not run on method {} (it assumes elastic buildings); they run "
+                                   "on {}",
+                                   used.method->name, fmt::join(able, ", ")),
+                       scene.file.string());
+    }
+    if (used.form != "physical") {
+      throw InputError(key, "\"bilinear\"",
+                       fmt::format("yielding columns need solver.form = \"physical\" (the {} form assumes elastic "
+                                   "buildings)",
+                                   used.form),
+                       scene.file.string());
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<RunWarning> scene_warnings(const Scene& scene) {
@@ -219,6 +246,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   check_work(estimate_work(scene, system), limits);
   const UsedSettings used = resolve(scene.solver, &system);
   check_modes_kept(scene, used, system);
+  require_yielding_supported(scene, used);
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.contact_law = law.name;
@@ -226,6 +254,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   report.contact_stiffness = scene.contact.used_stiffness();
   report.contact_damping = contact_damping(law, scene.contact.restitution);
   report.warnings = scene_warnings(scene);
+  report.springs = system.springs().all();
   for (RunWarning& warning : settings_warnings(used, system)) report.warnings.push_back(std::move(warning));
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
   const std::string method(used.method->name);

@@ -37,12 +37,21 @@ CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
   stiffness_sparse_ = stiffness_.sparseView();
   damping_sparse_ = damping_.sparseView();
   acceleration_rows_ = a_matrix_.bottomRows(dof_).sparseView();  // every nonzero, bit for bit
+  springs_ = YieldingSprings(buildings_, offset_);
 }
 
-void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) const {
-  // q̈ = −M⁻¹(K q + C q̇) − r a_g; the accelerations first, in case y_dot aliases y.
-  y_dot.tail(dof_) = -((stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.tail(dof_)).cwiseQuotient(mass_) +
-                       influence_ * ground_motion_.accel_at(t));
+void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot, const SpringStates* springs) const {
+  // q̈ = −M⁻¹(K q + C q̇ − slip forces) − r a_g; the accelerations first, in case y_dot aliases y.
+  if (springs != nullptr && !springs_.empty()) {
+    VectorXd restoring = stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.tail(dof_);
+    VectorXd slip_force = VectorXd::Zero(dof_);
+    springs_.add_slip_force(y.head(dof_), *springs, slip_force);
+    restoring -= slip_force;
+    y_dot.tail(dof_) = -(restoring.cwiseQuotient(mass_) + influence_ * ground_motion_.accel_at(t));
+  } else {
+    y_dot.tail(dof_) = -((stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.tail(dof_)).cwiseQuotient(mass_) +
+                         influence_ * ground_motion_.accel_at(t));
+  }
   y_dot.head(dof_) = y.tail(dof_);
 }
 
@@ -128,8 +137,9 @@ void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::siz
 }
 
 void CoupledSystem::constrained_rhs(double t, ConstVectorRef y, const std::vector<std::size_t>& held,
-                                    Eigen::Ref<VectorXd> y_dot, Eigen::Ref<VectorXd> forces_kN) const {
-  rhs(t, y, y_dot);
+                                    Eigen::Ref<VectorXd> y_dot, Eigen::Ref<VectorXd> forces_kN,
+                                    const SpringStates* springs) const {
+  rhs(t, y, y_dot, springs);
   if (held.empty()) return;
   MatrixXd rows;
   VectorXd bias;
@@ -143,9 +153,10 @@ void CoupledSystem::constrained_rhs(double t, ConstVectorRef y, const std::vecto
 }
 
 contact::LcpSolution CoupledSystem::hold_complementarity(double t, ConstVectorRef y,
-                                                        const std::vector<std::size_t>& held) const {
+                                                         const std::vector<std::size_t>& held,
+                                                         const SpringStates* springs) const {
   VectorXd y_dot(state_size());
-  rhs(t, y, y_dot);
+  rhs(t, y, y_dot, springs);
   MatrixXd rows;
   VectorXd bias;
   constraint_rows(y, held, rows, bias);
@@ -154,9 +165,10 @@ contact::LcpSolution CoupledSystem::hold_complementarity(double t, ConstVectorRe
 }
 
 CoupledSystem::PhysicalHoldForces CoupledSystem::physical_hold_forces(double t, ConstVectorRef y,
-                                                                      const std::vector<std::size_t>& held) const {
+                                                                      const std::vector<std::size_t>& held,
+                                                                      const SpringStates* springs) const {
   VectorXd y_dot(state_size());
-  rhs(t, y, y_dot);
+  rhs(t, y, y_dot, springs);
   MatrixXd rows;
   VectorXd bias;
   constraint_rows(y, held, rows, bias, false);
@@ -183,9 +195,12 @@ void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std
 }
 
 void CoupledSystem::constrained_acceleration_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
-                                                      Eigen::SparseMatrix<double>& rows) const {
+                                                      Eigen::SparseMatrix<double>& rows,
+                                                      const SpringStates* springs) const {
   rows = acceleration_rows_;
+  if (springs != nullptr) springs_.add_tangent_rows(*springs, mass_.cwiseInverse(), rows);
   if (held.empty()) return;
+  const Eigen::SparseMatrix<double> free_rows = rows;
   MatrixXd dense_rows;
   VectorXd bias;
   constraint_rows(y, held, dense_rows, bias);
@@ -207,7 +222,7 @@ void CoupledSystem::constrained_acceleration_jacobian(ConstVectorRef y, const st
   Eigen::SparseMatrix<double> drift(g.rows(), 2 * dof_);
   drift.setFromTriplets(drift_terms.begin(), drift_terms.end());
   const Eigen::SparseMatrix<double> w_inverse = w.completeOrthogonalDecomposition().pseudoInverse().sparseView();
-  rows -= m_inv_gt * (w_inverse * (g * acceleration_rows_ + drift));
+  rows -= m_inv_gt * (w_inverse * (g * free_rows + drift));
 }
 
 Eigen::RowVectorXd CoupledSystem::full_row(ConstVectorRef y, std::size_t index) const {
@@ -262,8 +277,10 @@ double CoupledSystem::kinetic_energy(ConstVectorRef y) const {
   return 0.5 * y.tail(dof_).cwiseAbs2().dot(mass_);
 }
 
-double CoupledSystem::strain_energy(ConstVectorRef y) const {
-  return 0.5 * y.head(dof_).dot(stiffness_sparse_ * y.head(dof_));
+double CoupledSystem::strain_energy(ConstVectorRef y, const SpringStates* springs) const {
+  const double elastic_kJ = 0.5 * y.head(dof_).dot(stiffness_sparse_ * y.head(dof_));
+  if (springs == nullptr || springs_.empty()) return elastic_kJ;
+  return elastic_kJ + springs_.stored_energy_change(y.head(dof_), *springs);
 }
 
 double CoupledSystem::damping_power(ConstVectorRef y) const {

@@ -95,6 +95,8 @@ const std::vector<EnergyField>& energy_fields() {
        [](const EnergyAudit& e) { return e.constraint_work_kJ; }},
       {"algorithmic_dissipation_kJ", "kJ", "hht: energy its update removes (0 for alpha = 0 and every other path)",
        [](const EnergyAudit& e) { return e.algorithmic_dissipation_kJ; }},
+      {"hysteretic_kJ", "kJ", "energy the yielding columns dissipated (only in runs whose columns yield)",
+       [](const EnergyAudit& e) { return e.hysteretic_kJ; }, true},
       {"residual_kJ", "kJ", "input + constraint work - everything above: the balance's error",
        [](const EnergyAudit& e) { return e.residual_kJ(); }},
       {"relative_residual", "", "residual over input (0 when the input is 0)",
@@ -128,6 +130,7 @@ json output_schema_json() {
   json energy = json::array();
   for (const EnergyField& f : energy_fields()) {
     energy.push_back({{"key", f.key}, {"unit", f.unit}, {"description", f.description}});
+    if (f.yielding_only) energy.back()["only_when"] = "columns yield";
   }
   return {{"history", history}, {"impacts", impacts}, {"peaks", peaks}, {"energy", energy}};
 }

@@ -26,5 +26,7 @@ void write_contact_force_row(const solvers::ContactForceSample& sample, std::ost
 /// Removes an earlier run's history.csv and contacts_history.csv from `folder`, for a run that
 /// writes neither: no file may stand beside a summary.json that is not its run's.
 void remove_history_files(const std::filesystem::path& folder);
+/// yielding.csv: one row per yielding column spring; removed for a run whose columns stay elastic.
+void write_yielding_csv(const analysis::RunReport& report, const std::filesystem::path& folder);
 
 }  // namespace pounding::io

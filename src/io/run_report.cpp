@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 
 #include "pounding/analysis/contact_laws.hpp"
@@ -86,6 +88,31 @@ void append_design_peaks(const analysis::RunReport& report, std::string& text) {
   }
 }
 
+/// Per storey of a yielding building: its largest ductility in x and y, first yield and
+/// hysteretic energy (the per-column values are in yielding.csv).
+void append_yielding(const analysis::RunReport& report, std::string& text) {
+  const auto& springs = report.springs;
+  const auto& results = report.result.springs;
+  if (springs.empty()) return;
+  auto out = std::back_inserter(text);
+  fmt::format_to(out, "Yielding columns: {} branch changes, hysteretic energy {:.3f} kJ\n",
+                 report.result.statistics.yield_events, report.result.energy.hysteretic_kJ);
+  for (std::size_t j = 0; j < springs.size();) {
+    const int b = springs[j].building, storey = springs[j].storey;
+    std::array<double, 2> ductility{0.0, 0.0};
+    double first_s = std::numeric_limits<double>::infinity(), energy_kJ = 0.0;
+    for (; j < springs.size() && springs[j].building == b && springs[j].storey == storey; ++j) {
+      const int d = springs[j].direction;
+      ductility[d] = std::max(ductility[d], results[j].peak_drift_m / springs[j].yield_drift_m);
+      if (results[j].yield_count > 0) first_s = std::min(first_s, results[j].first_yield_t_s);
+      energy_kJ += results[j].hysteretic_kJ;
+    }
+    fmt::format_to(out, "  B{} storey {}: ductility x {:.3f}, y {:.3f}; {}; hysteretic {:.3f} kJ\n", b + 1, storey,
+                   ductility[0], ductility[1],
+                   std::isfinite(first_s) ? fmt::format("first yield {:.6f} s", first_s) : "elastic", energy_kJ);
+  }
+}
+
 void append_response(const analysis::RunReport& report, std::string& text) {
   const solvers::RunResult& r = report.result;
   auto out = std::back_inserter(text);
@@ -99,6 +126,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
         top.v_m.t_s, std::abs(top.phi_rad.value), top.phi_rad.t_s);
   }
   append_design_peaks(report, text);
+  append_yielding(report, text);
   const auto& st = r.statistics;
   if (st.max_interpenetration_candidate >= 0) {
     fmt::format_to(
@@ -108,8 +136,9 @@ void append_response(const analysis::RunReport& report, std::string& text) {
     text += "Largest overlap: none\n";
   }
   const auto& e = r.energy;
-  const std::string algorithmic =
+  std::string algorithmic =
       fixed_step(report) ? fmt::format(", algorithmic dissipation {:.3f} kJ", e.algorithmic_dissipation_kJ) : "";
+  if (!report.springs.empty()) algorithmic += fmt::format(", hysteretic {:.3f} kJ", e.hysteretic_kJ);
   fmt::format_to(
       out, "Energy: input {:.3f} kJ, damping {:.3f} kJ, impacts {:.3f} kJ{}, residual {:.3e} kJ ({:.2e} of input)\n",
       e.input_kJ, e.damping_kJ, e.impact_loss_kJ, algorithmic, e.residual_kJ(),

@@ -78,6 +78,7 @@ void StreamedRunFiles::finish(const analysis::RunReport& report, const Provenanc
     close_checked(contacts_, "contacts_history.csv");
   }
   close_checked(impacts_, "impacts.csv");
+  write_yielding_csv(report, folder_);
   write_json(run_json(report, provenance), folder_ / "summary.json");
 }
 

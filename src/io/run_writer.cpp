@@ -2,6 +2,9 @@
 
 #include <fmt/compile.h>
 #include <fmt/format.h>
+#include <array>
+#include <cmath>
+#include <limits>
 #include <map>
 
 #include "pounding/analysis/contact_laws.hpp"
@@ -84,10 +87,56 @@ json outputs_json(const solvers::OutputSelection& outputs) {
   return {{"history", outputs.history}, {"peaks", groups}};
 }
 
-json energy_json(const solvers::EnergyAudit& e) {
+json energy_json(const solvers::EnergyAudit& e, bool yielding) {
   json energy;
-  for (const EnergyField& field : energy_fields()) energy[std::string(field.key)] = field.value(e);
+  for (const EnergyField& field : energy_fields()) {
+    if (!field.yielding_only || yielding) energy[std::string(field.key)] = field.value(e);
+  }
   return energy;
+}
+
+json finite_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+/// Per building and storey: the largest ductility in x and y over its columns, the first yield,
+/// the hysteretic energy and the yielded springs (docs/model.md, "Yielding columns").
+json yielding_json(const analysis::RunReport& report) {
+  const auto& springs = report.springs;
+  const auto& results = report.result.springs;
+  json buildings = json::array();
+  std::size_t j = 0;
+  while (j < springs.size()) {
+    const int b = springs[j].building;
+    json storeys = json::array();
+    while (j < springs.size() && springs[j].building == b) {
+      const int storey = springs[j].storey;
+      std::array<double, 2> ductility{0.0, 0.0};
+      double first_yield_s = std::numeric_limits<double>::quiet_NaN(), hysteretic_kJ = 0.0;
+      int yielded = 0, count = 0;
+      for (; j < springs.size() && springs[j].building == b && springs[j].storey == storey; ++j, ++count) {
+        const solvers::SpringResult& r = results[j];
+        ductility[springs[j].direction] =
+            std::max(ductility[springs[j].direction], r.peak_drift_m / springs[j].yield_drift_m);
+        if (r.yield_count > 0) {
+          ++yielded;
+          if (!(first_yield_s <= r.first_yield_t_s)) first_yield_s = r.first_yield_t_s;
+        }
+        hysteretic_kJ += r.hysteretic_kJ;
+      }
+      storeys.push_back({{"storey", storey},
+                         {"peak_ductility_x", ductility[0]},
+                         {"peak_ductility_y", ductility[1]},
+                         {"first_yield_t_s", finite_or_null(first_yield_s)},
+                         {"springs_yielded", yielded},
+                         {"springs", count},
+                         {"hysteretic_kJ", hysteretic_kJ}});
+    }
+    buildings.push_back({{"building", b + 1}, {"storeys", storeys}});
+  }
+  return {{"law", "bilinear"},
+          {"yield_events", report.result.statistics.yield_events},
+          {"hysteretic_kJ", report.result.energy.hysteretic_kJ},
+          {"per_spring", "yielding.csv"},
+          {"buildings", buildings}};
 }
 
 json statistics_json(const solvers::SolverStatistics& s, const std::vector<contact::Candidate>& candidates) {
@@ -162,9 +211,7 @@ json settings_json(const analysis::RunReport& report) {
   return {{"given", given}, {"used", used}, {"not_used", report.solver.not_used}};
 }
 
-}  // namespace
-
-json run_json(const analysis::RunReport& report, const Provenance& provenance) {
+json run_json_elastic(const analysis::RunReport& report, const Provenance& provenance) {
   const solvers::RunResult& r = report.result;
   std::map<int, int> counts;
   for (const auto& i : r.impacts) ++counts[i.level];
@@ -205,9 +252,45 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
           {"sustained_contacts", sustained},
           {"accelerations", accelerations_json(report)},
           {"peaks", peaks_json(r.peaks, r.outputs, report.g_mps2)},
-          {"energy", energy_json(r.energy)},
+          {"energy", energy_json(r.energy, !report.springs.empty())},
           {"statistics", statistics_json(r.statistics, report.candidates)},
           {"provenance", provenance_json(provenance)}};
+}
+
+}  // namespace
+
+json run_json(const analysis::RunReport& report, const Provenance& provenance) {
+  json summary = run_json_elastic(report, provenance);
+  if (report.springs.empty()) return summary;
+  // The yielding section goes before the energy audit, which it explains.
+  json with_yielding;
+  for (auto& [key, value] : summary.items()) {
+    if (key == "energy") with_yielding["yielding"] = yielding_json(report);
+    with_yielding[key] = std::move(value);
+  }
+  return with_yielding;
+}
+
+void write_yielding_csv(const analysis::RunReport& report, const std::filesystem::path& folder) {
+  if (report.springs.empty()) {
+    std::filesystem::remove(folder / "yielding.csv");
+    return;
+  }
+  write_atomically(folder / "yielding.csv", [&](std::ostream& out) {
+    write_csv_header({"building", "storey", "column", "direction", "stiffness_kN_per_m", "hardening_ratio",
+                      "yield_drift_m", "peak_drift_m", "peak_ductility", "first_yield_t_s", "yield_count",
+                      "hysteretic_kJ", "final_drift_m", "final_slip_m"},
+                     out);
+    for (std::size_t j = 0; j < report.springs.size(); ++j) {
+      const dynamics::YieldingSpring& s = report.springs[j];
+      const solvers::SpringResult& r = report.result.springs[j];
+      out << fmt::format("{},{},\"{}\",{},{},{},{},{},{},{},{},{},{},{}\n", s.building + 1, s.storey, s.column,
+                         s.direction == 0 ? "x" : "y", s.stiffness_kN_per_m, s.hardening_ratio, s.yield_drift_m,
+                         r.peak_drift_m, r.peak_drift_m / s.yield_drift_m,
+                         std::isfinite(r.first_yield_t_s) ? fmt::format("{}", r.first_yield_t_s) : "", r.yield_count,
+                         r.hysteretic_kJ, r.final_drift_m, r.final_slip_m);
+    }
+  });
 }
 
 void write_impacts_header(std::ostream& out) { write_csv_header(impact_csv_columns(), out); }
@@ -268,6 +351,7 @@ void write_run(const analysis::RunReport& report, const Provenance& provenance, 
     write_impacts_header(out);
     for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out);
   });
+  write_yielding_csv(report, folder);
   write_json(run_json(report, provenance), folder / "summary.json");
 }
 

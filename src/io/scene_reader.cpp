@@ -399,6 +399,28 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (period) b.target_period_s = table.number_of(*period, table.key_path("target_period_s"));
 }
 
+model::HystereticLaw read_hysteresis(TableReader& table) {
+  model::HystereticLaw law;
+  const toml::node& kind = table.require("law");
+  const std::string name = table.string_of(kind, table.key_path("law"));
+  if (name == "bilinear") {
+    law.kind = model::HystereticLaw::Kind::bilinear;
+  } else if (name != "elastic") {
+    throw table.error(kind, table.key_path("law"), "expected \"elastic\" or \"bilinear\"");
+  }
+  if (const toml::node* ratio = table.find("yield_drift_ratio")) {
+    law.yield_drift_ratio = in_range(table, *ratio, table.key_path("yield_drift_ratio"), model::kYieldDriftRatio);
+  }
+  if (const toml::node* drift = table.find("yield_drift_m")) {
+    law.yield_drift_m = in_range(table, *drift, table.key_path("yield_drift_m"), model::kYieldDrift);
+  }
+  if (const toml::node* alpha = table.find("hardening_ratio")) {
+    law.hardening_ratio = in_range(table, *alpha, table.key_path("hardening_ratio"), model::kHardeningRatio);
+  }
+  table.finish();
+  return law;
+}
+
 model::BuildingDefinition read_building(TableReader table) {
   model::BuildingDefinition b;
   b.name = table.string("name");
@@ -432,6 +454,7 @@ model::BuildingDefinition read_building(TableReader table) {
     }
     damping->finish();
   }
+  if (auto hysteresis = table.optional_subtable("hysteresis")) b.hysteresis = read_hysteresis(*hysteresis);
   table.finish();
   return b;
 }

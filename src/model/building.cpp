@@ -123,6 +123,24 @@ void validate_storey_matrices(const BuildingDefinition& b) {
   }
 }
 
+void validate_hysteresis(const BuildingDefinition& b) {
+  const HystereticLaw& law = b.hysteresis;
+  if (!law.yields()) return;
+  if (!b.uses_columns()) {
+    throw InputError("hysteresis.law", "\"bilinear\"",
+                     "needs columns: storeys given as storey_stiffness matrices stay elastic");
+  }
+  if (law.yield_drift_ratio.has_value() == law.yield_drift_m.has_value()) {
+    throw InputError("hysteresis.yield_drift_ratio", law.yield_drift_ratio ? "given with yield_drift_m" : "missing",
+                     "give one of yield_drift_ratio and yield_drift_m");
+  }
+  if (law.yield_drift_ratio) require_range("hysteresis.yield_drift_ratio", *law.yield_drift_ratio, kYieldDriftRatio);
+  if (law.yield_drift_m) require_range("hysteresis.yield_drift_m", *law.yield_drift_m, kYieldDrift);
+  if (!(law.hardening_ratio >= 0.0 && law.hardening_ratio < 1.0)) {
+    throw InputError("hysteresis.hardening_ratio", format_value(law.hardening_ratio), "must lie in [0, 1)");
+  }
+}
+
 void validate_damping(const BuildingDefinition& b) {
   const double ratio = b.damping.ratio;
   if (!(ratio >= 0.0 && ratio < 1.0)) {
@@ -182,6 +200,7 @@ void BuildingDefinition::validate() const {
     validate_storey_matrices(*this);
   }
   validate_damping(*this);
+  validate_hysteresis(*this);
 }
 
 double uniform_polar_moment(const Polygon& slab, double mass_t) {

@@ -141,9 +141,11 @@ class ArkodeIntegrator final : public SundialsIntegrator {
       view(atol.get()) = settings.atol_vector;
       check(Api::svtolerances(memory_.get(), settings.rtol, atol.get()), "SVtolerances");  // ARKODE keeps a copy
     }
-    check(Api::root_init(memory_.get(), functions.root_count(), root_callback), "RootInit");
-    check(Api::set_root_direction(memory_.get(), root_directions_.data()), "SetRootDirection");
-    check(Api::no_inactive_root_warn(memory_.get()), "SetNoInactiveRootWarn");
+    if (functions.root_count() > 0) {  // a system without candidates or yielding columns has none
+      check(Api::root_init(memory_.get(), functions.root_count(), root_callback), "RootInit");
+      check(Api::set_root_direction(memory_.get(), root_directions_.data()), "SetRootDirection");
+      check(Api::no_inactive_root_warn(memory_.get()), "SetNoInactiveRootWarn");
+    }
     check(Api::set_max_num_steps(memory_.get(), -1), "SetMaxNumSteps");  // the loop caps steps itself
   }
   ArkodeIntegrator(const ArkodeIntegrator&) = delete;

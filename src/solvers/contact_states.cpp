@@ -82,6 +82,8 @@ WitnessLayout::Crossed WitnessLayout::crossed(const std::vector<int>& flags) con
     if (flagged(flags, Witness::force, i)) crossed.force.push_back(i);
     if (flagged(flags, Witness::edge, i)) crossed.edge.push_back(i);
   }
+  for (std::size_t j = 0; j < springs_; ++j)
+    crossed.springs = crossed.springs || flags[static_cast<std::size_t>(at_spring(j))] != 0;
   return crossed;
 }
 

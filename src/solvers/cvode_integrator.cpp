@@ -49,9 +49,11 @@ CvodeIntegrator::CvodeIntegrator(OdeFunctions& functions, const CvodeSettings& s
     second_order_ = std::make_unique<SecondOrderLinearSolver>(functions, newton_data, context_.get(), last_error_);
     check(CVodeSetLinearSolver(memory_.get(), second_order_->get(), nullptr), "CVodeSetLinearSolver");
   }
-  check(CVodeRootInit(memory_.get(), functions.root_count(), root_callback), "CVodeRootInit");
-  check(CVodeSetRootDirection(memory_.get(), root_directions_.data()), "CVodeSetRootDirection");
-  check(CVodeSetNoInactiveRootWarn(memory_.get()), "CVodeSetNoInactiveRootWarn");
+  if (functions.root_count() > 0) {  // a system without candidates or yielding columns has none
+    check(CVodeRootInit(memory_.get(), functions.root_count(), root_callback), "CVodeRootInit");
+    check(CVodeSetRootDirection(memory_.get(), root_directions_.data()), "CVodeSetRootDirection");
+    check(CVodeSetNoInactiveRootWarn(memory_.get()), "CVodeSetNoInactiveRootWarn");
+  }
   check(CVodeSetMaxNumSteps(memory_.get(), -1), "CVodeSetMaxNumSteps");  // the loop caps steps itself
 }
 

@@ -34,10 +34,10 @@ void EnergyBalance::add_piece(double t_a, double t_b, const std::function<dynami
   }
 }
 
-EnergyAudit EnergyBalance::close(const dynamics::VectorXd& final_state) const {
+EnergyAudit EnergyBalance::close(const dynamics::VectorXd& final_state, const dynamics::SpringStates* springs) const {
   EnergyAudit audit = audit_;
   audit.kinetic_kJ = system_.kinetic_energy(final_state);
-  audit.strain_kJ = system_.strain_energy(final_state);
+  audit.strain_kJ = system_.strain_energy(final_state, springs);
   return audit;
 }
 

@@ -16,6 +16,7 @@
 #include "pounding/solvers/floor_impacts.hpp"
 #include "pounding/solvers/missed_contacts.hpp"
 #include "pounding/solvers/recorder.hpp"
+#include "pounding/solvers/yield_states.hpp"
 
 namespace pounding::solvers {
 
@@ -90,7 +91,8 @@ class EventDrivenRun final : public OdeFunctions {
         options_(options),
         count_(system.candidates().size()),
         states_(count_, options.overlap_allowance_m),
-        witnesses_(count_),
+        yields_(system.springs()),
+        witnesses_(count_, yields_.size()),
         gap_components_(gap_components(system)),
         recorder_(system, recorded_dynamics(), options.history_floors, options.history_interval_s, options.outputs,
                   options.sink),
@@ -98,12 +100,13 @@ class EventDrivenRun final : public OdeFunctions {
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return witnesses_.size(); }
-  bool is_linear() const override { return is_free_motion(); }
-  bool is_free_motion() const override { return states_.free_motion(); }
+  // A yielding column changes the Jacobian at its events, and its slip force moves with q.
+  bool is_linear() const override { return is_free_motion() && yields_.empty(); }
+  bool is_free_motion() const override { return states_.free_motion() && !yields_.any_yielding(); }
 
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
     forces_.resize(static_cast<Eigen::Index>(states_.held().size()));
-    system_.constrained_rhs(t, y, states_.held(), y_dot, forces_);
+    system_.constrained_rhs(t, y, states_.held(), y_dot, forces_, yields_.states());
     law_->add_forces(y, y_dot);
   }
 
@@ -117,7 +120,7 @@ class EventDrivenRun final : public OdeFunctions {
   }
 
   bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
-    system_.constrained_acceleration_jacobian(y, states_.held(), rows);
+    system_.constrained_acceleration_jacobian(y, states_.held(), rows, yields_.states());
     law_->add_force_jacobian(y, rows);
     return true;
   }
@@ -132,15 +135,21 @@ class EventDrivenRun final : public OdeFunctions {
       }
     }
     law_->write_witnesses(t, y, witnesses_, g);
+    if (yields_.empty()) return;
+    for (std::size_t j = 0; j < yields_.size(); ++j) g[witnesses_.at_spring(j)] = yields_.witness(y, j);
   }
 
   RunResult run(const IntegratorFactory& make_integrator, const std::string& method);
 
  private:
   std::unique_ptr<LawEvents> make_law_events() {
-    const EventContext context{
-        system_,   options_, states_,
-        recorder_, result_,  [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); }};
+    const EventContext context{system_,
+                               options_,
+                               states_,
+                               recorder_,
+                               result_,
+                               yields_.states(),
+                               [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); }};
     return options_.law == contact::ContactLaw::impulse ? make_impulse_events(context) : make_compliant_events(context);
   }
   /// For the recorder: this rhs, the law's contact forces, and whether none acts (is_free_motion).
@@ -182,6 +191,8 @@ class EventDrivenRun final : public OdeFunctions {
   /// Ends a completed run as unresolved_overlap if a pair not held sank past the touch band.
   void report_overlap();
   void count_event(double t);
+  /// The yielding springs' branch changes at an event at (t, y) (YieldStates::switch_branches).
+  void switch_springs(double t, const VectorXd& y);
   void set_next_stop(double t);
   void accumulate_counters();
 
@@ -190,6 +201,7 @@ class EventDrivenRun final : public OdeFunctions {
   BudgetClock budget_{options_.budget};
   std::size_t count_;
   ContactStates states_;
+  YieldStates yields_;
   WitnessLayout witnesses_;
   std::vector<std::vector<int>> gap_components_;   // per candidate, the components of y its gap reads
   VectorXd forces_;
@@ -270,9 +282,22 @@ void EventDrivenRun::start(double t, VectorXd& y) {
 }
 
 void EventDrivenRun::event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
-  count_event(t);
-  law_->on_event(t, y, crossed);
+  if (crossed.contacts()) {
+    count_event(t);
+    law_->on_event(t, y, crossed);
+  }
+  // After the law: an impulse can turn a yielding column's drift rate, which unloads it.
+  switch_springs(t, y);
   recorder_.sample(t, y);
+}
+
+void EventDrivenRun::switch_springs(double t, const VectorXd& y) {
+  if (yields_.empty()) return;
+  VectorXd y_dot(system_.state_size());
+  rhs(t, y, y_dot);
+  const int switched = yields_.switch_branches(t, y, y_dot);
+  result_.statistics.yield_events += switched;
+  yields_.observe(y);
 }
 
 std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
@@ -328,6 +353,7 @@ void EventDrivenRun::note_overlaps(double t) {
 
 void EventDrivenRun::after_step(double t, const VectorXd& y) {
   note_overlaps(t);
+  yields_.observe(y);
   states_.rearm(gaps_);
   law_->after_step(t, y);
   update_step_bound(t, y, gaps_);
@@ -449,7 +475,8 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   result_.end_s = prev_t_;
   report_overlap();
   law_->finish(prev_t_, prev_y_);
-  recorder_.finish(prev_y_, result_);
+  if (!yields_.empty()) result_.springs = yields_.finish(prev_y_, result_.energy.hysteretic_kJ);
+  recorder_.finish(prev_y_, result_, yields_.states());
   result_.statistics.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return std::move(result_);

@@ -52,7 +52,7 @@ class ImpulseEvents final : public LawEvents {
   /// The held contacts' forces (kN, compressive positive) at (t, y), in the order of states_.held().
   VectorXd hold_forces(double t, const Eigen::Ref<const VectorXd>& y) const {
     VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(states_.held().size()));
-    system_.constrained_rhs(t, y, states_.held(), y_dot, forces);
+    system_.constrained_rhs(t, y, states_.held(), y_dot, forces, context_.springs);
     return forces;
   }
 
@@ -146,7 +146,7 @@ void ImpulseEvents::settle_holds(double t, const VectorXd& y) {
   if (held.empty()) return;
   // A twin held beside its contact (coincident corners: the same row twice) gets no force and
   // zero acceleration; only an opening acceleration clearly above round-off releases a pair.
-  const contact::LcpSolution solution = system_.hold_complementarity(t, y, held);
+  const contact::LcpSolution solution = system_.hold_complementarity(t, y, held, context_.springs);
   const double round_off = 1e-9 * (1.0 + solution.w.cwiseAbs().maxCoeff());
   std::vector<std::size_t> separating;
   for (std::size_t r = 0; r < held.size(); ++r) {
@@ -168,7 +168,7 @@ FloorContacts ImpulseEvents::floor_contacts(const VectorXd& y, int level, const 
 VectorXd ImpulseEvents::free_gap_accelerations(double t, const VectorXd& y, const std::vector<std::size_t>& held,
                                                const FloorContacts& contacts) const {
   VectorXd y_dot(system_.state_size()), forces(static_cast<Eigen::Index>(held.size()));
-  system_.constrained_rhs(t, y, held, y_dot, forces);
+  system_.constrained_rhs(t, y, held, y_dot, forces, context_.springs);
   VectorXd accel(static_cast<Eigen::Index>(contacts.members.size()));
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     accel[static_cast<Eigen::Index>(k)] = system_.gap_acceleration(y, y_dot, contacts.members[k]);
@@ -210,7 +210,7 @@ std::vector<bool> ImpulseEvents::settle_floor(double t, VectorXd& y, FloorContac
     // impulse left) would pull a gently pressed pair apart, and stick() brings ġ to 0 anyway.
     std::vector<bool> proposal(n, false);
     if (!slow.empty()) {
-      const std::vector<bool> pressing = system_.physical_hold_forces(t, y_after, trial).pressing;
+      const std::vector<bool> pressing = system_.physical_hold_forces(t, y_after, trial, context_.springs).pressing;
       for (std::size_t s = 0; s < slow.size(); ++s) proposal[slow[s]] = pressing[others + s];
     }
     if (proposal == holding) break;

@@ -28,6 +28,8 @@ struct EventContext {
   ContactStates& states;
   Recorder& recorder;
   RunResult& result;
+  /// The yielding springs' branches for the system's functions (null: every column elastic).
+  const dynamics::SpringStates* springs;
   /// The run's ẏ at (t, y), with the present holds and contact forces.
   std::function<void(double, const dynamics::VectorXd&, Eigen::Ref<dynamics::VectorXd>)> derivative;
 

@@ -172,9 +172,11 @@ void Recorder::stream_new_impacts(const std::vector<ImpactRecord>& impacts) {
   for (; impacts_streamed_ < impacts.size(); ++impacts_streamed_) sink_->impact(impacts[impacts_streamed_]);
 }
 
-void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result) {
+void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result, const dynamics::SpringStates* springs) {
   stream_new_impacts(result.impacts);
-  result.energy = energy_.close(final_state);
+  const double hysteretic_kJ = result.energy.hysteretic_kJ;  // the yield states' total, set before
+  result.energy = energy_.close(final_state, springs);
+  result.energy.hysteretic_kJ = hysteretic_kJ;
   result.outputs = outputs_;
   result.peaks = peaks_.take();
   result.history = std::move(history_);

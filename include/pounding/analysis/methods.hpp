@@ -186,6 +186,10 @@ struct MethodInfo {
   double steps_per_period = 0.0;  // root bracketing of event-driven runs; 0: EventOptions' default
   bool clearance_steps = false;   // EventOptions::clearance_steps: longer steps far from contact
   bool reference = false;         // the study's reference (no ladder of its own)
+  /// Runs scenes whose columns yield (in the physical form): their branch changes are root
+  /// functions like the contacts. The exact path's modal propagator and HHT's constant effective
+  /// matrix assume elastic buildings.
+  bool yielding_columns = false;
   Setting ladder_setting = Setting::rtol;
   std::vector<double> ladder{}, quick_ladder{};  // the study's settings (quick: `study --quick`)
   std::vector<StudySeries> series{};         // one per line of the study plot

@@ -74,6 +74,8 @@ struct RunReport {
   double contact_damping = 0.0;
   double g_mps2 = 9.81;                     // the scene's gravity: accelerations are also reported in g
   std::vector<RunWarning> warnings = {};
+  /// The yielding column springs (result.springs in the same order); empty if all stay elastic.
+  std::vector<dynamics::YieldingSpring> springs = {};
 };
 
 /// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and

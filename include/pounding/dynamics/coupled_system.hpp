@@ -16,12 +16,15 @@
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/model/building.hpp"
 #include "pounding/model/modal_basis.hpp"
+#include "pounding/dynamics/yielding_springs.hpp"
 
 namespace pounding::dynamics {
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using ConstVectorRef = const Eigen::Ref<const VectorXd>&;
+// The functions below that take SpringStates (the yielding springs' branches) default to
+// nullptr: every spring elastic without slip; for buildings that do not yield it is ignored.
 
 class CoupledSystem {
  public:
@@ -53,9 +56,12 @@ class CoupledSystem {
   /// The ground motion's effective force f(t) = −M r a_g(t) (kN, kN·m).
   void external_force(double t, Eigen::Ref<VectorXd> force) const;
 
-  /// Free motion (no contact): ẏ = A y + B a_g(t).
-  void rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot) const;
-  /// The constant Jacobian A of the free motion.
+  /// Free motion (no contact): ẏ = A y + B a_g(t), plus M⁻¹ times the yielding springs' slip
+  /// forces in `springs`.
+  void rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot, const SpringStates* springs = nullptr) const;
+  /// The yielding column springs (empty when every building's columns stay elastic).
+  const YieldingSprings& springs() const { return springs_; }
+  /// The constant Jacobian A of the free motion (with every spring elastic).
   const MatrixXd& jacobian() const { return a_matrix_; }
 
   /// Gap state of candidate `index` in state y.
@@ -79,13 +85,14 @@ class CoupledSystem {
   /// τ = `hold_time_constant_s` that stops drift) by normal forces λ (kN, ≥ 0 pushes the slabs
   /// apart). Writes ẏ and λ (one per held contact). Dependent contacts share their force
   /// (least squares).
-  void constrained_rhs(double t, ConstVectorRef y, const std::vector<std::size_t>& held,
-                       Eigen::Ref<VectorXd> y_dot, Eigen::Ref<VectorXd> forces_kN) const;
+  void constrained_rhs(double t, ConstVectorRef y, const std::vector<std::size_t>& held, Eigen::Ref<VectorXd> y_dot,
+                       Eigen::Ref<VectorXd> forces_kN, const SpringStates* springs = nullptr) const;
   /// The held contacts' forces as a complementarity problem: λ ≥ 0 (kN), the stabilised g̈ ≥ 0
   /// (m/s²), λᵢ g̈ᵢ = 0. A held contact with λ = 0 and g̈ > 0 would separate on its own: it is to
   /// be released. Unlike constrained_rhs, which keeps every held gap closed whatever the sign of
   /// its force, this decides which contacts can stay held together.
-  contact::LcpSolution hold_complementarity(double t, ConstVectorRef y, const std::vector<std::size_t>& held) const;
+  contact::LcpSolution hold_complementarity(double t, ConstVectorRef y, const std::vector<std::size_t>& held,
+                                            const SpringStates* springs = nullptr) const;
   /// The physical normal forces that would keep `held` closed (g̈ = 0, no drift correction): what
   /// decides whether a slow contact is held. `pressing[k]` says whether force k is compressive
   /// beyond round-off: its gap acceleration W_kk λ_k exceeds 1e-9 (1 + Σ|G_kj q̈_j|) m/s², the
@@ -95,7 +102,8 @@ class CoupledSystem {
     VectorXd forces_kN;
     std::vector<bool> pressing;
   };
-  PhysicalHoldForces physical_hold_forces(double t, ConstVectorRef y, const std::vector<std::size_t>& held) const;
+  PhysicalHoldForces physical_hold_forces(double t, ConstVectorRef y, const std::vector<std::size_t>& held,
+                                          const SpringStates* springs = nullptr) const;
   /// Jacobian of constrained_rhs with the constraint rows frozen at y: the free Jacobian with
   /// the acceleration rows projected by P = I − M⁻¹Gᵀ W⁻¹ G, plus the Baumgarte terms. Exact in
   /// the velocity rows and in the columns of floors outside the held contacts; in the contact
@@ -107,8 +115,10 @@ class CoupledSystem {
   /// The acceleration rows [∂q̈/∂q, ∂q̈/∂q̇] (n × 2n) of constrained_jacobian(), sparse: the same
   /// terms in O(n + k²) work and storage for k held contacts (K and C couple only a storey's two
   /// floors; the projection has rank k and touches only the held floors' neighbourhoods).
+  /// The yielding springs' tangent (YieldingSprings::add_tangent_rows) is included.
   void constrained_acceleration_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
-                                         Eigen::SparseMatrix<double>& rows) const;
+                                         Eigen::SparseMatrix<double>& rows,
+                                         const SpringStates* springs = nullptr) const;
 
   /// W = G M⁻¹ Gᵀ (1/t) of candidate `index` in state y: the inverse of the pair's effective mass
   /// along the normal, 1/m₁ + 1/m₂ with each slab's m = 1/(1/m + h²/J), h the lever arm ρ × n.
@@ -125,7 +135,8 @@ class CoupledSystem {
 
   /// Energies (kJ) and powers (kW) of the relative motion.
   double kinetic_energy(ConstVectorRef y) const;
-  double strain_energy(ConstVectorRef y) const;
+  /// With `springs`: the energy the yielding springs store (YieldingSprings::stored_energy_change).
+  double strain_energy(ConstVectorRef y, const SpringStates* springs = nullptr) const;
   double damping_power(ConstVectorRef y) const;            // q̇ᵀ C q̇ ≥ 0
   double input_power(double t, ConstVectorRef y) const;    // −q̇ᵀ M r a_g(t)
 
@@ -166,6 +177,7 @@ class CoupledSystem {
   // O(n) instead of the dense A's O(n²).
   Eigen::SparseMatrix<double> stiffness_sparse_, damping_sparse_;
   Eigen::SparseMatrix<double> acceleration_rows_;  // −M⁻¹[K, C]: A's lower half, sparse
+  YieldingSprings springs_;
   std::shared_ptr<ModalBases> modal_bases_ = std::make_shared<ModalBases>();
 };
 

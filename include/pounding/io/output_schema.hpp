@@ -37,6 +37,7 @@ struct EnergyField {
   std::string_view unit;  // "kJ"; empty: a ratio
   std::string_view description;
   double (*value)(const solvers::EnergyAudit& energy) = nullptr;
+  bool yielding_only = false;  // written only for runs whose columns yield
 };
 
 /// In output order: input, kinetic and strain energy at the end, damping, impact loss,

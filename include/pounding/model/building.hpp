@@ -51,6 +51,32 @@ struct RayleighSpec {
   std::array<int, 2> modes{1, 3};
 };
 
+/// The force–drift law of every column of a building (docs/model.md, "Yielding columns"). Each
+/// column has a spring in x and one in y, independent of each other (no interaction surface).
+/// `elastic`: the linear spring of column_stiffness. `bilinear`: kinematic hardening; the initial
+/// stiffness k up to the yield drift, then hardening_ratio · k, unloading at k; the same as a
+/// linear spring α k in parallel with an elastic–perfectly-plastic one of stiffness (1 − α) k
+/// that yields at the same drift. Storeys given as 3×3 matrices stay elastic.
+struct HystereticLaw {
+  enum class Kind { elastic, bilinear };
+  Kind kind = Kind::elastic;
+  /// The yield drift (m) of storey j: yield_drift_ratio · H_j, or yield_drift_m for every storey.
+  std::optional<double> yield_drift_ratio;
+  std::optional<double> yield_drift_m;
+  double hardening_ratio = 0.0;  // α ∈ [0, 1): post-yield over initial stiffness
+
+  bool yields() const { return kind != Kind::elastic; }
+  /// @pre yields(); storey_height_m > 0.
+  double yield_drift_of(double storey_height_m) const {
+    return yield_drift_m ? *yield_drift_m : *yield_drift_ratio * storey_height_m;
+  }
+};
+
+/// The ranges of HystereticLaw's parameters, public for the scene reader's messages.
+inline constexpr Range kYieldDriftRatio{0.0, 0.1, "", true};
+inline constexpr Range kYieldDrift{0.0, 1.0, "m", true};
+inline constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
+
 /// Everything a scene says about one building. All floors share the slab outline and the CM.
 struct BuildingDefinition {
   std::string name;
@@ -70,6 +96,7 @@ struct BuildingDefinition {
   std::vector<Eigen::Matrix3d> storey_stiffness;
 
   RayleighSpec damping;
+  HystereticLaw hysteresis;  // of the columns; elastic unless the scene says otherwise
 
   bool uses_columns() const { return storey_stiffness.empty(); }
   /// @throws InputError naming the offending field (as the scene key, relative to the building),

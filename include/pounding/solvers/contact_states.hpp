@@ -88,7 +88,8 @@ class ContactStates {
   std::vector<std::size_t> acting_;
 };
 
-/// The run's root functions ("witnesses"): three blocks, one entry per candidate. A function
+/// The run's root functions ("witnesses"): three blocks, one entry per candidate, then one entry
+/// per yielding column spring (YieldStates::witness), none when every column stays elastic. A function
 /// that does not apply to a candidate in its mode is held at +1, so it never crosses; the
 /// integrators report falling crossings only, so each is written to fall at its event.
 enum class Witness {
@@ -100,15 +101,19 @@ enum class Witness {
 
 class WitnessLayout {
  public:
-  explicit WitnessLayout(std::size_t count) : count_(count) {}
-  int size() const { return static_cast<int>(3 * count_); }
+  explicit WitnessLayout(std::size_t count, std::size_t springs = 0) : count_(count), springs_(springs) {}
+  int size() const { return static_cast<int>(3 * count_ + springs_); }
   /// Index of candidate i's `witness` in the root vector.
   Eigen::Index at(Witness witness, std::size_t i) const {
     return static_cast<Eigen::Index>(static_cast<std::size_t>(witness) * count_ + i);
   }
   /// The candidates whose witnesses an integrator flagged (roots_found(): non-zero = crossed).
+  /// Index of yielding spring j's witness.
+  Eigen::Index at_spring(std::size_t j) const { return static_cast<Eigen::Index>(3 * count_ + j); }
   struct Crossed {
     std::vector<std::size_t> gap = {}, force = {}, edge = {};
+    bool springs = false;  // some spring's witness crossed
+    bool contacts() const { return !gap.empty() || !force.empty() || !edge.empty(); }
   };
   Crossed crossed(const std::vector<int>& flags) const;
   bool flagged(const std::vector<int>& flags, Witness witness, std::size_t i) const {
@@ -117,6 +122,7 @@ class WitnessLayout {
 
  private:
   std::size_t count_;
+  std::size_t springs_;
 };
 
 }  // namespace pounding::solvers

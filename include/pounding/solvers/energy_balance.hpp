@@ -38,8 +38,9 @@ class EnergyBalance {
   /// HHT: energy a step's update removed (kJ), see HhtStepper::algorithmic_dissipation.
   void add_algorithmic_dissipation(double energy_kJ) { audit_.algorithmic_dissipation_kJ += energy_kJ; }
 
-  /// The audit, with the kinetic and strain energy of `final_state`.
-  EnergyAudit close(const dynamics::VectorXd& final_state) const;
+  /// The audit, with the kinetic and strain energy of `final_state` (with its yielding springs'
+  /// `springs`, CoupledSystem::strain_energy).
+  EnergyAudit close(const dynamics::VectorXd& final_state, const dynamics::SpringStates* springs = nullptr) const;
 
  private:
   /// The Gauss–Legendre sums over [t_a, t_b], on which a_g is linear.

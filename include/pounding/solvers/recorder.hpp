@@ -77,7 +77,8 @@ class Recorder {
 
   /// Moves the collected peaks, history and energy (with the final state's energies) and the
   /// output selection into `result`, and streams any impact of `result` not streamed yet.
-  void finish(const dynamics::VectorXd& final_state, RunResult& result);
+  void finish(const dynamics::VectorXd& final_state, RunResult& result,
+              const dynamics::SpringStates* springs = nullptr);
 
  private:
   void append_row(const Instant& at);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <utility>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -133,10 +134,21 @@ struct EnergyAudit {  // relative motion, kJ, integrated along the run
   double impact_loss_kJ = 0.0;    // Σ over impacts
   double constraint_work_kJ = 0.0;  // ∫ λ ġ dt during holds (ideally 0)
   double algorithmic_dissipation_kJ = 0.0;  // HHT: energy its update removes (numerical damping); 0 elsewhere
+  double hysteretic_kJ = 0.0;               // dissipated by the yielding columns; 0 when every column stays elastic
   double residual_kJ() const {
     return input_kJ + constraint_work_kJ - kinetic_kJ - strain_kJ - damping_kJ - impact_loss_kJ -
-           algorithmic_dissipation_kJ;
+           algorithmic_dissipation_kJ - hysteretic_kJ;
   }
+};
+
+/// One yielding column spring over a run (dynamics::YieldingSprings, same order).
+struct SpringResult {
+  double peak_drift_m = 0.0;  // largest |drift| at the step ends and events (exact once yielded)
+  double first_yield_t_s = std::numeric_limits<double>::quiet_NaN();  // NaN: never yielded
+  int yield_count = 0;                                                // yielding phases
+  double hysteretic_kJ = 0.0;                                         // energy it dissipated
+  double final_drift_m = 0.0;                                         // drift at the end of the run
+  double final_slip_m = 0.0;  // its plastic part's slip at the end (the drift at zero force, α = 0)
 };
 
 struct SolverStatistics {
@@ -148,6 +160,7 @@ struct SolverStatistics {
   long restarts = 0;            // re-initialisations after events
   long events = 0;              // root returns handled (impacts, touches, releases, ...)
   long interpolant_events = 0;  // contacts found inside a step from the interpolant (grazing)
+  long yield_events = 0;        // yielding columns' branch changes (yield, unload); not in `events`
   long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
   long halvings = 0;               // HHT: step halvings on overlap
   double smallest_step_s = 0.0;    // HHT: the smallest step taken
@@ -216,6 +229,7 @@ struct RunResult {
   EnergyAudit energy;
   SolverStatistics statistics;
   History history;
+  std::vector<SpringResult> springs;  // empty unless some building's columns yield
 };
 
 }  // namespace pounding::solvers

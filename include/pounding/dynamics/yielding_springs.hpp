@@ -1,0 +1,89 @@
+#pragma once
+// The yielding column springs of a pair of buildings (model::HystereticLaw, docs/model.md
+// "Yielding columns"): one spring per column, storey and direction (x, y) of every building whose
+// columns yield. Spring j's drift d_j = t_j · q is the column's top-to-bottom displacement along
+// its direction (small rotations, as the stiffness: T = [[1, 0, −Δy], [0, 1, Δx]] per floor).
+//
+// A bilinear spring is split into a linear part α k, which stays in K, and an elastic–perfectly-
+// plastic part of stiffness (1 − α) k with slip s_j: its force (1 − α) k (d_j − s_j) never exceeds
+// (1 − α) k d_y. K keeps the initial stiffness (and so does the Rayleigh damping C = a0 M + a1 K,
+// as codes do), and the slips enter the motion as the force Σ (1 − α) k s_j t_j:
+//   M q̈ + C q̇ + K q = −M r a_g + Σ_j (1 − α) k_j s_j t_j.
+// Between events each spring is on one branch: elastic (s_j constant) or yielding up or down
+// (s_j = d_j ∓ d_y, the force constant), so the motion is piecewise linear and its branch
+// changes are root functions ("witnesses") the integrator locates:
+//   elastic:    d_y − |d_j − s_j|   falls where the spring yields;
+//   yielding ±: ±ḋ_j                falls where it unloads.
+// Units: m, s, kN.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "pounding/model/building.hpp"
+
+namespace pounding::dynamics {
+
+enum class SpringBranch { elastic, yielding_up, yielding_down };
+
+/// One spring's discrete state: its branch, and its slip s (m; the plastic drift) while elastic.
+struct SpringState {
+  SpringBranch branch = SpringBranch::elastic;
+  double slip_m = 0.0;
+};
+
+/// The branch and slip of every yielding spring, one per spring: a run's discrete state.
+using SpringStates = std::vector<SpringState>;
+
+struct YieldingSpring {
+  int building = 0;                 // 0 or 1
+  int storey = 1;                   // 1-based: joins floor storey − 1 (the ground for 1) and floor storey
+  int direction = 0;                // 0: x, 1: y
+  std::string column;               // the column's scene key ("columns[3]", "column_grid[1] x[2] y[1]")
+  double stiffness_kN_per_m = 0.0;  // initial k
+  double hardening_ratio = 0.0;     // α
+  double yield_drift_m = 0.0;       // d_y
+  /// d = Σ coefficients[i] · q[indices[i]] (the lower floor's terms absent for storey 1).
+  std::vector<int> indices;
+  std::vector<double> coefficients;
+
+  /// (1 − α) k (kN/m): the stiffness of the elastic–perfectly-plastic part.
+  double plastic_stiffness() const { return (1.0 - hardening_ratio) * stiffness_kN_per_m; }
+};
+
+class YieldingSprings {
+ public:
+  YieldingSprings() = default;
+  /// The springs of the buildings whose hysteresis yields; `offsets[b]` is building b's first
+  /// index in q. @pre the buildings are assembled (make_building: frame factor resolved).
+  YieldingSprings(const std::array<model::Building, 2>& buildings, const std::array<int, 2>& offsets);
+
+  bool empty() const { return springs_.empty(); }
+  std::size_t size() const { return springs_.size(); }
+  const YieldingSpring& operator[](std::size_t j) const { return springs_[j]; }
+  const std::vector<YieldingSpring>& all() const { return springs_; }
+
+  /// d_j (m) for displacements q, or ḋ_j (m/s) for velocities q̇.
+  double drift(const Eigen::Ref<const Eigen::VectorXd>& q, std::size_t j) const;
+  /// s_j (m): the stored slip while elastic, d_j ∓ d_y while yielding.
+  double slip(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states, std::size_t j) const;
+  /// Adds Σ (1 − α) k s_j t_j (kN, kN·m) to `force`.
+  void add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states,
+                      Eigen::Ref<Eigen::VectorXd> force) const;
+  /// Adds the yielding springs' ∂(slip force)/∂q = (1 − α) k t tᵀ, scaled by M⁻¹ (`inverse_mass`),
+  /// to the ∂q̈/∂q block of `rows` (n × 2n).
+  void add_tangent_rows(const SpringStates& states, const Eigen::VectorXd& inverse_mass,
+                        Eigen::SparseMatrix<double>& rows) const;
+  /// Spring j's witness in y = (q, q̇) (see the header comment).
+  double witness(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states, std::size_t j) const;
+  /// The energy (kJ) the slips take out of ½ qᵀ K q: the springs store
+  /// ½ qᵀ K q − Σ (1 − α) k s_j d_j + ½ Σ (1 − α) k s_j².
+  double stored_energy_change(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states) const;
+
+ private:
+  std::vector<YieldingSpring> springs_;
+};
+
+}  // namespace pounding::dynamics

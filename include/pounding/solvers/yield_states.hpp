@@ -1,0 +1,57 @@
+#pragma once
+// The yielding column springs' branches during an event-driven run (dynamics/yielding_springs.hpp),
+// their transitions at the roots of their witnesses, and what the outputs need of them: each
+// spring's peak drift, first yield, yield count, dissipated (hysteretic) energy and final drift
+// and slip. Transitions:
+//   elastic  → yielding ±  where |d − s| reaches d_y with the drift moving outwards;
+//   yielding → elastic     where the drift rate turns (ḋ = 0), keeping the slip s = d ∓ d_y.
+// A yielding phase dissipates (1 − α) k d_y |Δs| (the plastic part's constant force times its
+// slip), added when it ends.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "pounding/dynamics/yielding_springs.hpp"
+#include "pounding/solvers/run_result.hpp"
+
+namespace pounding::solvers {
+
+class YieldStates {
+ public:
+  /// @pre `springs` outlives this.
+  explicit YieldStates(const dynamics::YieldingSprings& springs);
+
+  bool empty() const { return springs_.empty(); }
+  std::size_t size() const { return springs_.size(); }
+  /// The states for the system's functions: nullptr when nothing yields (the elastic path).
+  const dynamics::SpringStates* states() const { return springs_.empty() ? nullptr : &states_; }
+  bool any_yielding() const { return yielding_ > 0; }
+  /// Spring j's witness in y (YieldingSprings::witness).
+  double witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const {
+    return springs_.witness(y, states_, j);
+  }
+
+  /// At an event at (t, y), ẏ = y_dot (on the present branches): switches every spring whose
+  /// witness is at or below zero (the flagged ones and any that crossed with them by rounding)
+  /// if its motion goes on past the switch: outwards from the yield drift (a drift rate, or at
+  /// zero rate an acceleration, pointing out), back from a yielding branch (the drift rate
+  /// turned, unless at zero rate the acceleration reloads it). @return the number switched.
+  int switch_branches(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& y_dot);
+  /// Tracks the peak drifts at a state the run passed through (step ends, events).
+  void observe(const Eigen::VectorXd& y);
+  /// The per-spring results at the run's end (ending the yielding phases in progress), and the
+  /// energy they dissipated (kJ).
+  std::vector<SpringResult> finish(const Eigen::VectorXd& y, double& hysteretic_kJ);
+
+ private:
+  /// Ends a yielding phase of spring j at slip `slip_m`: adds its dissipation.
+  void end_yielding(std::size_t j, double slip_m);
+
+  const dynamics::YieldingSprings& springs_;
+  dynamics::SpringStates states_;
+  std::vector<SpringResult> results_;
+  std::vector<double> phase_start_slip_m_;  // the slip where the current yielding phase began
+  int yielding_ = 0;                        // springs on a yielding branch
+};
+
+}  // namespace pounding::solvers
