@@ -326,6 +326,15 @@ int run_check(const CheckCommand& command) {
                "a1 = {:.6f} s\n",
                b.modes[0].period_s, b.modes[1].period_s, b.modes[2].period_s, b.rayleigh.a0_per_s,
                b.rayleigh.a1_s);
+    if (definition.p_delta)
+      fmt::print("  P-Δ: storeys lowered by the gravity load above them (g = {} m/s²)\n", definition.g_mps2);
+    const model::HystereticLaw& law = definition.hysteresis;
+    if (law.yields()) {
+      fmt::print("  columns bilinear in x and y: yield drift {}, hardening ratio {}\n",
+                 law.yield_drift_m ? fmt::format("{} m", *law.yield_drift_m)
+                                   : fmt::format("{} of the storey height", *law.yield_drift_ratio),
+                 law.hardening_ratio);
+    }
   }
   fmt::print("Coupled system: {} DOF ({} first-order states)\n", total_dof, 2 * total_dof);
   print_levels(scene);

@@ -455,6 +455,10 @@ model::BuildingDefinition read_building(TableReader table) {
     damping->finish();
   }
   if (auto hysteresis = table.optional_subtable("hysteresis")) b.hysteresis = read_hysteresis(*hysteresis);
+  if (const toml::node* p_delta = table.find("p_delta")) {
+    if (!p_delta->is_boolean()) throw table.error(*p_delta, table.key_path("p_delta"), "expected true or false");
+    b.p_delta = **p_delta->as_boolean();
+  }
   table.finish();
   return b;
 }
@@ -566,6 +570,7 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
         TableReader(*(*buildings)[i].as_table(), fmt::format("building[{}]", i + 1), path.string()));
   }
   scene.excitation = read_excitation(root.subtable("excitation"), path.parent_path());
+  for (model::BuildingDefinition& b : scene.buildings) b.g_mps2 = scene.excitation.g_mps2;  // for P-Δ
   TableReader contact = root.subtable("contact");
   for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
     std::visit(

@@ -173,6 +173,10 @@ Eigen::MatrixXd column_building_stiffness(const BuildingDefinition& b, double fr
 
 void require_positive_definite(const Eigen::MatrixXd& stiffness, const BuildingDefinition& b) {
   if (Eigen::LLT<Eigen::MatrixXd>(stiffness).info() == Eigen::Success) return;
+  if (b.p_delta) {
+    throw InputError("p_delta", "true",
+                     "the gravity load makes the building unstable: its P-Δ stiffness exceeds the storeys' own");
+  }
   if (b.uses_columns()) {
     throw InputError("columns", fmt::format("{} columns", b.columns.size()),
                      "the storey stiffness is singular: columns that all stand at one point "
@@ -228,6 +232,18 @@ Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns
     storey += t.transpose() * k.asDiagonal() * t;
   }
   return storey;
+}
+
+std::vector<Eigen::Matrix3d> geometric_storey_matrices(const BuildingDefinition& b) {
+  std::vector<Eigen::Matrix3d> storeys(static_cast<std::size_t>(b.storeys));
+  double mass_above_t = 0.0, polar_above_tm2 = 0.0;
+  for (int j = b.storeys; j >= 1; --j) {
+    mass_above_t += b.mass_t[j - 1];
+    polar_above_tm2 += b.polar_moment_tm2[j - 1];
+    const double factor = -b.g_mps2 / b.storey_height_m[j - 1];
+    storeys[j - 1] = (factor * Eigen::Vector3d(mass_above_t, mass_above_t, polar_above_tm2)).asDiagonal();
+  }
+  return storeys;
 }
 
 Eigen::MatrixXd assemble_stiffness(const std::vector<Eigen::Matrix3d>& storeys) {
@@ -288,6 +304,7 @@ Building make_building(const BuildingDefinition& definition) {
     building.frame_factor = 1.0;
     building.stiffness = assemble_stiffness(definition.storey_stiffness);
   }
+  if (definition.p_delta) building.stiffness += assemble_stiffness(geometric_storey_matrices(definition));
   require_positive_definite(building.stiffness, definition);
 
   building.modes = modal_analysis(building.mass_diagonal, building.stiffness);

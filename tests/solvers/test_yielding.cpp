@@ -9,7 +9,8 @@
 //              ω_α = √α ω (for α = 0: x = d_y + v₁ τ − ½ ω² d_y τ²);
 //   then the slip is s = x_max − d_y, the dissipated energy (1 − α) k d_y s, and the building
 //   swings elastically about x = (1 − α) s with amplitude x_max − (1 − α) s.
-// The four x-springs yield in the same instant (simultaneous branch changes).
+// The four x-springs yield in the same instant (simultaneous branch changes). With P-Δ both
+// branches lose k_g = m g / H, so without hardening the post-yield branch is unstable (hyperbolic).
 
 #define BOOST_TEST_MODULE yielding
 #include <boost/test/unit_test.hpp>
@@ -25,11 +26,12 @@ using namespace pounding;
 
 namespace {
 
-constexpr double kMass_t = 500.0, kE_kPa = 3e7, kSide_m = 0.5, kHeight_m = 3.0;
+constexpr double kMass_t = 500.0, kE_kPa = 3e7, kSide_m = 0.5, kHeight_m = 3.0, kGravity_mps2 = 9.81;
 // k of one column, 12 E I / H³ with I = b⁴/12, written out here (not model::column_stiffness).
 const double kColumn_kN_per_m = 12.0 * kE_kPa * std::pow(kSide_m, 4) / 12.0 / std::pow(kHeight_m, 3);
 
-model::Building column_building(const char* name, double x_centre, const model::HystereticLaw& law) {
+model::Building column_building(const char* name, double x_centre, const model::HystereticLaw& law,
+                                bool p_delta = false) {
   model::BuildingDefinition b;
   b.name = name;
   b.storeys = 1;
@@ -47,12 +49,14 @@ model::Building column_building(const char* name, double x_centre, const model::
   b.frame_factor = 1.0;
   b.damping = {0.0, {1, 3}};
   b.hysteresis = law;
+  b.p_delta = p_delta;
+  b.g_mps2 = kGravity_mps2;
   return model::make_building(b);
 }
 
 /// Building 1 yields; building 2 stays elastic 20 m away (no contact candidates).
-dynamics::CoupledSystem system_of(const model::HystereticLaw& law, double duration_s) {
-  std::array<model::Building, 2> buildings{column_building("A", 0.0, law), column_building("B", 40.0, {})};
+dynamics::CoupledSystem system_of(const model::HystereticLaw& law, double duration_s, bool p_delta = false) {
+  std::array<model::Building, 2> buildings{column_building("A", 0.0, law, p_delta), column_building("B", 40.0, {})};
   excitation::GroundMotion quiet({0.0, duration_s}, {0.0, 0.0}, 0.0);
   return dynamics::CoupledSystem(std::move(buildings), std::move(quiet), {}, {});
 }
@@ -64,69 +68,119 @@ solvers::IntegratorFactory cvode(double rtol, double atol) {
   };
 }
 
+/// The oscillator of the header comment, with P-Δ: the gravity load m g over the storey height
+/// lowers both branches' stiffness by k_g = m g / H (k_g = 0 without P-Δ).
 struct Bilinear {
-  double k, m, d_y, alpha, v0;
-  double omega() const { return std::sqrt(k / m); }
+  double k, k_g, m, d_y, alpha, v0;
+  double k_elastic() const { return k - k_g; }
+  double k_post() const { return alpha * k - k_g; }
+  double plastic_force() const { return (1.0 - alpha) * k * d_y; }
+  double omega() const { return std::sqrt(k_elastic() / m); }
   double t_yield() const { return std::asin(omega() * d_y / v0) / omega(); }
   double v_yield() const { return std::sqrt(v0 * v0 - omega() * omega() * d_y * d_y); }
+  /// ½ k_post (x² − d_y²) + F₀ (x − d_y) = ½ m v₁²: the work to the peak; its smallest root past d_y.
   double x_max() const {
-    const double kinetic = 0.5 * m * v_yield() * v_yield();
-    if (alpha == 0.0) return d_y + kinetic / (k * d_y);
-    // ½ α k x² + (1 − α) k d_y x − [½ α k d_y² + (1 − α) k d_y² + kinetic] = 0
-    const double a = 0.5 * alpha * k, b = (1.0 - alpha) * k * d_y;
-    const double c = -(0.5 * alpha * k * d_y * d_y + (1.0 - alpha) * k * d_y * d_y + kinetic);
-    return (-b + std::sqrt(b * b - 4.0 * a * c)) / (2.0 * a);
+    const double kinetic = 0.5 * m * v_yield() * v_yield(), f0 = plastic_force();
+    if (k_post() == 0.0) return d_y + kinetic / f0;
+    const double c = 0.5 * k_post() * d_y * d_y + f0 * d_y + kinetic;
+    const double root = std::sqrt(f0 * f0 + 2.0 * k_post() * c);
+    return k_post() > 0.0                  ? (-f0 + root) / k_post()
+           : (-f0 + root) / k_post() > d_y ? (-f0 + root) / k_post()
+                                           : (-f0 - root) / k_post();
   }
-  /// The time from yield to the peak on the hardening branch.
-  double hardening_time() const {
-    if (alpha == 0.0) return v_yield() / (omega() * omega() * d_y);
-    const double w = std::sqrt(alpha) * omega(), centre = -(1.0 - alpha) * d_y / alpha;
-    // ẋ = −w (d_y − x_c) sin wτ + v₁ cos wτ = 0
-    return std::atan2(v_yield(), w * (d_y - centre)) / w;
+  /// The time from yield to the peak on the post-yield branch m ẍ = −k_post x − F₀, which is
+  /// harmonic (k_post > 0), uniformly decelerated (0) or hyperbolic (< 0, P-Δ beyond the hardening).
+  double post_yield_time() const {
+    if (k_post() == 0.0) return v_yield() / (plastic_force() / m);
+    const double centre = -plastic_force() / k_post();
+    if (k_post() > 0.0) {
+      const double w = std::sqrt(k_post() / m);
+      return std::atan2(v_yield(), w * (d_y - centre)) / w;  // ẋ = −w (d_y − x_c) sin wτ + v₁ cos wτ
+    }
+    const double lambda = std::sqrt(-k_post() / m);
+    return std::atanh(v_yield() / (lambda * (centre - d_y))) / lambda;  // ẋ = λ (d_y − x_c) sinh + v₁ cosh
   }
   double slip() const { return x_max() - d_y; }
+  /// Where the elastic swing after unloading is centred: k_el x = (1 − α) k s.
+  double swing_centre() const { return (1.0 - alpha) * k * slip() / k_elastic(); }
 };
 
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(BilinearOscillatorReleasedWithAVelocityFollowsItsClosedForm) {
-  for (double alpha : {0.0, 0.1}) {
-    BOOST_TEST_CONTEXT("hardening ratio " << alpha) {
-      const Bilinear sdof{4.0 * kColumn_kN_per_m, kMass_t, 0.01, alpha, 0.5};
-      const double t_peak = sdof.t_yield() + sdof.hardening_time();
-      // A quarter of an elastic period after the peak: well before the far side of the swing.
-      const double t_end = t_peak + 0.25 * 2.0 * std::numbers::pi / sdof.omega();
-      const auto system = system_of(
-          {.kind = model::HystereticLaw::Kind::bilinear, .yield_drift_m = sdof.d_y, .hardening_ratio = alpha}, t_end);
-      BOOST_TEST_REQUIRE(system.springs().size() == 8u);  // 4 columns × (x, y)
-      solvers::EventOptions options;
-      options.initial_state = Eigen::VectorXd::Zero(system.state_size());
-      options.initial_state[system.dof()] = sdof.v0;  // u̇ of building A's floor 1
-      const solvers::RunResult run = solvers::run_event_driven(system, options, cvode(1e-11, 1e-13), "cvode-bdf");
-      BOOST_TEST(solvers::to_string(run.status) == "completed");
-      BOOST_TEST_REQUIRE(run.springs.size() == 8u);
-      // Two branch changes for each of the four x-springs: yield and unload.
-      BOOST_TEST(run.statistics.yield_events == 8);
-      const double x_end = (1.0 - alpha) * sdof.slip();  // the swing's centre, reached after a quarter period
-      for (std::size_t j = 0; j < run.springs.size(); ++j) {
-        const solvers::SpringResult& r = run.springs[j];
-        if (system.springs()[j].direction == 1) {
-          BOOST_TEST(r.yield_count == 0);
-          continue;
+  for (bool p_delta : {false, true}) {
+    for (double alpha : {0.0, 0.1}) {
+      BOOST_TEST_CONTEXT("hardening ratio " << alpha << (p_delta ? ", P-Delta" : "")) {
+        const double k_g = p_delta ? kMass_t * kGravity_mps2 / kHeight_m : 0.0;
+        const Bilinear sdof{4.0 * kColumn_kN_per_m, k_g, kMass_t, 0.01, alpha, 0.5};
+        const double t_peak = sdof.t_yield() + sdof.post_yield_time();
+        // A quarter of an elastic period after the peak: the swing's centre, before its far side.
+        const double t_end = t_peak + 0.25 * 2.0 * std::numbers::pi / sdof.omega();
+        const auto system = system_of(
+            {.kind = model::HystereticLaw::Kind::bilinear, .yield_drift_m = sdof.d_y, .hardening_ratio = alpha}, t_end,
+            p_delta);
+        BOOST_TEST_REQUIRE(system.springs().size() == 8u);  // 4 columns × (x, y)
+        solvers::EventOptions options;
+        options.initial_state = Eigen::VectorXd::Zero(system.state_size());
+        options.initial_state[system.dof()] = sdof.v0;  // u̇ of building A's floor 1
+        const solvers::RunResult run = solvers::run_event_driven(system, options, cvode(1e-11, 1e-13), "cvode-bdf");
+        BOOST_TEST(solvers::to_string(run.status) == "completed");
+        BOOST_TEST_REQUIRE(run.springs.size() == 8u);
+        // Two branch changes for each of the four x-springs: yield and unload.
+        BOOST_TEST(run.statistics.yield_events == 8);
+        for (std::size_t j = 0; j < run.springs.size(); ++j) {
+          const solvers::SpringResult& r = run.springs[j];
+          if (system.springs()[j].direction == 1) {
+            BOOST_TEST(r.yield_count == 0);
+            continue;
+          }
+          BOOST_TEST(r.yield_count == 1);
+          BOOST_TEST(std::abs(r.first_yield_t_s - sdof.t_yield()) < 1e-9);
+          BOOST_TEST(std::abs(r.peak_drift_m - sdof.x_max()) < 1e-9);
+          BOOST_TEST(std::abs(r.final_slip_m - sdof.slip()) < 1e-9);
+          BOOST_TEST(std::abs(r.final_drift_m - sdof.swing_centre()) < 1e-8);
+          BOOST_TEST(r.hysteretic_kJ == (1.0 - alpha) * kColumn_kN_per_m * sdof.d_y * sdof.slip(), tt::tolerance(1e-8));
         }
-        BOOST_TEST(r.yield_count == 1);
-        BOOST_TEST(std::abs(r.first_yield_t_s - sdof.t_yield()) < 1e-9);
-        BOOST_TEST(std::abs(r.peak_drift_m - sdof.x_max()) < 1e-9);
-        BOOST_TEST(std::abs(r.final_slip_m - sdof.slip()) < 1e-9);
-        BOOST_TEST(std::abs(r.final_drift_m - x_end) < 1e-8);
-        BOOST_TEST(r.hysteretic_kJ == (1.0 - alpha) * kColumn_kN_per_m * sdof.d_y * sdof.slip(), tt::tolerance(1e-8));
+        // Energy: the initial kinetic energy is what the springs (and gravity) store and what
+        // they dissipated at the end.
+        const double initial_kJ = 0.5 * kMass_t * sdof.v0 * sdof.v0;
+        BOOST_TEST(run.energy.kinetic_kJ + run.energy.strain_kJ + run.energy.hysteretic_kJ == initial_kJ,
+                   tt::tolerance(1e-8));
       }
-      // Energy: the initial kinetic energy is what the springs store and dissipated at the end.
-      const double initial_kJ = 0.5 * kMass_t * sdof.v0 * sdof.v0;
-      BOOST_TEST(run.energy.kinetic_kJ + run.energy.strain_kJ + run.energy.hysteretic_kJ == initial_kJ,
-                 tt::tolerance(1e-8));
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(PDeltaSubtractsTheGravityLoadAboveEachStorey) {
+  // Two storeys (4.0 m and 3.0 m), floors of 600 t and 400 t: K with P-Δ minus K without is the
+  // assembly of G₁ = −(g/4)·diag(1000, 1000, J₁ + J₂) and G₂ = −(g/3)·diag(400, 400, J₂), written
+  // out here. And a one-storey building's x period follows ω² = (k − m g/H)/m.
+  model::BuildingDefinition b = column_building("A", 0.0, {}).definition;
+  b.storeys = 2;
+  b.storey_height_m = {4.0, 3.0};
+  b.mass_t = {600.0, 400.0};
+  b.polar_moment_tm2 = {model::uniform_polar_moment(b.slab, 600.0), model::uniform_polar_moment(b.slab, 400.0)};
+  const model::Building elastic = model::make_building(b);
+  b.p_delta = true;
+  b.g_mps2 = kGravity_mps2;
+  const model::Building with_p_delta = model::make_building(b);
+  const double j1 = b.polar_moment_tm2[0], j2 = b.polar_moment_tm2[1];
+  const Eigen::Matrix3d g1 =
+      -(kGravity_mps2 / 4.0) * Eigen::Vector3d(1000.0, 1000.0, j1 + j2).asDiagonal().toDenseMatrix();
+  const Eigen::Matrix3d g2 = -(kGravity_mps2 / 3.0) * Eigen::Vector3d(400.0, 400.0, j2).asDiagonal().toDenseMatrix();
+  Eigen::MatrixXd expected(6, 6);
+  expected << g1 + g2, -g2, -g2, g2;
+  BOOST_TEST((with_p_delta.stiffness - elastic.stiffness - expected).cwiseAbs().maxCoeff() <= 1e-9);
+
+  const auto system = system_of({}, 1.0, true);
+  const double k_g = kMass_t * kGravity_mps2 / kHeight_m, k = 4.0 * kColumn_kN_per_m;
+  bool found_x = false;
+  for (const model::Mode& mode : system.building(0).modes) {
+    if (std::abs(mode.shape[0]) < 0.5 * mode.shape.norm()) continue;  // the x mode
+    found_x = true;
+    BOOST_TEST(mode.omega_rad_s * mode.omega_rad_s == (k - k_g) / kMass_t, tt::tolerance(1e-10));
+  }
+  BOOST_TEST(found_x);
 }
 
 BOOST_AUTO_TEST_CASE(ElasticColumnsAddNoWitnessesAndNoOutputs) {

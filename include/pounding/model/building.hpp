@@ -97,6 +97,10 @@ struct BuildingDefinition {
 
   RayleighSpec damping;
   HystereticLaw hysteresis;  // of the columns; elastic unless the scene says otherwise
+  /// P-Δ: each storey's stiffness lowered by the gravity load above it (geometric_stiffness), in
+  /// K and so in the modes and the Rayleigh damping. The gravity g_mps2 is the scene's.
+  bool p_delta = false;
+  double g_mps2 = 9.81;
 
   bool uses_columns() const { return storey_stiffness.empty(); }
   /// @throws InputError naming the offending field (as the scene key, relative to the building),
@@ -120,6 +124,13 @@ Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns
                                               const Point2& centre_of_mass,
                                               double elastic_modulus_kPa, double storey_height_m,
                                               double frame_factor);
+
+/// The geometric (P-Δ) stiffness of storey j about the CM: −(g/H_j) diag(M_j, M_j, J_j), M_j and
+/// J_j the mass and polar moment of the floors it carries (j … N). A storey drift Δ tilts the load
+/// above by Δ/H_j, whose horizontal share P Δ/H_j drives the drift on; a twist Δφ does so to each
+/// mass element at radius r, g dm r² Δφ/H_j about the CM, which all floors share. (kN/m, kN·m/rad)
+/// @pre definition valid.
+std::vector<Eigen::Matrix3d> geometric_storey_matrices(const BuildingDefinition& definition);
 
 /// Block-tridiagonal stiffness (3N×3N) from the storey matrices, storey 1 (to the ground) first.
 Eigen::MatrixXd assemble_stiffness(const std::vector<Eigen::Matrix3d>& storeys);
@@ -158,9 +169,9 @@ struct Building {
   int dof() const { return 3 * definition.storeys; }
 };
 
-/// Validates `definition`, solves the frame factor if a target period is given, assembles
-/// M, K, C and solves the modes. @throws InputError (field relative to the building) for invalid
-/// data or a stiffness that is not positive definite.
+/// Validates `definition`, solves the frame factor if a target period is given (for the frame
+/// without P-Δ), assembles M, K (with P-Δ if asked), C and solves the modes. @throws InputError (field relative to the
+/// building) for invalid data or a stiffness that is not positive definite.
 Building make_building(const BuildingDefinition& definition);
 
 }  // namespace pounding::model
