@@ -9,6 +9,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -390,7 +391,12 @@ PYBIND11_MODULE(_pounding, m) {
       .def("history_columns", [](const Run& r) { return r.report.result.history.columns; })
       .def("history_table", &history_table)
       .def("contact_force_columns", [](const Run&) { return kContactForceColumns; })
-      .def("contact_force_table", &contact_force_table);
+      .def("contact_force_table", &contact_force_table)
+      .def("yielding_csv", [](const Run& r) {
+        std::ostringstream out;
+        pounding::io::write_yielding_rows(r.report, out);
+        return out.str();
+      });
   m.def("run", &run, py::arg("scene"), py::arg("method"), py::arg("settings"), py::arg("limits"));
 
   py::class_<Gap>(m, "Gap")

@@ -15,6 +15,8 @@ pounding.InputError (a ValueError) with the command line's message, naming file,
 run() and needed_gap() release the GIL: runs on several threads proceed in parallel.
 """
 
+import csv as _csv
+import io as _io
 import json as _json
 
 import numpy as _np
@@ -206,7 +208,10 @@ class RunResult:
     array; history maps history.csv's columns (t_s first) to numpy arrays, contact_forces
     contacts_history.csv's (one entry per contact carrying a force at a history instant). The
     scene's [output] decides what there is: without history both are empty dicts, and each floor
-    of peaks holds the groups summary["outputs"]["peaks"] lists."""
+    of peaks holds the groups summary["outputs"]["peaks"] lists. For a scene whose columns yield,
+    yielding is summary.json's yielding section (per storey: ductility, first yield, hysteretic
+    energy) and yielding_array yielding.csv as a structured array (one row per column, storey and
+    direction); otherwise None and an empty array."""
 
     def __init__(self, run):
         self._run = run
@@ -214,7 +219,9 @@ class RunResult:
         for key in ("status", "status_detail", "warnings", "impacts", "touches", "sustained_contacts", "peaks",
                     "energy", "statistics"):
             setattr(self, key, self.summary[key])
+        self.yielding = self.summary.get("yielding")
         self._impacts_array = None
+        self._yielding_array = None
         self._history = None
         self._contact_forces = None
 
@@ -228,6 +235,21 @@ class RunResult:
                 array[name] = table[:, index].astype(_IMPACT_DTYPES[kind])
             self._impacts_array = array
         return self._impacts_array
+
+    @property
+    def yielding_array(self):
+        if self._yielding_array is None:
+            rows = list(_csv.DictReader(_io.StringIO(self._run.yielding_csv())))
+            fields = [("building", _np.int64), ("storey", _np.int64), ("column", "U64"), ("direction", "U1")]
+            fields += [(name, _np.float64) for name in ("stiffness_kN_per_m", "hardening_ratio", "yield_drift_m",
+                                                        "peak_drift_m", "peak_ductility", "first_yield_t_s")]
+            fields += [("yield_count", _np.int64)]
+            fields += [(name, _np.float64) for name in ("hysteretic_kJ", "final_drift_m", "final_slip_m")]
+            array = _np.zeros(len(rows), dtype=fields)
+            for name, _ in fields:
+                array[name] = [row[name] if row[name] != "" else "nan" for row in rows]
+            self._yielding_array = array
+        return self._yielding_array
 
     @property
     def history(self):

@@ -271,26 +271,28 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
   return with_yielding;
 }
 
+void write_yielding_rows(const analysis::RunReport& report, std::ostream& out) {
+  write_csv_header({"building", "storey", "column", "direction", "stiffness_kN_per_m", "hardening_ratio",
+                    "yield_drift_m", "peak_drift_m", "peak_ductility", "first_yield_t_s", "yield_count",
+                    "hysteretic_kJ", "final_drift_m", "final_slip_m"},
+                   out);
+  for (std::size_t j = 0; j < report.springs.size(); ++j) {
+    const dynamics::YieldingSpring& s = report.springs[j];
+    const solvers::SpringResult& r = report.result.springs[j];
+    out << fmt::format("{},{},\"{}\",{},{},{},{},{},{},{},{},{},{},{}\n", s.building + 1, s.storey, s.column,
+                       s.direction == 0 ? "x" : "y", s.stiffness_kN_per_m, s.hardening_ratio, s.yield_drift_m,
+                       r.peak_drift_m, r.peak_drift_m / s.yield_drift_m,
+                       std::isfinite(r.first_yield_t_s) ? fmt::format("{}", r.first_yield_t_s) : "", r.yield_count,
+                       r.hysteretic_kJ, r.final_drift_m, r.final_slip_m);
+  }
+}
+
 void write_yielding_csv(const analysis::RunReport& report, const std::filesystem::path& folder) {
   if (report.springs.empty()) {
     std::filesystem::remove(folder / "yielding.csv");
     return;
   }
-  write_atomically(folder / "yielding.csv", [&](std::ostream& out) {
-    write_csv_header({"building", "storey", "column", "direction", "stiffness_kN_per_m", "hardening_ratio",
-                      "yield_drift_m", "peak_drift_m", "peak_ductility", "first_yield_t_s", "yield_count",
-                      "hysteretic_kJ", "final_drift_m", "final_slip_m"},
-                     out);
-    for (std::size_t j = 0; j < report.springs.size(); ++j) {
-      const dynamics::YieldingSpring& s = report.springs[j];
-      const solvers::SpringResult& r = report.result.springs[j];
-      out << fmt::format("{},{},\"{}\",{},{},{},{},{},{},{},{},{},{},{}\n", s.building + 1, s.storey, s.column,
-                         s.direction == 0 ? "x" : "y", s.stiffness_kN_per_m, s.hardening_ratio, s.yield_drift_m,
-                         r.peak_drift_m, r.peak_drift_m / s.yield_drift_m,
-                         std::isfinite(r.first_yield_t_s) ? fmt::format("{}", r.first_yield_t_s) : "", r.yield_count,
-                         r.hysteretic_kJ, r.final_drift_m, r.final_slip_m);
-    }
-  });
+  write_atomically(folder / "yielding.csv", [&](std::ostream& out) { write_yielding_rows(report, out); });
 }
 
 void write_impacts_header(std::ostream& out) { write_csv_header(impact_csv_columns(), out); }

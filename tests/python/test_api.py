@@ -177,3 +177,23 @@ def test_hht_steps_at_the_record_spacing_unless_told_and_warns_when_told_to_skip
     assert "0.0005" in coarse.warnings[0]["message"]
     assert abs(coarse.energy["relative_residual"]) < 0.1
     assert abs(roof_peak_m(coarse) / roof_peak_m(exact) - 1.0) > 0.5  # what the warning is about
+
+
+def test_yielding_outputs_are_the_summary_per_column():
+    """yielding_array holds one row per yielding column spring whose energies add up to the audit's
+    hysteretic term and whose largest ductilities are the summary's per storey; an elastic scene
+    has neither."""
+    run = pounding.run(pounding.load_scene(SOURCE / "examples" / "paper" / "paper-yielding.toml"))
+    springs = run.yielding_array
+    assert len(springs) == 2 * (25 * 7 + 30 * 10)  # columns × storeys × (x, y)
+    assert springs["hysteretic_kJ"].sum() == pytest.approx(run.energy["hysteretic_kJ"], rel=1e-12)
+    assert run.yielding["hysteretic_kJ"] == run.energy["hysteretic_kJ"]
+    assert np.all(np.isnan(springs["first_yield_t_s"]) == (springs["yield_count"] == 0))
+    for building in run.yielding["buildings"]:
+        for storey in building["storeys"]:
+            rows = springs[(springs["building"] == building["building"]) & (springs["storey"] == storey["storey"])]
+            for axis in ("x", "y"):
+                assert rows["peak_ductility"][rows["direction"] == axis].max() == storey[f"peak_ductility_{axis}"]
+            assert storey["springs_yielded"] == int((rows["yield_count"] > 0).sum())
+    elastic = pounding.run(pounding.load_scene(PAPER))
+    assert elastic.yielding is None and len(elastic.yielding_array) == 0
