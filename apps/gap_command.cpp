@@ -45,6 +45,12 @@ void print_rules(const analysis::NeededGap& gap) {
              "CQC rho = {:.4f}\n",
              gap.modes[0].mode, gap.modes[0].period_s, gap.modes[0].damping_ratio, gap.modes[1].mode,
              gap.modes[1].period_s, gap.modes[1].damping_ratio, gap.rho);
+  if (gap.yielding) {
+    fmt::print(
+        "Columns yield: the contact-free run is nonlinear ({} branch changes), and the code rules below "
+        "combine its inelastic peaks d1, d2\n",
+        gap.yield_events);
+  }
   fmt::print("Code rules (largest over the levels) against the needed gap {}:\n", metres(gap.needed_gap_m));
   for (const analysis::RuleVerdict& v : analysis::rule_verdicts(gap)) {
     fmt::print("  {:<5} {:.6f} m  {} by {:.6f} m ({:+.1f} %)\n", v.rule, v.value_m,

@@ -13,6 +13,7 @@
 #include "pounding/solvers/cvode_integrator.hpp"
 #include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
+#include "pounding/solvers/yield_states.hpp"
 #include "parallel.hpp"
 
 namespace pounding::analysis {
@@ -68,32 +69,58 @@ struct FacingPoint {
 
 class FreeRun final : public solvers::OdeFunctions {
  public:
-  FreeRun(const CoupledSystem& system, double scene_gap_m, std::vector<bool> counted,
-          std::vector<FacingPoint> points)
-      : system_(system), scene_gap_m_(scene_gap_m), counted_(std::move(counted)), points_(std::move(points)) {}
+  FreeRun(const CoupledSystem& system, double scene_gap_m, std::vector<bool> counted, std::vector<FacingPoint> points)
+      : system_(system),
+        scene_gap_m_(scene_gap_m),
+        counted_(std::move(counted)),
+        points_(std::move(points)),
+        yields_(system.springs()) {}
 
   int state_size() const override { return system_.state_size(); }
-  int root_count() const override { return static_cast<int>(counted_.size() + points_.size()); }
-  bool is_linear() const override { return true; }
+  int root_count() const override { return static_cast<int>(counted_.size() + points_.size() + yields_.size()); }
+  // Yielding columns change the Jacobian at their branch changes.
+  bool is_linear() const override { return yields_.empty(); }
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
-    system_.rhs(t, y, y_dot);
+    system_.rhs(t, y, y_dot, yields_.states());
   }
-  void jacobian(double, const Eigen::Ref<const VectorXd>&, Eigen::Ref<Eigen::MatrixXd> jac) override {
-    jac = system_.jacobian();
+  void jacobian(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
+    if (yields_.empty()) {
+      jac = system_.jacobian();
+      return;
+    }
+    Eigen::SparseMatrix<double> rows;
+    acceleration_jacobian(t, y, rows);
+    const int n = system_.dof();
+    jac.topRows(n).setZero();
+    jac.topRightCorner(n, n).setIdentity();
+    jac.bottomRows(n) = rows;
   }
   // Sparse, so that CVODE's Newton matrices cost O(n) to factor rather than O(n³).
   bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
-    system_.constrained_acceleration_jacobian(y, {}, rows);
+    system_.constrained_acceleration_jacobian(y, {}, rows, yields_.states());
     return true;
   }
-  // Every root falls through zero at a maximum: a pair's touch gap (−ġ at its touch geometry),
-  // a facing vertex's displacement towards the other building (its velocity that way).
+  // Every root of the first two blocks falls through zero at a maximum: a pair's touch gap (−ġ at
+  // its touch geometry), a facing vertex's displacement towards the other building (its velocity
+  // that way). The last block: the yielding columns' branch changes (YieldStates).
   void roots(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
     for (std::size_t i = 0; i < counted_.size(); ++i)
       g[static_cast<Eigen::Index>(i)] = counted_[i] ? touch(y, i).rate : 1.0;
     for (std::size_t k = 0; k < points_.size(); ++k) {
       g[static_cast<Eigen::Index>(counted_.size() + k)] = towards(y, points_[k]).second;
     }
+    const auto first_spring = static_cast<Eigen::Index>(counted_.size() + points_.size());
+    for (std::size_t j = 0; j < yields_.size(); ++j)
+      g[first_spring + static_cast<Eigen::Index>(j)] = yields_.witness(y, j);
+  }
+
+  /// At a root at (t, y): switches the yielding columns whose witness crossed. @return how many
+  /// did (if any, the integrator must restart: the motion's equations changed).
+  int switch_springs(double t, const VectorXd& y) {
+    if (yields_.empty()) return 0;
+    VectorXd y_dot(system_.state_size());
+    rhs(t, y, y_dot);
+    return yields_.switch_branches(t, y, y_dot);
   }
 
   Touch touch(const Eigen::Ref<const VectorXd>& y, std::size_t i) const {
@@ -129,6 +156,7 @@ class FreeRun final : public solvers::OdeFunctions {
   double scene_gap_m_;
   std::vector<bool> counted_;
   std::vector<FacingPoint> points_;
+  solvers::YieldStates yields_;
 };
 
 std::vector<bool> counted_pairs(const CoupledSystem& system) {
@@ -253,12 +281,19 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
     if (outcome.kind == solvers::StepKind::root) {
       const std::vector<int> found = integrator.roots_found();
       note_maxima(run, t, integrator.state(), counted, &found, result);
+      const VectorXd at_root = integrator.state();
+      if (const int switched = run.switch_springs(t, at_root); switched > 0) {
+        result.steps += integrator.counters().steps;  // restart() resets the integrator's counters
+        integrator.restart(t, at_root);
+        set_next_stop(t);
+        result.yield_events += switched;
+      }
     }
     if (outcome.kind == solvers::StepKind::stop_time) set_next_stop(t);
     integrator.set_max_step(bound.max_step_s(integrator.state()));
   }
   note_maxima(run, t, integrator.state(), counted, nullptr, result);  // maxima still rising at the end
-  result.steps = integrator.counters().steps;
+  result.steps += integrator.counters().steps;
   result.end_s = t;
 }
 
@@ -307,16 +342,11 @@ NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
 
 NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options) {
   options.validate();
-  if (!system.springs().empty()) {
-    // Its rhs, Jacobian and roots are the elastic ones: a yielding scene would get an elastic answer.
-    throw InputError(fmt::format("building[{}].hysteresis.law", system.springs()[0].building + 1), "\"bilinear\"",
-                     "the needed gap of yielding buildings is not computed yet (the contact-free run assumes elastic "
-                     "columns); run `pounding sweep` over contact.gap_m with method cvode-bdf instead");
-  }
   const auto clock_start = std::chrono::steady_clock::now();
   NeededGap result;
   result.scene_gap_m = scene_gap_m;
   result.candidates = system.candidates();
+  result.yielding = !system.springs().empty();
   result.counted = counted_pairs(system);
   for (const contact::Level& level : system.levels()) {
     LevelGap entry;

@@ -178,6 +178,7 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
       {"extrema", gap.extrema},
       {"steps", gap.steps},
       {"wall_time_s", gap.wall_time_s}};
+  if (gap.yielding) document["yield_events"] = gap.yield_events;  // the contact-free run's, yielding scenes only
   if (!curve.empty()) {
     json points = json::array();
     for (const analysis::SeverityPoint& p : curve) {

@@ -24,6 +24,9 @@ ductility of 13 and strike 96 times with 13 sustained contacts, run on cvode-bdf
 (an implicit multistep and an explicit Runge-Kutta method) at rtol 1e-10:
   4. the same impacts, pair by pair, at times within 1e-6 s (5.2e-8 s measured), and both energy
      audits close to 1e-7 of the input.
+And the needed gap of yielding buildings: `pounding gap` on examples/paper/paper-yielding.toml
+(a nonlinear contact-free run, its maxima located as roots) against the event-driven runs:
+  5. at the needed gap G + 1e-5 m the buildings do not meet, at G - 1e-5 m they strike.
 """
 import csv
 import json
@@ -235,6 +238,26 @@ def check_second_method(program, out, failures):
         failures.append("yielding paper scene: an energy audit does not close")
 
 
+def check_needed_gap(program, out, failures):
+    root = Path(__file__).resolve().parents[2]
+    scene = root / "examples/paper/paper-yielding.toml"
+    run = subprocess.run([program, "gap", str(scene), "--out", str(out / "gap")], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    gap = json.loads((out / "gap/gap.json").read_text())
+    needed = gap["needed_gap_m"]
+    counts = {}
+    for offset in (1e-5, -1e-5):
+        folder = out / f"gap{offset:+g}"
+        run = subprocess.run([program, "run", str(scene), "--gap", repr(needed + offset), "--history", "off",
+                              "--peaks", "none", "--out", str(folder), "--no-progress"], capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
+        counts[offset] = json.loads((folder / "summary.json").read_text())["impact_count"]
+    print(f"needed gap of the yielding paper scene {needed:.6f} m ({gap['yield_events']} branch changes); impacts "
+          f"at +1e-5 m: {counts[1e-5]}, at -1e-5 m: {counts[-1e-5]}")
+    if counts[1e-5] != 0 or counts[-1e-5] == 0:
+        failures.append("the needed gap of the yielding scene is not where the runs start to strike")
+
+
 def main():
     program = sys.argv[1]
     out = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp())
@@ -289,6 +312,7 @@ def main():
     if abs(energy["relative_residual"]) > 1e-6:
         failures.append("energy audit does not close")
     check_second_method(program, out, failures)
+    check_needed_gap(program, out, failures)
     for failure in failures:
         print("FAIL:", failure)
     sys.exit(1 if failures else 0)

@@ -67,6 +67,8 @@ struct NeededGap {
   double rho = 0.0;          // CQC coefficient of the two modes
   GapRules rules;            // each rule's largest value over the levels
   long extrema = 0;          // touch-gap maxima located (root returns on the pairs' rates)
+  bool yielding = false;     // some building's columns yield: the contact-free run is nonlinear
+  long yield_events = 0;     // the yielding columns' branch changes in the contact-free run
   long steps = 0;
   /// completed, or interrupted / time_limit when the run stopped at end_s: everything above then
   /// covers the record only up to end_s (the needed gap is a lower bound).
