@@ -83,6 +83,7 @@ struct GapCommand {
   int curve = 0;         // gaps of the severity curve; 0: none
   unsigned threads = 0;  // runs at a time (curve, records); 0: every core
   std::optional<double> max_wall_time_s;  // each contact-free run's budget (s); default one hour
+  std::optional<double> amplification;    // yielding scenes: also the code rules from elastic peaks × this
   std::string out_dir;   // empty: out/<scene name>-gap (out/<scene name>-records with --records)
 };
 

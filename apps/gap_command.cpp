@@ -59,6 +59,18 @@ void print_rules(const analysis::NeededGap& gap) {
   }
 }
 
+void print_amplified(const analysis::NeededGap& gap) {
+  if (!gap.amplified_elastic) return;
+  const analysis::AmplifiedElastic& a = *gap.amplified_elastic;
+  fmt::print("Elastic analysis (every column elastic, needed gap {}), peaks times {:g}, against the needed gap {}:\n",
+             metres(a.elastic_needed_gap_m), a.factor, metres(gap.needed_gap_m));
+  for (const analysis::RuleVerdict& v : analysis::rule_verdicts(a.rules, gap.needed_gap_m)) {
+    fmt::print("  {:<5} {:.6f} m  {} by {:.6f} m ({:+.1f} %)\n", v.rule, v.value_m,
+               v.unconservative() ? "UNCONSERVATIVE, short" : "conservative, over", std::abs(v.margin_m),
+               100.0 * v.margin_m / gap.needed_gap_m);
+  }
+}
+
 void print_curve(const std::vector<analysis::SeverityPoint>& curve) {
   fmt::print("{:>10} {:>8} {:>18} {:>20} {:>17} {:>9}\n", "gap [m]", "impacts", "max impulse [kNs]",
              "max approach [m/s]", "energy lost [kJ]", "status");
@@ -190,7 +202,15 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   io::require_writable_folder(folder, "--out");
   const io::Provenance provenance = io::make_provenance(scene, command_line);
   const InterruptRequests interrupts;
-  const analysis::NeededGap gap = analysis::needed_gap(scene, run_budget(command));
+  analysis::NeededGap gap = analysis::needed_gap(scene, run_budget(command));
+  if (command.amplification) {
+    try {
+      analysis::add_amplified_elastic(scene, *command.amplification, gap, run_budget(command));
+    } catch (const InputError& error) {
+      if (error.key() != "amplification") throw;
+      throw InputError("--amplification", error.value(), error.reason());
+    }
+  }
   fmt::print("Needed gap of '{}' (contact-free run, CVODE rtol {:g}; {} maxima located, {} steps, {:.3f} s):\n",
              scene.name, analysis::resolve(scene.solver).rtol, gap.extrema, gap.steps, gap.wall_time_s);
   if (gap.candidate < 0) {
@@ -202,6 +222,7 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   }
   print_levels(gap);
   print_rules(gap);
+  print_amplified(gap);
   const bool completed = gap.status == solvers::RunStatus::completed;
   if (!completed) {
     fmt::print("Stopped at t = {:.3f} s ({}: {}): the figures above cover the record up to there only; the needed "

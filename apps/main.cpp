@@ -213,6 +213,11 @@ int main(int argc, char** argv) {
   gap_app->add_option(
       "--max-wall-time", gap.max_wall_time_s,
       "Stop each contact-free run after this many seconds (default 3600); SIGINT/SIGTERM stop them too");
+  gap_app
+      ->add_option("--amplification", gap.amplification,
+                   "Yielding columns: also the code rules from the elastic contact-free run's peaks times this "
+                   "factor (ASCE 7 Cd/Ie, EC8 q), against the yielding buildings' needed gap")
+      ->excludes("--records");
   gap_app->add_option("--out", gap.out_dir,
                       "Output folder (default out/<scene name>-gap, or out/<scene name>-records with --records)");
 

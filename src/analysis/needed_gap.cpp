@@ -380,11 +380,36 @@ NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const Need
   return result;
 }
 
-std::vector<RuleVerdict> rule_verdicts(const NeededGap& gap) {
-  return {{"ABS", gap.rules.abs_m, gap.rules.abs_m - gap.needed_gap_m},
-          {"SRSS", gap.rules.srss_m, gap.rules.srss_m - gap.needed_gap_m},
-          {"DDC", gap.rules.ddc_m, gap.rules.ddc_m - gap.needed_gap_m}};
+void add_amplified_elastic(const Scene& scene, double factor, NeededGap& gap, const solvers::RunBudget& budget) {
+  require_range("amplification", factor, kAmplificationFactor);
+  Scene elastic = scene;
+  bool yields = false;
+  for (model::BuildingDefinition& b : elastic.buildings) {
+    yields = yields || b.hysteresis.yields();
+    b.hysteresis = {};
+  }
+  if (!yields) {
+    throw InputError("amplification", format_value(factor),
+                     "applies to scenes whose columns yield (the code rules of an elastic scene are already printed)");
+  }
+  const NeededGap free = needed_gap(elastic, budget);
+  AmplifiedElastic amplified{.factor = factor, .elastic_needed_gap_m = free.needed_gap_m, .rules = {}};
+  for (const LevelGap& level : free.levels) {
+    const GapRules rules = gap_rules(factor * level.peak_towards_m[0], factor * level.peak_towards_m[1], free.rho);
+    amplified.rules.abs_m = std::max(amplified.rules.abs_m, rules.abs_m);
+    amplified.rules.srss_m = std::max(amplified.rules.srss_m, rules.srss_m);
+    amplified.rules.ddc_m = std::max(amplified.rules.ddc_m, rules.ddc_m);
+  }
+  gap.amplified_elastic = amplified;
 }
+
+std::vector<RuleVerdict> rule_verdicts(const GapRules& rules, double needed_gap_m) {
+  return {{"ABS", rules.abs_m, rules.abs_m - needed_gap_m},
+          {"SRSS", rules.srss_m, rules.srss_m - needed_gap_m},
+          {"DDC", rules.ddc_m, rules.ddc_m - needed_gap_m}};
+}
+
+std::vector<RuleVerdict> rule_verdicts(const NeededGap& gap) { return rule_verdicts(gap.rules, gap.needed_gap_m); }
 
 namespace {
 

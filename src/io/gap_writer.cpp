@@ -179,6 +179,18 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
       {"steps", gap.steps},
       {"wall_time_s", gap.wall_time_s}};
   if (gap.yielding) document["yield_events"] = gap.yield_events;  // the contact-free run's, yielding scenes only
+  if (const auto& amplified = gap.amplified_elastic) {
+    json short_of = json::array();
+    for (const analysis::RuleVerdict& v : analysis::rule_verdicts(amplified->rules, gap.needed_gap_m)) {
+      if (v.unconservative()) short_of.push_back({{"rule", v.rule}, {"short_by_m", -v.margin_m}});
+    }
+    document["amplified_elastic"] = {
+        {"factor", amplified->factor},
+        {"elastic_needed_gap_m", finite_or_null(amplified->elastic_needed_gap_m)},
+        {"rules",
+         {{"abs_m", amplified->rules.abs_m}, {"srss_m", amplified->rules.srss_m}, {"ddc_m", amplified->rules.ddc_m}}},
+        {"unconservative", short_of}};
+  }
   if (!curve.empty()) {
     json points = json::array();
     for (const analysis::SeverityPoint& p : curve) {

@@ -26,7 +26,10 @@ ductility of 13 and strike 96 times with 13 sustained contacts, run on cvode-bdf
      audits close to 1e-7 of the input.
 And the needed gap of yielding buildings: `pounding gap` on examples/paper/paper-yielding.toml
 (a nonlinear contact-free run, its maxima located as roots) against the event-driven runs:
-  5. at the needed gap G + 1e-5 m the buildings do not meet, at G - 1e-5 m they strike.
+  5. at the needed gap G + 1e-5 m the buildings do not meet, at G - 1e-5 m they strike;
+  6. with --amplification 2, the elastic needed gap is the elastic paper scene's, and the ABS,
+     SRSS and DDC rules are those of twice the elastic scene's peaks per level (formulas written
+     here), largest over the levels, to 1e-12 m.
 """
 import csv
 import json
@@ -241,7 +244,8 @@ def check_second_method(program, out, failures):
 def check_needed_gap(program, out, failures):
     root = Path(__file__).resolve().parents[2]
     scene = root / "examples/paper/paper-yielding.toml"
-    run = subprocess.run([program, "gap", str(scene), "--out", str(out / "gap")], capture_output=True, text=True)
+    run = subprocess.run([program, "gap", str(scene), "--amplification", "2", "--out", str(out / "gap")],
+                         capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     gap = json.loads((out / "gap/gap.json").read_text())
     needed = gap["needed_gap_m"]
@@ -256,6 +260,22 @@ def check_needed_gap(program, out, failures):
           f"at +1e-5 m: {counts[1e-5]}, at -1e-5 m: {counts[-1e-5]}")
     if counts[1e-5] != 0 or counts[-1e-5] == 0:
         failures.append("the needed gap of the yielding scene is not where the runs start to strike")
+    run = subprocess.run([program, "gap", str(root / "examples/paper/paper.toml"), "--out", str(out / "gap-elastic")],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    elastic = json.loads((out / "gap-elastic/gap.json").read_text())
+    amplified = gap["amplified_elastic"]
+    rules = {"abs_m": 0.0, "srss_m": 0.0, "ddc_m": 0.0}
+    for level in elastic["levels"]:
+        d1, d2 = (2.0 * d for d in level["peak_towards_m"])
+        rules["abs_m"] = max(rules["abs_m"], d1 + d2)
+        rules["srss_m"] = max(rules["srss_m"], (d1 * d1 + d2 * d2) ** 0.5)
+        rules["ddc_m"] = max(rules["ddc_m"], (d1 * d1 + d2 * d2 - 2.0 * elastic["rho"] * d1 * d2) ** 0.5)
+    worst = max(abs(rules[k] - amplified["rules"][k]) for k in rules)
+    print(f"amplified elastic rules (x2): {amplified['rules']}; largest difference from the elastic scene's peaks "
+          f"{worst:.1e} m; elastic needed gap {amplified['elastic_needed_gap_m']:.6f} m")
+    if worst > 1e-12 or amplified["elastic_needed_gap_m"] != elastic["needed_gap_m"]:
+        failures.append("the amplified elastic rules are not those of the elastic scene")
 
 
 def main():

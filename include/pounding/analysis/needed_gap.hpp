@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,15 @@ struct GapMode {
   double damping_ratio = 0.0;  // Rayleigh ratio at that mode
 };
 
+/// What design practice would estimate for yielding buildings: the code rules from the elastic
+/// contact-free analysis, each building's peak displacement amplified by a factor (ASCE 7's
+/// C_d/I_e, EC8's q), against the needed gap of the yielding ones.
+struct AmplifiedElastic {
+  double factor = 1.0;
+  double elastic_needed_gap_m = 0.0;  // of the same scene with every column elastic, unamplified
+  GapRules rules;                     // from factor × the elastic peaks, largest over the levels
+};
+
 struct NeededGap {
   double scene_gap_m = 0.0;
   double needed_gap_m = 0.0;  // the largest over the levels
@@ -69,6 +79,7 @@ struct NeededGap {
   long extrema = 0;          // touch-gap maxima located (root returns on the pairs' rates)
   bool yielding = false;     // some building's columns yield: the contact-free run is nonlinear
   long yield_events = 0;     // the yielding columns' branch changes in the contact-free run
+  std::optional<AmplifiedElastic> amplified_elastic;  // add_amplified_elastic()
   long steps = 0;
   /// completed, or interrupted / time_limit when the run stopped at end_s: everything above then
   /// covers the record only up to end_s (the needed gap is a lower bound).
@@ -103,6 +114,15 @@ NeededGap needed_gap(const dynamics::CoupledSystem& system, double scene_gap_m, 
 /// @throws InputError for a bad scene or record (as build_system does), or a bad budget.
 NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget = {});
 
+/// The amplification factor's range (add_amplified_elastic).
+inline constexpr Range kAmplificationFactor{0.0, 20.0, "", true};
+
+/// Runs `scene` with every column elastic, contact-free, and sets gap.amplified_elastic from its
+/// peaks times `factor`. @throws InputError (key "amplification") for a factor outside
+/// kAmplificationFactor or a scene whose columns do not yield (then the rules above are elastic
+/// already).
+void add_amplified_elastic(const Scene& scene, double factor, NeededGap& gap, const solvers::RunBudget& budget = {});
+
 /// A code rule against the needed gap: unconservative when it asks for less.
 struct RuleVerdict {
   const char* rule = "";       // "ABS", "SRSS", "DDC"
@@ -111,6 +131,8 @@ struct RuleVerdict {
   bool unconservative() const { return margin_m < 0.0; }
 };
 std::vector<RuleVerdict> rule_verdicts(const NeededGap& gap);
+/// The same for any rules against a needed gap (e.g. AmplifiedElastic::rules).
+std::vector<RuleVerdict> rule_verdicts(const GapRules& rules, double needed_gap_m);
 
 /// What a gap short of the needed one costs: one full event-driven run at that gap.
 struct SeverityPoint {
