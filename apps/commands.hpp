@@ -63,6 +63,7 @@ struct RunCommand {
   std::optional<double> max_wall_time_s;
   std::optional<double> max_history_values;
   bool no_progress = false;  // no progress line even on a terminal
+  bool contact_free_reference = false;  // --contact-free-reference: sets output.contact_free_reference
 };
 
 struct StudyCommand {

@@ -48,7 +48,7 @@ excitation::GroundMotion scene_ground_motion(const Scene& scene) {
   }
 }
 
-dynamics::CoupledSystem build_system(const Scene& scene) {
+dynamics::CoupledSystem build_system(const Scene& scene, bool contact) {
   std::array<model::Building, 2> buildings;
   for (std::size_t b = 0; b < 2; ++b) {
     try {
@@ -57,8 +57,8 @@ dynamics::CoupledSystem build_system(const Scene& scene) {
       throw error.in_context(scene.file.string(), fmt::format("building[{}]", b + 1));
     }
   }
-  return dynamics::CoupledSystem(std::move(buildings), scene_ground_motion(scene),
-                                 scene.levels(), scene_candidates(scene));
+  return dynamics::CoupledSystem(std::move(buildings), scene_ground_motion(scene), scene.levels(),
+                                 contact ? scene_candidates(scene) : std::vector<contact::Candidate>{});
 }
 
 solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used) {
@@ -233,6 +233,51 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
   }
 }
 
+std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::YieldingSpring>& springs,
+                                            const std::vector<solvers::SpringResult>& results) {
+  std::vector<StoreyYielding> storeys;
+  for (std::size_t j = 0; j < springs.size(); ++j) {
+    const dynamics::YieldingSpring& spring = springs[j];
+    if (storeys.empty() || storeys.back().building != spring.building || storeys.back().storey != spring.storey) {
+      storeys.push_back({.building = spring.building,
+                         .storey = spring.storey,
+                         .first_yield_t_s = std::numeric_limits<double>::quiet_NaN()});
+    }
+    StoreyYielding& storey = storeys.back();
+    const solvers::SpringResult& r = results[j];
+    double& ductility = storey.peak_ductility[static_cast<std::size_t>(spring.direction)];
+    ductility = std::max(ductility, r.peak_drift_m / spring.yield_drift_m);
+    if (r.yield_count > 0) {
+      ++storey.springs_yielded;
+      if (!(storey.first_yield_t_s <= r.first_yield_t_s)) storey.first_yield_t_s = r.first_yield_t_s;
+    }
+    ++storey.springs;
+    storey.hysteretic_kJ += r.hysteretic_kJ;
+  }
+  return storeys;
+}
+
+namespace {
+
+solvers::RunResult run_system(const Scene& scene, const UsedSettings& used, const dynamics::CoupledSystem& system,
+                              const RunLimits& limits, const solvers::RunBudget& budget, solvers::RunSink* sink) {
+  const std::string method(used.method->name);
+  if (used.method->factory) {
+    solvers::EventOptions options = event_options(scene, used);
+    options.max_steps = limits.max_steps;
+    options.budget = budget;
+    options.sink = sink;
+    return solvers::run_event_driven(system, options, used.method->factory(used, system), method);
+  }
+  solvers::HhtOptions options = hht_options(scene, used);
+  options.max_steps = limits.max_steps;
+  options.budget = budget;
+  options.sink = sink;
+  return solvers::run_hht(system, options, method);
+}
+
+}  // namespace
+
 RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSink* sink) {
   scene.solver.validate();
   const ContactLawInfo& law = contact_law_info(scene.contact.law);
@@ -257,19 +302,14 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   report.springs = system.springs().all();
   for (RunWarning& warning : settings_warnings(used, system)) report.warnings.push_back(std::move(warning));
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
-  const std::string method(used.method->name);
-  if (used.method->factory) {
-    solvers::EventOptions options = event_options(scene, used);
-    options.max_steps = limits.max_steps;
-    options.budget = budget;
-    options.sink = sink;
-    report.result = solvers::run_event_driven(system, options, used.method->factory(used, system), method);
-  } else {
-    solvers::HhtOptions options = hht_options(scene, used);
-    options.max_steps = limits.max_steps;
-    options.budget = budget;
-    options.sink = sink;
-    report.result = solvers::run_hht(system, options, method);
+  report.result = run_system(scene, used, system, limits, budget, sink);
+  if (scene.output.contact_free_reference) {
+    // The same buildings, record and method without any contact candidate: what the storeys
+    // would have done had the buildings never met. Peaks only.
+    Scene reference = scene;
+    reference.output.history = false;
+    const dynamics::CoupledSystem free = build_system(reference, false);
+    report.contact_free = run_system(reference, resolve(reference.solver, &free), free, limits, budget, nullptr);
   }
   return report;
 }

@@ -184,6 +184,11 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
       throw InputError(key, value, "is listed twice");
     }
   }
+  if (output.contact_free_reference &&
+      std::find(output.peaks.begin(), output.peaks.end(), kPeakGroups[2]) == output.peaks.end()) {
+    throw InputError("output.contact_free_reference", "true",
+                     "compares the storeys' peak drifts: output.peaks must include \"drifts\"");
+  }
 }
 
 void validate_pair(const Scene& scene) {

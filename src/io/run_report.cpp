@@ -91,25 +91,36 @@ void append_design_peaks(const analysis::RunReport& report, std::string& text) {
 /// Per storey of a yielding building: its largest ductility in x and y, first yield and
 /// hysteretic energy (the per-column values are in yielding.csv).
 void append_yielding(const analysis::RunReport& report, std::string& text) {
-  const auto& springs = report.springs;
-  const auto& results = report.result.springs;
-  if (springs.empty()) return;
+  if (report.springs.empty()) return;
   auto out = std::back_inserter(text);
   fmt::format_to(out, "Yielding columns: {} branch changes, hysteretic energy {:.3f} kJ\n",
                  report.result.statistics.yield_events, report.result.energy.hysteretic_kJ);
-  for (std::size_t j = 0; j < springs.size();) {
-    const int b = springs[j].building, storey = springs[j].storey;
-    std::array<double, 2> ductility{0.0, 0.0};
-    double first_s = std::numeric_limits<double>::infinity(), energy_kJ = 0.0;
-    for (; j < springs.size() && springs[j].building == b && springs[j].storey == storey; ++j) {
-      const int d = springs[j].direction;
-      ductility[d] = std::max(ductility[d], results[j].peak_drift_m / springs[j].yield_drift_m);
-      if (results[j].yield_count > 0) first_s = std::min(first_s, results[j].first_yield_t_s);
-      energy_kJ += results[j].hysteretic_kJ;
+  for (const analysis::StoreyYielding& s : analysis::storey_yielding(report.springs, report.result.springs)) {
+    fmt::format_to(
+        out, "  B{} storey {}: ductility x {:.3f}, y {:.3f}; {}; hysteretic {:.3f} kJ\n", s.building + 1, s.storey,
+        s.peak_ductility[0], s.peak_ductility[1],
+        std::isfinite(s.first_yield_t_s) ? fmt::format("first yield {:.6f} s", s.first_yield_t_s) : "elastic",
+        s.hysteretic_kJ);
+  }
+}
+
+/// Per storey: the peak drift ratios at the CM with contact over those of the contact-free run.
+void append_pounding_demand(const analysis::RunReport& report, std::string& text) {
+  if (!report.contact_free) return;
+  const solvers::RunResult& with = report.result;
+  const solvers::RunResult& without = *report.contact_free;
+  auto out = std::back_inserter(text);
+  auto ratio = [](double a, double b) { return b != 0.0 ? fmt::format("x{:.3f}", std::abs(a) / std::abs(b)) : "-"; };
+  fmt::format_to(out, "Pounding-induced demand (peak storey drift ratio at the CM, with contact / without):\n");
+  for (std::size_t b = 0; b < with.peaks.size(); ++b) {
+    for (std::size_t f = 0; f < with.peaks[b].floors.size(); ++f) {
+      const solvers::FloorPeaks& p = with.peaks[b].floors[f];
+      const solvers::FloorPeaks& q = without.peaks[b].floors[f];
+      fmt::format_to(out, "  {} storey {}: x {:.3f} % / {:.3f} % ({}), y {:.3f} % / {:.3f} % ({})\n",
+                     with.peaks[b].name, p.floor, 100.0 * std::abs(p.drift_x.value), 100.0 * std::abs(q.drift_x.value),
+                     ratio(p.drift_x.value, q.drift_x.value), 100.0 * std::abs(p.drift_y.value),
+                     100.0 * std::abs(q.drift_y.value), ratio(p.drift_y.value, q.drift_y.value));
     }
-    fmt::format_to(out, "  B{} storey {}: ductility x {:.3f}, y {:.3f}; {}; hysteretic {:.3f} kJ\n", b + 1, storey,
-                   ductility[0], ductility[1],
-                   std::isfinite(first_s) ? fmt::format("first yield {:.6f} s", first_s) : "elastic", energy_kJ);
   }
 }
 
@@ -127,6 +138,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   }
   append_design_peaks(report, text);
   append_yielding(report, text);
+  append_pounding_demand(report, text);
   const auto& st = r.statistics;
   if (st.max_interpenetration_candidate >= 0) {
     fmt::format_to(

@@ -100,42 +100,62 @@ json finite_or_null(double value) { return std::isfinite(value) ? json(value) : 
 /// Per building and storey: the largest ductility in x and y over its columns, the first yield,
 /// the hysteretic energy and the yielded springs (docs/model.md, "Yielding columns").
 json yielding_json(const analysis::RunReport& report) {
-  const auto& springs = report.springs;
-  const auto& results = report.result.springs;
   json buildings = json::array();
-  std::size_t j = 0;
-  while (j < springs.size()) {
-    const int b = springs[j].building;
-    json storeys = json::array();
-    while (j < springs.size() && springs[j].building == b) {
-      const int storey = springs[j].storey;
-      std::array<double, 2> ductility{0.0, 0.0};
-      double first_yield_s = std::numeric_limits<double>::quiet_NaN(), hysteretic_kJ = 0.0;
-      int yielded = 0, count = 0;
-      for (; j < springs.size() && springs[j].building == b && springs[j].storey == storey; ++j, ++count) {
-        const solvers::SpringResult& r = results[j];
-        ductility[springs[j].direction] =
-            std::max(ductility[springs[j].direction], r.peak_drift_m / springs[j].yield_drift_m);
-        if (r.yield_count > 0) {
-          ++yielded;
-          if (!(first_yield_s <= r.first_yield_t_s)) first_yield_s = r.first_yield_t_s;
-        }
-        hysteretic_kJ += r.hysteretic_kJ;
-      }
-      storeys.push_back({{"storey", storey},
-                         {"peak_ductility_x", ductility[0]},
-                         {"peak_ductility_y", ductility[1]},
-                         {"first_yield_t_s", finite_or_null(first_yield_s)},
-                         {"springs_yielded", yielded},
-                         {"springs", count},
-                         {"hysteretic_kJ", hysteretic_kJ}});
+  for (const analysis::StoreyYielding& s : analysis::storey_yielding(report.springs, report.result.springs)) {
+    if (buildings.empty() || buildings.back()["building"] != s.building + 1) {
+      buildings.push_back({{"building", s.building + 1}, {"storeys", json::array()}});
     }
-    buildings.push_back({{"building", b + 1}, {"storeys", storeys}});
+    buildings.back()["storeys"].push_back({{"storey", s.storey},
+                                           {"peak_ductility_x", s.peak_ductility[0]},
+                                           {"peak_ductility_y", s.peak_ductility[1]},
+                                           {"first_yield_t_s", finite_or_null(s.first_yield_t_s)},
+                                           {"springs_yielded", s.springs_yielded},
+                                           {"springs", s.springs},
+                                           {"hysteretic_kJ", s.hysteretic_kJ}});
   }
   return {{"law", "bilinear"},
           {"yield_events", report.result.statistics.yield_events},
           {"hysteretic_kJ", report.result.energy.hysteretic_kJ},
           {"per_spring", "yielding.csv"},
+          {"buildings", buildings}};
+}
+
+/// A peak with and without contact, and their ratio (null where the contact-free one is 0).
+json with_without(double with, double without) {
+  return {{"with", with}, {"without", without}, {"ratio", without != 0.0 ? json(with / without) : json(nullptr)}};
+}
+
+/// The pounding-induced change of each storey's peak drift ratio at the CM (and of its columns'
+/// ductility, when they yield) against the same run without contact.
+json pounding_demand_json(const analysis::RunReport& report) {
+  const solvers::RunResult& with = report.result;
+  const solvers::RunResult& without = *report.contact_free;
+  std::vector<analysis::StoreyYielding> yield_with, yield_without;
+  if (!report.springs.empty()) {
+    yield_with = analysis::storey_yielding(report.springs, with.springs);
+    yield_without = analysis::storey_yielding(report.springs, without.springs);
+  }
+  json buildings = json::array();
+  for (std::size_t b = 0; b < with.peaks.size(); ++b) {
+    json storeys = json::array();
+    for (std::size_t f = 0; f < with.peaks[b].floors.size(); ++f) {
+      const solvers::FloorPeaks& a = with.peaks[b].floors[f];
+      const solvers::FloorPeaks& c = without.peaks[b].floors[f];
+      json storey = {{"storey", a.floor},
+                     {"drift_x", with_without(std::abs(a.drift_x.value), std::abs(c.drift_x.value))},
+                     {"drift_y", with_without(std::abs(a.drift_y.value), std::abs(c.drift_y.value))}};
+      for (std::size_t k = 0; k < yield_with.size(); ++k) {
+        if (yield_with[k].building != static_cast<int>(b) || yield_with[k].storey != a.floor) continue;
+        storey["ductility_x"] = with_without(yield_with[k].peak_ductility[0], yield_without[k].peak_ductility[0]);
+        storey["ductility_y"] = with_without(yield_with[k].peak_ductility[1], yield_without[k].peak_ductility[1]);
+      }
+      storeys.push_back(std::move(storey));
+    }
+    buildings.push_back({{"building", with.peaks[b].name}, {"storeys", storeys}});
+  }
+  return {{"reference", "the same scene and method without contact"},
+          {"reference_status", solvers::to_string(without.status)},
+          {"drift", "peak drift ratio of the storey below each floor, at the CM (as peaks' drift_x, drift_y)"},
           {"buildings", buildings}};
 }
 
@@ -261,14 +281,17 @@ json run_json_elastic(const analysis::RunReport& report, const Provenance& prove
 
 json run_json(const analysis::RunReport& report, const Provenance& provenance) {
   json summary = run_json_elastic(report, provenance);
-  if (report.springs.empty()) return summary;
-  // The yielding section goes before the energy audit, which it explains.
-  json with_yielding;
+  if (report.springs.empty() && !report.contact_free) return summary;
+  // The yielding and pounding-demand sections go before the energy audit.
+  json extended;
   for (auto& [key, value] : summary.items()) {
-    if (key == "energy") with_yielding["yielding"] = yielding_json(report);
-    with_yielding[key] = std::move(value);
+    if (key == "energy") {
+      if (!report.springs.empty()) extended["yielding"] = yielding_json(report);
+      if (report.contact_free) extended["pounding_demand"] = pounding_demand_json(report);
+    }
+    extended[key] = std::move(value);
   }
-  return with_yielding;
+  return extended;
 }
 
 void write_yielding_rows(const analysis::RunReport& report, std::ostream& out) {

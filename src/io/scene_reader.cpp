@@ -541,6 +541,12 @@ analysis::OutputSettings read_output(std::optional<TableReader> table) {
     if (!history->is_boolean()) throw table->error(*history, table->key_path("history"), "expected true or false");
     output.history = *history->value<bool>();
   }
+  if (const toml::node* reference = table->find("contact_free_reference")) {
+    if (!reference->is_boolean()) {
+      throw table->error(*reference, table->key_path("contact_free_reference"), "expected true or false");
+    }
+    output.contact_free_reference = *reference->value<bool>();
+  }
   if (const toml::node* peaks = table->find("peaks")) {
     const std::string key = table->key_path("peaks");
     const toml::array& array = table->array_of(*peaks, key);

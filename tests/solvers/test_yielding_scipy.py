@@ -30,6 +30,11 @@ And the needed gap of yielding buildings: `pounding gap` on examples/paper/paper
   6. with --amplification 2, the elastic needed gap is the elastic paper scene's, and the ABS,
      SRSS and DDC rules are those of twice the elastic scene's peaks per level (formulas written
      here), largest over the levels, to 1e-12 m.
+And the pounding-induced demand (--contact-free-reference) on examples/paper/paper-yielding.toml
+at 0.6 g, where the yielding buildings strike:
+  7. its "with" values are the run's own peak drifts and ductilities (equal), its "without" ones
+     those of a separate run at a 1 m gap, where the buildings never meet (1e-6 relative), and
+     pounding changes some storey's drift by more than 10 %.
 """
 import csv
 import json
@@ -278,6 +283,39 @@ def check_needed_gap(program, out, failures):
         failures.append("the amplified elastic rules are not those of the elastic scene")
 
 
+def check_pounding_demand(program, out, failures):
+    root = Path(__file__).resolve().parents[2]
+    scene = str(root / "examples/paper/paper-yielding.toml")
+    summaries = {}
+    for name, extra in (("demand", ["--contact-free-reference"]), ("apart", ["--gap", "1.0"])):
+        folder = out / name
+        run = subprocess.run([program, "run", scene, "--pga-g", "0.6", "--history", "off", "--out", str(folder),
+                              "--no-progress", *extra], capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
+        summaries[name] = json.loads((folder / "summary.json").read_text())
+    demand, apart = summaries["demand"], summaries["apart"]
+    assert apart["impact_count"] == 0 and demand["impact_count"] > 0
+    worst_without, largest_change = 0.0, 0.0
+    for b, building in enumerate(demand["pounding_demand"]["buildings"]):
+        yielding = {s["storey"]: s for s in demand["yielding"]["buildings"][b]["storeys"]}
+        for storey in building["storeys"]:
+            f = storey["storey"] - 1
+            for axis in ("x", "y"):
+                own = abs(demand["peaks"][b]["floors"][f][f"drift_{axis}"]["value"])
+                alone = abs(apart["peaks"][b]["floors"][f][f"drift_{axis}"]["value"])
+                entry = storey[f"drift_{axis}"]
+                if entry["with"] != own:
+                    failures.append(f"pounding demand: B{b + 1} storey {f + 1} drift {axis} 'with' is not the run's")
+                worst_without = max(worst_without, abs(entry["without"] - alone) / alone)
+                largest_change = max(largest_change, abs(entry["ratio"] - 1.0))
+                if storey[f"ductility_{axis}"]["with"] != yielding[f + 1][f"peak_ductility_{axis}"]:
+                    failures.append(f"pounding demand: B{b + 1} storey {f + 1} ductility {axis} 'with' is not the run's")
+    print(f"pounding demand: 'without' drifts within {worst_without:.1e} of a run 1 m apart; largest change "
+          f"{100 * largest_change:.0f} %")
+    if worst_without > 1e-6 or largest_change < 0.1:
+        failures.append("pounding demand: the contact-free reference is not the run without contact")
+
+
 def main():
     program = sys.argv[1]
     out = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp())
@@ -333,6 +371,7 @@ def main():
         failures.append("energy audit does not close")
     check_second_method(program, out, failures)
     check_needed_gap(program, out, failures)
+    check_pounding_demand(program, out, failures)
     for failure in failures:
         print("FAIL:", failure)
     sys.exit(1 if failures else 0)

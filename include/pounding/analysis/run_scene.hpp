@@ -2,6 +2,7 @@
 // Runs a scene: assembles the model, finds the contact candidates, builds the coupled system and
 // integrates it with the scene's solver settings.
 
+#include <optional>
 #include <vector>
 
 #include "pounding/analysis/scene.hpp"
@@ -16,9 +17,10 @@ namespace pounding::analysis {
 /// The candidates the scene's geometry allows (docs/model.md §4), on every level (Scene::levels()).
 std::vector<contact::Candidate> scene_candidates(const Scene& scene);
 
-/// The coupled system of a scene (assembles both buildings, loads the record).
+/// The coupled system of a scene (assembles both buildings, loads the record); without contact
+/// candidates if `contact` is false (the buildings then move as if they never met).
 /// @throws InputError for bad buildings or a bad record.
-dynamics::CoupledSystem build_system(const Scene& scene);
+dynamics::CoupledSystem build_system(const Scene& scene, bool contact = true);
 
 /// The HHT-α options that `used` (method hht), scene.contact and scene.output describe.
 solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used);
@@ -74,9 +76,28 @@ struct RunReport {
   double contact_damping = 0.0;
   double g_mps2 = 9.81;                     // the scene's gravity: accelerations are also reported in g
   std::vector<RunWarning> warnings = {};
+  /// With output.contact_free_reference: the same run with no contact candidates (its peaks and
+  /// springs; no history).
+  std::optional<solvers::RunResult> contact_free;
   /// The yielding column springs (result.springs in the same order); empty if all stay elastic.
   std::vector<dynamics::YieldingSpring> springs = {};
 };
+
+/// One storey of a building whose columns yield, over a run: its springs' largest ductility in x
+/// and y (peak |drift| / yield drift), the first yield (NaN: none), how many springs yielded and
+/// the energy they dissipated.
+struct StoreyYielding {
+  int building = 0;  // 0 or 1
+  int storey = 1;
+  std::array<double, 2> peak_ductility{0.0, 0.0};
+  double first_yield_t_s = 0.0;
+  int springs_yielded = 0;
+  int springs = 0;
+  double hysteretic_kJ = 0.0;
+};
+/// Per storey, in the springs' order (building, then storey). @pre results match springs.
+std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::YieldingSpring>& springs,
+                                            const std::vector<solvers::SpringResult>& results);
 
 /// Integrates the scene with scene.solver (its method's factory in the registry, methods.hpp) and
 /// scene.output, within `limits`.

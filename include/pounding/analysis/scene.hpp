@@ -70,6 +70,9 @@ struct OutputSettings {
   std::vector<int> history_floors;   // levels (1-based, as `check` lists them); empty: every level
   double history_interval_s = 0.01;
   std::vector<std::string> peaks{kPeakGroups.begin(), kPeakGroups.end()};  // peak groups (kPeakGroups), any subset
+  /// Also run the scene without contact (same method and settings) and report the pounding-
+  /// induced change of the storeys' peak drifts (and ductilities): needs the drifts peak group.
+  bool contact_free_reference = false;
   /// What the solvers record. @pre valid (Scene::validate).
   solvers::OutputSelection selection() const;
 };
