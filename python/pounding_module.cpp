@@ -329,6 +329,10 @@ PYBIND11_MODULE(_pounding, m) {
           "history", [](const Scene& s) { return s.output.history; }, "output.history: whether runs keep the history")
       .def_property_readonly(
           "peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
+      .def_property_readonly(
+          "yielding",
+          [](const Scene& s) { return s.buildings[0].hysteresis.yields() || s.buildings[1].hysteresis.yields(); },
+          "Whether some building's columns yield ([building.hysteresis])")
       .def("with_gap", &with_gap, py::arg("gap_m"),
            "The scene with building 2 moved along x to the clear gap gap_m (m), as `run --gap`")
       .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),

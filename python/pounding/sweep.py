@@ -63,6 +63,9 @@ RESULTS = ("status", "message", "impact_count", "touch_count", "sustained_contac
            "max_impulse_kNs", "max_approach_speed_mps", "impact_loss_kJ",
            "b1_peak_u_m", "b1_peak_v_m", "b1_peak_phi_rad", "b2_peak_u_m", "b2_peak_v_m", "b2_peak_phi_rad", "steps")
 NEEDED_GAP = ("needed_gap_m", "needed_gap_level", "needed_gap_t_s", "needed_gap_status")
+# Written when some scene of the sweep has yielding columns: each building's largest storey
+# ductility, the energy the columns dissipated and their branch changes.
+YIELDING = ("b1_max_ductility", "b2_max_ductility", "hysteretic_kJ", "yield_events")
 TIMINGS = ("solver_time_s", "wall_time_s")
 
 
@@ -337,7 +340,9 @@ class Sweep:
                                      f"{error.reason} (contact_laws[{law_index + 1}], scene {scene_file})") from None
 
     def columns(self):
-        return [*PARAMETERS, *self.setting_keys, *RESULTS, *(NEEDED_GAP if self.needed_gap else ()), *TIMINGS]
+        yielding = YIELDING if any(scene.yielding for scene in self.scenes.values()) else ()
+        return [*PARAMETERS, *self.setting_keys, *RESULTS, *yielding, *(NEEDED_GAP if self.needed_gap else ()),
+                *TIMINGS]
 
     def runs(self):
         """Every run of the product, as (row parameters, task parameters), in product order."""
@@ -451,6 +456,12 @@ def _summarise(result):
     for building, prefix in zip(result.peaks, ("b1", "b2")):
         for quantity in ("u_m", "v_m", "phi_rad"):
             row[f"{prefix}_peak_{quantity}"] = max(abs(f[quantity]["value"]) for f in building["floors"])
+    if result.yielding is not None:
+        for building in result.yielding["buildings"]:
+            row[f"b{building['building']}_max_ductility"] = max(
+                max(s["peak_ductility_x"], s["peak_ductility_y"]) for s in building["storeys"])
+        row["hysteretic_kJ"] = result.yielding["hysteretic_kJ"]
+        row["yield_events"] = result.yielding["yield_events"]
     return row
 
 
@@ -548,7 +559,8 @@ class Table:
 
 TEXT_COLUMNS = {"scene_file", "scene", "record", "record_source", "contact_law", "method", "status", "message",
                 "needed_gap_status"}
-INTEGER_COLUMNS = {"impact_count", "touch_count", "sustained_contact_count", "steps", "needed_gap_level"}
+INTEGER_COLUMNS = {"impact_count", "touch_count", "sustained_contact_count", "steps", "needed_gap_level",
+                   "yield_events"}
 
 
 def _typed(column, text):
@@ -561,7 +573,7 @@ def _typed(column, text):
         return text
     if column in INTEGER_COLUMNS:
         return int(text)
-    if column in RESULTS or column in NEEDED_GAP or column in TIMINGS or column in PARAMETERS:
+    if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in TIMINGS or column in PARAMETERS:
         return float(text)
     for kind in (int, float):
         try:

@@ -270,3 +270,21 @@ def test_plot_sweep_fits_the_needed_gaps(folder, serial):
     assert fit["p84_lognormal_m"] == pytest.approx(math.sqrt(g1 * g2) * math.exp(s), rel=1e-14)
     assert fit["median_m"] == pytest.approx((g1 + g2) / 2, rel=1e-15)
     assert f"median {fit['median_lognormal_m']:.4f} m" in done.stdout
+
+
+def test_yielding_scenes_add_their_columns(folder, serial, tmp_path):
+    """A sweep over a scene whose columns yield writes each building's largest storey ductility,
+    the hysteretic energy and the branch changes, as the run itself reports them; an elastic
+    sweep has none of these columns."""
+    assert not set(sweeps.YIELDING) & set(serial.rows[0])
+    yielding = SOURCE / "examples" / "paper" / "paper-yielding.toml"
+    path = tmp_path / "sweep.toml"
+    path.write_text(f'scenes = ["{yielding}"]\ngaps_m = [0.05]\n')
+    result = pounding.sweep(path, out=tmp_path / "out", workers=0, progress=False)
+    row = result.rows[0]
+    run = pounding.run(pounding.load_scene(yielding, gap=0.05))
+    storeys = {b["building"]: b["storeys"] for b in run.yielding["buildings"]}
+    for b in (1, 2):
+        assert row[f"b{b}_max_ductility"] == max(max(s["peak_ductility_x"], s["peak_ductility_y"]) for s in storeys[b])
+    assert row["hysteretic_kJ"] == run.energy["hysteretic_kJ"]
+    assert row["yield_events"] == run.yielding["yield_events"] > 0
