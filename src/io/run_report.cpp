@@ -110,7 +110,9 @@ void append_pounding_demand(const analysis::RunReport& report, std::string& text
   const solvers::RunResult& with = report.result;
   const solvers::RunResult& without = *report.contact_free;
   auto out = std::back_inserter(text);
-  auto ratio = [](double a, double b) { return b != 0.0 ? fmt::format("x{:.3f}", std::abs(a) / std::abs(b)) : "-"; };
+  auto ratio = [](double a, double b) {
+    return std::abs(b) > analysis::kDemandFloor ? fmt::format("x{:.3f}", std::abs(a) / std::abs(b)) : "-";
+  };
   fmt::format_to(out, "Pounding-induced demand (peak storey drift ratio at the CM, with contact / without):\n");
   for (std::size_t b = 0; b < with.peaks.size(); ++b) {
     for (std::size_t f = 0; f < with.peaks[b].floors.size(); ++f) {

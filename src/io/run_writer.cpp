@@ -120,9 +120,12 @@ json yielding_json(const analysis::RunReport& report) {
           {"buildings", buildings}};
 }
 
-/// A peak with and without contact, and their ratio (null where the contact-free one is 0).
+/// A peak with and without contact, and their ratio: null where the contact-free one is below
+/// kDemandFloor (a drift ratio or ductility of round-off size, e.g. y drift under x shaking).
 json with_without(double with, double without) {
-  return {{"with", with}, {"without", without}, {"ratio", without != 0.0 ? json(with / without) : json(nullptr)}};
+  return {{"with", with},
+          {"without", without},
+          {"ratio", without > analysis::kDemandFloor ? json(with / without) : json(nullptr)}};
 }
 
 /// The pounding-induced change of each storey's peak drift ratio at the CM (and of its columns'

@@ -95,6 +95,10 @@ struct StoreyYielding {
   int springs = 0;
   double hysteretic_kJ = 0.0;
 };
+/// Below this a contact-free drift ratio or ductility is round-off (y drift under pure x
+/// shaking): the pounding-induced ratio to it is not reported.
+inline constexpr double kDemandFloor = 1e-9;
+
 /// Per storey, in the springs' order (building, then storey). @pre results match springs.
 std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::YieldingSpring>& springs,
                                             const std::vector<solvers::SpringResult>& results);
