@@ -365,17 +365,25 @@ int run_methods(const MethodsCommand& command) {
     std::vector<std::string> keys;
     for (analysis::Setting s : method.settings) keys.emplace_back(analysis::spec(s).key);
     if (!command.json) {
-      fmt::print("{:<12} {}\n{:<12} uses {}\n", method.name, method.description, "", fmt::join(keys, ", "));
+      fmt::print("{:<12} {}\n{:<12} uses {}; yielding columns: {}\n", method.name, method.description, "",
+                 fmt::join(keys, ", "), method.yielding_columns ? "yes (form physical)" : "no");
       continue;
     }
     nlohmann::json series = nlohmann::json::array();
     for (const analysis::StudySeries& s : method.series) {
       series.push_back({{"label", s.label}, {"colour", s.style.colour}, {"marker", s.style.marker}});
     }
-    list.push_back({{"name", method.name}, {"description", method.description}, {"settings", keys},
-                    {"event_driven", method.event_driven}, {"reference", method.reference},
-                    {"study", {{"setting", analysis::spec(method.ladder_setting).key}, {"ladder", method.ladder},
-                               {"quick_ladder", method.quick_ladder}, {"series", series}}}});
+    list.push_back({{"name", method.name},
+                    {"description", method.description},
+                    {"settings", keys},
+                    {"event_driven", method.event_driven},
+                    {"reference", method.reference},
+                    {"yielding_columns", method.yielding_columns},
+                    {"study",
+                     {{"setting", analysis::spec(method.ladder_setting).key},
+                      {"ladder", method.ladder},
+                      {"quick_ladder", method.quick_ladder},
+                      {"series", series}}}});
   }
   if (command.json) {
     fmt::print("{}\n", list.dump(2));
