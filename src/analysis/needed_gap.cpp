@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/input_error.hpp"
@@ -113,6 +114,10 @@ class FreeRun final : public solvers::OdeFunctions {
     for (std::size_t j = 0; j < yields_.size(); ++j)
       g[first_spring + static_cast<Eigen::Index>(j)] = yields_.witness(y, j);
   }
+
+  /// A yielding column whose drift passed kCollapseDriftRatio of its storey in state y, if any.
+  std::optional<std::size_t> collapsed(const VectorXd& y) { return yields_.observe(y); }
+  const dynamics::YieldingSpring& spring(std::size_t j) const { return system_.springs()[j]; }
 
   /// At a root at (t, y): switches the yielding columns whose witness crossed. @return how many
   /// did (if any, the integrator must restart: the motion's equations changed).
@@ -290,6 +295,13 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
       }
     }
     if (outcome.kind == solvers::StepKind::stop_time) set_next_stop(t);
+    if (const auto j = run.collapsed(integrator.state())) {
+      const dynamics::YieldingSpring& s = run.spring(*j);
+      result.status = solvers::RunStatus::collapse;
+      result.status_detail = fmt::format("building {} storey {}, {}: drift beyond {:g} % of its storey at t = {} s",
+                                         s.building + 1, s.storey, s.column, 100.0 * solvers::kCollapseDriftRatio, t);
+      break;
+    }
     integrator.set_max_step(bound.max_step_s(integrator.state()));
   }
   note_maxima(run, t, integrator.state(), counted, nullptr, result);  // maxima still rising at the end

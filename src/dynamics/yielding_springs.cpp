@@ -27,7 +27,8 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .column = column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key,
                               .stiffness_kN_per_m = k[direction],
                               .hardening_ratio = d.hysteresis.hardening_ratio,
-                              .yield_drift_m = d.hysteresis.yield_drift_of(height_m)};
+                              .yield_drift_m = d.hysteresis.yield_drift_of(height_m),
+                              .storey_height_m = height_m};
         for (int floor : {storey, storey - 1}) {
           if (floor == 0) continue;  // the ground does not move relative to the base
           const double sign = floor == storey ? 1.0 : -1.0;

@@ -30,6 +30,8 @@ std::string_view to_string(RunStatus status) {
     case RunStatus::time_limit: return "time_limit";
     case RunStatus::interrupted: return "interrupted";
     case RunStatus::non_finite: return "non_finite";
+    case RunStatus::collapse:
+      return "collapse";
   }
   return "?";
 }
@@ -193,6 +195,8 @@ class EventDrivenRun final : public OdeFunctions {
   void count_event(double t);
   /// The yielding springs' branch changes at an event at (t, y) (YieldStates::switch_branches).
   void switch_springs(double t, const VectorXd& y);
+  /// Ends the run with RunStatus::collapse if `spring` (from YieldStates::observe) is set.
+  void check_collapse(double t, std::optional<std::size_t> spring);
   void set_next_stop(double t);
   void accumulate_counters();
 
@@ -297,7 +301,19 @@ void EventDrivenRun::switch_springs(double t, const VectorXd& y) {
   rhs(t, y, y_dot);
   const int switched = yields_.switch_branches(t, y, y_dot);
   result_.statistics.yield_events += switched;
-  yields_.observe(y);
+  check_collapse(t, yields_.observe(y));
+}
+
+void EventDrivenRun::check_collapse(double t, std::optional<std::size_t> spring) {
+  if (!spring || stop_) return;
+  const dynamics::YieldingSpring& s = system_.springs()[*spring];
+  result_.status = RunStatus::collapse;
+  result_.status_detail = fmt::format(
+      "{} storey {}, {} {}: drift beyond {:g} % of the {:g} m storey at t = {} s (the frame has failed; "
+      "the model's small rotations no longer hold)",
+      system_.building(s.building).definition.name, s.storey, s.column, s.direction == 0 ? "x" : "y",
+      100.0 * kCollapseDriftRatio, s.storey_height_m, t);
+  stop_ = true;
 }
 
 std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
@@ -353,7 +369,7 @@ void EventDrivenRun::note_overlaps(double t) {
 
 void EventDrivenRun::after_step(double t, const VectorXd& y) {
   note_overlaps(t);
-  yields_.observe(y);
+  check_collapse(t, yields_.observe(y));
   states_.rearm(gaps_);
   law_->after_step(t, y);
   update_step_bound(t, y, gaps_);

@@ -44,16 +44,20 @@ void YieldStates::end_yielding(std::size_t j, double slip_m) {
   --yielding_;
 }
 
-void YieldStates::observe(const Eigen::VectorXd& y) {
+std::optional<std::size_t> YieldStates::observe(const Eigen::VectorXd& y) {
   const Eigen::Index n = y.size() / 2;
+  std::optional<std::size_t> collapsed;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
-    results_[j].peak_drift_m = std::max(results_[j].peak_drift_m, std::abs(springs_.drift(y.head(n), j)));
+    const double drift_m = std::abs(springs_.drift(y.head(n), j));
+    results_[j].peak_drift_m = std::max(results_[j].peak_drift_m, drift_m);
+    if (!collapsed && drift_m > kCollapseDriftRatio * springs_[j].storey_height_m) collapsed = j;
   }
+  return collapsed;
 }
 
 std::vector<SpringResult> YieldStates::finish(const Eigen::VectorXd& y, double& hysteretic_kJ) {
   const Eigen::Index n = y.size() / 2;
-  observe(y);
+  (void)observe(y);  // the run has ended: a collapse at its last state is the caller's to report
   hysteretic_kJ = 0.0;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     if (states_[j].branch != SpringBranch::elastic) end_yielding(j, springs_.slip(y.head(n), states_, j));

@@ -151,6 +151,30 @@ BOOST_AUTO_TEST_CASE(BilinearOscillatorReleasedWithAVelocityFollowsItsClosedForm
   }
 }
 
+BOOST_AUTO_TEST_CASE(PDeltaBeyondTheHardeningStopsTheRunAsACollapse) {
+  // Without hardening, P-Δ makes the post-yield branch m ẍ = k_g x − F₀ unstable: released fast
+  // enough (v₁ ≥ λ (x_c − d_y), λ² = k_g/m, x_c = F₀/k_g) the drift never turns and the run ends
+  // with status collapse once it passes 10 % of the storey; released slower it stops at x_max.
+  const double k_g = kMass_t * kGravity_mps2 / kHeight_m;
+  for (double v0 : {1.5, 4.0}) {
+    BOOST_TEST_CONTEXT("v0 = " << v0) {
+      const Bilinear sdof{4.0 * kColumn_kN_per_m, k_g, kMass_t, 0.01, 0.0, v0};
+      const double lambda = std::sqrt(k_g / kMass_t), centre = sdof.plastic_force() / k_g;
+      const bool runs_away = sdof.v_yield() >= lambda * (centre - sdof.d_y);
+      BOOST_TEST(runs_away == (v0 > 3.0));  // the threshold is 3.06 m/s
+      const auto system = system_of(
+          {.kind = model::HystereticLaw::Kind::bilinear, .yield_drift_m = sdof.d_y, .hardening_ratio = 0.0}, 2.0, true);
+      solvers::EventOptions options;
+      options.initial_state = Eigen::VectorXd::Zero(system.state_size());
+      options.initial_state[system.dof()] = v0;
+      const solvers::RunResult run = solvers::run_event_driven(system, options, cvode(1e-11, 1e-13), "cvode-bdf");
+      BOOST_TEST(solvers::to_string(run.status) == (runs_away ? "collapse" : "completed"));
+      if (!runs_away) BOOST_TEST(std::abs(run.springs[0].peak_drift_m - sdof.x_max()) < 1e-9);
+      if (runs_away) BOOST_TEST(run.end_s < 2.0);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(PDeltaSubtractsTheGravityLoadAboveEachStorey) {
   // Two storeys (4.0 m and 3.0 m), floors of 600 t and 400 t: K with P-Δ minus K without is the
   // assembly of G₁ = −(g/4)·diag(1000, 1000, J₁ + J₂) and G₂ = −(g/3)·diag(400, 400, J₂), written

@@ -45,6 +45,7 @@ struct YieldingSpring {
   double stiffness_kN_per_m = 0.0;  // initial k
   double hardening_ratio = 0.0;     // α
   double yield_drift_m = 0.0;       // d_y
+  double storey_height_m = 0.0;     // H of its storey
   /// d = Σ coefficients[i] · q[indices[i]] (the lower floor's terms absent for storey 1).
   std::vector<int> indices;
   std::vector<double> coefficients;

@@ -23,7 +23,12 @@ enum class RunStatus {
   time_limit,          // the run's wall-time budget was used up
   interrupted,         // stopped by SIGINT/SIGTERM; the outputs hold everything up to end_s
   non_finite,          // the state or time became NaN or infinite: the solution diverged
+  collapse,            // a yielding column's drift passed kCollapseDriftRatio of its storey: the building fell
 };
+/// A yielding column whose drift passes this fraction of its storey height ends the run with
+/// RunStatus::collapse: the frame has failed (P-Δ beyond the hardening drives the drift away), and
+/// the model's small rotations and straight columns no longer describe it.
+inline constexpr double kCollapseDriftRatio = 0.1;
 std::string_view to_string(RunStatus status);
 
 struct ImpactRecord {

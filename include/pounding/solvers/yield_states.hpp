@@ -9,6 +9,7 @@
 // slip), added when it ends.
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "pounding/dynamics/yielding_springs.hpp"
@@ -37,8 +38,9 @@ class YieldStates {
   /// zero rate an acceleration, pointing out), back from a yielding branch (the drift rate
   /// turned, unless at zero rate the acceleration reloads it). @return the number switched.
   int switch_branches(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& y_dot);
-  /// Tracks the peak drifts at a state the run passed through (step ends, events).
-  void observe(const Eigen::VectorXd& y);
+  /// Tracks the peak drifts at a state the run passed through (step ends, events). @return the
+  /// index of a spring whose drift passed kCollapseDriftRatio of its storey height, if one did.
+  std::optional<std::size_t> observe(const Eigen::VectorXd& y);
   /// The per-spring results at the run's end (ending the yielding phases in progress), and the
   /// energy they dissipated (kJ).
   std::vector<SpringResult> finish(const Eigen::VectorXd& y, double& hysteretic_kJ);
