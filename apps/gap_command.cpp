@@ -62,8 +62,12 @@ void print_rules(const analysis::NeededGap& gap) {
 void print_amplified(const analysis::NeededGap& gap) {
   if (!gap.amplified_elastic) return;
   const analysis::AmplifiedElastic& a = *gap.amplified_elastic;
-  fmt::print("Elastic analysis (every column elastic, needed gap {}), peaks times {:g}, against the needed gap {}:\n",
-             metres(a.elastic_needed_gap_m), a.factor, metres(gap.needed_gap_m));
+  fmt::print("Elastic analysis (every column elastic, needed gap {}), peaks times {:g}, against the needed gap {}{}:\n",
+             metres(a.elastic_needed_gap_m), a.factor, metres(gap.needed_gap_m),
+             a.status == solvers::RunStatus::completed
+                 ? ""
+                 : fmt::format(" (the elastic run stopped: {}; its peaks cover part of the record)",
+                               solvers::to_string(a.status)));
   for (const analysis::RuleVerdict& v : analysis::rule_verdicts(a.rules, gap.needed_gap_m)) {
     fmt::print("  {:<5} {:.6f} m  {} by {:.6f} m ({:+.1f} %)\n", v.rule, v.value_m,
                v.unconservative() ? "UNCONSERVATIVE, short" : "conservative, over", std::abs(v.margin_m),

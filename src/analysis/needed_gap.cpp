@@ -75,7 +75,7 @@ class FreeRun final : public solvers::OdeFunctions {
         scene_gap_m_(scene_gap_m),
         counted_(std::move(counted)),
         points_(std::move(points)),
-        yields_(system.springs()) {}
+        yields_(system.springs(), solvers::EventOptions{}.max_events_per_s) {}
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return static_cast<int>(counted_.size() + points_.size() + yields_.size()); }
@@ -117,6 +117,8 @@ class FreeRun final : public solvers::OdeFunctions {
 
   /// A yielding column whose drift passed kCollapseDriftRatio of its storey in state y, if any.
   std::optional<std::size_t> collapsed(const VectorXd& y) { return yields_.observe(y); }
+  /// A yielding column switching more than EventOptions' max_events_per_s times a second, if any.
+  std::optional<std::size_t> chattering() const { return yields_.chattering(); }
   const dynamics::YieldingSpring& spring(std::size_t j) const { return system_.springs()[j]; }
 
   /// At a root at (t, y): switches the yielding columns whose witness crossed. @return how many
@@ -302,6 +304,13 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
                                          s.building + 1, s.storey, s.column, 100.0 * solvers::kCollapseDriftRatio, t);
       break;
     }
+    if (const auto j = run.chattering()) {
+      const dynamics::YieldingSpring& s = run.spring(*j);
+      result.status = solvers::RunStatus::event_limit;
+      result.status_detail = fmt::format("building {} storey {}, {}: yields and unloads too often before t = {} s",
+                                         s.building + 1, s.storey, s.column, t);
+      break;
+    }
     integrator.set_max_step(bound.max_step_s(integrator.state()));
   }
   note_maxima(run, t, integrator.state(), counted, nullptr, result);  // maxima still rising at the end
@@ -405,7 +414,8 @@ void add_amplified_elastic(const Scene& scene, double factor, NeededGap& gap, co
                      "applies to scenes whose columns yield (the code rules of an elastic scene are already printed)");
   }
   const NeededGap free = needed_gap(elastic, budget);
-  AmplifiedElastic amplified{.factor = factor, .elastic_needed_gap_m = free.needed_gap_m, .rules = {}};
+  AmplifiedElastic amplified{
+      .factor = factor, .elastic_needed_gap_m = free.needed_gap_m, .rules = {}, .status = free.status};
   for (const LevelGap& level : free.levels) {
     const GapRules rules = gap_rules(factor * level.peak_towards_m[0], factor * level.peak_towards_m[1], free.rho);
     amplified.rules.abs_m = std::max(amplified.rules.abs_m, rules.abs_m);

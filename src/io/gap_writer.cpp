@@ -186,6 +186,7 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
     }
     document["amplified_elastic"] = {
         {"factor", amplified->factor},
+        {"status", solvers::to_string(amplified->status)},
         {"elastic_needed_gap_m", finite_or_null(amplified->elastic_needed_gap_m)},
         {"rules",
          {{"abs_m", amplified->rules.abs_m}, {"srss_m", amplified->rules.srss_m}, {"ddc_m", amplified->rules.ddc_m}}},

@@ -407,6 +407,12 @@ model::HystereticLaw read_hysteresis(TableReader& table) {
     law.kind = model::HystereticLaw::Kind::bilinear;
   } else if (name != "elastic") {
     throw table.error(kind, table.key_path("law"), "expected \"elastic\" or \"bilinear\"");
+  } else {
+    for (const char* key : {"yield_drift_ratio", "yield_drift_m", "hardening_ratio"}) {
+      if (const toml::node* given = table.find(key)) {
+        throw table.error(*given, table.key_path(key), "applies to law = \"bilinear\" only (the law is elastic)");
+      }
+    }
   }
   if (const toml::node* ratio = table.find("yield_drift_ratio")) {
     law.yield_drift_ratio = in_range(table, *ratio, table.key_path("yield_drift_ratio"), model::kYieldDriftRatio);

@@ -135,7 +135,18 @@ void validate_hysteresis(const BuildingDefinition& b) {
                      "give one of yield_drift_ratio and yield_drift_m");
   }
   if (law.yield_drift_ratio) require_range("hysteresis.yield_drift_ratio", *law.yield_drift_ratio, kYieldDriftRatio);
-  if (law.yield_drift_m) require_range("hysteresis.yield_drift_m", *law.yield_drift_m, kYieldDrift);
+  if (law.yield_drift_m) {
+    require_range("hysteresis.yield_drift_m", *law.yield_drift_m, kYieldDrift);
+    // A drift of 10 % of a storey ends a run as a collapse (solvers::kCollapseDriftRatio): a column
+    // must yield well before.
+    const double lowest_m = *std::min_element(b.storey_height_m.begin(), b.storey_height_m.end());
+    if (*law.yield_drift_m > 0.05 * lowest_m) {
+      throw InputError("hysteresis.yield_drift_m", format_value(*law.yield_drift_m),
+                       fmt::format("must be at most 5 % of the lowest storey ({:g} m): a drift of 10 % of a storey "
+                                   "ends a run as a collapse",
+                                   lowest_m));
+    }
+  }
   if (!(law.hardening_ratio >= 0.0 && law.hardening_ratio < 1.0)) {
     throw InputError("hysteresis.hardening_ratio", format_value(law.hardening_ratio), "must lie in [0, 1)");
   }

@@ -93,7 +93,7 @@ class EventDrivenRun final : public OdeFunctions {
         options_(options),
         count_(system.candidates().size()),
         states_(count_, options.overlap_allowance_m),
-        yields_(system.springs()),
+        yields_(system.springs(), options.max_events_per_s),
         witnesses_(count_, yields_.size()),
         gap_components_(gap_components(system)),
         recorder_(system, recorded_dynamics(), options.history_floors, options.history_interval_s, options.outputs,
@@ -283,6 +283,7 @@ void EventDrivenRun::start(double t, VectorXd& y) {
     if (s.gap_m <= options_.contact_tolerance_m && s.on_segment()) touching.push_back(i);
   }
   if (!touching.empty()) event(t, y, {.gap = touching});
+  switch_springs(t, y);  // a column started beyond its yield drift (an initial state) yields at once
 }
 
 void EventDrivenRun::event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
@@ -302,6 +303,15 @@ void EventDrivenRun::switch_springs(double t, const VectorXd& y) {
   const int switched = yields_.switch_branches(t, y, y_dot);
   result_.statistics.yield_events += switched;
   check_collapse(t, yields_.observe(y));
+  if (const auto j = yields_.chattering(); j && !stop_) {
+    const dynamics::YieldingSpring& s = system_.springs()[*j];
+    result_.status = RunStatus::event_limit;
+    result_.status_detail = fmt::format(
+        "{} storey {}, {} {}: more than {} yields and unloadings within one simulated second before t = {} s",
+        system_.building(s.building).definition.name, s.storey, s.column, s.direction == 0 ? "x" : "y",
+        options_.max_events_per_s, t);
+    stop_ = true;
+  }
 }
 
 void EventDrivenRun::check_collapse(double t, std::optional<std::size_t> spring) {
@@ -475,7 +485,12 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
       recorder_.set_peak_step(step_bound_->enable_clearance() / 4.0);
     }
     integrator_ = make_integrator(*this, t0, y);
-    recorder_.split_energy_at_samples(integrator_->steps_across_samples());
+    if (integrator_->steps_across_samples()) {
+      // Its steps are bounded by the modes that move a gap only: the peaks of the others are
+      // located on pieces no longer than the record's spacing, as the physical form's steps are.
+      recorder_.split_energy_at_samples(true);
+      recorder_.set_peak_step(system_.ground_motion().sample_spacing_s());
+    }
     begin_phase(t0, y);
     while (!stop_ && step_once()) {
     }

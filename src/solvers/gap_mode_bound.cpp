@@ -42,6 +42,20 @@ double gap_per_unit(const RestRows& rest, int b, const Eigen::VectorXd& shape) {
   return largest;
 }
 
+/// The largest |∂d/∂η| of mode `shape` of building b (whose first index in q is `offset`) over
+/// the yielding springs' drifts d (m per unit η): a yield or an unloading is a root as a contact is.
+double drift_per_unit(const dynamics::YieldingSprings& springs, int b, int offset, const Eigen::VectorXd& shape) {
+  double largest = 0.0;
+  for (const dynamics::YieldingSpring& spring : springs.all()) {
+    if (spring.building != b) continue;
+    double drift = 0.0;
+    for (std::size_t i = 0; i < spring.indices.size(); ++i)
+      drift += spring.coefficients[i] * shape[spring.indices[i] - offset];
+    largest = std::max(largest, std::abs(drift));
+  }
+  return largest;
+}
+
 }  // namespace
 
 GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period,
@@ -68,7 +82,8 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
       m.damped_period_s = 2.0 * std::numbers::pi / (omega * std::sqrt(1.0 - zeta * zeta));
       longest_period_s = std::max(longest_period_s, m.damped_period_s);
       m.mass_shape = mass.cwiseProduct(mode.shape);
-      m.gap_per_unit_m = gap_per_unit(rest, b, mode.shape);
+      m.gap_per_unit_m =
+          std::max(gap_per_unit(rest, b, mode.shape), drift_per_unit(system.springs(), b, offset, mode.shape));
       m.forced_amplitude = 2.0 * std::abs(m.mass_shape.dot(influence)) * peak_accel_mps2 / (omega * omega);
       if (m.gap_per_unit_m > 0.0) modes_.push_back(std::move(m));
     }

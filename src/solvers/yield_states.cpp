@@ -6,8 +6,20 @@ namespace pounding::solvers {
 
 using dynamics::SpringBranch;
 
-YieldStates::YieldStates(const dynamics::YieldingSprings& springs)
-    : springs_(springs), states_(springs.size()), results_(springs.size()), phase_start_slip_m_(springs.size(), 0.0) {}
+YieldStates::YieldStates(const dynamics::YieldingSprings& springs, double max_switches_per_s)
+    : springs_(springs),
+      states_(springs.size()),
+      results_(springs.size()),
+      phase_start_slip_m_(springs.size(), 0.0),
+      max_switches_per_s_(max_switches_per_s),
+      recent_switches_s_(springs.size()) {}
+
+void YieldStates::count_switch(std::size_t j, double t) {
+  std::deque<double>& recent = recent_switches_s_[j];
+  recent.push_back(t);
+  while (recent.front() < t - 1.0) recent.pop_front();
+  if (!chattering_ && static_cast<double>(recent.size()) > max_switches_per_s_) chattering_ = j;
+}
 
 int YieldStates::switch_branches(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& y_dot) {
   const Eigen::Index n = y.size() / 2;
@@ -31,6 +43,7 @@ int YieldStates::switch_branches(double t, const Eigen::VectorXd& y, const Eigen
       if (sign * rate_mps == 0.0 && sign * accel_mps2 > 0.0) continue;  // the rate touches zero and grows again
       end_yielding(j, springs_.slip(y.head(n), states_, j));
     }
+    count_switch(j, t);
     ++switched;
   }
   return switched;

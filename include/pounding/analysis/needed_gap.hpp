@@ -62,6 +62,8 @@ struct AmplifiedElastic {
   double factor = 1.0;
   double elastic_needed_gap_m = 0.0;  // of the same scene with every column elastic, unamplified
   GapRules rules;                     // from factor × the elastic peaks, largest over the levels
+  /// The elastic run's status: when it did not complete, the rules cover the record up to its end.
+  solvers::RunStatus status = solvers::RunStatus::completed;
 };
 
 struct NeededGap {

@@ -73,7 +73,7 @@ struct HystereticLaw {
 };
 
 /// The ranges of HystereticLaw's parameters, public for the scene reader's messages.
-inline constexpr Range kYieldDriftRatio{0.0, 0.1, "", true};
+inline constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};
 inline constexpr Range kYieldDrift{0.0, 1.0, "m", true};
 inline constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
 

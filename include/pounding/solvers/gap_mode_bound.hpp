@@ -5,7 +5,8 @@
 // can make that gap's rate change sign twice within a step. So the bound is a fraction of the
 // shortest damped period among the modes that, with their present amplitude, move a gap — not
 // of the stiffest mode of the structure, whose amplitude under the ground motion can be
-// nanometres and whose Rayleigh damping usually makes it overdamped.
+// nanometres and whose Rayleigh damping usually makes it overdamped. The drifts of yielding
+// columns count as gaps: a yield and an unloading are roots too.
 
 #include <Eigen/Core>
 #include <vector>
@@ -39,7 +40,8 @@ class GapModeBound {
     double omega_rad_s = 0.0;
     double damped_period_s = 0.0;
     Eigen::VectorXd mass_shape;     // M φ over the building's DOFs: η = (Mφ)ᵀ q
-    double gap_per_unit_m = 0.0;    // the largest |∂g/∂η| over the candidates (m per unit η)
+    double gap_per_unit_m = 0.0;    // the largest |∂g/∂η| over the candidates and the yielding
+                                    // columns' drifts (m per unit η): their roots too need the bound
     double forced_amplitude = 0.0;  // 2 |Γ| max|a_g| / ω² (units of η)
   };
 

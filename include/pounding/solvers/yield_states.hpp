@@ -9,6 +9,7 @@
 // slip), added when it ends.
 
 #include <Eigen/Core>
+#include <deque>
 #include <optional>
 #include <vector>
 
@@ -19,8 +20,9 @@ namespace pounding::solvers {
 
 class YieldStates {
  public:
-  /// @pre `springs` outlives this.
-  explicit YieldStates(const dynamics::YieldingSprings& springs);
+  /// @pre `springs` outlives this. `max_switches_per_s`: a spring switching more often than this
+  /// within one simulated second is chattering (chattering()).
+  YieldStates(const dynamics::YieldingSprings& springs, double max_switches_per_s);
 
   bool empty() const { return springs_.empty(); }
   std::size_t size() const { return springs_.size(); }
@@ -38,6 +40,9 @@ class YieldStates {
   /// zero rate an acceleration, pointing out), back from a yielding branch (the drift rate
   /// turned, unless at zero rate the acceleration reloads it). @return the number switched.
   int switch_branches(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& y_dot);
+  /// The first spring that switched more than max_switches_per_s times within one simulated
+  /// second (a drift rate held at round-off on the yield drift), if any.
+  std::optional<std::size_t> chattering() const { return chattering_; }
   /// Tracks the peak drifts at a state the run passed through (step ends, events). @return the
   /// index of a spring whose drift passed kCollapseDriftRatio of its storey height, if one did.
   std::optional<std::size_t> observe(const Eigen::VectorXd& y);
@@ -52,8 +57,14 @@ class YieldStates {
   const dynamics::YieldingSprings& springs_;
   dynamics::SpringStates states_;
   std::vector<SpringResult> results_;
+  /// Records a switch of spring j at t for the chattering check.
+  void count_switch(std::size_t j, double t);
+
   std::vector<double> phase_start_slip_m_;  // the slip where the current yielding phase began
   int yielding_ = 0;                        // springs on a yielding branch
+  double max_switches_per_s_;
+  std::vector<std::deque<double>> recent_switches_s_;  // per spring, its switches within the last second
+  std::optional<std::size_t> chattering_;
 };
 
 }  // namespace pounding::solvers
