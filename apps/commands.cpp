@@ -223,6 +223,7 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
   options.repeat = command.repeat;
   options.quick = command.quick;
   options.validate();
+  analysis::check_study_scene(scene);
   const std::string folder =
       command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");

@@ -1,5 +1,7 @@
 #include "pounding/analysis/study.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -200,10 +202,22 @@ void add_truncation_ladder(const Scene& scene, StudyResult& study, Timed& timed,
 
 std::vector<double> truncation_ladder() { return {2.0, 5.0, 10.0, 15.0, 0.0}; }
 
+void check_study_scene(const Scene& scene) {
+  for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
+    if (!scene.buildings[b].hysteresis.yields()) continue;
+    throw InputError(fmt::format("building[{}].hysteresis.law", b + 1), "\"bilinear\"",
+                     "the study measures every method against the exact path, which assumes elastic buildings; "
+                     "compare methods on yielding columns with `pounding run --method M --rtol R` and "
+                     "tools/compare_runs.py against a cvode-bdf run at rtol 1e-12",
+                     scene.file.string());
+  }
+}
+
 StudyResult run_study(const Scene& given, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress,
                       const std::function<void(const StiffnessRow&)>& stiffness_progress) {
   options.validate();
+  check_study_scene(given);
   // Runs are compared by their histories and every peak group, whatever the scene's [output] leaves out.
   Scene scene = given;
   scene.output.history = true;

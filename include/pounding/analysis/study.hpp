@@ -112,7 +112,12 @@ struct StudyResult {
 /// stiffness ladder on each method that runs it (what each method pays as contacts stiffen), then
 /// the reference truncated at each cut-off of truncation_ladder() (what leaving modes out costs).
 /// `progress` and `stiffness_progress` are called with each finished row (for printing as it
-/// goes). After an interrupt request no further run starts.
+/// goes). After an interrupt request no further run starts. @throws InputError (check_study_scene)
+/// for a scene whose columns yield.
+/// The study measures every method against the exact path, which assumes elastic buildings.
+/// @throws InputError naming the first yielding building's hysteresis.law.
+void check_study_scene(const Scene& scene);
+
 StudyResult run_study(const Scene& scene, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress = {},
                       const std::function<void(const StiffnessRow&)>& stiffness_progress = {});
