@@ -23,16 +23,22 @@ FreeResponse::FreeResponse(const dynamics::ModalSystem& modes, double t0, const 
     const Eigen::VectorXd& from = states_.back();
     Eigen::VectorXd next(y0.size());
     for (int i = 0; i < n; ++i) {
-      const OscillatorStep step = oscillator_step(modes.omega_rad_s()[i], damping_ratio_[i], tau);
-      const double gamma = modes.participation()[i];
-      const Eigen::Vector2d moved = step.free * Eigen::Vector2d(from[i], from[n + i]) +
-                                    step.start * (-gamma * a_start) + step.slope * (-gamma * slope);
+      const Eigen::Vector2d moved = advance(i, from, tau, a_start, slope);
       next[i] = moved[0];
       next[n + i] = moved[1];
     }
     times_.push_back(t);
     states_.push_back(std::move(next));
   }
+}
+
+Eigen::Vector2d FreeResponse::advance(int i, const Eigen::VectorXd& from, double tau, double a_start,
+                                      double slope) const {
+  const int n = modes_.dof();
+  const double gamma = modes_.participation()[i];
+  const OscillatorStep step = oscillator_step(modes_.omega_rad_s()[i], damping_ratio_[i], tau);
+  return step.free * Eigen::Vector2d(from[i], from[n + i]) + step.start * (-gamma * a_start) +
+         step.slope * (-gamma * slope);
 }
 
 void FreeResponse::modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot) const {
@@ -49,9 +55,7 @@ void FreeResponse::modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot
   const double a_now = a_start + slope * tau;
   for (int i = 0; i < n; ++i) {
     const double omega = modes_.omega_rad_s()[i], gamma = modes_.participation()[i];
-    const OscillatorStep step = oscillator_step(omega, damping_ratio_[i], tau);
-    const Eigen::Vector2d moved = step.free * Eigen::Vector2d(from[i], from[n + i]) + step.start * (-gamma * a_start) +
-                                  step.slope * (-gamma * slope);
+    const Eigen::Vector2d moved = advance(i, from, tau, a_start, slope);
     z[i] = moved[0];
     z[n + i] = moved[1];
     z_dot[i] = moved[1];
@@ -71,8 +75,8 @@ void FreeResponse::at(double t, Eigen::VectorXd& y, Eigen::VectorXd& y_dot) cons
 }
 
 DeviationIntegrator::Functions::Functions(const FreeResponse& free, OdeFunctions& physical)
-    : free_(free),
-      physical_(physical),
+    : MappedFunctions(physical),
+      free_(free),
       y_(physical.state_size()),
       yp_(physical.state_size()),
       yp_dot_(physical.state_size()),
@@ -111,33 +115,19 @@ void DeviationIntegrator::Functions::roots(double t, const Eigen::Ref<const Eige
 
 DeviationIntegrator::DeviationIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical,
                                          const IntegratorFactory& inner, double t0, const Eigen::VectorXd& y0)
-    : free_(modes, t0, y0),
-      functions_(free_, physical),
-      state_(y0),
-      yp_(y0.size()),
-      z_(Eigen::VectorXd::Zero(y0.size())) {
-  inner_ = inner(functions_, t0, z_);
+    : MappedIntegrator(y0), free_(modes, t0, y0), functions_(free_, physical), yp_(y0.size()) {
+  start(inner, functions_, t0, Eigen::VectorXd::Zero(y0.size()));  // y₀ is y_p(t₀) by construction
 }
 
-void DeviationIntegrator::restart(double t, const Eigen::VectorXd& y) {
+void DeviationIntegrator::to_inner(double t, const Eigen::VectorXd& y, Eigen::VectorXd& z) {
   free_.at(t, yp_);
-  z_ = y - yp_;
-  inner_->restart(t, z_);
-  state_ = y;
+  z = y - yp_;
 }
 
-StepOutcome DeviationIntegrator::step(double t_final) {
-  const StepOutcome outcome = inner_->step(t_final);
-  if (outcome.kind == StepKind::failure) return outcome;
-  free_.at(outcome.t_s, yp_);
-  state_ = yp_ + inner_->state();
-  return outcome;
-}
-
-void DeviationIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
-  inner_->interpolate(t, z_);
+void DeviationIntegrator::to_physical(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
+                                      Eigen::Ref<Eigen::VectorXd> y) {
   free_.at(t, yp_);
-  y = yp_ + z_;
+  y = yp_ + z;
 }
 
 }  // namespace pounding::solvers

@@ -506,8 +506,10 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   result_.end_s = prev_t_;
   report_overlap();
   law_->finish(prev_t_, prev_y_);
-  if (!yields_.empty()) result_.springs = yields_.finish(prev_y_, result_.energy.hysteretic_kJ);
+  double hysteretic_kJ = 0.0;
+  if (!yields_.empty()) result_.springs = yields_.finish(prev_y_, hysteretic_kJ);
   recorder_.finish(prev_y_, result_, yields_.states());
+  result_.energy.hysteretic_kJ = hysteretic_kJ;  // the audit's own terms come from the recorder
   result_.statistics.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return std::move(result_);

@@ -3,7 +3,7 @@
 namespace pounding::solvers {
 
 ModalIntegrator::Functions::Functions(const dynamics::ModalSystem& modes, OdeFunctions& physical)
-    : modes_(modes), physical_(physical), y_(physical.state_size()), y_dot_(physical.state_size()) {}
+    : MappedFunctions(physical), modes_(modes), y_(physical.state_size()), y_dot_(physical.state_size()) {}
 
 void ModalIntegrator::Functions::rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
                                      Eigen::Ref<Eigen::VectorXd> z_dot) {
@@ -30,26 +30,10 @@ void ModalIntegrator::Functions::roots(double t, const Eigen::Ref<const Eigen::V
 
 ModalIntegrator::ModalIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical,
                                  const IntegratorFactory& inner, double t0, const Eigen::VectorXd& y0)
-    : modes_(modes), functions_(modes, physical), state_(y0), z_(y0.size()) {
-  modes_.to_modal(y0, z_);
-  inner_ = inner(functions_, t0, z_);
-}
-
-void ModalIntegrator::restart(double t, const Eigen::VectorXd& y) {
-  modes_.to_modal(y, z_);
-  inner_->restart(t, z_);
-  state_ = y;
-}
-
-StepOutcome ModalIntegrator::step(double t_final) {
-  const StepOutcome outcome = inner_->step(t_final);
-  modes_.to_physical(inner_->state(), state_);
-  return outcome;
-}
-
-void ModalIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) {
-  inner_->interpolate(t, z_);
-  modes_.to_physical(z_, y);
+    : MappedIntegrator(y0), modes_(modes), functions_(modes, physical) {
+  Eigen::VectorXd z0(y0.size());
+  modes_.to_modal(y0, z0);
+  start(inner, functions_, t0, z0);
 }
 
 }  // namespace pounding::solvers

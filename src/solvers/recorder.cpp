@@ -174,9 +174,7 @@ void Recorder::stream_new_impacts(const std::vector<ImpactRecord>& impacts) {
 
 void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result, const dynamics::SpringStates* springs) {
   stream_new_impacts(result.impacts);
-  const double hysteretic_kJ = result.energy.hysteretic_kJ;  // the yield states' total, set before
   result.energy = energy_.close(final_state, springs);
-  result.energy.hysteretic_kJ = hysteretic_kJ;
   result.outputs = outputs_;
   result.peaks = peaks_.take();
   result.history = std::move(history_);

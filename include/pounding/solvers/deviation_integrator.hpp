@@ -12,8 +12,7 @@
 #include <vector>
 
 #include "pounding/dynamics/modal_system.hpp"
-#include "pounding/solvers/event_driven.hpp"
-#include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/mapped_integrator.hpp"
 
 namespace pounding::solvers {
 
@@ -30,6 +29,8 @@ class FreeResponse {
   void at(double t, Eigen::VectorXd& y, Eigen::VectorXd& y_dot) const;
 
  private:
+  /// Mode i's (η, η̇) advanced by tau from `from` (a modal state) under a_g = a_start + slope·s.
+  Eigen::Vector2d advance(int i, const Eigen::VectorXd& from, double tau, double a_start, double slope) const;
   /// The modal state (η, η̇) and its rate at t, into z and z_dot.
   void modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot) const;
 
@@ -40,32 +41,19 @@ class FreeResponse {
   mutable Eigen::VectorXd z_, z_dot_;  // scratch
 };
 
-class DeviationIntegrator final : public Integrator {
+class DeviationIntegrator final : public MappedIntegrator {
  public:
   /// `modes`, `physical` and `inner` must outlive the integrator; `inner` is called once, with
   /// the deviation's functions and z₀ = 0 (its tolerances apply to z, in the units of y).
   DeviationIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical, const IntegratorFactory& inner,
                       double t0, const Eigen::VectorXd& y0);
-
-  void restart(double t, const Eigen::VectorXd& y) override;
-  void set_max_step(double h_s) override { inner_->set_max_step(h_s); }
-  void set_stop_time(double t_s) override { inner_->set_stop_time(t_s); }
-  StepOutcome step(double t_final) override;
-  const Eigen::VectorXd& state() const override { return state_; }
-  void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
-  std::vector<int> roots_found() override { return inner_->roots_found(); }
-  IntegratorCounters counters() override { return inner_->counters(); }
   bool steps_across_samples() const override { return true; }
 
  private:
   /// The loop's functions seen through z = y − y_p(t).
-  class Functions final : public OdeFunctions {
+  class Functions final : public MappedFunctions {
    public:
     Functions(const FreeResponse& free, OdeFunctions& physical);
-    int state_size() const override { return physical_.state_size(); }
-    int root_count() const override { return physical_.root_count(); }
-    bool is_linear() const override { return physical_.is_linear(); }
-    bool is_free_motion() const override { return physical_.is_free_motion(); }
     void rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> z_dot) override;
     void jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> jac) override;
     bool acceleration_jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& z,
@@ -76,14 +64,15 @@ class DeviationIntegrator final : public Integrator {
     /// y = y_p(t) + z into y_ (only roots, Jacobians and rhs need y; rhs also ẏ_p, in yp_dot_).
     void physical_state(double t, const Eigen::Ref<const Eigen::VectorXd>& z);
     const FreeResponse& free_;
-    OdeFunctions& physical_;
     Eigen::VectorXd y_, yp_, yp_dot_, y_dot_;  // scratch
   };
 
+  void to_inner(double t, const Eigen::VectorXd& y, Eigen::VectorXd& z) override;
+  void to_physical(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> y) override;
+
   FreeResponse free_;
   Functions functions_;
-  std::unique_ptr<Integrator> inner_;
-  Eigen::VectorXd state_, yp_, z_;
+  Eigen::VectorXd yp_;  // scratch
 };
 
 }  // namespace pounding::solvers

@@ -10,52 +10,39 @@
 #include <memory>
 
 #include "pounding/dynamics/modal_system.hpp"
-#include "pounding/solvers/event_driven.hpp"
-#include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/mapped_integrator.hpp"
 
 namespace pounding::solvers {
 
-class ModalIntegrator final : public Integrator {
+class ModalIntegrator final : public MappedIntegrator {
  public:
   /// `modes`, `physical` and `inner` must outlive the integrator; `inner` is called once, with
   /// the modal functions and z₀ = T⁻¹ y₀ (its tolerances apply to z: ModalSystem::atol).
   ModalIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical, const IntegratorFactory& inner,
                   double t0, const Eigen::VectorXd& y0);
 
-  void restart(double t, const Eigen::VectorXd& y) override;
-  void set_max_step(double h_s) override { inner_->set_max_step(h_s); }
-  void set_stop_time(double t_s) override { inner_->set_stop_time(t_s); }
-  StepOutcome step(double t_final) override;
-  const Eigen::VectorXd& state() const override { return state_; }
-  void interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) override;
-  std::vector<int> roots_found() override { return inner_->roots_found(); }
-  IntegratorCounters counters() override { return inner_->counters(); }
-
  private:
   /// The loop's functions seen in modal coordinates.
-  class Functions final : public OdeFunctions {
+  class Functions final : public MappedFunctions {
    public:
     Functions(const dynamics::ModalSystem& modes, OdeFunctions& physical);
-    int state_size() const override { return physical_.state_size(); }
-    int root_count() const override { return physical_.root_count(); }
-    bool is_linear() const override { return physical_.is_linear(); }
-    bool is_free_motion() const override { return physical_.is_free_motion(); }
     void rhs(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> z_dot) override;
     void jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> jac) override;
     void roots(double t, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> g) override;
 
    private:
     const dynamics::ModalSystem& modes_;
-    OdeFunctions& physical_;
     Eigen::VectorXd y_, y_dot_;      // scratch: the physical state and rate
     Eigen::MatrixXd jacobian_;       // scratch: the physical Jacobian (contact phases only)
   };
 
+  void to_inner(double, const Eigen::VectorXd& y, Eigen::VectorXd& z) override { modes_.to_modal(y, z); }
+  void to_physical(double, const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> y) override {
+    modes_.to_physical(z, y);
+  }
+
   const dynamics::ModalSystem& modes_;
   Functions functions_;
-  std::unique_ptr<Integrator> inner_;
-  Eigen::VectorXd state_;  // y at the last step's end
-  Eigen::VectorXd z_;      // scratch
 };
 
 }  // namespace pounding::solvers
