@@ -25,9 +25,12 @@ CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
     stiffness_.block(offset_[b], offset_[b], size, size) = buildings_[b].stiffness;
     damping_.block(offset_[b], offset_[b], size, size) = buildings_[b].damping;
   }
-  influence_ = VectorXd::Zero(dof_);
+  influence_ = MatrixXd::Zero(dof_, ground_motion_.component_count());
   const double beta = ground_motion_.direction_rad();
-  for (int i = 0; i < dof_; i += 3) influence_.segment<2>(i) << std::cos(beta), std::sin(beta);
+  for (int i = 0; i < dof_; i += 3) {
+    influence_.col(0).segment<2>(i) << std::cos(beta), std::sin(beta);
+    if (ground_motion_.is_pair()) influence_.col(1).segment<2>(i) << -std::sin(beta), std::cos(beta);
+  }
 
   a_matrix_ = MatrixXd::Zero(2 * dof_, 2 * dof_);
   a_matrix_.topRightCorner(dof_, dof_).setIdentity();
@@ -47,23 +50,33 @@ void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot, 
     VectorXd slip_force = VectorXd::Zero(dof_);
     springs_.add_slip_force(y.head(dof_), *springs, slip_force);
     restoring -= slip_force;
-    y_dot.tail(dof_) = -(restoring.cwiseQuotient(mass_) + influence_ * ground_motion_.accel_at(t));
+    y_dot.tail(dof_) = -(restoring.cwiseQuotient(mass_) + influence() * ground_motion_.accel_at(t));
   } else {
     y_dot.tail(dof_) = -((stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.tail(dof_)).cwiseQuotient(mass_) +
-                         influence_ * ground_motion_.accel_at(t));
+                         influence() * ground_motion_.accel_at(t));
   }
+  if (ground_motion_.is_pair()) y_dot.tail(dof_) -= influence(1) * ground_motion_.accel_at(t, 1);
   y_dot.head(dof_) = y.tail(dof_);
+}
+
+VectorXd CoupledSystem::ground_acceleration(double t) const {
+  VectorXd accel = influence() * ground_motion_.accel_at(t);
+  for (int c = 1; c < ground_motion_.component_count(); ++c) accel += influence(c) * ground_motion_.accel_at(t, c);
+  return accel;
 }
 
 const model::ModalBasis& CoupledSystem::modal_basis(int b) const {
   std::call_once(modal_bases_->built[b], [&] {
-    modal_bases_->basis[b] = model::modal_basis(buildings_[b], influence_.segment(offset_[b], buildings_[b].dof()));
+    modal_bases_->basis[b] = model::modal_basis(buildings_[b], influence_.middleRows(offset_[b], buildings_[b].dof()));
   });
   return modal_bases_->basis[b];
 }
 
 void CoupledSystem::external_force(double t, Eigen::Ref<VectorXd> force) const {
-  force = -ground_motion_.accel_at(t) * mass_.cwiseProduct(influence_);
+  force = -ground_motion_.accel_at(t) * mass_.cwiseProduct(influence());
+  for (int c = 1; c < ground_motion_.component_count(); ++c) {
+    force -= ground_motion_.accel_at(t, c) * mass_.cwiseProduct(influence(c));
+  }
 }
 
 contact::SlabMotion CoupledSystem::slab(ConstVectorRef y, int building, int floor) const {
@@ -288,7 +301,11 @@ double CoupledSystem::damping_power(ConstVectorRef y) const {
 }
 
 double CoupledSystem::input_power(double t, ConstVectorRef y) const {
-  return -y.tail(dof_).dot(mass_.cwiseProduct(influence_)) * ground_motion_.accel_at(t);
+  double power = -y.tail(dof_).dot(mass_.cwiseProduct(influence())) * ground_motion_.accel_at(t);
+  for (int c = 1; c < ground_motion_.component_count(); ++c) {
+    power -= y.tail(dof_).dot(mass_.cwiseProduct(influence(c))) * ground_motion_.accel_at(t, c);
+  }
+  return power;
 }
 
 }  // namespace pounding::dynamics

@@ -19,7 +19,7 @@ ModalSystem::ModalSystem(const CoupledSystem& system) : system_(system) {
   const int n = system.dof();
   omega_rad_s_.resize(n);
   damping_per_s_.resize(n);
-  participation_.resize(n);
+  participation_.resize(n, system.ground_motion().component_count());
   shape_full_ = MatrixXd::Zero(n, n);
   inverse_full_ = MatrixXd::Zero(n, n);
   for (int b = 0; b < 2; ++b) {
@@ -40,7 +40,9 @@ ModalSystem::ModalSystem(const CoupledSystem& system) : system_(system) {
       throw std::invalid_argument("modal form: building " + std::to_string(b + 1) + " is not classically damped");
     }
     damping_per_s_.segment(offset, size) = modal_damping.diagonal();
-    participation_.segment(offset, size) = inverse_[b] * system.influence().segment(offset, size);
+    for (int c = 0; c < participation_.cols(); ++c) {
+      participation_.col(c).segment(offset, size) = inverse_[b] * system.influence(c).segment(offset, size);
+    }
     shape_full_.block(offset, offset, size, size) = shapes;
     inverse_full_.block(offset, offset, size, size) = inverse_[b];
   }
@@ -48,10 +50,11 @@ ModalSystem::ModalSystem(const CoupledSystem& system) : system_(system) {
 
 void ModalSystem::rhs(double t, ConstVectorRef z, Eigen::Ref<VectorXd> z_dot) const {
   const int n = dof();
-  const double accel = system_.ground_motion().accel_at(t);
+  const excitation::GroundMotion& motion = system_.ground_motion();
   z_dot.head(n) = z.tail(n);
   z_dot.tail(n) = -(omega_rad_s_.array().square() * z.head(n).array() + damping_per_s_.array() * z.tail(n).array() +
-                    participation_.array() * accel);
+                    participation_.col(0).array() * motion.accel_at(t));
+  if (motion.is_pair()) z_dot.tail(n) -= participation_.col(1) * motion.accel_at(t, 1);
 }
 
 void ModalSystem::jacobian(Eigen::Ref<MatrixXd> jacobian) const {

@@ -1,6 +1,8 @@
 #include "pounding/excitation/ground_motion.hpp"
 
 #include <algorithm>
+#include <array>
+#include <iterator>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -52,30 +54,117 @@ RecordSamples cut(const RecordSamples& in, double start_s, double end_s) {
   return out;
 }
 
+/// Where one component's samples come from: the keys and file its messages name.
+struct ComponentSource {
+  std::string file;
+  std::string key_prefix;      // "excitation." or "excitation.second."
+  bool times_from_dt = false;  // a dt_s key set the times (a re-spacing, or format single)
+  std::optional<double> dt_override_s;
+  AccelUnits units = AccelUnits::g;
+};
+
+ComponentSource first_source(const ExcitationSpec& spec) {
+  return {spec.file.string(), "excitation.", spec.dt_override_s || spec.read.dt_s, spec.dt_override_s, spec.units};
+}
+
+ComponentSource second_source(const SecondComponentSpec& second) {
+  return {second.file.string(), "excitation.second.", second.dt_override_s || second.read.dt_s, second.dt_override_s,
+          second.units};
+}
+
 /// Record times must lie in [0, kMaxRecordDuration_s]; the key blamed is the one that set them.
-void check_record_times(const RecordSamples& samples, const ExcitationSpec& spec) {
-  const std::string key = spec.dt_override_s || spec.read.dt_s ? "excitation.dt_s" : "excitation.file";
+void check_record_times(const RecordSamples& samples, const ComponentSource& source) {
+  const std::string key = source.key_prefix + (source.times_from_dt ? "dt_s" : "file");
   const double first = samples.time_s.front(), last = samples.time_s.back();
   if (first < 0.0 || last > kMaxRecordDuration_s) {
     throw InputError(key, format_value(first < 0.0 ? first : last),
                      fmt::format("record times must lie in [0, {}] s (this record spans {} s to {} s)",
                                  kMaxRecordDuration_s, first, last),
-                     spec.file.string());
+                     source.file);
   }
 }
 
 /// The processed peak must stay physical: records never exceed a few g, so more is a unit or
 /// scaling mistake (and 1e308 overflows the solver).
-void check_peak(const std::vector<double>& accel_mps2, const ExcitationSpec& spec) {
+void check_peak(const std::vector<double>& accel_mps2, const ExcitationSpec& spec, const ComponentSource& source) {
   double peak = 0.0;
   for (double a : accel_mps2) peak = std::max(peak, std::abs(a));
   if (peak <= kMaxPeakAccel_g * spec.g_mps2) return;  // false for NaN/inf
-  const std::string key = spec.scale_factor != 1.0 ? "excitation.scale_factor" : "excitation.units";
+  const std::string key = spec.scale_factor != 1.0 ? "excitation.scale_factor" : source.key_prefix + "units";
   const std::string value = spec.scale_factor != 1.0 ? format_value(spec.scale_factor) : "";
   throw InputError(key, value,
-                   fmt::format("the processed record peaks at |a_g| = {} m/s2 ({} g), above the limit of {} g",
-                               peak, peak / spec.g_mps2, kMaxPeakAccel_g),
-                   spec.file.string());
+                   fmt::format("the processed record peaks at |a_g| = {} m/s2 ({} g), above the limit of {} g", peak,
+                               peak / spec.g_mps2, kMaxPeakAccel_g),
+                   source.file);
+}
+
+/// One component re-spaced, checked, cut to [start_s, start_s + duration_s] (shifted to start at
+/// 0 s) and converted to m/s² with the spec's scale_factor.
+RecordSamples cut_and_convert(RecordSamples samples, const ExcitationSpec& spec, const ComponentSource& source) {
+  if (source.dt_override_s) {
+    for (std::size_t i = 0; i < samples.time_s.size(); ++i) {
+      samples.time_s[i] = static_cast<double>(i) * *source.dt_override_s;
+    }
+  }
+  check_record_times(samples, source);
+  const double record_end_s = samples.time_s.back();
+  if (spec.start_s >= record_end_s) {
+    throw InputError("excitation.start_s", format_value(spec.start_s),
+                     fmt::format("starts after the record ends at {} s", record_end_s), source.file);
+  }
+  const double slack_s = 1e-6 * (samples.time_s[1] - samples.time_s[0]);
+  if (spec.duration_s && spec.start_s + *spec.duration_s > record_end_s + slack_s) {
+    // Outside the record a_g is 0: a longer run would only be free vibration nobody asked for.
+    throw InputError("excitation.duration_s", format_value(*spec.duration_s),
+                     fmt::format("the record ends {} s after start_s; give at most that", record_end_s - spec.start_s),
+                     source.file);
+  }
+  const double end_s = spec.duration_s ? std::min(spec.start_s + *spec.duration_s, record_end_s) : record_end_s;
+  if (spec.start_s > 0.0 || end_s < record_end_s) samples = cut(samples, spec.start_s, end_s);
+  const double factor = unit_to_mps2(source.units, spec.g_mps2) * spec.scale_factor;
+  for (double& a : samples.accel) a *= factor;
+  return samples;
+}
+
+/// Both components on the union of their sample times over the span both cover, each linear
+/// between its own samples, so the pair is exactly the two records there. An H2 time closer than
+/// a millionth of the finer spacing to an H1 time counts as that one (0.02·3 and 0.005·12 differ
+/// by round-off): H1's own times are kept and the pair has no sliver intervals to stop at.
+/// @throws InputError naming excitation.second.file when the records share no time span.
+std::array<RecordSamples, 2> on_common_span(const RecordSamples& h1, const RecordSamples& h2,
+                                            const ComponentSource& second) {
+  const double from_s = std::max(h1.time_s.front(), h2.time_s.front());
+  const double to_s = std::min(h1.time_s.back(), h2.time_s.back());
+  if (!(to_s > from_s)) {
+    throw InputError(second.key_prefix + "file", second.file,
+                     fmt::format("the pair shares no time span: H1 spans {} s to {} s, H2 {} s to {} s",
+                                 h1.time_s.front(), h1.time_s.back(), h2.time_s.front(), h2.time_s.back()));
+  }
+  const double same_s = 1e-6 * std::min(h1.time_s[1] - h1.time_s[0], h2.time_s[1] - h2.time_s[0]);
+  const auto inside = [&](double t) { return t > from_s + same_s && t < to_s - same_s; };
+  std::vector<double> times{from_s, to_s};
+  for (double t : h1.time_s) {
+    if (inside(t)) times.push_back(t);
+  }
+  for (double t : h2.time_s) {
+    if (!inside(t)) continue;
+    const auto near = std::lower_bound(h1.time_s.begin(), h1.time_s.end(), t - same_s);
+    if (near == h1.time_s.end() || *near > t + same_s) times.push_back(t);
+  }
+  std::sort(times.begin(), times.end());
+  std::array<RecordSamples, 2> pair;
+  for (int c = 0; c < 2; ++c) {
+    const RecordSamples& in = c == 0 ? h1 : h2;
+    pair[c].time_s = times;
+    for (double t : times) pair[c].accel.push_back(interpolate(in.time_s, in.accel, t));
+  }
+  return pair;
+}
+
+double peak_of(const std::vector<double>& accel) {
+  double peak = 0.0;
+  for (double a : accel) peak = std::max(peak, std::abs(a));
+  return peak;
 }
 
 }  // namespace
@@ -93,13 +182,40 @@ std::optional<AccelUnits> parse_accel_units(std::string_view name) {
   return std::nullopt;
 }
 
-void ExcitationSpec::validate() const {
-  // Physical ranges (docs/scene-format.md): beyond them a value is a typo or a unit mistake.
+namespace {
+
+// A component's keys sit under `prefix`: "excitation." or "excitation.second.".
+
+void validate_spacing(const std::string& prefix, const RecordReadOptions& read, std::optional<double> dt_override_s) {
   // Below 1e-5 s a spacing is a typo (accelerographs sample at 50 Hz to 1 kHz); a denormal one
   // would make every sample time the same.
   const Range sample_spacing{kMinSampleSpacing_s, kMaxSampleSpacing_s, "s"};
-  if (dt_override_s) require_range("excitation.dt_s", *dt_override_s, sample_spacing);
-  if (read.dt_s) require_range("excitation.dt_s", *read.dt_s, sample_spacing);
+  if (dt_override_s) require_range(prefix + "dt_s", *dt_override_s, sample_spacing);
+  if (read.dt_s) require_range(prefix + "dt_s", *read.dt_s, sample_spacing);
+}
+
+void validate_layout(const std::string& prefix, const RecordReadOptions& read) {
+  if (read.format == RecordFormat::single && !read.dt_s) {
+    throw InputError(prefix + "dt_s", "missing", "format 'single' needs the time step");
+  }
+  if (read.time_column < 1) {
+    throw InputError(prefix + "time_column", std::to_string(read.time_column), "columns are numbered from 1");
+  }
+  if (read.accel_column && *read.accel_column < 1) {
+    throw InputError(prefix + "accel_column", std::to_string(*read.accel_column), "columns are numbered from 1");
+  }
+  if (read.format == RecordFormat::columns && read.accel_column == read.time_column) {
+    throw InputError(
+        prefix + "accel_column", std::to_string(*read.accel_column),
+        fmt::format("is the time column ({}time_column): the acceleration must be another column", prefix));
+  }
+}
+
+}  // namespace
+
+void ExcitationSpec::validate() const {
+  // Physical ranges (docs/scene-format.md): beyond them a value is a typo or a unit mistake.
+  validate_spacing("excitation.", read, dt_override_s);
   if (duration_s) require_range("excitation.duration_s", *duration_s, {0.0, kMaxRecordDuration_s, "s", true});
   require_range("excitation.start_s", start_s, {0.0, kMaxRecordDuration_s, "s"});
   if (scale_to_pga_g) require_range("excitation.scale_to_pga_g", *scale_to_pga_g, {0.0, kMaxPeakAccel_g, "g", true});
@@ -112,35 +228,44 @@ void ExcitationSpec::validate() const {
                      "give either scale_factor or scale_to_pga_g, not both");
   }
   require_range("excitation.direction_deg", direction_deg, {-360.0, 360.0, "deg"});
-  if (read.format == RecordFormat::single && !read.dt_s) {
-    throw InputError("excitation.dt_s", "missing", "format 'single' needs the time step");
-  }
-  if (read.time_column < 1) {
-    throw InputError("excitation.time_column", std::to_string(read.time_column), "columns are numbered from 1");
-  }
-  if (read.accel_column && *read.accel_column < 1) {
-    throw InputError("excitation.accel_column", std::to_string(*read.accel_column), "columns are numbered from 1");
-  }
-  if (read.format == RecordFormat::columns && read.accel_column == read.time_column) {
-    throw InputError("excitation.accel_column", std::to_string(*read.accel_column),
-                     "is the time column (excitation.time_column): the acceleration must be another column");
+  validate_layout("excitation.", read);
+  if (second) {
+    validate_spacing("excitation.second.", second->read, second->dt_override_s);
+    validate_layout("excitation.second.", second->read);
   }
 }
 
-GroundMotion::GroundMotion(std::vector<double> time_s, std::vector<double> accel_mps2,
+GroundMotion::GroundMotion(std::vector<double> time_s, std::vector<double> accel_mps2, double direction_rad)
+    : time_s_(std::move(time_s)), direction_rad_(direction_rad) {
+  accel_mps2_.push_back(std::move(accel_mps2));
+  find_peaks();
+}
+
+GroundMotion::GroundMotion(std::vector<double> time_s, std::vector<double> h1_mps2, std::vector<double> h2_mps2,
                            double direction_rad)
-    : time_s_(std::move(time_s)), accel_mps2_(std::move(accel_mps2)), direction_rad_(direction_rad) {
-  for (std::size_t i = 1; i < accel_mps2_.size(); ++i) {
-    if (std::abs(accel_mps2_[i]) > std::abs(accel_mps2_[peak_index_])) peak_index_ = i;
+    : time_s_(std::move(time_s)), direction_rad_(direction_rad) {
+  accel_mps2_.push_back(std::move(h1_mps2));
+  accel_mps2_.push_back(std::move(h2_mps2));
+  find_peaks();
+}
+
+void GroundMotion::find_peaks() {
+  for (const std::vector<double>& accel : accel_mps2_) {
+    std::size_t peak = 0;
+    for (std::size_t i = 1; i < accel.size(); ++i) {
+      if (std::abs(accel[i]) > std::abs(accel[peak])) peak = i;
+    }
+    peak_index_.push_back(peak);
   }
 }
 
-double GroundMotion::accel_at(double t_s) const {
+double GroundMotion::accel_at(double t_s, int component) const {
   // A NaN passes every range test below; it means the solution has already diverged.
   if (!std::isfinite(t_s)) throw NonFiniteTime(t_s);
+  const std::vector<double>& accel = accel_mps2(component);
   if (t_s < time_s_.front() || t_s > time_s_.back()) return 0.0;
-  if (t_s == time_s_.back()) return accel_mps2_.back();
-  return interpolate(time_s_, accel_mps2_, t_s);
+  if (t_s == time_s_.back()) return accel.back();
+  return interpolate(time_s_, accel, t_s);
 }
 
 std::optional<double> GroundMotion::next_sample_after(double t_s) const {
@@ -158,55 +283,50 @@ double GroundMotion::sample_spacing_s() const {
   return *middle;
 }
 
-double GroundMotion::peak_mps2() const { return std::abs(accel_mps2_[peak_index_]); }
-double GroundMotion::peak_time_s() const { return time_s_[peak_index_]; }
+double GroundMotion::peak_mps2(int component) const {
+  return std::abs(accel_mps2(component)[peak_index_[static_cast<std::size_t>(component)]]);
+}
+double GroundMotion::peak_time_s(int component) const {
+  return time_s_[peak_index_[static_cast<std::size_t>(component)]];
+}
 
-GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec) {
+GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec, std::optional<RecordSamples> second) {
   spec.validate();
-  const std::string file = spec.file.string();
-  if (spec.dt_override_s) {
-    for (std::size_t i = 0; i < samples.time_s.size(); ++i) {
-      samples.time_s[i] = static_cast<double>(i) * *spec.dt_override_s;
-    }
+  const ComponentSource h1_source = first_source(spec);
+  std::vector<RecordSamples> components{cut_and_convert(std::move(samples), spec, h1_source)};
+  std::vector<ComponentSource> sources{h1_source};
+  if (spec.second) {
+    if (!second) throw std::logic_error("process_record: a pair's spec without H2's samples");
+    sources.push_back(second_source(*spec.second));
+    RecordSamples h2 = cut_and_convert(std::move(*second), spec, sources[1]);
+    auto pair = on_common_span(components[0], h2, sources[1]);
+    components = {std::move(pair[0]), std::move(pair[1])};
   }
-  check_record_times(samples, spec);
-  const double record_end_s = samples.time_s.back();
-  if (spec.start_s >= record_end_s) {
-    throw InputError("excitation.start_s", format_value(spec.start_s),
-                     fmt::format("starts after the record ends at {} s", record_end_s), file);
-  }
-  const double slack_s = 1e-6 * (samples.time_s[1] - samples.time_s[0]);
-  if (spec.duration_s && spec.start_s + *spec.duration_s > record_end_s + slack_s) {
-    // Outside the record a_g is 0: a longer run would only be free vibration nobody asked for.
-    throw InputError("excitation.duration_s", format_value(*spec.duration_s),
-                     fmt::format("the record ends {} s after start_s; give at most that", record_end_s - spec.start_s),
-                     file);
-  }
-  const double end_s = spec.duration_s ? std::min(spec.start_s + *spec.duration_s, record_end_s)
-                                       : record_end_s;
-  if (spec.start_s > 0.0 || end_s < record_end_s) samples = cut(samples, spec.start_s, end_s);
-
-  double factor = unit_to_mps2(spec.units, spec.g_mps2) * spec.scale_factor;
-  std::vector<double> accel(samples.accel.size());
-  for (std::size_t i = 0; i < accel.size(); ++i) accel[i] = factor * samples.accel[i];
   if (spec.scale_to_pga_g) {
-    const double peak = std::abs(*std::max_element(accel.begin(), accel.end(),
-        [](double a, double b) { return std::abs(a) < std::abs(b); }));
+    // A pair keeps its components' ratio: one factor, from the larger component's peak.
+    double peak = 0.0;
+    for (const RecordSamples& c : components) peak = std::max(peak, peak_of(c.accel));
     if (peak == 0.0) {
       throw InputError("excitation.scale_to_pga_g", format_value(*spec.scale_to_pga_g),
-                       "cannot scale a record that is zero throughout", file);
+                       "cannot scale a record that is zero throughout", spec.file.string());
     }
     const double scale = *spec.scale_to_pga_g * spec.g_mps2 / peak;
-    for (double& a : accel) a *= scale;
+    for (RecordSamples& c : components) {
+      for (double& a : c.accel) a *= scale;
+    }
   }
-  check_peak(accel, spec);
-  return GroundMotion(std::move(samples.time_s), std::move(accel),
-                      spec.direction_deg * std::numbers::pi / 180.0);
+  for (std::size_t c = 0; c < components.size(); ++c) check_peak(components[c].accel, spec, sources[c]);
+  const double direction_rad = spec.direction_deg * std::numbers::pi / 180.0;
+  if (!spec.second) return GroundMotion(std::move(components[0].time_s), std::move(components[0].accel), direction_rad);
+  return GroundMotion(std::move(components[0].time_s), std::move(components[0].accel), std::move(components[1].accel),
+                      direction_rad);
 }
 
 GroundMotion load_ground_motion(const ExcitationSpec& spec) {
   spec.validate();
-  return process_record(read_record(spec.file, spec.read), spec);
+  std::optional<RecordSamples> second;
+  if (spec.second) second = read_record(spec.second->file, spec.second->read);
+  return process_record(read_record(spec.file, spec.read), spec, std::move(second));
 }
 
 }  // namespace pounding::excitation

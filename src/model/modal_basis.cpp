@@ -5,7 +5,7 @@
 
 namespace pounding::model {
 
-ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::VectorXd>& influence) {
+ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::MatrixXd>& influence) {
   const std::vector<Mode>& modes = building.modes;
   const auto n = static_cast<Eigen::Index>(modes.size());
   ModalBasis basis;
@@ -16,8 +16,10 @@ ModalBasis modal_basis(const Building& building, const Eigen::Ref<const Eigen::V
     basis.shapes.col(k) = modes[static_cast<std::size_t>(k)].shape;
   }
   basis.projection = basis.shapes.transpose() * building.mass_diagonal.asDiagonal();
-  basis.participation = basis.projection * influence;
-  basis.dropped_static_s2 = Eigen::VectorXd::Zero(n);
+  // Column by column: a matrix-vector product each, as for one component.
+  basis.participation.resize(n, influence.cols());
+  for (Eigen::Index c = 0; c < influence.cols(); ++c) basis.participation.col(c) = basis.projection * influence.col(c);
+  basis.dropped_static_s2 = Eigen::MatrixXd::Zero(n, influence.cols());
   // ζ from the Rayleigh coefficients themselves (exact for the model as defined); Φᵀ C Φ only
   // checks that C is what they say and that the modes decouple it, rather than drop its
   // coupling terms silently.
@@ -42,12 +44,15 @@ ModalBasis keep_modes_below(const ModalBasis& full, double cutoff_hz) {
   basis.damping_ratio = full.damping_ratio.head(kept);
   basis.shapes = full.shapes.leftCols(kept);
   basis.projection = full.projection.topRows(kept);
-  basis.participation = full.participation.head(kept);
+  basis.participation = full.participation.topRows(kept);
   const Eigen::Index dropped = full.size() - kept;
   // η_s = −Γ a_g / ω² solves each dropped oscillator with η̈ and η̇ neglected.
-  basis.dropped_static_s2 =
-      -full.shapes.rightCols(dropped) *
-      (full.participation.tail(dropped).array() / full.omega_rad_s.tail(dropped).array().square()).matrix();
+  basis.dropped_static_s2.resize(full.shapes.rows(), full.participation.cols());
+  for (Eigen::Index c = 0; c < full.participation.cols(); ++c) {
+    basis.dropped_static_s2.col(c) =
+        -full.shapes.rightCols(dropped) *
+        (full.participation.col(c).tail(dropped).array() / full.omega_rad_s.tail(dropped).array().square()).matrix();
+  }
   return basis;
 }
 

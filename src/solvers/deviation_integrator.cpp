@@ -17,9 +17,9 @@ FreeResponse::FreeResponse(const dynamics::ModalSystem& modes, double t0, const 
   states_.push_back(z);
   for (double t : motion.time_s()) {
     if (t <= t0) continue;
-    // Over [t_a, t]: η̈ + 2ζωη̇ + ω²η = −Γ a_g, a_g linear.
+    // Over [t_a, t]: η̈ + 2ζωη̇ + ω²η = −Σ_c Γ_c a_c, each a_c linear.
     const double t_a = times_.back(), tau = t - t_a;
-    const double a_start = motion.accel_at(t_a), slope = (motion.accel_at(t) - a_start) / tau;
+    const Eigen::Vector2d a_start = ground_accel(t_a), slope = (ground_accel(t) - a_start) / tau;
     const Eigen::VectorXd& from = states_.back();
     Eigen::VectorXd next(y0.size());
     for (int i = 0; i < n; ++i) {
@@ -32,34 +32,43 @@ FreeResponse::FreeResponse(const dynamics::ModalSystem& modes, double t0, const 
   }
 }
 
-Eigen::Vector2d FreeResponse::advance(int i, const Eigen::VectorXd& from, double tau, double a_start,
-                                      double slope) const {
+Eigen::Vector2d FreeResponse::ground_accel(double t) const {
+  const excitation::GroundMotion& motion = modes_.system().ground_motion();
+  return {motion.accel_at(t), motion.is_pair() ? motion.accel_at(t, 1) : 0.0};
+}
+
+double FreeResponse::modal_load(int i, const Eigen::Vector2d& accel) const {
+  double load = modes_.participation()(i, 0) * accel[0];
+  for (int c = 1; c < modes_.participation().cols(); ++c) load += modes_.participation()(i, c) * accel[c];
+  return load;
+}
+
+Eigen::Vector2d FreeResponse::advance(int i, const Eigen::VectorXd& from, double tau, const Eigen::Vector2d& a_start,
+                                      const Eigen::Vector2d& slope) const {
   const int n = modes_.dof();
-  const double gamma = modes_.participation()[i];
   const OscillatorStep step = oscillator_step(modes_.omega_rad_s()[i], damping_ratio_[i], tau);
-  return step.free * Eigen::Vector2d(from[i], from[n + i]) + step.start * (-gamma * a_start) +
-         step.slope * (-gamma * slope);
+  return step.free * Eigen::Vector2d(from[i], from[n + i]) + step.start * (-modal_load(i, a_start)) +
+         step.slope * (-modal_load(i, slope));
 }
 
 void FreeResponse::modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot) const {
   const int n = modes_.dof();
-  const excitation::GroundMotion& motion = modes_.system().ground_motion();
   // The piece [t_k, t_k+1] holding t (the last one for t at or past the end).
   const auto after = std::upper_bound(times_.begin(), times_.end(), t);
   const std::size_t k =
       after == times_.begin() ? 0 : std::min<std::size_t>(after - times_.begin() - 1, times_.size() - 2);
   const double t_a = times_[k], tau = t - t_a;
-  const double a_start = motion.accel_at(t_a),
-               slope = (motion.accel_at(times_[k + 1]) - a_start) / (times_[k + 1] - t_a);
+  const Eigen::Vector2d a_start = ground_accel(t_a),
+                        slope = (ground_accel(times_[k + 1]) - a_start) / (times_[k + 1] - t_a);
   const Eigen::VectorXd& from = states_[k];
-  const double a_now = a_start + slope * tau;
+  const Eigen::Vector2d a_now = a_start + slope * tau;
   for (int i = 0; i < n; ++i) {
-    const double omega = modes_.omega_rad_s()[i], gamma = modes_.participation()[i];
+    const double omega = modes_.omega_rad_s()[i];
     const Eigen::Vector2d moved = advance(i, from, tau, a_start, slope);
     z[i] = moved[0];
     z[n + i] = moved[1];
     z_dot[i] = moved[1];
-    z_dot[n + i] = -omega * omega * moved[0] - modes_.damping_per_s()[i] * moved[1] - gamma * a_now;
+    z_dot[n + i] = -omega * omega * moved[0] - modes_.damping_per_s()[i] * moved[1] - modal_load(i, a_now);
   }
 }
 

@@ -40,13 +40,16 @@ double EventStepBound::max_step_s(double t, const Eigen::VectorXd& y, const std:
 }
 
 double EventStepBound::clear_step_s(double t, const Eigen::VectorXd& y, const ContactStates& states) {
-  // Steps end at record samples, so the window ends at the next one and a_g is one straight
-  // piece over it: its largest |a_g| is at an end.
+  // Steps end at record samples, so the window ends at the next one and each component is one
+  // straight piece over it: its largest |a_c| is at an end (GapClearance takes the largest).
   const excitation::GroundMotion& motion = system_.ground_motion();
   const std::optional<double> next = motion.next_sample_after(t);
   if (!next) return 0.0;
   const double horizon_s = *next - t;
-  const double peak_accel_mps2 = std::max(std::abs(motion.accel_at(t)), std::abs(motion.accel_at(*next)));
+  double peak_accel_mps2 = 0.0;
+  for (int c = 0; c < motion.component_count(); ++c) {
+    peak_accel_mps2 = std::max({peak_accel_mps2, std::abs(motion.accel_at(t, c)), std::abs(motion.accel_at(*next, c))});
+  }
   for (std::size_t i = 0; i < states.size(); ++i) {
     watched_[i] = states.open(i);
   }

@@ -24,7 +24,8 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
       const double period_s = 2.0 * std::numbers::pi / (basis.omega_rad_s[k] * std::sqrt(1.0 - zeta * zeta));
       shortest_damped_period_s_ = std::min(shortest_damped_period_s_, period_s);
     }
-    modes.participation = basis.participation.cwiseAbs();
+    // Σ_c |Γ_kc| |a_c| ≤ (Σ_c |Γ_kc|) max_c |a_c|: a pair bounded by its larger component.
+    modes.participation = basis.participation.cwiseAbs().rowwise().sum();
     for (const contact::Candidate& c : candidates) modes.floors.push_back(c.floors[b]);
     std::sort(modes.floors.begin(), modes.floors.end());
     modes.floors.erase(std::unique(modes.floors.begin(), modes.floors.end()), modes.floors.end());

@@ -61,14 +61,13 @@ double drift_per_unit(const dynamics::YieldingSprings& springs, int b, int offse
 GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period,
                            double modes_cutoff_hz)
     : resolution_m_(resolution_m), steps_per_period_(steps_per_period) {
-  const double peak_accel_mps2 = system.ground_motion().peak_mps2();
+  const excitation::GroundMotion& motion = system.ground_motion();
   const RestRows rest = rest_rows(system);
   double longest_period_s = 0.0;
   for (int b = 0; b < 2; ++b) {
     const model::Building& building = system.building(b);
     const int offset = system.floor_index(b, 1);
     const Eigen::VectorXd& mass = building.mass_diagonal;
-    const Eigen::VectorXd influence = system.influence().segment(offset, building.dof());
     for (const model::Mode& mode : building.modes) {
       longest_period_s = std::max(longest_period_s, mode.period_s);
       const double omega = mode.omega_rad_s;
@@ -84,7 +83,14 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
       m.mass_shape = mass.cwiseProduct(mode.shape);
       m.gap_per_unit_m =
           std::max(gap_per_unit(rest, b, mode.shape), drift_per_unit(system.springs(), b, offset, mode.shape));
-      m.forced_amplitude = 2.0 * std::abs(m.mass_shape.dot(influence)) * peak_accel_mps2 / (omega * omega);
+      // Σ_c |Γ_c| peak_c: each component drives the mode by at most its own peak.
+      double load_mps2 =
+          std::abs(m.mass_shape.dot(system.influence().segment(offset, building.dof()))) * motion.peak_mps2();
+      for (int c = 1; c < motion.component_count(); ++c) {
+        load_mps2 +=
+            std::abs(m.mass_shape.dot(system.influence(c).segment(offset, building.dof()))) * motion.peak_mps2(c);
+      }
+      m.forced_amplitude = 2.0 * load_mps2 / (omega * omega);
       if (m.gap_per_unit_m > 0.0) modes_.push_back(std::move(m));
     }
   }

@@ -293,15 +293,18 @@ std::optional<StretchEnergy> HhtRun::energy_of_skipping_step(const State& from, 
   const double h = to.t_s - from.t_s;
   const std::optional<double> next = motion.next_sample_after(from.t_s);
   if (!next || *next >= to.t_s - 1e-9 * h) return std::nullopt;
-  const double a_from = motion.accel_at(from.t_s), a_to = motion.accel_at(to.t_s);
-  const VectorXd mass_influence = system_.mass_diagonal().cwiseProduct(system_.influence());
   const double half = 0.5 * h, mid = 0.5 * (from.t_s + to.t_s);
   StretchEnergy energy;
   for (std::size_t k = 0; k < kGaussNodes.size(); ++k) {
     const double t = mid + half * kGaussNodes[k];
     const VectorXd y = hermite(from, to, t);
-    const double a_g = a_from + (a_to - a_from) * (t - from.t_s) / h;
-    energy.input_kJ -= half * kGaussWeights[k] * y.tail(system_.dof()).dot(mass_influence) * a_g;
+    for (int c = 0; c < motion.component_count(); ++c) {
+      // The step's own straight a_c between its ends, as the scheme saw it (not the record's samples).
+      const double a_from = motion.accel_at(from.t_s, c), a_to = motion.accel_at(to.t_s, c);
+      const double a_c = a_from + (a_to - a_from) * (t - from.t_s) / h;
+      const VectorXd mass_influence = system_.mass_diagonal().cwiseProduct(system_.influence(c));
+      energy.input_kJ -= half * kGaussWeights[k] * y.tail(system_.dof()).dot(mass_influence) * a_c;
+    }
     energy.damping_kJ += half * kGaussWeights[k] * system_.damping_power(y);
   }
   return energy;

@@ -39,11 +39,12 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
   }
   omega_.resize(modes);
   damping_ratio_.resize(modes);
-  participation_.resize(modes);
+  components_ = system.ground_motion().component_count();
+  participation_.resize(modes, components_);
   for (int b = 0; b < 2; ++b) {
     omega_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].omega_rad_s;
     damping_ratio_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].damping_ratio;
-    participation_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].participation;
+    participation_.middleRows(mode_offset_[b], bases_[b].size()) = bases_[b].participation;
   }
   for (const contact::Candidate& c : system.candidates()) {
     for (int b = 0; b < 2; ++b) {
@@ -55,10 +56,10 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
     std::sort(dofs.begin(), dofs.end());
     dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
     contact_shapes_[b].resize(static_cast<Eigen::Index>(dofs.size()), bases_[b].size());
-    contact_static_[b].resize(static_cast<Eigen::Index>(dofs.size()));
+    contact_static_[b].resize(static_cast<Eigen::Index>(dofs.size()), components_);
     for (std::size_t r = 0; r < dofs.size(); ++r) {
       contact_shapes_[b].row(static_cast<Eigen::Index>(r)) = bases_[b].shapes.row(dofs[r]);
-      contact_static_[b][static_cast<Eigen::Index>(r)] = bases_[b].dropped_static_s2[dofs[r]];
+      contact_static_[b].row(static_cast<Eigen::Index>(r)) = bases_[b].dropped_static_s2.row(dofs[r]);
     }
   }
   contact_y_ = Eigen::VectorXd::Constant(system.state_size(), std::numeric_limits<double>::quiet_NaN());
@@ -119,16 +120,19 @@ void ModalExactIntegrator::begin_segment(double t, double t_end) {
     segment_.start = modal_at(t, probe_);  // on the last segment's load
   }
   segment_.t_start_s = t;
-  const auto& times = system_.ground_motion().time_s();
-  const auto& accel = system_.ground_motion().accel_mps2();
+  const excitation::GroundMotion& motion = system_.ground_motion();
+  const auto& times = motion.time_s();
   const double middle = 0.5 * (t + t_end);
   const auto after = std::upper_bound(times.begin(), times.end(), middle);
-  segment_.slope_mps3 = 0.0;
-  if (after != times.begin() && after != times.end()) {
-    const auto k = static_cast<std::size_t>(after - times.begin()) - 1;
-    segment_.slope_mps3 = (accel[k + 1] - accel[k]) / (times[k + 1] - times[k]);
+  for (int c = 0; c < components_; ++c) {
+    const auto& accel = motion.accel_mps2(c);
+    segment_.slope_mps3[c] = 0.0;
+    if (after != times.begin() && after != times.end()) {
+      const auto k = static_cast<std::size_t>(after - times.begin()) - 1;
+      segment_.slope_mps3[c] = (accel[k + 1] - accel[k]) / (times[k + 1] - times[k]);
+    }
+    segment_.accel_mps2[c] = motion.accel_at(t, c);
   }
-  segment_.accel_mps2 = system_.ground_motion().accel_at(t);
 }
 
 const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(StepCache& cache, double tau_s, double same_s,
@@ -173,9 +177,12 @@ ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_at(double t, Modal
     }
     for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
       const OscillatorStep& s = steps[static_cast<std::size_t>(k)];
-      // The modal load is −Γ a_g(t) = −Γ (accel + slope τ).
-      const Eigen::Vector2d x = s.free * Eigen::Vector2d(segment_.start.eta[k], segment_.start.eta_rate[k]) -
-                                participation_[k] * (s.start * segment_.accel_mps2 + s.slope * segment_.slope_mps3);
+      // The modal load is −Σ_c Γ_c a_c(t) = −Σ_c Γ_c (accel_c + slope_c τ).
+      Eigen::Vector2d x = s.free * Eigen::Vector2d(segment_.start.eta[k], segment_.start.eta_rate[k]) -
+                          participation_(k, 0) * (s.start * segment_.accel_mps2[0] + s.slope * segment_.slope_mps3[0]);
+      for (int c = 1; c < components_; ++c) {
+        x -= participation_(k, c) * (s.start * segment_.accel_mps2[c] + s.slope * segment_.slope_mps3[c]);
+      }
       modal.eta[k] = x[0];
       modal.eta_rate[k] = x[1];
     }
@@ -190,8 +197,10 @@ void ModalExactIntegrator::physical(const ModalState& modal, Eigen::Ref<Eigen::V
     y.segment(dof_offset_[b], dofs).noalias() = bases_[b].shapes * modal.eta.segment(mode_offset_[b], size);
     y.segment(n + dof_offset_[b], dofs).noalias() = bases_[b].shapes * modal.eta_rate.segment(mode_offset_[b], size);
     if (!truncated_) continue;
-    y.segment(dof_offset_[b], dofs) += modal.accel_mps2 * bases_[b].dropped_static_s2;
-    y.segment(n + dof_offset_[b], dofs) += modal.accel_rate_mps3 * bases_[b].dropped_static_s2;
+    for (int c = 0; c < components_; ++c) {
+      y.segment(dof_offset_[b], dofs) += modal.accel_mps2[c] * bases_[b].dropped_static_s2.col(c);
+      y.segment(n + dof_offset_[b], dofs) += modal.accel_rate_mps3[c] * bases_[b].dropped_static_s2.col(c);
+    }
   }
 }
 
@@ -203,8 +212,10 @@ const Eigen::VectorXd& ModalExactIntegrator::contact_state(const ModalState& mod
     q.noalias() = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
     q_rate.noalias() = contact_shapes_[b] * modal.eta_rate.segment(mode_offset_[b], size);
     if (truncated_) {
-      q += modal.accel_mps2 * contact_static_[b];
-      q_rate += modal.accel_rate_mps3 * contact_static_[b];
+      for (int c = 0; c < components_; ++c) {
+        q += modal.accel_mps2[c] * contact_static_[b].col(c);
+        q_rate += modal.accel_rate_mps3[c] * contact_static_[b].col(c);
+      }
     }
     for (std::size_t r = 0; r < contact_dofs_[b].size(); ++r) {
       const int i = dof_offset_[b] + contact_dofs_[b][r];
@@ -289,12 +300,19 @@ const ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_in_step(doub
 std::optional<StretchEnergy> ModalExactIntegrator::energy_between(double t_a, double t_b) {
   if (held_phase_ || truncated_) return std::nullopt;
   const ModalState &a = modal_in_step(t_a, probe_), &b = modal_in_step(t_b, probe_b_);
-  const double accel_a = segment_.accel_mps2 + segment_.slope_mps3 * (t_a - segment_.t_start_s);
-  const double accel_b = segment_.accel_mps2 + segment_.slope_mps3 * (t_b - segment_.t_start_s);
+  const Eigen::Vector2d accel_a = segment_.accel_mps2 + segment_.slope_mps3 * (t_a - segment_.t_start_s);
+  const Eigen::Vector2d accel_b = segment_.accel_mps2 + segment_.slope_mps3 * (t_b - segment_.t_start_s);
   StretchEnergy energy;
   for (Eigen::Index k = 0; k < omega_.size(); ++k) {
-    const double w = omega_[k], gamma = participation_[k];
-    const double load_a = -gamma * accel_a, load_b = -gamma * accel_b, load_rate = -gamma * segment_.slope_mps3;
+    const double w = omega_[k];
+    // The modal load p = −Σ_c Γ_c a_c at both ends, and its rate.
+    double load_a = -participation_(k, 0) * accel_a[0], load_b = -participation_(k, 0) * accel_b[0],
+           load_rate = -participation_(k, 0) * segment_.slope_mps3[0];
+    for (int c = 1; c < components_; ++c) {
+      load_a -= participation_(k, c) * accel_a[c];
+      load_b -= participation_(k, c) * accel_b[c];
+      load_rate -= participation_(k, c) * segment_.slope_mps3[c];
+    }
     const double d_eta = b.eta[k] - a.eta[k], d_rate = b.eta_rate[k] - a.eta_rate[k];
     // ω² ∫η = ∫p − Δη̇ − 2ζω Δη, from integrating η̈ + 2ζω η̇ + ω² η = p over the stretch.
     const double eta_integral =
@@ -332,7 +350,10 @@ void ModalExactIntegrator::interpolate_components(double t, const std::vector<in
     const Eigen::VectorXd& coordinates = rate ? modal.eta_rate : modal.eta;
     y[index] = bases_[b].shapes.row(dof - dof_offset_[b]).dot(coordinates.segment(mode_offset_[b], size));
     if (truncated_) {
-      y[index] += (rate ? modal.accel_rate_mps3 : modal.accel_mps2) * bases_[b].dropped_static_s2[dof - dof_offset_[b]];
+      for (int c = 0; c < components_; ++c) {
+        y[index] +=
+            (rate ? modal.accel_rate_mps3 : modal.accel_mps2)[c] * bases_[b].dropped_static_s2(dof - dof_offset_[b], c);
+      }
     }
   }
 }

@@ -114,7 +114,7 @@ RunKinematics::Drift RunKinematics::storey_drift(const dynamics::VectorXd& y, in
 
 void RunKinematics::absolute_accelerations(double t, const dynamics::VectorXd& y, dynamics::VectorXd& accel) const {
   dynamics_.derivative(t, y, y_dot_);
-  accel = y_dot_.tail(system_.dof()) + system_.influence() * system_.ground_motion().accel_at(t);
+  accel = y_dot_.tail(system_.dof()) + system_.ground_acceleration(t);
 }
 
 void RunKinematics::measure(double t, const dynamics::VectorXd& y, bool accelerations, bool drifts,
@@ -130,12 +130,12 @@ void RunKinematics::free_acceleration_rates(double t, const dynamics::VectorXd& 
                                             dynamics::VectorXd& rate) const {
   // Free motion: q̈ = A_v y − r a_g (A_v the acceleration rows of A), so q̈ + r a_g = A_v y and
   // its rate is A_v ẏ, the forcing's slope cancelling. The system's free rhs at the "state" ẏ
-  // gives A_v ẏ − r a_g(t) in its acceleration rows (sparse, O(n)).
+  // gives A_v ẏ − r a_g(t) in its acceleration rows (sparse, O(n)). r a_g: summed over components.
   const int n = system_.dof();
-  const double a_g = system_.ground_motion().accel_at(t);
-  y_dot_ << y.tail(n), accel - system_.influence() * a_g;
+  const dynamics::VectorXd ground = system_.ground_acceleration(t);
+  y_dot_ << y.tail(n), accel - ground;
   system_.rhs(t, y_dot_, y_ddot_);
-  rate = y_ddot_.tail(n) + system_.influence() * a_g;
+  rate = y_ddot_.tail(n) + ground;
 }
 
 }  // namespace pounding::solvers

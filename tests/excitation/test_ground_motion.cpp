@@ -138,6 +138,18 @@ pounding::InputError refusal(const RecordSamples& samples, const ExcitationSpec&
   return pounding::InputError("", "", "");
 }
 
+/// The InputError that `work` throws; fails the test if none is.
+template <class Work>
+pounding::InputError refusal_of(Work work) {
+  try {
+    work();
+  } catch (const pounding::InputError& error) {
+    return error;
+  }
+  BOOST_FAIL("no error");
+  return pounding::InputError("", "", "");
+}
+
 bool names(const pounding::InputError& e, const std::string& key, const std::string& value, const std::string& limit) {
   const std::string text = e.what();
   const bool ok = e.key() == key && text.find(value) != std::string::npos && text.find(limit) != std::string::npos;
@@ -180,4 +192,63 @@ BOOST_AUTO_TEST_CASE(AbsurdScalingAndGravityAreRefused) {
   BOOST_TEST(names(refusal(ramp(3, 0.01), spec), "excitation.scale_to_pga_g", "50", "(0, 10] g"));
   spec = spec_in(AccelUnits::g);  // a record in cm/s² read as g peaks far above 10 g
   BOOST_TEST(names(refusal(RecordSamples{{0, 1}, {0, 300}}, spec), "excitation.units", "300", "limit of 10 g"));
+}
+
+namespace {
+
+/// H1 on `h1` with H2 on `h2`, a pair (spec.second set, its file "synthetic-2").
+GroundMotion pair_of(const RecordSamples& h1, const RecordSamples& h2, ExcitationSpec spec) {
+  spec.second = SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = spec.units};
+  return process_record(h1, spec, h2);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(APairIsBothRecordsOnTheUnionOfTheirTimesOverTheSpanBothCover) {
+  // H1 every 0.02 s to 0.2 s, H2 every 0.03 s to 0.15 s: the pair spans [0, 0.15] on H1's times
+  // and H2's own, each component linear between its own samples (a_i = i: value = t / dt).
+  const GroundMotion motion = pair_of(ramp(11, 0.02), ramp(6, 0.03), spec_in(AccelUnits::m_per_s2));
+  BOOST_TEST(motion.is_pair());
+  const std::vector<double> expected{0.0, 0.02, 0.03, 0.04, 0.06, 0.08, 0.09, 0.10, 0.12, 0.14, 0.15};
+  BOOST_TEST(motion.time_s() == expected, tt::tolerance(1e-12) << tt::per_element());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    BOOST_TEST(motion.accel_mps2(0)[i] == expected[i] / 0.02, tt::tolerance(1e-9));
+    BOOST_TEST(motion.accel_mps2(1)[i] == expected[i] / 0.03, tt::tolerance(1e-9));
+  }
+  // A time of H2 within round-off of one of H1 (0.06 = 3 x 0.02 = 2 x 0.03) is H1's, not a sliver.
+  BOOST_TEST(motion.time_s()[4] == 3 * 0.02);
+  BOOST_TEST(motion.accel_at(0.05, 1) == 0.05 / 0.03, tt::tolerance(1e-12));
+  BOOST_TEST(motion.accel_at(0.2, 1) == 0.0);  // past the pair's end
+}
+
+BOOST_AUTO_TEST_CASE(APairIsScaledByOneFactorFromItsLargerPeak) {
+  ExcitationSpec spec = spec_in(AccelUnits::m_per_s2);
+  spec.scale_to_pga_g = 0.5;
+  spec.g_mps2 = 10.0;
+  // H1 peaks at 4 (at 0.04 s), H2 at -8 within the common span [0, 0.04] (its -10 lies beyond).
+  const RecordSamples h2{{0.0, 0.01, 0.02, 0.03, 0.04, 0.05}, {0.0, -2.0, -4.0, -6.0, -8.0, -10.0}};
+  const GroundMotion motion = pair_of(ramp(5, 0.01), h2, spec);
+  BOOST_TEST(motion.peak_mps2(1) == 5.0, tt::tolerance(1e-14));
+  BOOST_TEST(motion.peak_mps2(0) == 2.5, tt::tolerance(1e-14));  // the ratio kept: 4/8 of 0.5 g
+  BOOST_TEST(motion.end_s() == 0.04, tt::tolerance(1e-14));      // H1 ends first
+}
+
+BOOST_AUTO_TEST_CASE(APairThatSharesNoTimeOrBadSecondKeysAreRefusedByName) {
+  RecordSamples late = ramp(3, 0.01);
+  for (double& t : late.time_s) t += 1.0;
+  BOOST_TEST(names(refusal_of([&] { pair_of(ramp(3, 0.01), late, spec_in(AccelUnits::g)); }), "excitation.second.file",
+                   "synthetic-2", "shares no time span"));
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.second = SecondComponentSpec{.file = "synthetic-2",
+                                    .read = {.format = RecordFormat::columns, .time_column = 2, .accel_column = 2}};
+  BOOST_TEST(names(refusal_of([&] { process_record(ramp(3, 0.01), spec, ramp(3, 0.01)); }),
+                   "excitation.second.accel_column", "2", "excitation.second.time_column"));
+  spec.second = SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = AccelUnits::g, .dt_override_s = 1e-9};
+  BOOST_TEST(names(refusal_of([&] { process_record(ramp(3, 0.01), spec, ramp(3, 0.01)); }), "excitation.second.dt_s",
+                   "1e-09", "[1e-05, 1] s"));
+  spec.second = SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = AccelUnits::g};  // 300 g
+  BOOST_TEST(names(refusal_of([&] {
+                     process_record(ramp(3, 0.01), spec, RecordSamples{{0, 0.02}, {0, 300}});
+                   }),
+                   "excitation.second.units", "", "limit of 10 g"));
 }

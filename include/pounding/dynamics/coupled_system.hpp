@@ -45,15 +45,21 @@ class CoupledSystem {
   const VectorXd& mass_diagonal() const { return mass_; }
   const MatrixXd& stiffness() const { return stiffness_; }  // block-diagonal K (kN/m, kN, kN·m)
   const MatrixXd& damping() const { return damping_; }      // block-diagonal C
-  /// r: the ground motion's direction (cos β, sin β, 0) repeated per floor, size n.
-  const VectorXd& influence() const { return influence_; }
+  /// r_c: the direction of ground-motion component c repeated per floor, size n: (cos β, sin β, 0)
+  /// for H1 (c = 0), (−sin β, cos β, 0) for a pair's H2 (c = 1).
+  /// @pre 0 <= component < ground_motion().component_count().
+  Eigen::MatrixXd::ConstColXpr influence(int component = 0) const { return influence_.col(component); }
+  /// Every r_c as a column (n × components).
+  const MatrixXd& influences() const { return influence_; }
+  /// Σ_c r_c a_c(t): the ground's acceleration on every DOF (m/s², zero on rotations).
+  VectorXd ground_acceleration(double t) const;
   /// Building b's complete modal basis under the ground motion (model::modal_basis with b's part
-  /// of influence()), built at the first call and kept, so that a run's solvers share one. Safe to
+  /// of influences()), built at the first call and kept, so that a run's solvers share one. Safe to
   /// call from several threads. @throws std::runtime_error as model::modal_basis (and tries
   /// again at the next call).
   const model::ModalBasis& modal_basis(int b) const;
 
-  /// The ground motion's effective force f(t) = −M r a_g(t) (kN, kN·m).
+  /// The ground motion's effective force f(t) = −M Σ_c r_c a_c(t) (kN, kN·m).
   void external_force(double t, Eigen::Ref<VectorXd> force) const;
 
   /// Free motion (no contact): ẏ = A y + B a_g(t), plus M⁻¹ times the yielding springs' slip
@@ -138,7 +144,7 @@ class CoupledSystem {
   /// With `springs`: the energy the yielding springs store (YieldingSprings::stored_energy_change).
   double strain_energy(ConstVectorRef y, const SpringStates* springs = nullptr) const;
   double damping_power(ConstVectorRef y) const;            // q̇ᵀ C q̇ ≥ 0
-  double input_power(double t, ConstVectorRef y) const;    // −q̇ᵀ M r a_g(t)
+  double input_power(double t, ConstVectorRef y) const;    // −q̇ᵀ M Σ_c r_c a_c(t)
 
   static constexpr double hold_time_constant_s = 1e-2;
 
@@ -171,7 +177,7 @@ class CoupledSystem {
   VectorXd mass_;          // diagonal of M, size n
   MatrixXd stiffness_;     // block-diagonal K
   MatrixXd damping_;       // block-diagonal C
-  VectorXd influence_;     // r: (cos β, sin β, 0) per floor
+  MatrixXd influence_;     // r_c as columns: (cos β, sin β, 0) per floor, and a pair's (−sin β, cos β, 0)
   MatrixXd a_matrix_;      // A
   // K and C couple only a storey's two floors: the free motion and the energies use them sparse,
   // O(n) instead of the dense A's O(n²).

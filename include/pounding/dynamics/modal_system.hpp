@@ -25,7 +25,8 @@ class ModalSystem {
   int dof() const { return system_.dof(); }
   int state_size() const { return system_.state_size(); }
   const VectorXd& omega_rad_s() const { return omega_rad_s_; }        // ωᵢ
-  const VectorXd& participation() const { return participation_; }    // Γᵢ = φᵢᵀ M r (√t)
+  /// Γᵢc = φᵢᵀ M r_c (√t): a row per mode, a column per ground-motion component.
+  const MatrixXd& participation() const { return participation_; }
   const VectorXd& damping_per_s() const { return damping_per_s_; }    // 2ζᵢωᵢ
 
   /// Free motion ż = (η̇, −Ω²η − 2ZΩη̇ − Γ a_g(t)): O(n).
@@ -55,7 +56,8 @@ class ModalSystem {
   std::array<MatrixXd, 2> shapes_;        // Φ_b, columns the modes
   std::array<MatrixXd, 2> inverse_;       // Φ_bᵀ M_b
   MatrixXd shape_full_, inverse_full_;    // block-diagonal over both buildings (Jacobian maps)
-  VectorXd omega_rad_s_, damping_per_s_, participation_;
+  VectorXd omega_rad_s_, damping_per_s_;
+  MatrixXd participation_;
 };
 
 }  // namespace pounding::dynamics

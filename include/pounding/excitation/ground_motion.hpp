@@ -1,6 +1,7 @@
 #pragma once
-// The ground acceleration a_g(t) (m/s²) acting along direction β in plan, piecewise linear
-// between samples, built from a record and the scene's processing options.
+// The ground acceleration (m/s²) in plan, piecewise linear between samples, built from a record
+// and the scene's processing options: one component a_g(t) along direction β, or a pair of
+// horizontal components, H1 along β and H2 along β + 90°, on one time base.
 
 #include <filesystem>
 #include <optional>
@@ -25,8 +26,18 @@ inline constexpr double kMaxSampleSpacing_s = 1.0;
 inline constexpr double kMaxPeakAccel_g = 10.0;         // processed peak |a_g|; recorded peaks stay below 5 g
 inline constexpr double kGravityRange_mps2[2] = {9.0, 10.5};  // g_mps2: Earth's 9.78…9.83, or 10 for hand checks
 
-/// How a record file becomes the excitation. Processing order: read, override the time step,
-/// cut [start, start + duration], convert to m/s², scale.
+/// The second horizontal component of a pair (H2), acting along direction_deg + 90°: its own
+/// file, layout, units and re-spacing; the cut, the scaling, g and the direction are the pair's.
+struct SecondComponentSpec {
+  std::filesystem::path file;
+  RecordReadOptions read;
+  AccelUnits units = AccelUnits::g;
+  std::optional<double> dt_override_s;  // re-space its samples t_i = i·dt (any format)
+};
+
+/// How a record file (or a pair) becomes the excitation. Processing order: read, override the
+/// time step, cut [start, start + duration], convert to m/s², take a pair on the union of its
+/// sample times over the span both cover, scale.
 struct ExcitationSpec {
   std::filesystem::path file;
   RecordReadOptions read;
@@ -35,9 +46,10 @@ struct ExcitationSpec {
   std::optional<double> dt_override_s;   // re-space the samples t_i = i·dt (any format)
   double start_s = 0.0;                  // cut start; times are shifted back by it (s)
   std::optional<double> duration_s;      // cut length; empty keeps the rest of the record
-  std::optional<double> scale_to_pga_g;  // scale so max |a_g| equals this (in g)
-  double scale_factor = 1.0;             // plain multiplier (excludes scale_to_pga_g)
-  double direction_deg = 0.0;            // β: angle of the shaking direction from +x towards +y
+  std::optional<double> scale_to_pga_g;  // scale so max |a_g| (of a pair: of its larger component) equals this (g)
+  double scale_factor = 1.0;             // plain multiplier (excludes scale_to_pga_g); a pair's both components
+  double direction_deg = 0.0;            // β: angle of the shaking direction (H1's) from +x towards +y
+  std::optional<SecondComponentSpec> second;  // H2 of a pair; empty: one component
 
   /// @throws InputError naming the `excitation.*` key, its value and the range it must lie in.
   void validate() const;
@@ -50,17 +62,29 @@ class NonFiniteTime : public std::domain_error {
   explicit NonFiniteTime(double t_s);
 };
 
+/// The ground acceleration: one component, or a pair sharing one time base. Component 0 (H1)
+/// acts along β = direction_rad(), component 1 (H2) along β + 90°, i.e. along (−sin β, cos β).
 class GroundMotion {
  public:
-  /// @pre times strictly increasing, same size as accelerations, at least two samples.
+  /// One component. @pre times strictly increasing, same size as accelerations, ≥ 2 samples.
   GroundMotion(std::vector<double> time_s, std::vector<double> accel_mps2, double direction_rad);
+  /// A pair. @pre as above, both acceleration vectors the size of the times.
+  GroundMotion(std::vector<double> time_s, std::vector<double> h1_mps2, std::vector<double> h2_mps2,
+               double direction_rad);
 
-  /// a_g(t) in m/s², linear between samples, 0 outside the record.
+  /// 1 or 2.
+  int component_count() const { return static_cast<int>(accel_mps2_.size()); }
+  bool is_pair() const { return component_count() == 2; }
+  /// The component's acceleration in m/s², linear between samples, 0 outside the record.
+  /// @pre 0 <= component < component_count().
   /// @throws NonFiniteTime if t_s is NaN or infinite (never reads outside the samples).
-  double accel_at(double t_s) const;
+  double accel_at(double t_s, int component = 0) const;
 
   const std::vector<double>& time_s() const { return time_s_; }
-  const std::vector<double>& accel_mps2() const { return accel_mps2_; }
+  const std::vector<double>& accel_mps2(int component = 0) const {
+    return accel_mps2_[static_cast<std::size_t>(component)];
+  }
+  /// β: H1's direction from +x towards +y (rad).
   double direction_rad() const { return direction_rad_; }
   double start_s() const { return time_s_.front(); }
   /// The first sample clearly after t (s), where the forcing's slope may change: the stop time
@@ -72,24 +96,29 @@ class GroundMotion {
   double sample_spacing_s() const;
   /// A fixed step of step_s (s) is longer than the sample spacing: it leaves samples out.
   bool skips_samples(double step_s) const { return step_s > sample_spacing_s() * (1.0 + 1e-9); }
-  /// max |a_g| (m/s²) and the time of that sample (s).
-  double peak_mps2() const;
-  double peak_time_s() const;
+  /// A component's max |a| (m/s²) and the time of that sample (s).
+  double peak_mps2(int component = 0) const;
+  double peak_time_s(int component = 0) const;
 
  private:
   std::vector<double> time_s_;
-  std::vector<double> accel_mps2_;
+  std::vector<std::vector<double>> accel_mps2_;  // one per component
   double direction_rad_;
-  std::size_t peak_index_ = 0;
+  std::vector<std::size_t> peak_index_;  // one per component
+
+  void find_peaks();
 };
 
-/// Reads, cuts, converts and scales the record of `spec` (spec.file must already be resolved).
+/// Reads, cuts, converts and scales the record of `spec` (and of spec.second: a pair; files
+/// already resolved).
 /// @throws InputError for an invalid spec, a bad record file, times outside
-///   [0, kMaxRecordDuration_s], a duration_s beyond the record's end, or a processed peak above
-///   kMaxPeakAccel_g.
+///   [0, kMaxRecordDuration_s], a duration_s beyond a record's end, a pair whose components
+///   share no time span, or a processed peak above kMaxPeakAccel_g.
 GroundMotion load_ground_motion(const ExcitationSpec& spec);
 
-/// The same processing applied to samples already in memory (`spec.file` names them in errors).
-GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec);
+/// The same processing applied to samples already in memory (`spec.file` names them in errors;
+/// `second` holds H2's samples when spec.second is set, and is ignored otherwise).
+GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec,
+                            std::optional<RecordSamples> second = std::nullopt);
 
 }  // namespace pounding::excitation

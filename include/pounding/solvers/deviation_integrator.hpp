@@ -29,8 +29,13 @@ class FreeResponse {
   void at(double t, Eigen::VectorXd& y, Eigen::VectorXd& y_dot) const;
 
  private:
-  /// Mode i's (η, η̇) advanced by tau from `from` (a modal state) under a_g = a_start + slope·s.
-  Eigen::Vector2d advance(int i, const Eigen::VectorXd& from, double tau, double a_start, double slope) const;
+  /// Each ground-motion component's acceleration at t (m/s²; the second 0 for one component).
+  Eigen::Vector2d ground_accel(double t) const;
+  /// Mode i's load Σ_c Γ_ic a_c (a_c: `accel`).
+  double modal_load(int i, const Eigen::Vector2d& accel) const;
+  /// Mode i's (η, η̇) advanced by tau from `from` (a modal state) under a_c = a_start_c + slope_c·s.
+  Eigen::Vector2d advance(int i, const Eigen::VectorXd& from, double tau, const Eigen::Vector2d& a_start,
+                          const Eigen::Vector2d& slope) const;
   /// The modal state (η, η̇) and its rate at t, into z and z_dot.
   void modal_at(double t, Eigen::VectorXd& z, Eigen::VectorXd& z_dot) const;
 

@@ -30,7 +30,7 @@ class GapClearance {
 
   /// The longest window [t, t + τ], τ ≤ horizon_s (s), over which every candidate i with
   /// watched[i] provably keeps g_i > clearance_m, for the free motion from y = (q, q̇) at t
-  /// under any ground motion with |a_g| ≤ peak_accel_mps2 inside the window; 0 when some
+  /// under any ground motion with every component's |a_c| ≤ peak_accel_mps2 inside the window; 0 when some
   /// watched gap is not above clearance_m now. Also a lower bound when the window is shorter
   /// than horizon_s (to within 2⁻²⁴ of the horizon, by bisection).
   /// @pre watched.size() == candidates, horizon_s ≥ 0, peak_accel_mps2 ≥ 0; no contact force
@@ -46,7 +46,7 @@ class GapClearance {
     int offset = 0;                   // index in q of the building's first DOF
     Eigen::MatrixXd projection;       // Φᵀ M: η = projection · q_b
     Eigen::VectorXd omega_rad_s;
-    Eigen::VectorXd participation;    // |Γ| per mode
+    Eigen::VectorXd participation;    // Σ_c |Γ_c| per mode (|Γ| for one ground-motion component)
     std::vector<int> floors;          // contact floors (1-based), in the order of the rows below
     Eigen::MatrixXd rate_rows;        // |Φ_jk| over the contact floors' (u, v, φ): |q̇_j| ≤ rate_rows Â
     Eigen::MatrixXd displacement_rows;  // |Φ_jk| / ω_k: |q_j| ≤ displacement_rows Â

@@ -71,15 +71,16 @@ class ModalExactIntegrator final : public Integrator {
   /// Modal displacements and rates of both buildings (building 1's modes first).
   struct ModalState {
     Eigen::VectorXd eta, eta_rate;
-    /// a_g and ȧ_g there, for the static correction: set by modal_at (a restart's state is never
-    /// formed back into a physical one: the loop's y is kept as it is).
-    double accel_mps2 = 0.0, accel_rate_mps3 = 0.0;
+    /// Each ground-motion component's a_c and ȧ_c there, for the static correction: set by
+    /// modal_at (a restart's state is never formed back into a physical one: the loop's y is kept
+    /// as it is).
+    Eigen::Vector2d accel_mps2 = Eigen::Vector2d::Zero(), accel_rate_mps3 = Eigen::Vector2d::Zero();
   };
-  /// The current step: its start, the modal state there, and a_g = accel + slope·τ over it.
+  /// The current step: its start, the modal state there, and a_c = accel_c + slope_c·τ over it.
   struct Segment {
     double t_start_s = 0.0;
     ModalState start;
-    double accel_mps2 = 0.0, slope_mps3 = 0.0;
+    Eigen::Vector2d accel_mps2 = Eigen::Vector2d::Zero(), slope_mps3 = Eigen::Vector2d::Zero();
   };
   /// Every mode's OscillatorStep over one τ, filled per building as asked for.
   struct CachedSteps {
@@ -119,11 +120,13 @@ class ModalExactIntegrator final : public Integrator {
   std::array<model::ModalBasis, 2> bases_;
   std::array<int, 2> mode_offset_{0, 0};  // first mode of each building in ModalState
   std::array<int, 2> dof_offset_{0, 0};   // first DOF of each building in q
-  Eigen::VectorXd omega_, damping_ratio_, participation_;  // every mode, building 1's first
+  Eigen::VectorXd omega_, damping_ratio_;  // every mode, building 1's first
+  Eigen::MatrixXd participation_;          // Γ: a row per mode as above, a column per ground-motion component
+  int components_ = 1;                     // of the ground motion
   // Contact floors' DOFs: per building, the local DOF indices and the matching rows of Φ.
   std::array<std::vector<int>, 2> contact_dofs_;
   std::array<Eigen::MatrixXd, 2> contact_shapes_;
-  std::array<Eigen::VectorXd, 2> contact_static_;  // the same rows of the static correction R
+  std::array<Eigen::MatrixXd, 2> contact_static_;  // the same rows of the static correction R (a column per component)
   bool truncated_ = false;                         // some mode is left out
   Eigen::VectorXd contact_y_;  // NaN outside the contact floors
   StepCache step_cache_, probe_cache_;
