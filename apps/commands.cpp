@@ -86,6 +86,11 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
   fmt::print("  peak |a_g| = {:.4f} m/s² = {:.4f} g at t = {:.4f} s, direction β = {} deg\n",
              motion.peak_mps2(), motion.peak_mps2() / spec.g_mps2, motion.peak_time_s(),
              spec.direction_deg);
+  if (!spec.second) return;
+  fmt::print("  second component (H2): {} ({}), on the pair's common time base ({} samples)\n",
+             spec.second->file.string(), format_name(spec.second->read.format), t.size());
+  fmt::print("  peak |a_g| = {:.4f} m/s² = {:.4f} g at t = {:.4f} s, direction β + 90 = {} deg\n", motion.peak_mps2(1),
+             motion.peak_mps2(1) / spec.g_mps2, motion.peak_time_s(1), spec.direction_deg + 90.0);
 }
 
 /// "7 storeys of 3 m", or with unequal storeys "7 storeys of 4.5, 3, 3, 3, 3, 3, 3 m" (floor 1 first).

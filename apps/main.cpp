@@ -37,7 +37,16 @@ void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& r
   command.add_option("--scale", record.scale_factor, "Multiply the record by this (replaces the scene's scaling)");
   command.add_option("--pga-g", record.pga_g,
                      "Scale the record to this peak |a_g| in g (replaces the scene's scaling)");
-  command.add_option("--direction-deg", record.direction_deg, "Direction of the shaking in plan (degrees from +x)");
+  command.add_option(
+      "--direction-deg", record.direction_deg,
+      "Direction of the shaking in plan (degrees from +x); a pair's second component acts 90 degrees on");
+  command.add_option_function<std::string>(
+      "--record2", [&record](const std::string& file) { record.second_file = file; },
+      "Second horizontal component of a pair (path from the current folder), read with the record's format and "
+      "units, acting along --direction-deg + 90 degrees; replaces the scene's [excitation.second]");
+  command.add_option("--record2-column", record.second_accel_column,
+                     "Column of the second component's acceleration (from 1); a pair from one file: --record F "
+                     "--record-column 2 --record2 F --record2-column 3");
 }
 
 /// A study's timed repetitions: each repeats the whole ladder (about a minute on the paper scene).
@@ -50,6 +59,7 @@ std::map<std::string, std::pair<long long, long long>> integer_ranges_of_options
   std::map<std::string, std::pair<long long, long long>> ranges = {
       {"--order", {1, 12}},  // any ARKODE table; the method's own orders are checked after
       {"--record-column", {1, 1000}},
+      {"--record2-column", {1, 1000}},
       {"--max-steps", {1, 1000000000000}},
       {"--max-history-values", {1, 1000000000000}},
       {"--threads", {0, 4096}}};

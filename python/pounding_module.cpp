@@ -326,6 +326,13 @@ PYBIND11_MODULE(_pounding, m) {
       .def_property_readonly(
           "record_file", [](const Scene& s) { return s.excitation.file; }, "excitation.file: the record")
       .def_property_readonly(
+          "record2_file",
+          [](const Scene& s) -> std::optional<std::filesystem::path> {
+            if (!s.excitation.second) return std::nullopt;
+            return s.excitation.second->file;
+          },
+          "excitation.second.file: a pair's second horizontal component (None for one component)")
+      .def_property_readonly(
           "history", [](const Scene& s) { return s.output.history; }, "output.history: whether runs keep the history")
       .def_property_readonly(
           "peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
@@ -345,15 +352,23 @@ PYBIND11_MODULE(_pounding, m) {
           [](const Scene& scene, std::filesystem::path file, std::optional<std::string> format,
              std::optional<std::string> units, std::optional<double> scale_factor, std::optional<double> scale_to_pga_g,
              std::optional<double> direction_deg, std::optional<double> dt_s, std::optional<int> accel_column,
-             bool read) {
+             std::optional<std::filesystem::path> record2, std::optional<int> record2_column, bool read) {
             return with_record(scene,
-                               {.file = std::move(file), .format = std::move(format), .units = std::move(units),
-                                .dt_s = dt_s, .accel_column = accel_column, .scale_factor = scale_factor,
-                                .pga_g = scale_to_pga_g, .direction_deg = direction_deg},
+                               {.file = std::move(file),
+                                .format = std::move(format),
+                                .units = std::move(units),
+                                .dt_s = dt_s,
+                                .accel_column = accel_column,
+                                .scale_factor = scale_factor,
+                                .pga_g = scale_to_pga_g,
+                                .direction_deg = direction_deg,
+                                .second_file = std::move(record2),
+                                .second_accel_column = record2_column},
                                read);
           },
           py::arg("file"), py::arg("format"), py::arg("units"), py::arg("scale_factor"), py::arg("scale_to_pga_g"),
-          py::arg("direction_deg"), py::arg("dt_s"), py::arg("accel_column"), py::arg("read"))
+          py::arg("direction_deg"), py::arg("dt_s"), py::arg("accel_column"), py::arg("record2"),
+          py::arg("record2_column"), py::arg("read"))
       .def("_with_solver", &with_solver, py::arg("method"), py::arg("settings"));
 
   m.def(

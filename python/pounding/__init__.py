@@ -45,17 +45,20 @@ Scene = _pounding.Scene
 
 
 def _with_record(self, file, format=None, units=None, scale_factor=None, scale_to_pga_g=None,
-                 direction_deg=None, dt_s=None, accel_column=None, read=True):
+                 direction_deg=None, dt_s=None, accel_column=None, record2=None, record2_column=None, read=True):
     """The scene under another record or scaling, as `pounding run --record FILE ...` applies it:
     every argument left None keeps the scene's value; a new file drops the old file's dt_s,
     columns and cut (the arguments may set dt_s and accel_column again); scale_factor and
     scale_to_pga_g each replace the scene's scaling. The record is read now, so an unreadable one
     raises here. The path is used as given (relative to the current folder).
+    record2 (and record2_column) make a pair, as `--record2` and `--record2-column`: the second
+    horizontal component, read with the record's format and units, acting along direction_deg + 90;
+    a new file without record2 drops the scene's second component.
     Errors name the scene key (`excitation.scale_to_pga_g`, ...) that the argument sets.
     read=False checks the arguments and that the file exists without reading it (as a record list
     is checked); the record is then read by the run."""
     return self._with_record(file, format, units, scale_factor, scale_to_pga_g, direction_deg, dt_s,
-                             accel_column, read)
+                             accel_column, record2, record2_column, read)
 
 
 def _check_settings(settings):

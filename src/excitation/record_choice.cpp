@@ -7,15 +7,42 @@
 namespace pounding::excitation {
 
 bool RecordChoice::empty() const {
-  return !file && !format && !units && !dt_s && !accel_column && !scale_factor && !pga_g && !direction_deg;
+  return !file && !format && !units && !dt_s && !accel_column && !scale_factor && !pga_g && !direction_deg &&
+         !second_file && !second_accel_column;
 }
+
+namespace {
+
+void require_record_file(const std::string& key, const std::filesystem::path& file) {
+  std::error_code unreadable;  // e.g. a name too long for the system: refused like a missing file
+  if (!std::filesystem::is_regular_file(file, unreadable)) throw InputError(key, file.string(), "no such record file");
+}
+
+/// The choice's second component: a new H2 read as H1 is, or the scene's H2 with another column.
+void apply_second(ExcitationSpec& spec, const RecordChoice& choice) {
+  if (choice.second_file) {
+    require_record_file("excitation.second.file", *choice.second_file);
+    spec.second =
+        SecondComponentSpec{.file = *choice.second_file, .read = {.format = spec.read.format}, .units = spec.units};
+    // A single-format H2 is spaced as H1 is.
+    if (spec.read.format == RecordFormat::single) spec.second->read.dt_s = spec.read.dt_s;
+  } else if (choice.file) {
+    spec.second.reset();
+  }
+  if (choice.second_accel_column) {
+    if (!spec.second) {
+      throw InputError("excitation.second.accel_column", std::to_string(*choice.second_accel_column),
+                       "there is no second component: name its record file too");
+    }
+    spec.second->read.accel_column = *choice.second_accel_column;
+  }
+}
+
+}  // namespace
 
 ExcitationSpec with_record(ExcitationSpec spec, const RecordChoice& choice) {
   if (choice.file) {
-    std::error_code unreadable;  // e.g. a name too long for the system: refused like a missing file
-    if (!std::filesystem::is_regular_file(*choice.file, unreadable)) {
-      throw InputError("excitation.file", choice.file->string(), "no such record file");
-    }
+    require_record_file("excitation.file", *choice.file);
     // The old file's layout and cut mean nothing for another record.
     spec.file = *choice.file;
     spec.read = RecordReadOptions{.format = spec.read.format};
@@ -53,6 +80,7 @@ ExcitationSpec with_record(ExcitationSpec spec, const RecordChoice& choice) {
     spec.scale_factor = 1.0;
   }
   if (choice.direction_deg) spec.direction_deg = *choice.direction_deg;
+  apply_second(spec, choice);
   spec.validate();
   return spec;
 }

@@ -38,6 +38,10 @@ Provenance make_provenance(const analysis::Scene& scene, std::string command_lin
     p.record_file = std::filesystem::absolute(scene.excitation.file).lexically_normal();
     p.record_sha256 = sha256_file_hex(scene.excitation.file);
   }
+  if (scene.excitation.second) {
+    p.record2_file = std::filesystem::absolute(scene.excitation.second->file).lexically_normal();
+    p.record2_sha256 = sha256_file_hex(scene.excitation.second->file);
+  }
   p.command_line = std::move(command_line);
   p.date_utc = utc_now_iso8601();
   return p;
@@ -69,6 +73,10 @@ nlohmann::ordered_json provenance_json(const Provenance& p) {
   document["scene_sha256"] = text_or_null(p.scene_sha256);
   document["record_file"] = text_or_null(p.record_file.string());
   document["record_sha256"] = text_or_null(p.record_sha256);
+  if (!p.record2_file.empty()) {
+    document["record2_file"] = p.record2_file.string();
+    document["record2_sha256"] = p.record2_sha256;
+  }
   document["command_line"] = text_or_null(p.command_line);
   document["date_utc"] = p.date_utc;
   return document;

@@ -469,40 +469,73 @@ model::BuildingDefinition read_building(TableReader table) {
   return b;
 }
 
-excitation::ExcitationSpec read_excitation(TableReader table, const std::filesystem::path& scene_dir) {
-  excitation::ExcitationSpec spec;
+/// A record file named by `file` in `table`, resolved against the scene's folder; refused if missing.
+std::filesystem::path read_record_file(TableReader& table, const std::filesystem::path& scene_dir) {
   const toml::node& file_node = table.require("file");
   const std::filesystem::path file = table.string_of(file_node, table.key_path("file"));
-  spec.file = (file.is_absolute() ? file : scene_dir / file).lexically_normal();
+  std::filesystem::path resolved = (file.is_absolute() ? file : scene_dir / file).lexically_normal();
   std::error_code unreadable;  // e.g. a name too long for the system: refused like a missing file
-  if (!std::filesystem::is_regular_file(spec.file, unreadable)) {
+  if (!std::filesystem::is_regular_file(resolved, unreadable)) {
     throw table.error(file_node, table.key_path("file"),
-                      fmt::format("no such record file (looked for {})", spec.file.string()));
+                      fmt::format("no such record file (looked for {})", resolved.string()));
   }
-  const toml::node& format_node = table.require("format");
-  const auto format = excitation::parse_record_format(table.string_of(format_node, table.key_path("format")));
-  if (!format) throw table.error(format_node, table.key_path("format"), "expected peer-at2, columns or single");
-  spec.read.format = *format;
-  const toml::node& units_node = table.require("units");
-  const auto units = excitation::parse_accel_units(table.string_of(units_node, table.key_path("units")));
-  if (!units)
-    throw table.error(units_node, table.key_path("units"), fmt::format("expected {}", excitation::kAccelUnitChoices));
-  spec.units = *units;
+  return resolved;
+}
 
-  const std::optional<double> dt = table.optional_number("dt_s");
-  if (spec.read.format == excitation::RecordFormat::single) {
-    spec.read.dt_s = dt;
-  } else {
-    spec.dt_override_s = dt;
+/// `format` and `units`: required for H1; a pair's H2 takes H1's when it leaves them out.
+void read_format_and_units(TableReader& table, excitation::RecordReadOptions& read, excitation::AccelUnits& units,
+                           bool required) {
+  if (required || table.has("format")) {
+    const toml::node& format_node = table.require("format");
+    const auto format = excitation::parse_record_format(table.string_of(format_node, table.key_path("format")));
+    if (!format) throw table.error(format_node, table.key_path("format"), "expected peer-at2, columns or single");
+    read.format = *format;
   }
-  spec.read.time_column = table.optional_integer("time_column").value_or(1);
-  spec.read.accel_column = table.optional_integer("accel_column");
+  if (required || table.has("units")) {
+    const toml::node& units_node = table.require("units");
+    const auto parsed = excitation::parse_accel_units(table.string_of(units_node, table.key_path("units")));
+    if (!parsed)
+      throw table.error(units_node, table.key_path("units"), fmt::format("expected {}", excitation::kAccelUnitChoices));
+    units = *parsed;
+  }
+}
+
+/// dt_s (the spacing of a `single` file, else a re-spacing) and the columns.
+void read_layout(TableReader& table, excitation::RecordReadOptions& read, std::optional<double>& dt_override_s) {
+  const std::optional<double> dt = table.optional_number("dt_s");
+  if (read.format == excitation::RecordFormat::single) {
+    read.dt_s = dt;
+  } else {
+    dt_override_s = dt;
+  }
+  read.time_column = table.optional_integer("time_column").value_or(1);
+  read.accel_column = table.optional_integer("accel_column");
+}
+
+/// [excitation.second]: H2 of a pair, its format, units and (format single) spacing H1's unless given.
+excitation::SecondComponentSpec read_second_component(TableReader table, const std::filesystem::path& scene_dir,
+                                                      const excitation::ExcitationSpec& first) {
+  excitation::SecondComponentSpec second{
+      .file = read_record_file(table, scene_dir), .read = {.format = first.read.format}, .units = first.units};
+  read_format_and_units(table, second.read, second.units, false);
+  read_layout(table, second.read, second.dt_override_s);
+  if (second.read.format == excitation::RecordFormat::single && !second.read.dt_s) second.read.dt_s = first.read.dt_s;
+  table.finish();
+  return second;
+}
+
+excitation::ExcitationSpec read_excitation(TableReader table, const std::filesystem::path& scene_dir) {
+  excitation::ExcitationSpec spec;
+  spec.file = read_record_file(table, scene_dir);
+  read_format_and_units(table, spec.read, spec.units, true);
+  read_layout(table, spec.read, spec.dt_override_s);
   spec.start_s = table.number_or("start_s", 0.0);
   spec.duration_s = table.optional_number("duration_s");
   spec.scale_to_pga_g = table.optional_number("scale_to_pga_g");
   spec.scale_factor = table.number_or("scale_factor", 1.0);
   spec.direction_deg = table.number_or("direction_deg", 0.0);
   spec.g_mps2 = table.number_or("g_mps2", spec.g_mps2);
+  if (auto second = table.optional_subtable("second")) spec.second = read_second_component(*second, scene_dir, spec);
   table.finish();
   return spec;
 }
@@ -638,7 +671,9 @@ std::map<std::string, std::string> record_option_names(const excitation::RecordC
       {"excitation.accel_column", choice.accel_column.has_value(), "--record-column"},
       {"excitation.scale_factor", choice.scale_factor.has_value(), "--scale"},
       {"excitation.scale_to_pga_g", choice.pga_g.has_value(), "--pga-g"},
-      {"excitation.direction_deg", choice.direction_deg.has_value(), "--direction-deg"}};
+      {"excitation.direction_deg", choice.direction_deg.has_value(), "--direction-deg"},
+      {"excitation.second.file", choice.second_file.has_value(), "--record2"},
+      {"excitation.second.accel_column", choice.second_accel_column.has_value(), "--record2-column"}};
   std::map<std::string, std::string> names;
   for (const auto& [key, given, option] : options) {
     if (given) names[key] = option;

@@ -197,3 +197,20 @@ def test_yielding_outputs_are_the_summary_per_column():
             assert storey["springs_yielded"] == int((rows["yield_count"] > 0).sum())
     elastic = pounding.run(pounding.load_scene(PAPER))
     assert elastic.yielding is None and len(elastic.yielding_array) == 0
+
+
+def test_a_pair_of_components_from_python_runs_as_the_scene_would():
+    """record2 / record2_column make a pair as --record2 does; a new record alone drops the pair."""
+    pair_scene = pounding.load_scene(SOURCE / "examples" / "beyond-paper" / "two-components.toml")
+    assert pair_scene.record2_file is not None
+    kobe = SOURCE / "examples" / "records" / "kobe1995_jma_ns_ew_0.005s_cms2.txt"
+    single = pair_scene.with_record(kobe, dt_s=0.005, accel_column=1)
+    assert single.record2_file is None
+    rebuilt = pair_scene.with_record(kobe, dt_s=0.005, accel_column=1, record2=kobe, record2_column=2)
+    assert pathlib.Path(rebuilt.record2_file) == kobe
+    # The same pair as the scene's [excitation.second], so the same contact-free motion.
+    a = pounding.run(pair_scene.with_gap(1.0).with_outputs(history=False))
+    b = pounding.run(rebuilt.with_gap(1.0).with_outputs(history=False))
+    assert a.peaks == b.peaks
+    with pytest.raises(pounding.InputError, match="excitation.second.accel_column"):
+        pounding.load_scene(PAPER).with_record(kobe, format="single", dt_s=0.005, accel_column=1, record2_column=2)

@@ -23,6 +23,11 @@ struct RecordChoice {
   std::optional<double> scale_factor{};  // replaces scale_factor and drops scale_to_pga_g
   std::optional<double> pga_g{};         // replaces scale_to_pga_g and resets scale_factor to 1
   std::optional<double> direction_deg{};
+  /// A pair's second component (H2, along direction + 90°), already resolved: read with the
+  /// (new) record's format and units. Setting `file` without it drops the scene's H2 (it belongs
+  /// to the old record).
+  std::optional<std::filesystem::path> second_file{};
+  std::optional<int> second_accel_column{};  // as the key excitation.second.accel_column
 
   bool empty() const;
 };
@@ -31,8 +36,9 @@ struct RecordChoice {
 /// a file, that file checked to exist. The record itself is not read.
 /// @throws InputError keyed as the scene keys are (`excitation.file`, `excitation.format`,
 ///   `excitation.units`, `excitation.scale_factor` for scale_factor, `excitation.scale_to_pga_g`
-///   for pga_g, ...) for an unknown format or unit, a missing file, scale_factor and pga_g
-///   together, or a value out of its range; callers rename the key to what the user typed.
+///   for pga_g, `excitation.second.file`, ...) for an unknown format or unit, a missing file,
+///   scale_factor and pga_g together, a second component's column without a second component,
+///   or a value out of its range; callers rename the key to what the user typed.
 ExcitationSpec with_record(ExcitationSpec spec, const RecordChoice& choice);
 
 }  // namespace pounding::excitation

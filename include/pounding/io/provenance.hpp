@@ -19,6 +19,8 @@ struct Provenance {
   std::string scene_sha256;          // 64 hex digits; empty with scene_file
   std::filesystem::path record_file;  // absolute; empty when the scene names none
   std::string record_sha256;          // empty with record_file
+  std::filesystem::path record2_file;  // a pair's second component (absolute); empty for one component
+  std::string record2_sha256;          // empty with record2_file
   std::string command_line;         // as typed, arguments quoted for a POSIX shell where needed; empty: not a CLI run
   std::string date_utc;             // when the work started, ISO 8601 ("2026-11-21T19:42:44Z")
 };
@@ -37,7 +39,8 @@ std::string utc_now_iso8601();
 std::string command_line_text(const std::vector<std::string>& arguments);
 
 /// {"program_version", "git_commit", "scene_file", "scene_sha256", "record_file", "record_sha256",
-/// "command_line", "date_utc"} in this order; unknown values (empty) are null.
+/// ["record2_file", "record2_sha256" for a pair,] "command_line", "date_utc"} in this order;
+/// unknown values (empty) are null.
 nlohmann::ordered_json provenance_json(const Provenance& provenance);
 
 }  // namespace pounding::io
