@@ -77,6 +77,13 @@ std::string_view format_name(excitation::RecordFormat format) {
   return "?";
 }
 
+void print_spectral_scaling(const analysis::Scene& scene, const excitation::GroundMotion& motion) {
+  if (!scene.excitation.scale_to_sa) return;
+  const excitation::SaScaling sa = *analysis::resolved_excitation(scene).scale_to_sa;
+  fmt::print("  scaled by {:.6g} ({}): 5 %-damped {} = {} g at T = {:.4f} s\n", motion.record_scale(), sa.text,
+             motion.is_pair() ? "RotD100 PSA" : "PSA", sa.target_g, *sa.period_s);
+}
+
 void print_excitation(const analysis::Scene& scene, const excitation::GroundMotion& motion) {
   const auto& spec = scene.excitation;
   const auto& t = motion.time_s();
@@ -86,6 +93,7 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
   fmt::print("  peak |a_g| = {:.4f} m/s² = {:.4f} g at t = {:.4f} s, direction β = {} deg\n",
              motion.peak_mps2(), motion.peak_mps2() / spec.g_mps2, motion.peak_time_s(),
              spec.direction_deg);
+  print_spectral_scaling(scene, motion);
   if (!spec.second) return;
   fmt::print("  second component (H2): {} ({}), on the pair's common time base ({} samples)\n",
              spec.second->file.string(), format_name(spec.second->read.format), t.size());

@@ -109,7 +109,7 @@ Scene with_outputs(Scene scene, std::optional<bool> history, std::optional<std::
 Scene with_record(Scene scene, const pounding::excitation::RecordChoice& choice, bool read) {
   try {
     scene.excitation = pounding::excitation::with_record(scene.excitation, choice);
-    if (read) pounding::excitation::load_ground_motion(scene.excitation);
+    if (read) pounding::excitation::load_ground_motion(pounding::analysis::resolved_excitation(scene));
   } catch (const InputError& error) {
     rethrow_in_scene(error, scene);
   }
@@ -242,6 +242,7 @@ py::list record_list(const Scene& scene, const std::filesystem::path& list_or_fo
     item["accel_column"] = choice.accel_column;
     item["scale_factor"] = choice.scale_factor;
     item["scale_to_pga_g"] = choice.pga_g;
+    item["scale_to_sa"] = choice.sa;
     item["direction_deg"] = choice.direction_deg;
     entries.append(item);
   }
@@ -352,7 +353,8 @@ PYBIND11_MODULE(_pounding, m) {
           [](const Scene& scene, std::filesystem::path file, std::optional<std::string> format,
              std::optional<std::string> units, std::optional<double> scale_factor, std::optional<double> scale_to_pga_g,
              std::optional<double> direction_deg, std::optional<double> dt_s, std::optional<int> accel_column,
-             std::optional<std::filesystem::path> record2, std::optional<int> record2_column, bool read) {
+             std::optional<std::filesystem::path> record2, std::optional<int> record2_column,
+             std::optional<std::string> scale_to_sa, bool read) {
             return with_record(scene,
                                {.file = std::move(file),
                                 .format = std::move(format),
@@ -361,6 +363,7 @@ PYBIND11_MODULE(_pounding, m) {
                                 .accel_column = accel_column,
                                 .scale_factor = scale_factor,
                                 .pga_g = scale_to_pga_g,
+                                .sa = std::move(scale_to_sa),
                                 .direction_deg = direction_deg,
                                 .second_file = std::move(record2),
                                 .second_accel_column = record2_column},
@@ -368,7 +371,7 @@ PYBIND11_MODULE(_pounding, m) {
           },
           py::arg("file"), py::arg("format"), py::arg("units"), py::arg("scale_factor"), py::arg("scale_to_pga_g"),
           py::arg("direction_deg"), py::arg("dt_s"), py::arg("accel_column"), py::arg("record2"),
-          py::arg("record2_column"), py::arg("read"))
+          py::arg("record2_column"), py::arg("scale_to_sa"), py::arg("read"))
       .def("_with_solver", &with_solver, py::arg("method"), py::arg("settings"));
 
   m.def(

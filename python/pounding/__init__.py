@@ -45,12 +45,15 @@ Scene = _pounding.Scene
 
 
 def _with_record(self, file, format=None, units=None, scale_factor=None, scale_to_pga_g=None,
-                 direction_deg=None, dt_s=None, accel_column=None, record2=None, record2_column=None, read=True):
+                 direction_deg=None, dt_s=None, accel_column=None, record2=None, record2_column=None,
+                 scale_to_sa=None, read=True):
     """The scene under another record or scaling, as `pounding run --record FILE ...` applies it:
     every argument left None keeps the scene's value; a new file drops the old file's dt_s,
     columns and cut (the arguments may set dt_s and accel_column again); scale_factor and
     scale_to_pga_g each replace the scene's scaling. The record is read now, so an unreadable one
     raises here. The path is used as given (relative to the current folder).
+    scale_to_sa="0.5g@T1" (or "0.5g@B1", "0.5g@B2", "0.5g@1.2s") scales the record so that its
+    5 %-damped PSA (of a pair: RotD100) at that period is the target, as `--scale-to-sa`.
     record2 (and record2_column) make a pair, as `--record2` and `--record2-column`: the second
     horizontal component, read with the record's format and units, acting along direction_deg + 90;
     a new file without record2 drops the scene's second component.
@@ -58,7 +61,7 @@ def _with_record(self, file, format=None, units=None, scale_factor=None, scale_t
     read=False checks the arguments and that the file exists without reading it (as a record list
     is checked); the record is then read by the run."""
     return self._with_record(file, format, units, scale_factor, scale_to_pga_g, direction_deg, dt_s,
-                             accel_column, record2, record2_column, read)
+                             accel_column, record2, record2_column, scale_to_sa, read)
 
 
 def _check_settings(settings):
@@ -121,7 +124,7 @@ def record_list(scene, list_or_folder):
     """The records of a list file or a folder of .AT2 files, as `pounding gap --records` reads them
     for `scene` (the same errors, naming `list:line`, the field and its value): one dict each with
     name, source ("set.txt:12") and the keywords of Scene.with_record (file, format, units, dt_s,
-    accel_column, scale_factor, scale_to_pga_g, direction_deg; None keeps the scene's), so that
+    accel_column, scale_factor, scale_to_pga_g, scale_to_sa, direction_deg; None keeps the scene's), so that
     scene.with_record(**{k: v for k, v in entry.items() if k not in ("name", "source")}) is the
     scene under that record."""
     return _pounding.record_list(scene, list_or_folder)

@@ -51,7 +51,7 @@ SWEEP_KEYS = ("scenes", "records", "gaps_m", "restitutions", "methods", "contact
               "max_wall_time_s", "out")
 RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "dt_s",
                  "accel_column": "accel_column", "scale": "scale_factor", "pga_g": "scale_to_pga_g",
-                 "direction_deg": "direction_deg"}  # field -> Scene.with_record keyword
+                 "sa": "scale_to_sa", "direction_deg": "direction_deg"}  # field -> Scene.with_record keyword
 STIFFNESS_KEYS = ("stiffness_kN_per_m", "stiffness_kN_per_m1_5")  # kelvin; hertzdamp, jankowski
 LAW_KEYS = ("name", *STIFFNESS_KEYS)
 

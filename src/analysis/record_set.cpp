@@ -5,6 +5,7 @@
 #include <cmath>
 #include <mutex>
 
+#include "pounding/analysis/run_scene.hpp"
 #include "pounding/input_error.hpp"
 #include "parallel.hpp"
 
@@ -33,7 +34,7 @@ RecordGap record_gap(Scene scene, const RecordEntry& entry, const solvers::RunBu
     scene.excitation = entry.excitation;
     // Read here for the processed peak and length; needed_gap reads it again (milliseconds,
     // against seconds for the run).
-    const excitation::GroundMotion motion = excitation::load_ground_motion(scene.excitation);
+    const excitation::GroundMotion motion = excitation::load_ground_motion(resolved_excitation(scene));
     row.pga_g = motion.peak_mps2() / scene.excitation.g_mps2;
     row.duration_s = motion.end_s() - motion.start_s();
     const NeededGap gap = needed_gap(scene, budget);

@@ -21,6 +21,8 @@ std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
                                   {.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m});
 }
 
+namespace {
+
 /// The scene's keys that chose how its record is read, as typed ("excitation.format = single,
 /// excitation.accel_column = 99"), for an error the record file itself raised.
 std::string reading_keys(const excitation::ExcitationSpec& spec) {
@@ -34,9 +36,27 @@ std::string reading_keys(const excitation::ExcitationSpec& spec) {
   return keys;
 }
 
+}  // namespace
+
+excitation::ExcitationSpec resolved_excitation(const Scene& scene) {
+  excitation::ExcitationSpec spec = scene.excitation;
+  if (!spec.scale_to_sa || spec.scale_to_sa->building == 0) return spec;
+  double period_s = 0.0;
+  for (int b = 0; b < 2; ++b) {
+    if (spec.scale_to_sa->building != 3 && spec.scale_to_sa->building != b + 1) continue;
+    try {
+      period_s = std::max(period_s, model::make_building(scene.buildings[b]).modes.front().period_s);
+    } catch (const InputError& error) {
+      throw error.in_context(scene.file.string(), fmt::format("building[{}]", b + 1));
+    }
+  }
+  spec.scale_to_sa->period_s = period_s;
+  return spec;
+}
+
 excitation::GroundMotion scene_ground_motion(const Scene& scene) {
   try {
-    return excitation::load_ground_motion(scene.excitation);
+    return excitation::load_ground_motion(resolved_excitation(scene));
   } catch (const InputError& error) {
     // The record file's line and field say what was found; the scene's file and keys say what
     // was asked of it (a column 99 the file does not have was the scene's choice).
@@ -300,6 +320,15 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   report.contact_damping = contact_damping(law, scene.contact.restitution);
   report.warnings = scene_warnings(scene);
   report.springs = system.springs().all();
+  if (scene.excitation.scale_to_sa) {
+    const excitation::SaScaling sa = *resolved_excitation(scene).scale_to_sa;
+    report.spectral_scaling = SpectralScaling{.asked = sa.text,
+                                              .target_g = sa.target_g,
+                                              .period_s = *sa.period_s,
+                                              .damping_ratio = excitation::kSaScalingDamping,
+                                              .rotd100 = system.ground_motion().is_pair(),
+                                              .record_factor = system.ground_motion().record_scale()};
+  }
   for (RunWarning& warning : settings_warnings(used, system)) report.warnings.push_back(std::move(warning));
   const solvers::RunBudget budget{.max_wall_time_s = limits.max_wall_time_s};
   report.result = run_system(scene, used, system, limits, budget, sink);

@@ -7,7 +7,7 @@
 namespace pounding::excitation {
 
 bool RecordChoice::empty() const {
-  return !file && !format && !units && !dt_s && !accel_column && !scale_factor && !pga_g && !direction_deg &&
+  return !file && !format && !units && !dt_s && !accel_column && !scale_factor && !pga_g && !sa && !direction_deg &&
          !second_file && !second_accel_column;
 }
 
@@ -71,13 +71,23 @@ ExcitationSpec with_record(ExcitationSpec spec, const RecordChoice& choice) {
     throw InputError("excitation.scale_factor", format_value(*choice.scale_factor),
                      "give either a scale factor or a PGA, not both");
   }
+  if (choice.sa && (choice.scale_factor || choice.pga_g)) {
+    throw InputError("excitation.scale_to_sa", *choice.sa, "give one scaling: a spectral one, a PGA or a factor");
+  }
   if (choice.scale_factor) {
     spec.scale_factor = *choice.scale_factor;
     spec.scale_to_pga_g.reset();
+    spec.scale_to_sa.reset();
   }
   if (choice.pga_g) {
     spec.scale_to_pga_g = *choice.pga_g;
     spec.scale_factor = 1.0;
+    spec.scale_to_sa.reset();
+  }
+  if (choice.sa) {
+    spec.scale_to_sa = parse_sa_scaling(*choice.sa, "excitation.scale_to_sa");
+    spec.scale_factor = 1.0;
+    spec.scale_to_pga_g.reset();
   }
   if (choice.direction_deg) spec.direction_deg = *choice.direction_deg;
   apply_second(spec, choice);

@@ -24,11 +24,15 @@ constexpr std::uintmax_t kMaxListBytes = 4 << 20;
 
 /// The field of a list line that sets the excitation key `key` (as with_record() names it).
 const std::map<std::string, std::string>& field_of_key() {
-  static const std::map<std::string, std::string> kFields = {
-      {"excitation.file", "file"},           {"excitation.format", "format"},
-      {"excitation.units", "units"},         {"excitation.dt_s", "dt_s"},
-      {"excitation.accel_column", "accel_column"}, {"excitation.scale_factor", "scale"},
-      {"excitation.scale_to_pga_g", "pga_g"}, {"excitation.direction_deg", "direction_deg"}};
+  static const std::map<std::string, std::string> kFields = {{"excitation.file", "file"},
+                                                             {"excitation.format", "format"},
+                                                             {"excitation.units", "units"},
+                                                             {"excitation.dt_s", "dt_s"},
+                                                             {"excitation.accel_column", "accel_column"},
+                                                             {"excitation.scale_factor", "scale"},
+                                                             {"excitation.scale_to_pga_g", "pga_g"},
+                                                             {"excitation.scale_to_sa", "sa"},
+                                                             {"excitation.direction_deg", "direction_deg"}};
   return kFields;
 }
 
@@ -86,9 +90,10 @@ void set_field(const ListLine& line, const std::string& field, const std::string
   if (field == "accel_column") return once(choice.accel_column, line.number<int>(field, value));
   if (field == "scale") return once(choice.scale_factor, line.number<double>(field, value));
   if (field == "pga_g") return once(choice.pga_g, line.number<double>(field, value));
+  if (field == "sa") return once(choice.sa, value);
   if (field == "direction_deg") return once(choice.direction_deg, line.number<double>(field, value));
   throw line.error(field, value,
-                   "unknown field (expected format, units, dt_s, accel_column, scale, pga_g or direction_deg)");
+                   "unknown field (expected format, units, dt_s, accel_column, scale, pga_g, sa or direction_deg)");
 }
 
 /// `base` with `choice` applied; errors name the list line and the field.

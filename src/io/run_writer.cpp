@@ -284,6 +284,15 @@ json run_json_elastic(const analysis::RunReport& report, const Provenance& prove
 
 json run_json(const analysis::RunReport& report, const Provenance& provenance) {
   json summary = run_json_elastic(report, provenance);
+  if (report.spectral_scaling) {
+    const analysis::SpectralScaling& sa = *report.spectral_scaling;
+    summary["spectral_scaling"] = {{"asked", sa.asked},
+                                   {"target_g", sa.target_g},
+                                   {"period_s", sa.period_s},
+                                   {"damping_ratio", sa.damping_ratio},
+                                   {"measure", sa.rotd100 ? "rotd100" : "psa"},
+                                   {"record_factor", sa.record_factor}};
+  }
   if (report.springs.empty() && !report.contact_free) return summary;
   // The yielding and pounding-demand sections go before the energy audit.
   json extended;

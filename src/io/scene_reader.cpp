@@ -30,6 +30,7 @@ struct TomlCheckFailed : std::logic_error {
 #include <toml++/toml.h>
 #pragma pop_macro("NDEBUG")
 
+#include "pounding/analysis/run_scene.hpp"
 #include "pounding/input_error.hpp"
 #include "toml_text.hpp"
 
@@ -533,6 +534,9 @@ excitation::ExcitationSpec read_excitation(TableReader table, const std::filesys
   spec.duration_s = table.optional_number("duration_s");
   spec.scale_to_pga_g = table.optional_number("scale_to_pga_g");
   spec.scale_factor = table.number_or("scale_factor", 1.0);
+  if (const std::optional<std::string> sa = table.optional_string("scale_to_sa")) {
+    spec.scale_to_sa = excitation::parse_sa_scaling(*sa, table.key_path("scale_to_sa"));
+  }
   spec.direction_deg = table.number_or("direction_deg", 0.0);
   spec.g_mps2 = table.number_or("g_mps2", spec.g_mps2);
   if (auto second = table.optional_subtable("second")) spec.second = read_second_component(*second, scene_dir, spec);
@@ -671,6 +675,7 @@ std::map<std::string, std::string> record_option_names(const excitation::RecordC
       {"excitation.accel_column", choice.accel_column.has_value(), "--record-column"},
       {"excitation.scale_factor", choice.scale_factor.has_value(), "--scale"},
       {"excitation.scale_to_pga_g", choice.pga_g.has_value(), "--pga-g"},
+      {"excitation.scale_to_sa", choice.sa.has_value(), "--scale-to-sa"},
       {"excitation.direction_deg", choice.direction_deg.has_value(), "--direction-deg"},
       {"excitation.second.file", choice.second_file.has_value(), "--record2"},
       {"excitation.second.accel_column", choice.second_accel_column.has_value(), "--record2-column"}};
@@ -686,7 +691,7 @@ std::map<std::string, std::string> record_option_names(const excitation::RecordC
 void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice) {
   try {
     scene.excitation = excitation::with_record(scene.excitation, choice);
-    excitation::load_ground_motion(scene.excitation);
+    excitation::load_ground_motion(analysis::resolved_excitation(scene));
   } catch (const InputError& error) {
     // A record the options chose as format 'single' without its spacing: say which option is
     // missing, in the scene's name (the key excitation.dt_s was never typed).

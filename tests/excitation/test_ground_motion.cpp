@@ -252,3 +252,25 @@ BOOST_AUTO_TEST_CASE(APairThatSharesNoTimeOrBadSecondKeysAreRefusedByName) {
                    }),
                    "excitation.second.units", "", "limit of 10 g"));
 }
+
+BOOST_AUTO_TEST_CASE(SpectralScalingIsReadAsTargetAtPeriod) {
+  const SaScaling at_t1 = parse_sa_scaling("0.5g@T1", "k");
+  BOOST_TEST(at_t1.target_g == 0.5);
+  BOOST_TEST(at_t1.building == 3);
+  BOOST_TEST(!at_t1.period_s.has_value());
+  BOOST_TEST(parse_sa_scaling("1g@B2", "k").building == 2);
+  BOOST_TEST(*parse_sa_scaling("0.25g@1.2s", "k").period_s == 1.2);
+  BOOST_TEST(*parse_sa_scaling("0.25g@0.3", "k").period_s == 0.3);
+  for (const char* bad : {"0.5@T1", "g@T1", "0.5g@", "0.5g@T2", "0.5g@B3", "0.5g@1.2ss", " 0.5g@1", "0.5g@nan",
+                          "0.5g@inf", "0g@T1", "11g@T1", "0.5g@20", "0.5g@0.001", "0.5gT1"}) {
+    BOOST_TEST(
+        names(refusal_of([&] { parse_sa_scaling(bad, "excitation.scale_to_sa"); }), "excitation.scale_to_sa", bad, ""),
+        bad);
+  }
+  // One scaling at a time; a building's period must be resolved before the record is read.
+  ExcitationSpec spec = spec_in(AccelUnits::g);
+  spec.scale_to_sa = parse_sa_scaling("0.5g@T1", "excitation.scale_to_sa");
+  BOOST_TEST(names(refusal(ramp(3, 0.01), spec), "excitation.scale_to_sa", "0.5g@T1", "read with its scene"));
+  spec.scale_to_pga_g = 0.3;
+  BOOST_TEST(names(refusal(ramp(3, 0.01), spec), "excitation.scale_to_sa", "0.5g@T1", "give one scaling"));
+}

@@ -214,3 +214,15 @@ def test_a_pair_of_components_from_python_runs_as_the_scene_would():
     assert a.peaks == b.peaks
     with pytest.raises(pounding.InputError, match="excitation.second.accel_column"):
         pounding.load_scene(PAPER).with_record(kobe, format="single", dt_s=0.005, accel_column=1, record2_column=2)
+
+
+def test_spectral_scaling_from_python():
+    """scale_to_sa= is --scale-to-sa: its factor reaches the run's summary; a bad form names the key."""
+    scene = pounding.load_scene(PAPER)
+    record = SOURCE / "examples" / "records" / "elcentro1940_ns_0.02s.AT2"
+    scaled = scene.with_record(record, dt_s=0.05, scale_to_sa="0.4g@B1")
+    result = pounding.run(scaled.with_outputs(history=False))
+    assert result.summary["spectral_scaling"]["asked"] == "0.4g@B1"
+    assert result.summary["spectral_scaling"]["period_s"] == pytest.approx(0.765, abs=5e-4)
+    with pytest.raises(pounding.InputError, match="excitation.scale_to_sa"):
+        scene.with_record(record, scale_to_sa="0.4@B1")

@@ -17,6 +17,15 @@ namespace pounding::analysis {
 /// The candidates the scene's geometry allows (docs/model.md §4), on every level (Scene::levels()).
 std::vector<contact::Candidate> scene_candidates(const Scene& scene);
 
+/// scene.excitation with a spectral scaling at a building's first period (excitation.scale_to_sa
+/// "…@B1", "…@B2", "…@T1": the longer of the two) given that period from the scene's buildings.
+/// @throws InputError for a building that cannot be assembled.
+excitation::ExcitationSpec resolved_excitation(const Scene& scene);
+
+/// The scene's ground motion: its record (or pair) read and processed (resolved_excitation()).
+/// @throws InputError naming the record's file and line and the scene's file and keys.
+excitation::GroundMotion scene_ground_motion(const Scene& scene);
+
 /// The coupled system of a scene (assembles both buildings, loads the record); without contact
 /// candidates if `contact` is false (the buildings then move as if they never met).
 /// @throws InputError for bad buildings or a bad record.
@@ -60,6 +69,16 @@ struct RunWarning {
   std::string message;
 };
 
+/// What excitation.scale_to_sa asked and what it did.
+struct SpectralScaling {
+  std::string asked;  // as written ("0.5g@T1")
+  double target_g = 0.0;
+  double period_s = 0.0;  // the period it was taken at (a building's T1 resolved)
+  double damping_ratio = 0.05;
+  bool rotd100 = false;        // a pair: its RotD100; else the one component's PSA
+  double record_factor = 0.0;  // what the record's values were multiplied by (its own units)
+};
+
 struct RunReport {
   std::string scene;
   double gap_m = 0.0;
@@ -81,6 +100,7 @@ struct RunReport {
   std::optional<solvers::RunResult> contact_free;
   /// The yielding column springs (result.springs in the same order); empty if all stay elastic.
   std::vector<dynamics::YieldingSpring> springs = {};
+  std::optional<SpectralScaling> spectral_scaling = std::nullopt;  // with excitation.scale_to_sa
 };
 
 /// One storey of a building whose columns yield, over a run: its springs' largest ductility in x

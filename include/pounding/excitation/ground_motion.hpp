@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -35,6 +36,22 @@ struct SecondComponentSpec {
   std::optional<double> dt_override_s;  // re-space its samples t_i = i·dt (any format)
 };
 
+/// Spectral scaling: one factor so that the record's 5 %-damped pseudo-spectral acceleration at a
+/// period (of a pair: its RotD100, the largest over every horizontal direction) equals target_g.
+/// Written "0.5g@1.2" (a period in s, "1.2s" too), "0.5g@B1" or "0.5g@B2" (that building's first
+/// period) or "0.5g@T1" (the longer of the two first periods).
+struct SaScaling {
+  double target_g = 0.0;
+  std::optional<double> period_s;  // a period given in s, or the building's once resolved
+  int building = 0;                // 1 or 2: that building's T1; 3: the longer T1 of both; 0: period_s given
+  std::string text;                // as written, for messages
+};
+inline constexpr double kSaScalingDamping = 0.05;
+
+/// Parses "0.5g@T1", "0.5g@B2", "0.5g@1.2s" (target in (0, 10] g, period in [0.01, 10] s).
+/// @throws InputError naming `key` and the text when it is not one of these.
+SaScaling parse_sa_scaling(const std::string& text, const std::string& key);
+
 /// How a record file (or a pair) becomes the excitation. Processing order: read, override the
 /// time step, cut [start, start + duration], convert to m/s², take a pair on the union of its
 /// sample times over the span both cover, scale.
@@ -48,6 +65,7 @@ struct ExcitationSpec {
   std::optional<double> duration_s;      // cut length; empty keeps the rest of the record
   std::optional<double> scale_to_pga_g;  // scale so max |a_g| (of a pair: of its larger component) equals this (g)
   double scale_factor = 1.0;             // plain multiplier (excludes scale_to_pga_g); a pair's both components
+  std::optional<SaScaling> scale_to_sa;  // spectral scaling (excludes the other two); its period resolved before use
   double direction_deg = 0.0;            // β: angle of the shaking direction (H1's) from +x towards +y
   std::optional<SecondComponentSpec> second;  // H2 of a pair; empty: one component
 
@@ -96,6 +114,10 @@ class GroundMotion {
   double sample_spacing_s() const;
   /// A fixed step of step_s (s) is longer than the sample spacing: it leaves samples out.
   bool skips_samples(double step_s) const { return step_s > sample_spacing_s() * (1.0 + 1e-9); }
+  /// The factor the record's values were multiplied by (scale_factor, scale_to_pga_g or
+  /// scale_to_sa; 1 unscaled), in the record's own units: what a report quotes.
+  double record_scale() const { return record_scale_; }
+  void set_record_scale(double factor) { record_scale_ = factor; }
   /// A component's max |a| (m/s²) and the time of that sample (s).
   double peak_mps2(int component = 0) const;
   double peak_time_s(int component = 0) const;
@@ -105,12 +127,14 @@ class GroundMotion {
   std::vector<std::vector<double>> accel_mps2_;  // one per component
   double direction_rad_;
   std::vector<std::size_t> peak_index_;  // one per component
+  double record_scale_ = 1.0;
 
   void find_peaks();
 };
 
 /// Reads, cuts, converts and scales the record of `spec` (and of spec.second: a pair; files
-/// already resolved).
+/// already resolved). A spec.scale_to_sa naming a building's period must have been resolved
+/// (analysis::scene_ground_motion does it from the scene's buildings).
 /// @throws InputError for an invalid spec, a bad record file, times outside
 ///   [0, kMaxRecordDuration_s], a duration_s beyond a record's end, a pair whose components
 ///   share no time span, or a processed peak above kMaxPeakAccel_g.

@@ -22,6 +22,7 @@ struct RecordChoice {
   std::optional<int> accel_column{};     // as the key excitation.accel_column
   std::optional<double> scale_factor{};  // replaces scale_factor and drops scale_to_pga_g
   std::optional<double> pga_g{};         // replaces scale_to_pga_g and resets scale_factor to 1
+  std::optional<std::string> sa{};       // "0.5g@T1": replaces the scaling by scale_to_sa (parse_sa_scaling)
   std::optional<double> direction_deg{};
   /// A pair's second component (H2, along direction + 90°), already resolved: read with the
   /// (new) record's format and units. Setting `file` without it drops the scene's H2 (it belongs
