@@ -85,6 +85,7 @@ struct GapCommand {
   unsigned threads = 0;  // runs at a time (curve, records); 0: every core
   std::optional<double> max_wall_time_s;  // each contact-free run's budget (s); default one hour
   std::optional<double> amplification;    // yielding scenes: also the code rules from elastic peaks × this
+  bool all_angles = false;                // also the needed gap over every angle of incidence
   std::string out_dir;   // empty: out/<scene name>-gap (out/<scene name>-records with --records)
 };
 

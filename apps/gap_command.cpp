@@ -75,6 +75,25 @@ void print_amplified(const analysis::NeededGap& gap) {
   }
 }
 
+void print_all_angles(const analysis::NeededGap& gap) {
+  if (!gap.all_angles) return;
+  const analysis::AllAngles& all = *gap.all_angles;
+  fmt::print("Every angle of incidence ({}, {} contact-free runs{}):\n",
+             all.method == "superposition"
+                 ? fmt::format("two runs superposed, the touch gaps sampled every {:g} s", all.sample_interval_s)
+                 : fmt::format("one run every {:g} degrees: yielding buildings do not superpose", all.step_deg),
+             all.runs,
+             all.status == solvers::RunStatus::completed
+                 ? ""
+                 : fmt::format("; a run stopped ({}): lower bounds", solvers::to_string(all.status)));
+  fmt::print(
+      "  largest: {} with the record along {:.2f} deg (level {}, t = {:.6f} s), refined by full runs to "
+      "{:g} deg\n",
+      metres(all.worst.needed_gap_m), all.worst.angle_deg, all.worst_level, all.worst_t_s, all.refine_tolerance_deg);
+  fmt::print("  the envelope's largest: {} at {:g} deg; at the record's own {:g} deg: {}\n",
+             metres(all.estimate.needed_gap_m), all.estimate.angle_deg, all.record_angle_deg, metres(gap.needed_gap_m));
+}
+
 void print_curve(const std::vector<analysis::SeverityPoint>& curve) {
   fmt::print("{:>10} {:>8} {:>18} {:>20} {:>17} {:>9}\n", "gap [m]", "impacts", "max impulse [kNs]",
              "max approach [m/s]", "energy lost [kJ]", "status");
@@ -227,6 +246,10 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   print_levels(gap);
   print_rules(gap);
   print_amplified(gap);
+  if (command.all_angles) {
+    analysis::add_all_angles(scene, gap, run_budget(command));
+    print_all_angles(gap);
+  }
   const bool completed = gap.status == solvers::RunStatus::completed;
   if (!completed) {
     fmt::print("Stopped at t = {:.3f} s ({}: {}): the figures above cover the record up to there only; the needed "
@@ -252,8 +275,8 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
     print_curve(curve);
   }
   io::write_gap(scene.name, gap, curve, provenance, folder);
-  fmt::print("Wrote {0}/gap.json, gap.csv, gap_history.csv{1}; draw them with tools/plot_gap.py {0}\n", folder,
-             curve.empty() ? "" : ", gap_curve.csv");
+  fmt::print("Wrote {0}/gap.json, gap.csv, gap_history.csv{1}{2}; draw them with tools/plot_gap.py {0}\n", folder,
+             curve.empty() ? "" : ", gap_curve.csv", gap.all_angles ? ", gap_angles.csv" : "");
   return completed ? 0 : 3;
 }
 

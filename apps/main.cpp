@@ -235,6 +235,12 @@ int main(int argc, char** argv) {
                    "Yielding columns: also the code rules from the elastic contact-free run's peaks times this "
                    "factor (ASCE 7 Cd/Ie, EC8 q), against the yielding buildings' needed gap")
       ->excludes("--records");
+  gap_app
+      ->add_flag("--all-angles", gap.all_angles,
+                 "Also the needed gap over every angle of incidence of the record (or pair): elastic buildings from "
+                 "two contact-free runs (superposition), yielding ones from a run every 10 degrees; the worst angle "
+                 "refined with full runs (gap_angles.csv, gap.json all_angles)")
+      ->excludes("--records");
   gap_app->add_option("--out", gap.out_dir,
                       "Output folder (default out/<scene name>-gap, or out/<scene name>-records with --records)");
 

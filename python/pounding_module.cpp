@@ -211,10 +211,11 @@ py::array_t<double> contact_force_table(const Run& run) {
   });
 }
 
-Gap find_needed_gap(const Scene& scene, const pounding::solvers::RunBudget& budget) {
+Gap find_needed_gap(const Scene& scene, const pounding::solvers::RunBudget& budget, bool all_angles) {
   Gap result{scene.name, {}};
   py::gil_scoped_release unlocked;
   result.gap = pounding::analysis::needed_gap(scene, budget);
+  if (all_angles) pounding::analysis::add_all_angles(scene, result.gap, budget);
   return result;
 }
 
@@ -427,13 +428,20 @@ PYBIND11_MODULE(_pounding, m) {
            [](const Gap& g) {
              return py::array_t<double>(py::ssize_t(g.gap.history_t_s.size()), g.gap.history_t_s.data());
            })
-      .def("touch_gap_table", &touch_gap_table);
+      .def("touch_gap_table", &touch_gap_table)
+      .def("angles_table", [](const Gap& g) {
+        const std::vector<pounding::analysis::AngleGap> none;
+        const auto& envelope = g.gap.all_angles ? g.gap.all_angles->envelope : none;
+        return matrix(envelope.size(), 2, [&](std::size_t r, std::size_t c) {
+          return c == 0 ? envelope[r].angle_deg : envelope[r].needed_gap_m;
+        });
+      });
   m.def(
       "needed_gap",
-      [](const Scene& scene, std::optional<double> max_wall_time_s) {
+      [](const Scene& scene, std::optional<double> max_wall_time_s, bool all_angles) {
         pounding::solvers::RunBudget budget;
         if (max_wall_time_s) budget.max_wall_time_s = *max_wall_time_s;
-        return find_needed_gap(scene, budget);
+        return find_needed_gap(scene, budget, all_angles);
       },
-      py::arg("scene"), py::arg("max_wall_time_s"));
+      py::arg("scene"), py::arg("max_wall_time_s"), py::arg("all_angles"));
 }

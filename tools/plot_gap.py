@@ -4,7 +4,9 @@
 Left: the needed gap of every common level over height, with the ABS, SRSS and DDC rules beside
 it. Middle: the touch gap of the governing pair over time (the clear gap at which that pair
 would just touch at each instant; its largest value is the needed gap, marked). Right, when the
-folder holds gap_curve.csv (`--curve N`): impacts and energy lost against the gap.
+folder holds gap_curve.csv (`--curve N`): impacts and energy lost against the gap. When it holds
+gap_angles.csv (`--all-angles`): a polar panel of the needed gap against the record's angle, the
+worst angle and the record's own marked.
 
 A folder of `pounding gap --records LIST|FOLDER` (records.json, records.csv) is drawn as the
 record set instead: each record's needed gap beside the three rules at its governing level, and
@@ -47,7 +49,11 @@ def main():
     curve_file = args.folder / "gap_curve.csv"
     curve = list(csv.DictReader(curve_file.open())) if curve_file.is_file() else []
 
-    fig, axes = plt.subplots(1, 3 if curve else 2, figsize=(17 if curve else 12, 5.5))
+    angles_file = args.folder / "gap_angles.csv"
+    angles = list(csv.DictReader(angles_file.open())) if angles_file.is_file() else []
+    panels = 2 + bool(curve) + bool(angles)
+    fig = plt.figure(figsize=(6 * panels, 5.5))
+    axes = [fig.add_subplot(1, panels, k + 1) for k in range(2 + bool(curve))]
     profile, closure = axes[0], axes[1]
     z = [float(r["elevation_m"]) for r in levels]
     profile.plot([number(r["needed_gap_m"]) for r in levels], z, "k-o", lw=2, label="needed (exact)")
@@ -87,6 +93,20 @@ def main():
         severity.legend(lines[0] + more[0], lines[1] + more[1], loc="upper right")
         severity.set_title("severity below the needed gap")
         severity.grid(alpha=0.3)
+
+    if angles:
+        polar = fig.add_subplot(1, panels, panels, projection="polar")
+        theta = [math.radians(float(r["angle_deg"])) for r in angles] + [math.radians(float(angles[0]["angle_deg"]))]
+        radius = [number(r["needed_gap_m"]) for r in angles] + [number(angles[0]["needed_gap_m"])]
+        polar.plot(theta, radius, "k-", lw=1.5, label="needed gap (superposed)" if summary["all_angles"]["method"] ==
+                   "superposition" else "needed gap (one run per angle)")
+        worst = summary["all_angles"]
+        polar.plot([math.radians(worst["angle_deg"])], [worst["needed_gap_m"]], "ro",
+                   label=f"worst {worst['needed_gap_m']:.4f} m at {worst['angle_deg']:.1f} deg")
+        polar.plot([math.radians(worst["record_angle_deg"])], [summary["needed_gap_m"]], "bs",
+                   label=f"record's angle: {summary['needed_gap_m']:.4f} m")
+        polar.set_title("needed gap [m] against the record's angle (H1's, from +x)", fontsize=9)
+        polar.legend(loc="lower left", fontsize=8, bbox_to_anchor=(0.0, -0.25))
 
     fig.tight_layout()
     out = args.out or args.folder / "gap.png"

@@ -328,7 +328,9 @@ class GapResult:
     """The needed gap (`pounding gap`): summary is gap.json's document (without provenance);
     status, status_detail, end_s, needed_gap_m, level, floor, t_s, levels and rules are its
     entries (a status other than completed: the run stopped at end_s, the gap is a lower bound); history_t_s and
-    history_touch_gap_m (one column a level) are gap_history.csv's touch gaps as numpy arrays."""
+    history_touch_gap_m (one column a level) are gap_history.csv's touch gaps as numpy arrays.
+    With all_angles: all_angles is gap.json's all_angles (the worst angle of incidence and its
+    needed gap) and angles_array gap_angles.csv's envelope (angle_deg, needed_gap_m)."""
 
     def __init__(self, gap):
         self.summary = _json.loads(gap.gap_json())
@@ -336,6 +338,8 @@ class GapResult:
             setattr(self, key, self.summary.get(key))
         self.history_t_s = gap.history_t_s()
         self.history_touch_gap_m = gap.touch_gap_table()
+        self.all_angles = self.summary.get("all_angles")
+        self.angles_array = _np.array(gap.angles_table()) if self.all_angles else None
 
     def history_frame(self):
         """gap_history.csv as a pandas DataFrame indexed by t_s, a column touch_gap_level_<n>_m a level."""
@@ -347,8 +351,9 @@ class GapResult:
         return f"<pounding.GapResult needed gap {self.needed_gap_m} m at level {self.level}, t = {self.t_s} s>"
 
 
-def needed_gap(scene, max_wall_time_s=None):
+def needed_gap(scene, max_wall_time_s=None, all_angles=False):
     """The clear gap that prevents every contact, from one contact-free run (`pounding gap`), with
     the code rules ABS, SRSS and DDC per level; the run stops after max_wall_time_s (None: the
-    command line's default, an hour) with status time_limit. Releases the GIL while it runs."""
-    return GapResult(_pounding.needed_gap(scene, max_wall_time_s))
+    command line's default, an hour) with status time_limit. all_angles=True: also over every
+    angle of incidence (`gap --all-angles`). Releases the GIL while it runs."""
+    return GapResult(_pounding.needed_gap(scene, max_wall_time_s, bool(all_angles)))

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <map>
 #include <mutex>
+#include <numbers>
 #include <optional>
 
 #include "pounding/analysis/run_scene.hpp"
@@ -345,15 +347,22 @@ void NeededGapOptions::validate() const {
   budget.validate();
 }
 
+namespace {
+
+/// The contact-free run's options for `scene`: its solver's tolerances (Adams for cvode-adams).
+NeededGapOptions scene_options(const Scene& scene, const solvers::RunBudget& budget) {
+  const UsedSettings used = resolve(scene.solver);  // the scene's tolerances, or the defaults
+  return {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol, .budget = budget};
+}
+
+}  // namespace
+
 NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
   const auto clock_start = std::chrono::steady_clock::now();
   const CoupledSystem system = build_system(scene);
-  const UsedSettings used = resolve(scene.solver);  // the scene's tolerances, or the defaults
   NeededGap result;
   try {
-    result = needed_gap(
-        system, scene.contact.gap_m,
-        {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol, .budget = budget});
+    result = needed_gap(system, scene.contact.gap_m, scene_options(scene, budget));
   } catch (const InputError& error) {
     throw error.in_context(scene.file.string());
   }
@@ -361,7 +370,23 @@ NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
   return result;
 }
 
+namespace {
+
+/// needed_gap(system, ...) that also hands back the states it sampled every
+/// options.history_interval_s (and the FreeRun's view of the pairs, through `touch_gaps`).
+NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options,
+                             std::vector<VectorXd>* states);
+
+}  // namespace
+
 NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options) {
+  return sampled_needed_gap(system, scene_gap_m, options, nullptr);
+}
+
+namespace {
+
+NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options,
+                             std::vector<VectorXd>* states) {
   options.validate();
   const auto clock_start = std::chrono::steady_clock::now();
   NeededGap result;
@@ -383,6 +408,7 @@ NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const Need
   std::vector<VectorXd> samples;
   integrate(system, options, run, result.counted, result, samples);
   fill_history(run, samples, result);
+  if (states) *states = std::move(samples);
 
   result.needed_gap_m = -std::numeric_limits<double>::infinity();
   for (LevelGap& level : result.levels) {
@@ -400,6 +426,8 @@ NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const Need
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return result;
 }
+
+}  // namespace
 
 void add_amplified_elastic(const Scene& scene, double factor, NeededGap& gap, const solvers::RunBudget& budget) {
   require_range("amplification", factor, kAmplificationFactor);
@@ -423,6 +451,118 @@ void add_amplified_elastic(const Scene& scene, double factor, NeededGap& gap, co
     amplified.rules.ddc_m = std::max(amplified.rules.ddc_m, rules.ddc_m);
   }
   gap.amplified_elastic = amplified;
+}
+
+namespace {
+
+constexpr double kSuperpositionStep_deg = 1.0;
+constexpr double kSweepStep_deg = 10.0;
+constexpr double kEnvelopeInterval_s = 0.005;
+constexpr double kMaxEnvelopeSamples = 50'000;  // per run: the sample interval grows for longer records
+
+Scene turned_to(const Scene& scene, double angle_deg) {
+  Scene turned = scene;
+  turned.excitation.direction_deg = angle_deg;
+  return turned;
+}
+
+void note_status(const NeededGap& run, AllAngles& all) {
+  ++all.runs;
+  if (all.status == solvers::RunStatus::completed) all.status = run.status;
+}
+
+/// Elastic buildings: the motion at angle θ is cos θ y₀(t) + sin θ y₉₀(t), so two contact-free
+/// runs sampled on one time grid give every angle's touch gaps, evaluated exactly (rotation
+/// included) at the combined states.
+void superposed_envelope(const Scene& scene, const solvers::RunBudget& budget, AllAngles& all) {
+  const CoupledSystem along_0 = build_system(turned_to(scene, 0.0)), along_90 = build_system(turned_to(scene, 90.0));
+  NeededGapOptions options = scene_options(scene, budget);
+  const excitation::GroundMotion& motion = along_0.ground_motion();
+  options.history_interval_s = std::max(kEnvelopeInterval_s, (motion.end_s() - motion.start_s()) / kMaxEnvelopeSamples);
+  std::vector<VectorXd> states_0, states_90;
+  const NeededGap run_0 = sampled_needed_gap(along_0, scene.contact.gap_m, options, &states_0);
+  note_status(run_0, all);
+  note_status(sampled_needed_gap(along_90, scene.contact.gap_m, options, &states_90), all);
+  const FreeRun pairs(along_0, scene.contact.gap_m, run_0.counted, {});  // a pair's touch gap is geometry alone
+  const std::size_t samples = std::min(states_0.size(), states_90.size());
+  VectorXd state(along_0.state_size());
+  all.method = "superposition";
+  all.step_deg = kSuperpositionStep_deg;
+  all.sample_interval_s = options.history_interval_s;
+  for (double angle = 0.0; angle < 360.0 - 1e-9; angle += kSuperpositionStep_deg) {
+    const double c = std::cos(angle * std::numbers::pi / 180.0), s = std::sin(angle * std::numbers::pi / 180.0);
+    AngleGap at{angle, -std::numeric_limits<double>::infinity()};
+    for (std::size_t k = 0; k < samples; ++k) {
+      state = c * states_0[k] + s * states_90[k];
+      for (std::size_t i = 0; i < run_0.counted.size(); ++i) {
+        if (!run_0.counted[i]) continue;
+        const Touch touch = pairs.touch(state, i);
+        if (touch.on_segment) at.needed_gap_m = std::max(at.needed_gap_m, touch.gap_m);
+      }
+    }
+    all.envelope.push_back(at);
+  }
+}
+
+/// Yielding buildings: no superposition; one contact-free run per angle.
+void swept_envelope(const Scene& scene, const solvers::RunBudget& budget, AllAngles& all) {
+  all.method = "sweep";
+  all.step_deg = kSweepStep_deg;
+  for (double angle = 0.0; angle < 360.0 - 1e-9; angle += kSweepStep_deg) {
+    const NeededGap run = needed_gap(turned_to(scene, angle), budget);
+    note_status(run, all);
+    all.envelope.push_back({angle, run.needed_gap_m});
+  }
+}
+
+/// Golden-section search with full runs within one envelope step of the estimate.
+void refine_worst_angle(const Scene& scene, const solvers::RunBudget& budget, AllAngles& all) {
+  std::map<double, NeededGap> runs;
+  auto at = [&](double angle) -> double {
+    auto found = runs.find(angle);
+    if (found == runs.end()) {
+      found = runs.emplace(angle, needed_gap(turned_to(scene, angle), budget)).first;
+      note_status(found->second, all);
+    }
+    return found->second.needed_gap_m;
+  };
+  const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
+  double low = all.estimate.angle_deg - all.step_deg, high = all.estimate.angle_deg + all.step_deg;
+  double a = high - golden * (high - low), b = low + golden * (high - low);
+  at(all.estimate.angle_deg);
+  while (high - low > all.refine_tolerance_deg) {
+    if (at(a) >= at(b)) {
+      high = b, b = a, a = high - golden * (high - low);
+    } else {
+      low = a, a = b, b = low + golden * (high - low);
+    }
+  }
+  const auto worst = std::max_element(runs.begin(), runs.end(), [](const auto& x, const auto& y) {
+    return x.second.needed_gap_m < y.second.needed_gap_m;
+  });
+  all.worst = {std::fmod(worst->first + 360.0, 360.0), worst->second.needed_gap_m};
+  all.worst_level = worst->second.level;
+  all.worst_t_s = worst->second.t_s;
+  all.worst_candidate = worst->second.candidate;
+}
+
+}  // namespace
+
+void add_all_angles(const Scene& scene, NeededGap& gap, const solvers::RunBudget& budget) {
+  AllAngles all;
+  all.record_angle_deg = scene.excitation.direction_deg;
+  bool yields = false;
+  for (const model::BuildingDefinition& b : scene.buildings) yields = yields || b.hysteresis.yields();
+  if (yields) {
+    swept_envelope(scene, budget, all);
+  } else {
+    superposed_envelope(scene, budget, all);
+  }
+  all.estimate = *std::max_element(all.envelope.begin(), all.envelope.end(), [](const AngleGap& x, const AngleGap& y) {
+    return x.needed_gap_m < y.needed_gap_m;
+  });
+  refine_worst_angle(scene, budget, all);
+  gap.all_angles = std::move(all);
 }
 
 std::vector<RuleVerdict> rule_verdicts(const GapRules& rules, double needed_gap_m) {

@@ -192,6 +192,22 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
          {{"abs_m", amplified->rules.abs_m}, {"srss_m", amplified->rules.srss_m}, {"ddc_m", amplified->rules.ddc_m}}},
         {"unconservative", short_of}};
   }
+  if (const auto& all = gap.all_angles) {
+    document["all_angles"] = {
+        {"method", all->method},
+        {"step_deg", all->step_deg},
+        {"record_angle_deg", all->record_angle_deg},
+        {"sample_interval_s", all->method == "superposition" ? json(all->sample_interval_s) : json(nullptr)},
+        {"needed_gap_m", all->worst.needed_gap_m},
+        {"angle_deg", all->worst.angle_deg},
+        {"level", all->worst_level},
+        {"t_s", all->worst_t_s},
+        {"pair", pair_json(gap, all->worst_candidate)},
+        {"refine_tolerance_deg", all->refine_tolerance_deg},
+        {"envelope_largest", {{"angle_deg", all->estimate.angle_deg}, {"needed_gap_m", all->estimate.needed_gap_m}}},
+        {"runs", all->runs},
+        {"status", solvers::to_string(all->status)}};
+  }
   if (!curve.empty()) {
     json points = json::array();
     for (const analysis::SeverityPoint& p : curve) {
@@ -215,6 +231,12 @@ void write_gap(const std::string& scene, const analysis::NeededGap& gap,
   write_atomically(folder / "gap_history.csv", [&](std::ostream& out) { write_history_csv(gap, out); });
   if (!curve.empty()) {
     write_atomically(folder / "gap_curve.csv", [&](std::ostream& out) { write_curve_csv(curve, out); });
+  }
+  if (gap.all_angles) {
+    write_atomically(folder / "gap_angles.csv", [&](std::ostream& out) {
+      out << "angle_deg,needed_gap_m\n";
+      for (const analysis::AngleGap& a : gap.all_angles->envelope) out << a.angle_deg << ',' << a.needed_gap_m << '\n';
+    });
   }
 }
 

@@ -226,3 +226,12 @@ def test_spectral_scaling_from_python():
     assert result.summary["spectral_scaling"]["period_s"] == pytest.approx(0.765, abs=5e-4)
     with pytest.raises(pounding.InputError, match="excitation.scale_to_sa"):
         scene.with_record(record, scale_to_sa="0.4@B1")
+
+
+def test_needed_gap_over_every_angle_from_python():
+    """all_angles=True is `gap --all-angles`: the worst angle is never below the record's own."""
+    gap = pounding.needed_gap(pounding.load_scene(PAPER), all_angles=True)
+    assert gap.all_angles["method"] == "superposition"
+    assert gap.all_angles["needed_gap_m"] >= gap.needed_gap_m
+    assert gap.angles_array.shape == (360, 2)
+    assert gap.angles_array[:, 1].max() == pytest.approx(gap.all_angles["envelope_largest"]["needed_gap_m"])

@@ -29,6 +29,8 @@ Spectral scaling (--scale-to-sa), against the peer's own SDOF x'' + 2 zeta w x' 
 (DOP853 at rtol 1e-12 on each record interval, extrema located by events on x' = 0):
   8. one component at B1's first period (0.765 s from `pounding modes`): the record factor makes
      the 5 %-damped PSA the target within 1e-7 (relative);
+  10. (`gap --all-angles` on the Kobe pair: superposed, never below the record angle's needed gap;
+     tests/analysis/test_all_angles.py checks it against single-angle runs.)
   9. the Kobe pair at 1.0 s: RotD100 = max_t |(x1, x2)| (extrema of x1^2 + x2^2 as events) is the
      target within 1e-6 (the program searches angles in 0.1 degree steps: cos 0.05 deg = 1 - 4e-7).
 """
@@ -279,6 +281,14 @@ def check_methods(program, out, failures):
     print(f"7. --record2-column alone: exit {refused.returncode}: {refused.stderr.strip()}")
     if refused.returncode != 2 or "--record2-column" not in refused.stderr:
         failures.append("7. --record2-column without a second component is not refused by name")
+    done = subprocess.run([program, "gap", str(example), "--all-angles", "--out", str(out / "kobe-all")],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    all_angles = json.loads((out / "kobe-all/gap.json").read_text())["all_angles"]
+    print(f"10. Kobe pair, all angles: {all_angles['needed_gap_m']:.6f} m at {all_angles['angle_deg']:.2f} deg "
+          f"({all_angles['method']}, {all_angles['runs']} runs); at the record's own angle {needed:.6f} m")
+    if all_angles["method"] != "superposition" or all_angles["needed_gap_m"] < needed - 1e-9:
+        failures.append("10. the pair's all-angles needed gap is below its needed gap at the record's angle")
     print(f"6. Kobe pair: needed gap {needed:.6f} m; impacts at +1e-5 m: {counts[0]}, at -1e-5 m: {counts[1]}")
     if counts[0] != 0 or counts[1] == 0:
         failures.append("6. the pair's needed gap does not separate striking from not striking")

@@ -66,6 +66,39 @@ struct AmplifiedElastic {
   solvers::RunStatus status = solvers::RunStatus::completed;
 };
 
+/// The needed gap at one angle of incidence (the scene's direction_deg: H1's direction).
+struct AngleGap {
+  double angle_deg = 0.0;
+  double needed_gap_m = 0.0;
+};
+
+/// The needed gap over every angle of incidence (all_angles_gap()).
+struct AllAngles {
+  /// "superposition": elastic buildings, the envelope from two contact-free runs (0° and 90°:
+  /// every other angle's motion is cos θ times the first plus sin θ times the second); "sweep":
+  /// yielding buildings (no superposition), the envelope from one run per angle.
+  std::string method;
+  double step_deg = 1.0;          // the envelope's angle step
+  double record_angle_deg = 0.0;  // the scene's own direction_deg (the needed gap there is NeededGap's)
+  /// The needed gap per angle over [0°, 360°): superposition evaluates the touch gaps exactly at
+  /// the combined states, sampled every sample_interval_s (a peak between samples may be missed
+  /// by O(interval²)); sweep: each angle's own run.
+  std::vector<AngleGap> envelope;
+  double sample_interval_s = 0.0;  // superposition only
+  AngleGap estimate;               // the envelope's largest
+  /// Where the needed gap is largest, refined by golden-section search with full contact-free
+  /// runs (each exact at its angle, rotation included) within one envelope step of the estimate,
+  /// to refine_tolerance_deg; that run's governing level, time and pair (index into the candidates).
+  AngleGap worst;
+  double refine_tolerance_deg = 0.01;
+  int worst_level = 0;
+  double worst_t_s = 0.0;
+  long worst_candidate = -1;
+  int runs = 0;  // contact-free runs it took
+  /// completed, or the first run's status that did not complete (the figures are then lower bounds).
+  solvers::RunStatus status = solvers::RunStatus::completed;
+};
+
 struct NeededGap {
   double scene_gap_m = 0.0;
   double needed_gap_m = 0.0;  // the largest over the levels
@@ -82,6 +115,7 @@ struct NeededGap {
   bool yielding = false;     // some building's columns yield: the contact-free run is nonlinear
   long yield_events = 0;     // the yielding columns' branch changes in the contact-free run
   std::optional<AmplifiedElastic> amplified_elastic;  // add_amplified_elastic()
+  std::optional<AllAngles> all_angles;                // add_all_angles()
   long steps = 0;
   /// completed, or interrupted / time_limit when the run stopped at end_s: everything above then
   /// covers the record only up to end_s (the needed gap is a lower bound).
@@ -115,6 +149,11 @@ NeededGap needed_gap(const dynamics::CoupledSystem& system, double scene_gap_m, 
 /// The same for a scene, with its solver's rtol/atol (Adams when its method is cvode-adams).
 /// @throws InputError for a bad scene or record (as build_system does), or a bad budget.
 NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget = {});
+
+/// Sets gap.all_angles: the needed gap over every angle of incidence of the scene's record (or
+/// pair), the angle where it is largest and that angle's full result (AllAngles).
+/// @throws InputError for a bad scene or budget (as needed_gap).
+void add_all_angles(const Scene& scene, NeededGap& gap, const solvers::RunBudget& budget = {});
 
 /// The amplification factor's range (add_amplified_elastic).
 inline constexpr Range kAmplificationFactor{0.0, 20.0, "", true};

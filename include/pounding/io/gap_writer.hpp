@@ -16,7 +16,8 @@ namespace pounding::io {
 
 /// Top-level keys: scene, scene_gap_m, needed_gap_m, level, floor (the level's floors of
 /// building 1 and 2), t_s, pair, levels, modes, rho, rules {abs_m, srss_m, ddc_m},
-/// unconservative, extrema, steps, wall_time_s, and curve when `curve` is not empty.
+/// unconservative, extrema, steps, wall_time_s, curve when `curve` is not empty, and all_angles
+/// when gap.all_angles is set (gap_angles.csv is then written beside).
 nlohmann::json gap_json(const std::string& scene, const analysis::NeededGap& gap,
                         const std::vector<analysis::SeverityPoint>& curve = {});
 
