@@ -244,6 +244,8 @@ py::list record_list(const Scene& scene, const std::filesystem::path& list_or_fo
     item["scale_factor"] = choice.scale_factor;
     item["scale_to_pga_g"] = choice.pga_g;
     item["scale_to_sa"] = choice.sa;
+    item["record2"] = choice.second_file ? py::cast(choice.second_file->string()) : py::none();
+    item["record2_column"] = choice.second_accel_column;
     item["direction_deg"] = choice.direction_deg;
     entries.append(item);
   }

@@ -51,7 +51,8 @@ SWEEP_KEYS = ("scenes", "records", "gaps_m", "restitutions", "methods", "contact
               "max_wall_time_s", "out")
 RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "dt_s",
                  "accel_column": "accel_column", "scale": "scale_factor", "pga_g": "scale_to_pga_g",
-                 "sa": "scale_to_sa", "direction_deg": "direction_deg"}  # field -> Scene.with_record keyword
+                 "sa": "scale_to_sa", "direction_deg": "direction_deg", "record2": "record2",
+                 "record2_column": "record2_column"}  # field -> Scene.with_record keyword
 STIFFNESS_KEYS = ("stiffness_kN_per_m", "stiffness_kN_per_m1_5")  # kelvin; hertzdamp, jankowski
 LAW_KEYS = ("name", *STIFFNESS_KEYS)
 
@@ -289,6 +290,8 @@ class Sweep:
                                  f"unknown field (expected {', '.join(RECORD_FIELDS)})")
                 choice[RECORD_FIELDS[field]] = given
             choice["file"] = self._resolve(item["file"])
+            if isinstance(choice["record2"], str):  # a pair's second component, from the sweep file's folder
+                choice["record2"] = self._resolve(choice["record2"])
             for scene_file, scene in self.scenes.items():  # checked as a record list's line is, not read
                 try:
                     scene.with_record(**choice, read=False)
@@ -298,7 +301,10 @@ class Sweep:
                     raise _error(self.file, f"{where}.{field}" if field else where,
                                  getattr(error, "value", _text(item)),
                                  f"{getattr(error, 'reason', str(error))} (scene {scene_file})") from None
-            records.append({"name": os.path.basename(item["file"]), "source": f"{self.file.name}:{where}", **choice})
+            name = os.path.basename(item["file"])
+            if isinstance(item.get("record2"), str):
+                name += "+" + os.path.basename(item["record2"])
+            records.append({"name": name, "source": f"{self.file.name}:{where}", **choice})
         seen = {}
         for index, record in enumerate(records):  # the same file with the same options: one run twice
             same = tuple(sorted((k, str(v)) for k, v in record.items() if k not in ("name", "source")))

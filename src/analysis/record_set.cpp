@@ -35,7 +35,8 @@ RecordGap record_gap(Scene scene, const RecordEntry& entry, const solvers::RunBu
     // Read here for the processed peak and length; needed_gap reads it again (milliseconds,
     // against seconds for the run).
     const excitation::GroundMotion motion = excitation::load_ground_motion(resolved_excitation(scene));
-    row.pga_g = motion.peak_mps2() / scene.excitation.g_mps2;
+    // A pair: its larger component's.
+    row.pga_g = std::max(motion.peak_mps2(), motion.is_pair() ? motion.peak_mps2(1) : 0.0) / scene.excitation.g_mps2;
     row.duration_s = motion.end_s() - motion.start_s();
     const NeededGap gap = needed_gap(scene, budget);
     row.steps = gap.steps;

@@ -31,6 +31,8 @@ const std::map<std::string, std::string>& field_of_key() {
                                                              {"excitation.accel_column", "accel_column"},
                                                              {"excitation.scale_factor", "scale"},
                                                              {"excitation.scale_to_pga_g", "pga_g"},
+                                                             {"excitation.second.file", "record2"},
+                                                             {"excitation.second.accel_column", "record2_column"},
                                                              {"excitation.scale_to_sa", "sa"},
                                                              {"excitation.direction_deg", "direction_deg"}};
   return kFields;
@@ -78,8 +80,10 @@ class ListLine {
   std::size_t at_ = 0;
 };
 
-/// Sets the field `field` of `choice` from its text. @throws InputError for an unknown or repeated field.
-void set_field(const ListLine& line, const std::string& field, const std::string& value, RecordChoice& choice) {
+/// Sets the field `field` of `choice` from its text (a pair's record2 resolved against `folder`).
+/// @throws InputError for an unknown or repeated field.
+void set_field(const ListLine& line, const std::string& field, const std::string& value,
+               const std::filesystem::path& folder, RecordChoice& choice) {
   auto once = [&](auto& slot, auto parsed) {
     if (slot) throw line.error(field, value, "given twice on this line");
     slot = parsed;
@@ -92,14 +96,23 @@ void set_field(const ListLine& line, const std::string& field, const std::string
   if (field == "pga_g") return once(choice.pga_g, line.number<double>(field, value));
   if (field == "sa") return once(choice.sa, value);
   if (field == "direction_deg") return once(choice.direction_deg, line.number<double>(field, value));
+  if (field == "record2") {
+    const std::filesystem::path second(value);
+    return once(choice.second_file, (second.is_absolute() ? second : folder / second).lexically_normal());
+  }
+  if (field == "record2_column") return once(choice.second_accel_column, line.number<int>(field, value));
   throw line.error(field, value,
-                   "unknown field (expected format, units, dt_s, accel_column, scale, pga_g, sa or direction_deg)");
+                   "unknown field (expected format, units, dt_s, accel_column, scale, pga_g, sa, direction_deg, "
+                   "record2 or record2_column)");
 }
 
 /// `base` with `choice` applied; errors name the list line and the field.
 analysis::RecordEntry entry(const ListLine& line, const RecordChoice& choice, const excitation::ExcitationSpec& base) {
   try {
-    return {choice.file->filename().string(), line.where(), excitation::with_record(base, choice), choice};
+    // A pair is named by both files ("kobe.txt+kobe.txt" for two columns of one).
+    const std::string name =
+        choice.file->filename().string() + (choice.second_file ? "+" + choice.second_file->filename().string() : "");
+    return {name, line.where(), excitation::with_record(base, choice), choice};
   } catch (const InputError& error) {
     const auto field = field_of_key().find(error.key());
     throw line.error(field != field_of_key().end() ? field->second : error.key(), error.value(), error.reason());
@@ -142,7 +155,7 @@ std::vector<analysis::RecordEntry> read_list_file(const std::filesystem::path& f
       if (equals == std::string::npos || equals == 0) {
         throw line.error("", *word, "expected field=value after the record's path");
       }
-      set_field(line, word->substr(0, equals), word->substr(equals + 1), choice);
+      set_field(line, word->substr(0, equals), word->substr(equals + 1), file.parent_path(), choice);
     }
     if (records.size() == kMaxRecordsInSet) {
       throw InputError("--records", file.string(), fmt::format("a set may hold at most {} records", kMaxRecordsInSet));

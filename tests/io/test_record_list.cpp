@@ -160,3 +160,33 @@ BOOST_AUTO_TEST_CASE(ARecordOptionKeepsTheRestOfTheScenesExcitation) {
   BOOST_TEST(!scaled.excitation.scale_to_pga_g.has_value());
   BOOST_TEST(scaled.excitation.scale_factor == 2.0);
 }
+
+BOOST_AUTO_TEST_CASE(ALineMayNameAPairAndASpectralScaling) {
+  testing::TempDir dir;
+  dir.write("k.txt", "");
+  const std::filesystem::path file =
+      dir.write("pairs.txt",
+                "k.txt format=single units=cm/s2 dt_s=0.005 accel_column=1 record2=k.txt record2_column=2 sa=0.5g@B1\n"
+                "k.txt format=single units=cm/s2 dt_s=0.005 accel_column=1 sa=0.4g@1.2s\n");
+  const std::vector<analysis::RecordEntry> set = io::read_record_list(file, paper_excitation());
+  BOOST_TEST_REQUIRE(set.size() == 2u);
+  BOOST_TEST(set[0].name == "k.txt+k.txt");
+  const excitation::ExcitationSpec& pair = set[0].excitation;
+  BOOST_TEST_REQUIRE(pair.second.has_value());
+  BOOST_TEST((pair.second->file == dir.path() / "k.txt"));
+  BOOST_TEST(pair.second->read.accel_column.value() == 2);
+  BOOST_TEST(pair.second->read.dt_s.value() == 0.005);  // format single: H1's spacing
+  BOOST_TEST(pair.scale_to_sa->building == 1);
+  BOOST_TEST(!pair.scale_to_pga_g.has_value());  // a spectral scaling replaces the scene's PGA
+  BOOST_TEST(set[1].name == "k.txt");
+  BOOST_TEST(!set[1].excitation.second.has_value());
+  BOOST_TEST(*set[1].excitation.scale_to_sa->period_s == 1.2);
+  // A second component that is not there: named by its field and resolved path.
+  const std::filesystem::path missing = dir.write("missing.txt", "k.txt record2=none.txt\n");
+  BOOST_CHECK_EXCEPTION(io::read_record_list(missing, paper_excitation()), InputError, [&](const InputError& e) {
+    BOOST_TEST_INFO(e.what());
+    return e.key() == "record2" && e.value() == (dir.path() / "none.txt").string();
+  });
+  require_list_error("a.AT2 record2_column=2\n", 1, "record2_column", "2");
+  require_list_error("a.AT2 sa=0.5@T1\n", 1, "sa", "0.5@T1");
+}
