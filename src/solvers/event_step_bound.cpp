@@ -41,14 +41,14 @@ double EventStepBound::max_step_s(double t, const Eigen::VectorXd& y, const std:
 
 double EventStepBound::clear_step_s(double t, const Eigen::VectorXd& y, const ContactStates& states) {
   // Steps end at record samples, so the window ends at the next one and each component is one
-  // straight piece over it: its largest |a_c| is at an end (GapClearance takes the largest).
+  // straight piece over it: its largest |a_c| is at an end.
   const excitation::GroundMotion& motion = system_.ground_motion();
   const std::optional<double> next = motion.next_sample_after(t);
   if (!next) return 0.0;
   const double horizon_s = *next - t;
-  double peak_accel_mps2 = 0.0;
+  Eigen::Vector2d peak_accel_mps2 = Eigen::Vector2d::Zero();
   for (int c = 0; c < motion.component_count(); ++c) {
-    peak_accel_mps2 = std::max({peak_accel_mps2, std::abs(motion.accel_at(t, c)), std::abs(motion.accel_at(*next, c))});
+    peak_accel_mps2[c] = std::max(std::abs(motion.accel_at(t, c)), std::abs(motion.accel_at(*next, c)));
   }
   for (std::size_t i = 0; i < states.size(); ++i) {
     watched_[i] = states.open(i);

@@ -24,8 +24,7 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
       const double period_s = 2.0 * std::numbers::pi / (basis.omega_rad_s[k] * std::sqrt(1.0 - zeta * zeta));
       shortest_damped_period_s_ = std::min(shortest_damped_period_s_, period_s);
     }
-    // Σ_c |Γ_kc| |a_c| ≤ (Σ_c |Γ_kc|) max_c |a_c|: a pair bounded by its larger component.
-    modes.participation = basis.participation.cwiseAbs().rowwise().sum();
+    modes.participation = basis.participation.cwiseAbs();  // a column per ground-motion component
     for (const contact::Candidate& c : candidates) modes.floors.push_back(c.floors[b]);
     std::sort(modes.floors.begin(), modes.floors.end());
     modes.floors.erase(std::unique(modes.floors.begin(), modes.floors.end()), modes.floors.end());
@@ -36,8 +35,10 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
       modes.rate_rows.middleRows(static_cast<Eigen::Index>(3 * f), 3) = basis.shapes.middleRows(first, 3).cwiseAbs();
     }
     modes.displacement_rows = modes.rate_rows * basis.omega_rad_s.cwiseInverse().asDiagonal();
-    modes.rate_growth = modes.rate_rows * modes.participation;
-    modes.displacement_growth = modes.displacement_rows * modes.participation;
+    for (Eigen::Index c = 0; c < modes.participation.cols(); ++c) {
+      modes.rate_growth.push_back(modes.rate_rows * modes.participation.col(c));
+      modes.displacement_growth.push_back(modes.displacement_rows * modes.participation.col(c));
+    }
     amplitude_[b].resize(n);
     eta_[b].resize(n);
     eta_rate_[b].resize(n);
@@ -58,7 +59,7 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
 }
 
 double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, const std::vector<bool>& watched,
-                                 double clearance_m, double horizon_s, double peak_accel_mps2) const {
+                                 double clearance_m, double horizon_s, const Eigen::Vector2d& peak_accel_mps2) const {
   const int dof = system_.dof();
   // Bounds on |q̇| and |q| of the contact floors over a window τ, affine in τ: the header's
   // Â = A(t) + |Γ| a τ through the rows, as rate_0 + rate_1 τ and shift_0 + shift_1 τ.
@@ -69,9 +70,14 @@ double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, con
     eta_rate_[b].noalias() = modes.projection * y.segment(dof + modes.offset, n);
     amplitude_[b] = (eta_rate_[b].cwiseAbs2() + eta_[b].cwiseProduct(modes.omega_rad_s).cwiseAbs2()).cwiseSqrt();
     rate_bound_[b].noalias() = modes.rate_rows * amplitude_[b];
-    rate_growth_[b] = peak_accel_mps2 * modes.rate_growth;
+    // Σ_c |a_c| rows·|Γ_c|: each component grows the amplitudes by at most its own peak.
+    rate_growth_[b] = peak_accel_mps2[0] * modes.rate_growth[0];
     displacement_bound_[b].noalias() = modes.displacement_rows * amplitude_[b];
-    displacement_growth_[b] = peak_accel_mps2 * modes.displacement_growth;
+    displacement_growth_[b] = peak_accel_mps2[0] * modes.displacement_growth[0];
+    for (std::size_t c = 1; c < modes.rate_growth.size(); ++c) {
+      rate_growth_[b] += peak_accel_mps2[static_cast<Eigen::Index>(c)] * modes.rate_growth[c];
+      displacement_growth_[b] += peak_accel_mps2[static_cast<Eigen::Index>(c)] * modes.displacement_growth[c];
+    }
   }
   double open_s = horizon_s;
   for (std::size_t i = 0; i < pairs_.size(); ++i) {

@@ -77,7 +77,8 @@ void check_case(const dynamics::CoupledSystem& system, const Eigen::VectorXd& y0
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     std::vector<bool> alone(system.candidates().size(), false);
     alone[i] = true;
-    const double open_s = clearance.open_time_s(y0, alone, kClearance_m, kHorizon_s, peak_accel_mps2);
+    const double open_s =
+        clearance.open_time_s(y0, alone, kClearance_m, kHorizon_s, Eigen::Vector2d(peak_accel_mps2, 0.0));
     const Sampled inside = sample(system, y0, open_s, kClearance_m, alone);
     const Sampled horizon = sample(system, y0, kHorizon_s, kClearance_m, alone);
     BOOST_TEST_MESSAGE("candidate " << i << ": open for " << open_s << " s; first within the clearance at "
@@ -132,7 +133,7 @@ BOOST_AUTO_TEST_CASE(NoGapComesWithinTheClearanceInsideTheWindowFromRandomStates
       y.segment<3>(i) << 4e-3 * unit(random), 4e-3 * unit(random), 4e-4 * unit(random);
       y.segment<3>(n + i) << 0.15 * unit(random), 0.15 * unit(random), 0.015 * unit(random);
     }
-    const double open_s = clearance.open_time_s(y, all, kClearance_m, 1.0, 2.0);
+    const double open_s = clearance.open_time_s(y, all, kClearance_m, 1.0, Eigen::Vector2d(2.0, 0.0));
     if (open_s == 0.0) continue;  // some gap is within the clearance already
     BOOST_TEST(sample(system, y, open_s, kClearance_m, all).smallest_gap_m > kClearance_m, "trial " << trial);
     closing += sample(system, y, 1.0, kClearance_m, all).smallest_gap_m <= kClearance_m;

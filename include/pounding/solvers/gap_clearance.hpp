@@ -30,13 +30,13 @@ class GapClearance {
 
   /// The longest window [t, t + τ], τ ≤ horizon_s (s), over which every candidate i with
   /// watched[i] provably keeps g_i > clearance_m, for the free motion from y = (q, q̇) at t
-  /// under any ground motion with every component's |a_c| ≤ peak_accel_mps2 inside the window; 0 when some
+  /// under any ground motion with each component's |a_c| ≤ peak_accel_mps2[c] inside the window; 0 when some
   /// watched gap is not above clearance_m now. Also a lower bound when the window is shorter
   /// than horizon_s (to within 2⁻²⁴ of the horizon, by bisection).
   /// @pre watched.size() == candidates, horizon_s ≥ 0, peak_accel_mps2 ≥ 0; no contact force
   ///   acts in the window (free flight).
-  double open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, const std::vector<bool>& watched,
-                     double clearance_m, double horizon_s, double peak_accel_mps2) const;
+  double open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, const std::vector<bool>& watched, double clearance_m,
+                     double horizon_s, const Eigen::Vector2d& peak_accel_mps2) const;
   /// The shortest damped period (s) among both buildings' oscillating modes (ζ < 1; infinity if
   /// none oscillates).
   double shortest_damped_period_s() const { return shortest_damped_period_s_; }
@@ -46,11 +46,12 @@ class GapClearance {
     int offset = 0;                   // index in q of the building's first DOF
     Eigen::MatrixXd projection;       // Φᵀ M: η = projection · q_b
     Eigen::VectorXd omega_rad_s;
-    Eigen::VectorXd participation;    // Σ_c |Γ_c| per mode (|Γ| for one ground-motion component)
+    Eigen::MatrixXd participation;    // |Γ| per mode, a column per ground-motion component
     std::vector<int> floors;          // contact floors (1-based), in the order of the rows below
     Eigen::MatrixXd rate_rows;        // |Φ_jk| over the contact floors' (u, v, φ): |q̇_j| ≤ rate_rows Â
     Eigen::MatrixXd displacement_rows;  // |Φ_jk| / ω_k: |q_j| ≤ displacement_rows Â
-    Eigen::VectorXd rate_growth, displacement_growth;  // the rows times |Γ|: Â's growth per unit a τ
+    // The rows times |Γ_c|, one per component: Â's growth per unit a_c τ.
+    std::vector<Eigen::VectorXd> rate_growth, displacement_growth;
   };
   struct Pair {
     std::array<int, 2> row{0, 0};  // per building, first bound row of the candidate's floor
