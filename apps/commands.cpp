@@ -80,8 +80,17 @@ std::string_view format_name(excitation::RecordFormat format) {
 void print_spectral_scaling(const analysis::Scene& scene, const excitation::GroundMotion& motion) {
   if (!scene.excitation.scale_to_sa) return;
   const excitation::SaScaling sa = *analysis::resolved_excitation(scene).scale_to_sa;
-  fmt::print("  scaled by {:.6g} ({}): 5 %-damped {} = {} g at T = {:.4f} s\n", motion.record_scale(), sa.text,
-             motion.is_pair() ? "RotD100 PSA" : "PSA", sa.target_g, *sa.period_s);
+  const char* measure = motion.is_pair() ? "RotD100 PSA" : "PSA";
+  if (sa.design) {
+    fmt::print(
+        "  scaled by {:.6g} ({}): 5 %-damped {} fitted to the ASCE 7 spectrum (SDS {} g, SD1 {} g, TL {} s) "
+        "over {:.4f}-{:.4f} s\n",
+        motion.record_scale(), sa.text, measure, sa.design->sds_g, sa.design->sd1_g, sa.design->tl_s,
+        sa.from * *sa.period_s, sa.to * *sa.period_s);
+    return;
+  }
+  fmt::print("  scaled by {:.6g} ({}): 5 %-damped {} = {} g at T = {:.4f} s\n", motion.record_scale(), sa.text, measure,
+             sa.target_g, *sa.period_s);
 }
 
 void print_excitation(const analysis::Scene& scene, const excitation::GroundMotion& motion) {

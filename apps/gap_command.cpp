@@ -181,6 +181,7 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
   // The scene's own record is not run: the rows name theirs.
   analysis::Scene without_record = scene;
   without_record.excitation.file.clear();
+  without_record.excitation.second.reset();
   const io::Provenance provenance = io::make_provenance(without_record, command_line);
   const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
   fmt::print("Needed gap of '{}' under {} records ({}; contact-free runs, CVODE rtol {:g}, {} at a time):\n",
@@ -250,7 +251,8 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
     analysis::add_all_angles(scene, gap, run_budget(command));
     print_all_angles(gap);
   }
-  const bool completed = gap.status == solvers::RunStatus::completed;
+  const bool completed = gap.status == solvers::RunStatus::completed &&
+                         (!gap.all_angles || gap.all_angles->status == solvers::RunStatus::completed);
   if (!completed) {
     fmt::print("Stopped at t = {:.3f} s ({}: {}): the figures above cover the record up to there only; the needed "
                "gap is a lower bound\n",

@@ -39,8 +39,9 @@ void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& r
                      "Scale the record to this peak |a_g| in g (replaces the scene's scaling)");
   command.add_option("--scale-to-sa", record.sa,
                      "Scale the record so its 5%-damped PSA (of a pair: RotD100) at a period is this: 0.5g@T1 (the "
-                     "longer first period of the two buildings), 0.5g@B1, 0.5g@B2 or 0.5g@1.2s (replaces the scene's "
-                     "scaling)");
+                     "longer first period of the two buildings), 0.5g@B1, 0.5g@B2 or 0.5g@1.2s; or so it best fits "
+                     "the ASCE 7 design spectrum over a range: 'asce7(SDS=1.0,SD1=0.6,TL=8)@0.2-2T1' or @0.1-1.5s "
+                     "(replaces the scene's scaling)");
   command.add_option(
       "--direction-deg", record.direction_deg,
       "Direction of the shaking in plan (degrees from +x); a pair's second component acts 90 degrees on");

@@ -53,7 +53,8 @@ def _with_record(self, file, format=None, units=None, scale_factor=None, scale_t
     scale_to_pga_g each replace the scene's scaling. The record is read now, so an unreadable one
     raises here. The path is used as given (relative to the current folder).
     scale_to_sa="0.5g@T1" (or "0.5g@B1", "0.5g@B2", "0.5g@1.2s") scales the record so that its
-    5 %-damped PSA (of a pair: RotD100) at that period is the target, as `--scale-to-sa`.
+    5 %-damped PSA (of a pair: RotD100) at that period is the target, as `--scale-to-sa`;
+    "asce7(SDS=1.0,SD1=0.6,TL=8)@0.2-2T1" fits it to the ASCE 7 design spectrum over that range.
     record2 (and record2_column) make a pair, as `--record2` and `--record2-column`: the second
     horizontal component, read with the record's format and units, acting along direction_deg + 90;
     a new file without record2 drops the scene's second component.

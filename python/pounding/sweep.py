@@ -53,6 +53,7 @@ RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "
                  "accel_column": "accel_column", "scale": "scale_factor", "pga_g": "scale_to_pga_g",
                  "sa": "scale_to_sa", "direction_deg": "direction_deg", "record2": "record2",
                  "record2_column": "record2_column"}  # field -> Scene.with_record keyword
+SECOND_KEYS = {"excitation.second.file": "record2", "excitation.second.accel_column": "record2_column"}
 STIFFNESS_KEYS = ("stiffness_kN_per_m", "stiffness_kN_per_m1_5")  # kelvin; hertzdamp, jankowski
 LAW_KEYS = ("name", *STIFFNESS_KEYS)
 
@@ -296,7 +297,8 @@ class Sweep:
                 try:
                     scene.with_record(**choice, read=False)
                 except (InputError, TypeError) as error:
-                    key = getattr(error, "key", "").removeprefix("excitation.")
+                    key = getattr(error, "key", "")
+                    key = SECOND_KEYS.get(key, key.removeprefix("excitation."))
                     field = {v: k for k, v in RECORD_FIELDS.items()}.get(key, key)
                     raise _error(self.file, f"{where}.{field}" if field else where,
                                  getattr(error, "value", _text(item)),

@@ -459,6 +459,7 @@ constexpr double kSuperpositionStep_deg = 1.0;
 constexpr double kSweepStep_deg = 10.0;
 constexpr double kEnvelopeInterval_s = 0.005;
 constexpr double kMaxEnvelopeSamples = 50'000;  // per run: the sample interval grows for longer records
+constexpr double kMaxEnvelopeBytes = 256e6;     // per run's kept states: bounds it for tall buildings
 
 Scene turned_to(const Scene& scene, double angle_deg) {
   Scene turned = scene;
@@ -478,7 +479,9 @@ void superposed_envelope(const Scene& scene, const solvers::RunBudget& budget, A
   const CoupledSystem along_0 = build_system(turned_to(scene, 0.0)), along_90 = build_system(turned_to(scene, 90.0));
   NeededGapOptions options = scene_options(scene, budget);
   const excitation::GroundMotion& motion = along_0.ground_motion();
-  options.history_interval_s = std::max(kEnvelopeInterval_s, (motion.end_s() - motion.start_s()) / kMaxEnvelopeSamples);
+  const double most_samples =
+      std::min(kMaxEnvelopeSamples, kMaxEnvelopeBytes / (8.0 * static_cast<double>(along_0.state_size())));
+  options.history_interval_s = std::max(kEnvelopeInterval_s, (motion.end_s() - motion.start_s()) / most_samples);
   std::vector<VectorXd> states_0, states_90;
   const NeededGap run_0 = sampled_needed_gap(along_0, scene.contact.gap_m, options, &states_0);
   note_status(run_0, all);

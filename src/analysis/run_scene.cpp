@@ -25,15 +25,25 @@ namespace {
 
 /// The scene's keys that chose how its record is read, as typed ("excitation.format = single,
 /// excitation.accel_column = 99"), for an error the record file itself raised.
-std::string reading_keys(const excitation::ExcitationSpec& spec) {
+std::string reading_keys(const std::string& prefix, const excitation::RecordReadOptions& read) {
   constexpr const char* kFormats[] = {"peer-at2", "columns", "single"};
-  std::string keys = fmt::format("excitation.format = {}", kFormats[static_cast<int>(spec.read.format)]);
-  if (spec.read.format == excitation::RecordFormat::columns) {
-    keys += fmt::format(", excitation.time_column = {}", spec.read.time_column);
-  }
-  if (spec.read.accel_column) keys += fmt::format(", excitation.accel_column = {}", *spec.read.accel_column);
-  if (spec.read.dt_s) keys += fmt::format(", excitation.dt_s = {}", *spec.read.dt_s);
+  std::string keys = fmt::format("{}format = {}", prefix, kFormats[static_cast<int>(read.format)]);
+  if (read.format == excitation::RecordFormat::columns)
+    keys += fmt::format(", {}time_column = {}", prefix, read.time_column);
+  if (read.accel_column) keys += fmt::format(", {}accel_column = {}", prefix, *read.accel_column);
+  if (read.dt_s) keys += fmt::format(", {}dt_s = {}", prefix, *read.dt_s);
   return keys;
+}
+
+/// `error` (raised reading `file`) with what the scene asked of that file: its file and keys.
+InputError with_reading_keys(const InputError& error, const Scene& scene, const std::filesystem::path& file,
+                             const std::string& keys) {
+  // The record's own errors name "file" or "file:line"; anything else came from elsewhere.
+  const std::string& where = error.file();
+  const std::string path = file.string();
+  if (scene.file.empty() || !(where == path || where.rfind(path + ":", 0) == 0)) return error;
+  return InputError(error.key(), error.value(),
+                    fmt::format("{} (read as {} asks: {})", error.reason(), scene.file.string(), keys), error.file());
 }
 
 }  // namespace
@@ -57,14 +67,13 @@ excitation::ExcitationSpec resolved_excitation(const Scene& scene) {
 excitation::GroundMotion scene_ground_motion(const Scene& scene) {
   try {
     return excitation::load_ground_motion(resolved_excitation(scene));
+  } catch (const excitation::SecondComponentError& error) {
+    const excitation::SecondComponentSpec& second = *scene.excitation.second;
+    throw with_reading_keys(error, scene, second.file, reading_keys("excitation.second.", second.read));
   } catch (const InputError& error) {
     // The record file's line and field say what was found; the scene's file and keys say what
     // was asked of it (a column 99 the file does not have was the scene's choice).
-    if (scene.file.empty() || error.file().rfind(scene.excitation.file.string(), 0) != 0) throw;
-    throw InputError(error.key(), error.value(),
-                     fmt::format("{} (read as {} asks: {})", error.reason(), scene.file.string(),
-                                 reading_keys(scene.excitation)),
-                     error.file());
+    throw with_reading_keys(error, scene, scene.excitation.file, reading_keys("excitation.", scene.excitation.read));
   }
 }
 
@@ -325,6 +334,9 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
     report.spectral_scaling = SpectralScaling{.asked = sa.text,
                                               .target_g = sa.target_g,
                                               .period_s = *sa.period_s,
+                                              .design = sa.design,
+                                              .from_s = sa.from * *sa.period_s,
+                                              .to_s = sa.to * *sa.period_s,
                                               .damping_ratio = excitation::kSaScalingDamping,
                                               .rotd100 = system.ground_motion().is_pair(),
                                               .record_factor = system.ground_motion().record_scale()};

@@ -130,6 +130,16 @@ RecordSamples cut_and_convert(RecordSamples samples, const ExcitationSpec& spec,
   return samples;
 }
 
+/// The median interval of `times` (s): a cut's short first or last interval does not stand for
+/// the record.
+double median_spacing_s(const std::vector<double>& times) {
+  std::vector<double> intervals(times.size() - 1);
+  for (std::size_t k = 0; k + 1 < times.size(); ++k) intervals[k] = times[k + 1] - times[k];
+  const auto middle = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
+  std::nth_element(intervals.begin(), middle, intervals.end());
+  return *middle;
+}
+
 /// Both components on the union of their sample times over the span both cover, each linear
 /// between its own samples, so the pair is exactly the two records there. An H2 time closer than
 /// a millionth of the finer spacing to an H1 time counts as that one (0.02·3 and 0.005·12 differ
@@ -144,7 +154,7 @@ std::array<RecordSamples, 2> on_common_span(const RecordSamples& h1, const Recor
                      fmt::format("the pair shares no time span: H1 spans {} s to {} s, H2 {} s to {} s",
                                  h1.time_s.front(), h1.time_s.back(), h2.time_s.front(), h2.time_s.back()));
   }
-  const double same_s = 1e-6 * std::min(h1.time_s[1] - h1.time_s[0], h2.time_s[1] - h2.time_s[0]);
+  const double same_s = 1e-6 * std::min(median_spacing_s(h1.time_s), median_spacing_s(h2.time_s));
   const auto inside = [&](double t) { return t > from_s + same_s && t < to_s - same_s; };
   std::vector<double> times{from_s, to_s};
   for (double t : h1.time_s) {
@@ -171,31 +181,48 @@ double peak_of(const std::vector<double>& accel) {
   return peak;
 }
 
-/// The factor that gives `components` (one, or a pair on one time base) the PSA of `scaling` at
-/// its period: of one component its own, of a pair its RotD100 (0.1° steps: within 4e-7 of the
-/// largest over every angle, cos 0.05°).
+/// The record's PSA (m/s²) at each of `periods_s`: of one component its own, of a pair its
+/// RotD100 (at one period in 0.1° steps, within 4e-7 of the largest over every angle, cos 0.05°;
+/// over a range in 1° steps, within 4e-5).
+std::vector<double> record_psa_mps2(const std::vector<RecordSamples>& components, std::vector<double> periods_s) {
+  const bool one_period = periods_s.size() == 1;
+  const SpectrumOptions options{.periods_s = std::move(periods_s), .damping_ratio = kSaScalingDamping};
+  std::vector<double> psa;
+  if (components.size() == 1) {
+    for (const SpectrumOrdinate& o : response_spectrum({components[0].time_s, components[0].accel}, options)) {
+      psa.push_back(o.psa_mps2);
+    }
+  } else {
+    for (const RotDOrdinate& o :
+         rotd_spectrum({components[0].time_s, components[0].accel}, {components[1].time_s, components[1].accel},
+                       options, one_period ? 0.1 : 1.0)) {
+      psa.push_back(o.rotd100_psa_mps2);
+    }
+  }
+  return psa;
+}
+
+/// The factor of spec.scale_to_sa (SaScaling) for `components` (one, or a pair on one time base).
 double sa_factor(const std::vector<RecordSamples>& components, const ExcitationSpec& spec) {
   const SaScaling& scaling = *spec.scale_to_sa;
   if (!scaling.period_s) {
     throw InputError("excitation.scale_to_sa", scaling.text,
                      "names a building's period: the record must be read with its scene", spec.file.string());
   }
-  const double target_mps2 = scaling.target_g * spec.g_mps2;
-  const SpectrumOptions options{.periods_s = {*scaling.period_s}, .damping_ratio = kSaScalingDamping};
-  double psa_mps2 = 0.0;
-  if (components.size() == 1) {
-    psa_mps2 = response_spectrum({components[0].time_s, components[0].accel}, options).front().psa_mps2;
-  } else {
-    psa_mps2 = rotd_spectrum({components[0].time_s, components[0].accel}, {components[1].time_s, components[1].accel},
-                             options, 0.1)
-                   .front()
-                   .rotd100_psa_mps2;
+  const std::vector<double> periods = scaling.periods_s();
+  const std::vector<double> psa_mps2 = record_psa_mps2(components, periods);
+  double log_ratio = 0.0;
+  for (std::size_t k = 0; k < periods.size(); ++k) {
+    if (!(psa_mps2[k] > 0.0)) {
+      throw InputError("excitation.scale_to_sa", scaling.text,
+                       fmt::format("the record's spectral acceleration at {} s is zero", periods[k]),
+                       spec.file.string());
+    }
+    const double target_g = scaling.design ? scaling.design->sa_g(periods[k]) : scaling.target_g;
+    if (periods.size() == 1) return target_g * spec.g_mps2 / psa_mps2[k];
+    log_ratio += std::log(target_g * spec.g_mps2 / psa_mps2[k]);
   }
-  if (!(psa_mps2 > 0.0)) {
-    throw InputError("excitation.scale_to_sa", scaling.text, "the record's spectral acceleration there is zero",
-                     spec.file.string());
-  }
-  return target_mps2 / psa_mps2;
+  return std::exp(log_ratio / static_cast<double>(periods.size()));
 }
 
 /// A number filling all of `text`, or empty.
@@ -209,14 +236,112 @@ std::optional<double> whole_number(const std::string& text) {
 
 }  // namespace
 
+double DesignSpectrum::sa_g(double period_s) const {
+  const double t0 = 0.2 * sd1_g / sds_g, ts = sd1_g / sds_g;
+  if (period_s < t0) return sds_g * (0.4 + 0.6 * period_s / t0);
+  if (period_s <= ts) return sds_g;
+  if (period_s <= tl_s) return sd1_g / period_s;
+  return sd1_g * tl_s / (period_s * period_s);
+}
+
+std::vector<double> SaScaling::periods_s() const {
+  if (!design) return {*period_s};
+  std::vector<double> periods;
+  for (int k = 0; k < kSaRangePeriods; ++k) {
+    periods.push_back(*period_s * from * std::pow(to / from, static_cast<double>(k) / (kSaRangePeriods - 1)));
+  }
+  return periods;
+}
+
+namespace {
+
+constexpr double kMaxSaPeriod_s = 10.0, kMinSaPeriod_s = 0.01;
+const std::string kSaForms =
+    "expected TARGETg@PERIOD or asce7(SDS=..,SD1=..[,TL=..])@RANGE: 0.5g@T1 (the longer first period of the two "
+    "buildings), 0.5g@B1 or 0.5g@B2 (that building's), 0.5g@1.2s (a period in s); "
+    "asce7(SDS=1.0,SD1=0.6,TL=8)@0.2-2T1 (also B1, B2) or @0.1-1.5s";
+
+/// "asce7(SDS=1.0,SD1=0.6,TL=8)" (TL optional, 8 s).
+DesignSpectrum parse_design(const std::string& text, const std::string& key, const std::string& whole) {
+  const std::string prefix = "asce7(";
+  if (text.rfind(prefix, 0) != 0 || text.back() != ')') throw InputError(key, whole, kSaForms);
+  DesignSpectrum design;
+  bool sds = false, sd1 = false;
+  std::size_t at = prefix.size();
+  while (at < text.size() - 1) {
+    std::size_t end = text.find(',', at);
+    if (end == std::string::npos) end = text.size() - 1;
+    const std::string item = text.substr(at, end - at);
+    const std::size_t equals = item.find('=');
+    const std::optional<double> value =
+        equals == std::string::npos ? std::nullopt : whole_number(item.substr(equals + 1));
+    const std::string name = equals == std::string::npos ? item : item.substr(0, equals);
+    if (!value) throw InputError(key, whole, kSaForms);
+    if (name == "SDS") {
+      design.sds_g = *value, sds = true;
+    } else if (name == "SD1") {
+      design.sd1_g = *value, sd1 = true;
+    } else if (name == "TL") {
+      design.tl_s = *value;
+    } else {
+      throw InputError(key, whole, kSaForms);
+    }
+    at = end + 1;
+  }
+  if (!sds || !sd1) throw InputError(key, whole, "asce7(...) needs SDS and SD1 (g)");
+  if (!(design.sds_g > 0.0 && design.sds_g <= kMaxPeakAccel_g && design.sd1_g > 0.0 &&
+        design.sd1_g <= kMaxPeakAccel_g)) {
+    throw InputError(key, whole, fmt::format("SDS and SD1 must lie in (0, {}] g", kMaxPeakAccel_g));
+  }
+  if (!(design.tl_s >= 1.0 && design.tl_s <= 20.0)) throw InputError(key, whole, "TL must lie in [1, 20] s");
+  return design;
+}
+
+/// "T1", "B1", "B2" into scaling.building; false for anything else.
+bool read_building_period(const std::string& text, SaScaling& scaling) {
+  if (text != "T1" && text != "B1" && text != "B2") return false;
+  scaling.building = text == "T1" ? 3 : text[1] - '0';
+  return true;
+}
+
+/// "0.2-2T1", "0.2T1-2T1", "0.1-1.5s": the range form's periods.
+void parse_range(std::string range, const std::string& key, const std::string& whole, SaScaling& scaling) {
+  const std::size_t dash = range.find('-');
+  if (dash == std::string::npos) throw InputError(key, whole, kSaForms);
+  std::string low = range.substr(0, dash), high = range.substr(dash + 1);
+  const std::string unit = high.size() >= 2 ? high.substr(high.size() - 2) : "";
+  if (read_building_period(unit, scaling)) {
+    high.resize(high.size() - 2);
+    if (low.size() > 2 && low.substr(low.size() - 2) == unit) low.resize(low.size() - 2);
+  } else {
+    if (!high.empty() && high.back() == 's') high.pop_back();
+    scaling.period_s = 1.0;  // the range is in seconds
+  }
+  const std::optional<double> from = whole_number(low), to = whole_number(high);
+  if (!from || !to) throw InputError(key, whole, kSaForms);
+  if (!(*from > 0.0 && *to > *from && *to <= 100.0)) {
+    throw InputError(key, whole, "the range must run from a positive period to a longer one");
+  }
+  scaling.from = *from, scaling.to = *to;
+  if (scaling.building == 0 && !(*from >= kMinSaPeriod_s && *to <= kMaxSaPeriod_s)) {
+    throw InputError(key, whole, fmt::format("the periods must lie in [{}, {}] s", kMinSaPeriod_s, kMaxSaPeriod_s));
+  }
+}
+
+}  // namespace
+
 SaScaling parse_sa_scaling(const std::string& text, const std::string& key) {
-  constexpr double kMaxPeriod_s = 10.0, kMinPeriod_s = 0.01;
-  const std::string form =
-      "expected TARGETg@PERIOD: 0.5g@T1 (the longer first period of the two buildings), "
-      "0.5g@B1 or 0.5g@B2 (that building's), 0.5g@1.2s (a period in s)";
+  const std::string& form = kSaForms;
   const std::size_t at = text.find('@');
-  if (at == std::string::npos || at == 0 || text[at - 1] != 'g') throw InputError(key, text, form);
-  SaScaling scaling{.text = text};
+  if (at == std::string::npos || at == 0) throw InputError(key, text, form);
+  SaScaling scaling;
+  scaling.text = text;
+  if (text.rfind("asce7(", 0) == 0) {
+    scaling.design = parse_design(text.substr(0, at), key, text);
+    parse_range(text.substr(at + 1), key, text, scaling);
+    return scaling;
+  }
+  if (text[at - 1] != 'g') throw InputError(key, text, form);
   const std::optional<double> target = whole_number(text.substr(0, at - 1));
   if (!target) throw InputError(key, text, form);
   if (!(*target > 0.0 && *target <= kMaxPeakAccel_g)) {
@@ -224,15 +349,12 @@ SaScaling parse_sa_scaling(const std::string& text, const std::string& key) {
   }
   scaling.target_g = *target;
   std::string period = text.substr(at + 1);
-  if (period == "T1" || period == "B1" || period == "B2") {
-    scaling.building = period == "T1" ? 3 : period[1] - '0';
-    return scaling;
-  }
+  if (read_building_period(period, scaling)) return scaling;
   if (!period.empty() && period.back() == 's') period.pop_back();
   const std::optional<double> period_s = whole_number(period);
   if (!period_s) throw InputError(key, text, form);
-  if (!(*period_s >= kMinPeriod_s && *period_s <= kMaxPeriod_s)) {
-    throw InputError(key, text, fmt::format("the period must lie in [{}, {}] s", kMinPeriod_s, kMaxPeriod_s));
+  if (!(*period_s >= kMinSaPeriod_s && *period_s <= kMaxSaPeriod_s)) {
+    throw InputError(key, text, fmt::format("the period must lie in [{}, {}] s", kMinSaPeriod_s, kMaxSaPeriod_s));
   }
   scaling.period_s = *period_s;
   return scaling;
@@ -348,13 +470,7 @@ std::optional<double> GroundMotion::next_sample_after(double t_s) const {
   return *next;
 }
 
-double GroundMotion::sample_spacing_s() const {
-  std::vector<double> intervals(time_s_.size() - 1);
-  for (std::size_t k = 0; k + 1 < time_s_.size(); ++k) intervals[k] = time_s_[k + 1] - time_s_[k];
-  const auto middle = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
-  std::nth_element(intervals.begin(), middle, intervals.end());
-  return *middle;
-}
+double GroundMotion::sample_spacing_s() const { return median_spacing_s(time_s_); }
 
 double GroundMotion::peak_mps2(int component) const {
   return std::abs(accel_mps2(component)[peak_index_[static_cast<std::size_t>(component)]]);
@@ -407,10 +523,21 @@ GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec, s
   return motion;
 }
 
+SecondComponentSpec second_like(const ExcitationSpec& first, std::filesystem::path file) {
+  SecondComponentSpec second{
+      .file = std::move(file), .read = first.read, .units = first.units, .dt_override_s = first.dt_override_s};
+  second.read.accel_column.reset();
+  return second;
+}
+
 GroundMotion load_ground_motion(const ExcitationSpec& spec) {
   spec.validate();
   std::optional<RecordSamples> second;
-  if (spec.second) second = read_record(spec.second->file, spec.second->read);
+  try {
+    if (spec.second) second = read_record(spec.second->file, spec.second->read);
+  } catch (const InputError& error) {
+    throw SecondComponentError(error);
+  }
   return process_record(read_record(spec.file, spec.read), spec, std::move(second));
 }
 

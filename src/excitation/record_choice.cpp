@@ -22,10 +22,7 @@ void require_record_file(const std::string& key, const std::filesystem::path& fi
 void apply_second(ExcitationSpec& spec, const RecordChoice& choice) {
   if (choice.second_file) {
     require_record_file("excitation.second.file", *choice.second_file);
-    spec.second =
-        SecondComponentSpec{.file = *choice.second_file, .read = {.format = spec.read.format}, .units = spec.units};
-    // A single-format H2 is spaced as H1 is.
-    if (spec.read.format == RecordFormat::single) spec.second->read.dt_s = spec.read.dt_s;
+    spec.second = second_like(spec, *choice.second_file);
   } else if (choice.file) {
     spec.second.reset();
   }

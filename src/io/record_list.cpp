@@ -110,8 +110,9 @@ void set_field(const ListLine& line, const std::string& field, const std::string
 analysis::RecordEntry entry(const ListLine& line, const RecordChoice& choice, const excitation::ExcitationSpec& base) {
   try {
     // A pair is named by both files ("kobe.txt+kobe.txt" for two columns of one).
-    const std::string name =
-        choice.file->filename().string() + (choice.second_file ? "+" + choice.second_file->filename().string() : "");
+    const std::string name = choice.second_file ? fmt::format("{}+{}", choice.file->filename().string(),
+                                                              choice.second_file->filename().string())
+                                                : choice.file->filename().string();
     return {name, line.where(), excitation::with_record(base, choice), choice};
   } catch (const InputError& error) {
     const auto field = field_of_key().find(error.key());

@@ -286,12 +286,21 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
   json summary = run_json_elastic(report, provenance);
   if (report.spectral_scaling) {
     const analysis::SpectralScaling& sa = *report.spectral_scaling;
-    summary["spectral_scaling"] = {{"asked", sa.asked},
-                                   {"target_g", sa.target_g},
-                                   {"period_s", sa.period_s},
-                                   {"damping_ratio", sa.damping_ratio},
-                                   {"measure", sa.rotd100 ? "rotd100" : "psa"},
-                                   {"record_factor", sa.record_factor}};
+    json scaling = {{"asked", sa.asked}};
+    if (sa.design) {
+      scaling["target"] = {
+          {"spectrum", "asce7"}, {"sds_g", sa.design->sds_g}, {"sd1_g", sa.design->sd1_g}, {"tl_s", sa.design->tl_s}};
+      scaling["periods_s"] = {sa.from_s, sa.to_s};
+      scaling["period_count"] = excitation::kSaRangePeriods;
+      scaling["fit"] = "least squares of ln Sa (geometric mean of the ratios)";
+    } else {
+      scaling["target_g"] = sa.target_g;
+      scaling["period_s"] = sa.period_s;
+    }
+    scaling["damping_ratio"] = sa.damping_ratio;
+    scaling["measure"] = sa.rotd100 ? "rotd100" : "psa";
+    scaling["record_factor"] = sa.record_factor;
+    summary["spectral_scaling"] = scaling;
   }
   if (report.springs.empty() && !report.contact_free) return summary;
   // The yielding and pounding-demand sections go before the energy audit.

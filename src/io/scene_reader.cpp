@@ -513,14 +513,21 @@ void read_layout(TableReader& table, excitation::RecordReadOptions& read, std::o
   read.accel_column = table.optional_integer("accel_column");
 }
 
-/// [excitation.second]: H2 of a pair, its format, units and (format single) spacing H1's unless given.
+/// [excitation.second]: H2 of a pair; what it leaves out is read as H1 is (excitation::second_like).
 excitation::SecondComponentSpec read_second_component(TableReader table, const std::filesystem::path& scene_dir,
                                                       const excitation::ExcitationSpec& first) {
-  excitation::SecondComponentSpec second{
-      .file = read_record_file(table, scene_dir), .read = {.format = first.read.format}, .units = first.units};
+  excitation::SecondComponentSpec second = excitation::second_like(first, read_record_file(table, scene_dir));
+  const excitation::RecordFormat h1_format = second.read.format;
   read_format_and_units(table, second.read, second.units, false);
+  if (second.read.format != h1_format) {  // another layout: H1's spacing and columns mean nothing for it
+    second.read = {.format = second.read.format};
+    second.dt_override_s.reset();
+  }
+  const excitation::RecordReadOptions inherited = second.read;
+  const std::optional<double> inherited_respacing = second.dt_override_s;
   read_layout(table, second.read, second.dt_override_s);
-  if (second.read.format == excitation::RecordFormat::single && !second.read.dt_s) second.read.dt_s = first.read.dt_s;
+  if (!table.has("dt_s")) second.read.dt_s = inherited.dt_s, second.dt_override_s = inherited_respacing;
+  if (!table.has("time_column")) second.read.time_column = inherited.time_column;
   table.finish();
   return second;
 }

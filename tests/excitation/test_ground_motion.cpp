@@ -198,7 +198,7 @@ namespace {
 
 /// H1 on `h1` with H2 on `h2`, a pair (spec.second set, its file "synthetic-2").
 GroundMotion pair_of(const RecordSamples& h1, const RecordSamples& h2, ExcitationSpec spec) {
-  spec.second = SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = spec.units};
+  spec.second = SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = spec.units, .dt_override_s = {}};
   return process_record(h1, spec, h2);
 }
 
@@ -240,17 +240,46 @@ BOOST_AUTO_TEST_CASE(APairThatSharesNoTimeOrBadSecondKeysAreRefusedByName) {
                    "synthetic-2", "shares no time span"));
   ExcitationSpec spec = spec_in(AccelUnits::g);
   spec.second = SecondComponentSpec{.file = "synthetic-2",
-                                    .read = {.format = RecordFormat::columns, .time_column = 2, .accel_column = 2}};
+                                    .read = {.format = RecordFormat::columns, .time_column = 2, .accel_column = 2},
+                                    .units = AccelUnits::g,
+                                    .dt_override_s = {}};
   BOOST_TEST(names(refusal_of([&] { process_record(ramp(3, 0.01), spec, ramp(3, 0.01)); }),
                    "excitation.second.accel_column", "2", "excitation.second.time_column"));
   spec.second = SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = AccelUnits::g, .dt_override_s = 1e-9};
   BOOST_TEST(names(refusal_of([&] { process_record(ramp(3, 0.01), spec, ramp(3, 0.01)); }), "excitation.second.dt_s",
                    "1e-09", "[1e-05, 1] s"));
-  spec.second = SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = AccelUnits::g};  // 300 g
+  spec.second =
+      SecondComponentSpec{.file = "synthetic-2", .read = {}, .units = AccelUnits::g, .dt_override_s = {}};  // 300 g
   BOOST_TEST(names(refusal_of([&] {
                      process_record(ramp(3, 0.01), spec, RecordSamples{{0, 0.02}, {0, 300}});
                    }),
                    "excitation.second.units", "", "limit of 10 g"));
+}
+
+BOOST_AUTO_TEST_CASE(TheDesignSpectrumHasItsFourBranches) {
+  const DesignSpectrum asce{.sds_g = 1.0, .sd1_g = 0.6, .tl_s = 8.0};  // T0 = 0.12 s, TS = 0.6 s
+  BOOST_TEST(asce.sa_g(0.0) == 0.4);
+  BOOST_TEST(asce.sa_g(0.06) == 0.7, tt::tolerance(1e-14));
+  BOOST_TEST(asce.sa_g(0.3) == 1.0);
+  BOOST_TEST(asce.sa_g(1.2) == 0.5, tt::tolerance(1e-14));
+  BOOST_TEST(asce.sa_g(10.0) == 0.6 * 8.0 / 100.0, tt::tolerance(1e-14));
+  const SaScaling range = parse_sa_scaling("asce7(SDS=1.0,SD1=0.6)@0.2-2T1", "k");
+  BOOST_TEST(range.design->tl_s == 8.0);
+  BOOST_TEST(range.building == 3);
+  BOOST_TEST((range.from == 0.2 && range.to == 2.0));
+  BOOST_TEST(parse_sa_scaling("asce7(SDS=1,SD1=0.6,TL=4)@0.2T1-2T1", "k").from == 0.2);
+  SaScaling seconds = parse_sa_scaling("asce7(SDS=1,SD1=0.6)@0.1-1.5s", "k");
+  const std::vector<double> periods = seconds.periods_s();
+  BOOST_TEST(periods.size() == static_cast<std::size_t>(kSaRangePeriods));
+  BOOST_TEST(periods.front() == 0.1, tt::tolerance(1e-14));
+  BOOST_TEST(periods.back() == 1.5, tt::tolerance(1e-14));
+  for (const char* bad : {"asce7(SDS=1)@0.2-2T1", "asce7(SDS=1,SD1=0.6)@2-0.2T1", "asce7(SDS=1,SD1=0.6,X=1)@0.2-2T1",
+                          "asce7(SDS=0,SD1=0.6)@0.2-2T1", "asce7(SDS=1,SD1=0.6,TL=50)@0.2-2T1",
+                          "asce7(SDS=1,SD1=0.6)@0.001-1s", "asce7(SDS=1,SD1=0.6)@T1", "asce7SDS=1@0.2-2T1"}) {
+    BOOST_TEST(
+        names(refusal_of([&] { parse_sa_scaling(bad, "excitation.scale_to_sa"); }), "excitation.scale_to_sa", bad, ""),
+        bad);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(SpectralScalingIsReadAsTargetAtPeriod) {

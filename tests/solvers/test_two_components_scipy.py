@@ -30,8 +30,14 @@ Spectral scaling (--scale-to-sa), against the peer's own SDOF x'' + 2 zeta w x' 
 (DOP853 at rtol 1e-12 on each record interval, extrema located by events on x' = 0):
   8. one component at B1's first period (0.765 s from `pounding modes`): the record factor makes
      the 5 %-damped PSA the target within 1e-7 (relative);
+  11. [excitation.second] reads what it leaves out as H1 does: a four-column file (index, t, H1,
+     H2) with H1 at time_column 2 gives H2 its peak at its own time, and a column H2's file lacks
+     is refused naming excitation.second.accel_column;
   10. (`gap --all-angles` on the Kobe pair: superposed, never below the record angle's needed gap;
      tests/analysis/test_all_angles.py checks it against single-angle runs.)
+  12. over a range, "asce7(SDS=1.0,SD1=0.6,TL=8)@0.2-2B1": the record factor is the geometric mean
+     of the ASCE 7-16 design spectrum (written here) over the peer's PSA at the 50 log-spaced
+     periods of [0.2, 2] x 0.765 s, within 1e-7;
   9. the Kobe pair at 1.0 s: RotD100 = max_t |(x1, x2)| (extrema of x1^2 + x2^2 as events) is the
      target within 1e-6 (the program searches angles in 0.1 degree steps: cos 0.05 deg = 1 - 4e-7).
 """
@@ -346,6 +352,48 @@ def check_spectral_scaling(program, out, failures):
           f"peer's RotD100 of the scaled pair is the target within {error:.1e}")
     if sa["measure"] != "rotd100" or error > 1e-6:
         failures.append("9. spectral scaling of a pair misses its RotD100 target")
+    summary = run(program, ROOT / "examples/paper/paper.toml", out / "sa-range", "--scale-to-sa",
+                  "asce7(SDS=1.0,SD1=0.6,TL=8)@0.2-2B1", "--history", "off", "--method", "exact")
+    sa = summary["spectral_scaling"]
+
+    def asce7(period):  # ASCE 7-16 11.4.6
+        sds, sd1, tl = 1.0, 0.6, 8.0
+        t0, ts = 0.2 * sd1 / sds, sd1 / sds
+        if period < t0:
+            return sds * (0.4 + 0.6 * period / t0)
+        return sds if period <= ts else (sd1 / period if period <= tl else sd1 * tl / period ** 2)
+
+    t = np.round(np.arange(245) * 0.05, 10)
+    b1 = sa["periods_s"][0] / 0.2
+    periods = 0.2 * b1 * (2.0 / 0.2) ** (np.arange(50) / 49.0)
+    ratios = [asce7(p) * G / sdof_peak([(t, values)], p) for p in periods]
+    expected = math.exp(np.mean(np.log(ratios)))
+    error = abs(sa["record_factor"] / expected - 1.0)
+    print(f"12. asce7(SDS=1.0,SD1=0.6,TL=8)@0.2-2B1 over {sa['periods_s'][0]:.4f}-{sa['periods_s'][1]:.4f} s: record "
+          f"factor {sa['record_factor']:.9f}, the peer's geometric mean {expected:.9f} ({error:.1e})")
+    if abs(b1 - 0.765) > 5e-4 or error > 1e-7:
+        failures.append("12. the range scaling is not the geometric mean of the target-to-record ratios")
+
+
+def check_layout(program, out, failures):
+    t = np.round(np.arange(0.0, 10.0 + 1e-9, 0.01), 10)
+    h1, h2 = np.sin(2 * np.pi * t), np.where(t > 0, np.cos(2 * np.pi * 1.3 * t), 0.0)
+    (out / "four.txt").write_text("".join(f"{i} {ti:.2f} {x:.17g} {y:.17g}\n" for i, (ti, x, y) in
+                                          enumerate(zip(t, h1, h2))))
+    excitation = (f'[excitation]\nfile = "{out / "four.txt"}"\nformat = "columns"\nunits = "m/s2"\n'
+                  'time_column = 2\naccel_column = 3\n[excitation.second]\n'
+                  f'file = "{out / "four.txt"}"\naccel_column = 4\n\n')
+    scene = paper_scene(out, "four", excitation)
+    done = subprocess.run([program, "check", str(scene)], capture_output=True, text=True)
+    times = [float(line.split("at t = ")[1].split(" s")[0]) for line in done.stdout.splitlines() if "peak |a_g|" in line]
+    expected = float(t[np.argmax(np.abs(h2))])
+    print(f"11. four columns, H1 at time_column 2: H2 peaks at {times[1:]} s (its own {expected} s)")
+    if done.returncode != 0 or len(times) != 2 or abs(times[1] - expected) > 1e-9:
+        failures.append("11. [excitation.second] does not read its time column as H1 does")
+    bad = paper_scene(out, "four-bad", excitation.replace("accel_column = 4", "accel_column = 7"))
+    done = subprocess.run([program, "check", str(bad)], capture_output=True, text=True)
+    if done.returncode != 2 or "excitation.second.accel_column = 7" not in done.stderr:
+        failures.append(f"11. a column H2's file lacks is not refused by its key: {done.stderr.strip()}")
 
 
 def main():
@@ -357,6 +405,7 @@ def main():
     check_closed_forms(program, out, failures)
     check_methods(program, out, failures)
     check_spectral_scaling(program, out, failures)
+    check_layout(program, out, failures)
     for failure in failures:
         print("FAIL:", failure)
     return 1 if failures else 0

@@ -71,9 +71,11 @@ struct RunWarning {
 
 /// What excitation.scale_to_sa asked and what it did.
 struct SpectralScaling {
-  std::string asked;  // as written ("0.5g@T1")
-  double target_g = 0.0;
-  double period_s = 0.0;  // the period it was taken at (a building's T1 resolved)
+  std::string asked;      // as written ("0.5g@T1", "asce7(SDS=1,SD1=0.6)@0.2-2T1")
+  double target_g = 0.0;  // at a period; 0 for a range
+  double period_s = 0.0;  // at a period: where (a building's T1 resolved); for a range: its reference
+  std::optional<excitation::DesignSpectrum> design = std::nullopt;  // over a range: the target
+  double from_s = 0.0, to_s = 0.0;                                  // over a range: its periods (s)
   double damping_ratio = 0.05;
   bool rotd100 = false;        // a pair: its RotD100; else the one component's PSA
   double record_factor = 0.0;  // what the record's values were multiplied by (its own units)
@@ -97,7 +99,7 @@ struct RunReport {
   std::vector<RunWarning> warnings = {};
   /// With output.contact_free_reference: the same run with no contact candidates (its peaks and
   /// springs; no history).
-  std::optional<solvers::RunResult> contact_free;
+  std::optional<solvers::RunResult> contact_free = std::nullopt;
   /// The yielding column springs (result.springs in the same order); empty if all stay elastic.
   std::vector<dynamics::YieldingSpring> springs = {};
   std::optional<SpectralScaling> spectral_scaling = std::nullopt;  // with excitation.scale_to_sa

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pounding/excitation/record_reader.hpp"
+#include "pounding/input_error.hpp"
 
 namespace pounding::excitation {
 
@@ -36,20 +37,47 @@ struct SecondComponentSpec {
   std::optional<double> dt_override_s;  // re-space its samples t_i = i·dt (any format)
 };
 
-/// Spectral scaling: one factor so that the record's 5 %-damped pseudo-spectral acceleration at a
-/// period (of a pair: its RotD100, the largest over every horizontal direction) equals target_g.
-/// Written "0.5g@1.2" (a period in s, "1.2s" too), "0.5g@B1" or "0.5g@B2" (that building's first
-/// period) or "0.5g@T1" (the longer of the two first periods).
+/// An InputError raised while reading a pair's second record (the keys that chose how it is read
+/// are excitation.second.*), so that callers name those, not H1's.
+class SecondComponentError : public InputError {
+ public:
+  explicit SecondComponentError(const InputError& error) : InputError(error) {}
+};
+
+/// The ASCE 7-16 §11.4.6 design response spectrum (5 % damped): S_DS, S_D1 in g, T_L in s.
+struct DesignSpectrum {
+  double sds_g = 0.0;
+  double sd1_g = 0.0;
+  double tl_s = 8.0;
+  /// S_a(T) in g: S_DS(0.4 + 0.6 T/T0) below T0 = 0.2 S_D1/S_DS, S_DS up to TS = S_D1/S_DS, S_D1/T up
+  /// to T_L, S_D1 T_L/T² beyond.
+  double sa_g(double period_s) const;
+};
+
+/// Spectral scaling by one factor, of the record's 5 %-damped pseudo-spectral acceleration (of a
+/// pair: its RotD100, the largest over every horizontal direction). Two forms:
+/// - at a period, "0.5g@T1": the PSA there equals target_g. The period: "1.2" or "1.2s" (s), "B1"
+///   or "B2" (that building's first period), "T1" (the longer of the two first periods);
+/// - over a range, "asce7(SDS=1.0,SD1=0.6,TL=8)@0.2-2T1": the record's spectrum best fits the
+///   design spectrum over kSaRangePeriods log-spaced periods in [from, to] × the period (T1, B1,
+///   B2; or "0.1-1.5s" in seconds), in the least-squares sense of ln S_a (the factor is the
+///   geometric mean of the target-to-record ratios, as the PEER ground-motion database scales).
 struct SaScaling {
-  double target_g = 0.0;
-  std::optional<double> period_s;  // a period given in s, or the building's once resolved
+  double target_g = 0.0;                 // the point form's target
+  std::optional<DesignSpectrum> design;  // the range form's target
+  double from = 1.0, to = 1.0;           // the range form's periods, as multiples of period_s
+  std::optional<double> period_s;        // a period given in s (1 for a range in s), or the building's once resolved
   int building = 0;                // 1 or 2: that building's T1; 3: the longer T1 of both; 0: period_s given
   std::string text;                // as written, for messages
+
+  /// The periods (s) the factor is fitted at: period_s, or the range's log-spaced ones. @pre period_s set.
+  std::vector<double> periods_s() const;
 };
 inline constexpr double kSaScalingDamping = 0.05;
+inline constexpr int kSaRangePeriods = 50;
 
-/// Parses "0.5g@T1", "0.5g@B2", "0.5g@1.2s" (target in (0, 10] g, period in [0.01, 10] s).
-/// @throws InputError naming `key` and the text when it is not one of these.
+/// Parses either form (targets in (0, 10] g, periods in [0.01, 10] s, S_D1 ≤ 10 g, T_L in [1, 20] s).
+/// @throws InputError naming `key` and the text when it is neither.
 SaScaling parse_sa_scaling(const std::string& text, const std::string& key);
 
 /// How a record file (or a pair) becomes the excitation. Processing order: read, override the
@@ -72,6 +100,11 @@ struct ExcitationSpec {
   /// @throws InputError naming the `excitation.*` key, its value and the range it must lie in.
   void validate() const;
 };
+
+/// H2 of a pair in `file`, read as H1 (`first`) is: its format, units, time column, spacing
+/// (format single) and re-spacing; the acceleration column left to the format's default (a pair
+/// from one file names H2's column).
+SecondComponentSpec second_like(const ExcitationSpec& first, std::filesystem::path file);
 
 /// Thrown by GroundMotion::accel_at for a NaN or infinite time: a solver that diverged, never
 /// bad input. Solvers end the run with a named status when they meet it.
