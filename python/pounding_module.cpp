@@ -79,6 +79,17 @@ Scene with_gap(Scene scene, double gap_m) {
   return scene;
 }
 
+/// The scene with its record turned to direction_deg (H1's; a pair's H2 at + 90°), as --direction-deg.
+Scene with_direction(Scene scene, double direction_deg) {
+  try {
+    scene.excitation.direction_deg = direction_deg;
+    scene.excitation.validate();
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  return scene;
+}
+
 Scene with_restitution(Scene scene, double restitution) {
   try {
     scene.contact.restitution = restitution;
@@ -349,6 +360,9 @@ PYBIND11_MODULE(_pounding, m) {
       .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),
            "The scene with output.history (bool) and output.peaks (a list of peak groups: displacements, "
            "accelerations, drifts) replaced; None keeps the scene's")
+      .def("with_direction", &with_direction, py::arg("direction_deg"),
+           "The scene with excitation.direction_deg replaced (the record's angle from +x; a pair's second component "
+           "at + 90 degrees), as `run --direction-deg`")
       .def("with_restitution", &with_restitution, py::arg("restitution"),
            "The scene with contact.restitution replaced, as `run --restitution`")
       .def(

@@ -10,6 +10,7 @@ The sweep file (TOML; paths relative to its folder; README, "Sweeps"):
     records = "../records/set.txt"     # a record list, a folder of .AT2 files, or a list of paths
                                        # and tables {file, format, units, dt_s, accel_column, scale,
                                        # pga_g, direction_deg}; absent: each scene's own record
+    directions_deg = [0, 45, 90]       # the records' angles (H1's; a pair's H2 at + 90); absent: as each record says
     gaps_m = [0.05, 0.1]               # absent: the scene's gap
     restitutions = [0.5]               # absent: the scene's
     methods = ["cvode-bdf", {name = "arkode-erk", rtol = 1e-8}]   # absent: the scene's
@@ -31,6 +32,7 @@ import csv
 import datetime
 import hashlib
 import io
+import itertools
 import json
 import logging
 import math
@@ -47,7 +49,7 @@ import pounding
 from pounding import InputError
 
 # The keys of a sweep file, and what each record table may set (the record list's fields).
-SWEEP_KEYS = ("scenes", "records", "gaps_m", "restitutions", "methods", "contact_laws", "needed_gap",
+SWEEP_KEYS = ("scenes", "records", "directions_deg", "gaps_m", "restitutions", "methods", "contact_laws", "needed_gap",
               "max_wall_time_s", "out")
 RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "dt_s",
                  "accel_column": "accel_column", "scale": "scale_factor", "pga_g": "scale_to_pga_g",
@@ -129,6 +131,7 @@ class Sweep:
         self.scenes = {}  # scene_file as written -> loaded Scene (driver only)
         for scene_file in self.scene_files:
             self.scenes[scene_file] = pounding.load_scene(self._resolve(scene_file))
+        self.directions = self._numbers("directions_deg")
         self.gaps_m = self._numbers("gaps_m")
         self.restitutions = self._numbers("restitutions")
         self.laws = self._laws()
@@ -178,12 +181,15 @@ class Sweep:
         values = self._list(key)
         if values is None:
             return [None]
-        option = {"gaps_m": "gap", "restitutions": "restitution"}[key]
         for index, value in enumerate(values):
             if not _is_number(value):
                 raise _error(self.file, f"{key}[{index + 1}]", _text(value), "expected a number")
             for scene_file in self.scene_files:  # each scene checks its own range (a gap must fit its plan)
                 try:
+                    if key == "directions_deg":
+                        self.scenes[scene_file].with_direction(float(value))
+                        continue
+                    option = {"gaps_m": "gap", "restitutions": "restitution"}[key]
                     pounding.load_scene(self._resolve(scene_file), **{option: float(value)})
                 except InputError as error:
                     raise _error(self.file, f"{key}[{index + 1}]", _text(value),
@@ -347,27 +353,37 @@ class Sweep:
                         raise _error(self.file, f"methods[{method_index + 1}]", _text(method["name"]),
                                      f"{error.reason} (contact_laws[{law_index + 1}], scene {scene_file})") from None
 
+    def parameter_columns(self):
+        """PARAMETERS, with direction_deg after the record's columns when the sweep turns records."""
+        if self.directions == [None]:
+            return list(PARAMETERS)
+        at = PARAMETERS.index("record_source") + 1
+        return [*PARAMETERS[:at], "direction_deg", *PARAMETERS[at:]]
+
     def columns(self):
         yielding = YIELDING if any(scene.yielding for scene in self.scenes.values()) else ()
-        return [*PARAMETERS, *self.setting_keys, *RESULTS, *yielding, *(NEEDED_GAP if self.needed_gap else ()),
+        return [*self.parameter_columns(), *self.setting_keys, *RESULTS, *yielding, *(NEEDED_GAP if self.needed_gap else ()),
                 *TIMINGS]
 
     def runs(self):
         """Every run of the product, as (row parameters, task parameters), in product order."""
         for scene_file, scene in self.scenes.items():
-            for record in self.records:
+            for record, direction in itertools.product(self.records, self.directions):
                 for gap_m in self.gaps_m:
                     for restitution in self.restitutions:
                         for law in self.laws:
                             for method in self.methods:
-                                yield self._run(scene_file, scene, record, gap_m, restitution, law, method)
+                                yield self._run(scene_file, scene, (record, direction), gap_m, restitution, law,
+                                                method)
 
-    def _run(self, scene_file, scene, record, gap_m, restitution, law, method):
+    def _run(self, scene_file, scene, turned_record, gap_m, restitution, law, method):
+        record, direction = turned_record
         # The row names the scene's own value where the sweep leaves one to the scene; the task
         # gets None there, so the worker runs the scene file as it is.
         row = {"scene_file": scene_file, "scene": scene.name,
                "record": record["name"] if record else os.path.basename(str(scene.record_file)),
                "record_source": record["source"] if record else "scene",
+               **({} if direction is None else {"direction_deg": direction}),
                "gap_m": scene.gap_m if gap_m is None else gap_m,
                "restitution": scene.restitution if restitution is None else restitution,
                "contact_law": law["name"] or scene.contact_law,
@@ -376,7 +392,8 @@ class Sweep:
         row.update({key: method["settings"].get(key) for key in self.setting_keys})
         task = {"scene_file": self._resolve(scene_file), "gap_m": gap_m, "restitution": restitution,
                 "contact_law": law["name"], "contact_stiffness": law["stiffness"],
-                "record": _record_keywords(record), "method": method["name"], "settings": method["settings"],
+                "record": _record_keywords(record), "direction_deg": direction, "method": method["name"],
+                "settings": method["settings"],
                 "max_wall_time_s": self.max_wall_time_s}
         return row, task
 
@@ -384,7 +401,7 @@ class Sweep:
         """The resolved axes, for sweep.json."""
         return {"scenes": self.scene_files, "records": [r and {"name": r["name"], "source": r["source"]} for r in
                                                         self.records],
-                "gaps_m": self.gaps_m, "restitutions": self.restitutions, "contact_laws": self.laws,
+                "directions_deg": self.directions, "gaps_m": self.gaps_m, "restitutions": self.restitutions, "contact_laws": self.laws,
                 "methods": self.methods, "needed_gap": self.needed_gap, "max_wall_time_s": self.max_wall_time_s}
 
 
@@ -412,6 +429,8 @@ def _scene(task):
                                 contact_stiffness=task.get("contact_stiffness"))
     if task["record"] is not None:
         scene = scene.with_record(**task["record"])
+    if task.get("direction_deg") is not None:
+        scene = scene.with_direction(task["direction_deg"])
     return scene
 
 
@@ -422,7 +441,8 @@ def _failure(error):
 def needed_gap_task(task):
     """The needed gap of the task's scene (its own gap and tolerances) under its record."""
     try:
-        gap = pounding.needed_gap(_scene({"scene_file": task["scene_file"], "record": task["record"]}),
+        gap = pounding.needed_gap(_scene({"scene_file": task["scene_file"], "record": task["record"],
+                                          "direction_deg": task.get("direction_deg")}),
                                   max_wall_time_s=task.get("max_wall_time_s"))
     except Exception as error:  # noqa: BLE001  (a record that cannot be read: the rows say so)
         return {"needed_gap_m": None, "needed_gap_level": None, "needed_gap_t_s": None,
@@ -581,7 +601,8 @@ def _typed(column, text):
         return text
     if column in INTEGER_COLUMNS:
         return int(text)
-    if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in TIMINGS or column in PARAMETERS:
+    if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in TIMINGS or column in PARAMETERS \
+            or column == "direction_deg":
         return float(text)
     for kind in (int, float):
         try:
@@ -653,7 +674,7 @@ def run_sweep(sweep_file, out=None, workers=None, scheduler=None, progress=True,
     except OSError as error:  # a file of that name, a folder without permission, ...
         raise _error("", "out", str(out), f"cannot create this folder: {error.strerror}") from None
 
-    key_columns = [*PARAMETERS, *sweep.setting_keys]
+    key_columns = [*sweep.parameter_columns(), *sweep.setting_keys]
     table = Table(out / "sweep.csv", sweep.columns(), key_columns)
     runs = list(sweep.runs())
     todo = [(row, task) for row, task in runs if table.key(row) not in table.keys]
@@ -704,7 +725,7 @@ def _serial(sweep, todo):
     for row, task in todo:
         gap = None
         if sweep.needed_gap:
-            pair = (task["scene_file"], row["record_source"])
+            pair = (task["scene_file"], row["record_source"], task["direction_deg"])
             if pair not in gaps:
                 gaps[pair] = needed_gap_task(task)
             gap = gaps[pair]
@@ -782,7 +803,7 @@ def _distributed(client, sweep, todo):
         for row, task in todo:
             gap = None
             if sweep.needed_gap:
-                pair = (task["scene_file"], row["record_source"])
+                pair = (task["scene_file"], row["record_source"], task["direction_deg"])
                 if pair not in gaps:
                     gaps[pair] = client.submit(needed_gap_task, task, pure=False)
                 gap = gaps[pair]

@@ -179,6 +179,9 @@ def test_a_failed_run_is_a_row(folder):
     ("needed_gap = 1", "needed_gap", "1", "expected true or false"),
     ("max_wall_time_s = inf", "max_wall_time_s", "inf", "expected a finite number of seconds"),
     ('records = ["pulse_a.txt", {file = "pulse_a.txt"}]', "records[2]", "pulse_a.txt", "a record is given twice"),
+    ("directions_deg = [0, 400]", "directions_deg[2]", "400", "[-360, 360]"),
+    ("directions_deg = [30, 30]", "directions_deg", "30", "given twice"),
+    ('records = [{file = "pulse_a.txt", record2 = "nowhere.txt"}]', "records[1].record2", "nowhere.txt", "no such"),
 ])
 def test_bad_sweep_file_names_file_key_and_value(folder, tmp_path, text, key, value, reason):
     path = folder / "bad.toml"
@@ -288,3 +291,23 @@ def test_yielding_scenes_add_their_columns(folder, serial, tmp_path):
         assert row[f"b{b}_max_ductility"] == max(max(s["peak_ductility_x"], s["peak_ductility_y"]) for s in storeys[b])
     assert row["hysteretic_kJ"] == run.energy["hysteretic_kJ"]
     assert row["yield_events"] == run.yielding["yield_events"] > 0
+
+
+def test_directions_cross_the_records(folder, tmp_path):
+    """directions_deg crosses every record with every angle: each row is the run, and its needed gap
+    the needed gap, of the scene turned to that angle (Scene.with_direction, as --direction-deg)."""
+    path = write_sweep(folder / "turned.toml", records=['{file = "pulse_a.txt", format = "single", units = "g", '
+                                                       'dt_s = 0.02}'], extra="directions_deg = [0, 60]\n")
+    result = pounding.sweep(path, out=tmp_path / "turned", workers=0, progress=False)
+    assert result.executed == 4
+    columns = list(result.rows[0])
+    assert columns[columns.index("record_source") + 1] == "direction_deg"
+    scene = pounding.load_scene(PAPER).with_record(folder / "pulse_a.txt", format="single", units="g", dt_s=0.02)
+    for row in result.rows:
+        turned = scene.with_direction(row["direction_deg"]).with_gap(row["gap_m"])
+        run = pounding.run(turned.with_outputs(history=False))
+        assert row["impact_count"] == len(run.impacts)
+        assert row["needed_gap_m"] == pounding.needed_gap(scene.with_direction(row["direction_deg"])).needed_gap_m
+    assert {row["direction_deg"] for row in result.rows} == {0.0, 60.0}
+    # without directions_deg the table keeps its columns (the module's own sweep above)
+    assert "direction_deg" not in sweeps.PARAMETERS
