@@ -104,6 +104,13 @@ struct SpectrumCommand {
   bool no_plot = false;                    // skip spectrum.png (drawn by tools/plot_spectrum.py)
 };
 
+struct PlanCommand {
+  std::string scene;
+  std::optional<double> gap_m;  // --gap: building 2 moved along x
+  std::string out_dir;          // empty: out/<scene name>-plan
+  bool no_plot = false;         // skip plan.png (drawn by tools/plot_plan.py)
+};
+
 struct SweepCommand {
   std::string sweep_file;
   std::optional<int> workers;  // LocalCluster processes; unset: every core
@@ -118,6 +125,7 @@ int run_gap(const GapCommand& command, const std::string& command_line);  // in 
 /// @throws InputError when the interpreter or the module is missing.
 int run_sweep(const SweepCommand& command);  // in sweep_command.cpp
 int run_spectrum(const SpectrumCommand& command, const std::string& command_line);  // in spectrum_command.cpp
+int run_plan(const PlanCommand& command, const std::string& command_line);          // in plan_command.cpp
 int run_modes(const ModesCommand& command);
 int run_study(const StudyCommand& command, const std::string& command_line);
 int run_run(const RunCommand& command, const std::string& command_line);

@@ -276,6 +276,16 @@ int main(int argc, char** argv) {
   spectrum_app->add_option("--out", spectrum.out_dir, "Output folder")->capture_default_str();
   spectrum_app->add_flag("--no-plot", spectrum.no_plot, "Do not draw spectrum.png (tools/plot_spectrum.py)");
 
+  pounding::cli::PlanCommand plan;
+  CLI::App* plan_app = app.add_subcommand(
+      "plan",
+      "The scene's plan and elevation before any run: slabs, columns, centres of mass and of stiffness, the "
+      "levels where floors meet and the contact candidates (plan.json; plan.png by tools/plot_plan.py)");
+  plan_app->add_option("scene", plan.scene, "Scene file (TOML)")->required();
+  plan_app->add_option("--gap", plan.gap_m, "Clear gap (m); moves building 2 along x");
+  plan_app->add_option("--out", plan.out_dir, "Output folder (default out/<scene name>-plan)");
+  plan_app->add_flag("--no-plot", plan.no_plot, "Do not draw plan.png");
+
   pounding::cli::SweepCommand sweep;
   CLI::App* sweep_app = app.add_subcommand(
       "sweep", "Runs of every scene x record x gap x restitution x method x contact law of a sweep file, on Dask "
@@ -316,6 +326,7 @@ int main(int argc, char** argv) {
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);
     if (*sweep_app) return pounding::cli::run_sweep(sweep);
     if (*spectrum_app) return pounding::cli::run_spectrum(spectrum, command_line);
+    if (*plan_app) return pounding::cli::run_plan(plan, command_line);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

@@ -2,13 +2,12 @@
 // periods of a scene's buildings marked.
 
 #include <fmt/format.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <string>
 
 #include "commands.hpp"
+#include "plot_script.hpp"
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/excitation/spectrum.hpp"
@@ -104,28 +103,6 @@ void print_spectra(const io::SpectrumReport& report) {
   }
 }
 
-/// Draws spectrum.png with tools/plot_spectrum.py under the interpreter the build knows; says
-/// why not when there is none (an installed program without the source tree's tools).
-void draw_plot(const std::string& folder) {
-#if defined(POUNDING_PYTHON_EXECUTABLE) && defined(POUNDING_TOOLS_DIR)
-  const std::string python = POUNDING_PYTHON_EXECUTABLE;
-  const std::string script = std::string(POUNDING_TOOLS_DIR) + "/plot_spectrum.py";
-  if (std::filesystem::is_regular_file(python) && std::filesystem::is_regular_file(script)) {
-    std::fflush(stdout);
-    const pid_t child = fork();
-    if (child == 0) {
-      execl(python.c_str(), python.c_str(), script.c_str(), folder.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    int status = 0;
-    if (child > 0 && waitpid(child, &status, 0) == child && WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
-    fmt::print(stderr, "warning: {} {} {} failed: no spectrum.png\n", python, script, folder);
-    return;
-  }
-#endif
-  fmt::print("No plot: this build has no Python with tools/plot_spectrum.py (run it on {} by hand)\n", folder);
-}
-
 }  // namespace
 
 int run_spectrum(const SpectrumCommand& command, const std::string& command_line) {
@@ -170,7 +147,7 @@ int run_spectrum(const SpectrumCommand& command, const std::string& command_line
   print_spectra(report);
   io::write_spectrum(command.out_dir, report);
   fmt::print("Wrote {}/spectrum.csv{}, spectrum.json\n", command.out_dir, command.rotd ? ", rotd.csv" : "");
-  if (!command.no_plot) draw_plot(command.out_dir);
+  if (!command.no_plot) draw_with_script("plot_spectrum.py", command.out_dir, "spectrum.png");
   return 0;
 }
 
