@@ -21,6 +21,7 @@
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/excitation/record_choice.hpp"
+#include "pounding/excitation/spectrum.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/gap_writer.hpp"
 #include "pounding/io/impact_schema.hpp"
@@ -411,6 +412,56 @@ PYBIND11_MODULE(_pounding, m) {
   m.def("record_list", &record_list, py::arg("scene"), py::arg("list_or_folder"));
 
   m.def("building_matrices", &building_matrices, py::arg("scene"));
+  m.def(
+      "ground_motion",
+      [](const Scene& scene) {
+        const pounding::excitation::GroundMotion motion = pounding::analysis::scene_ground_motion(scene);
+        py::dict result;
+        const auto& t = motion.time_s();
+        result["time_s"] = py::array_t<double>(py::ssize_t(t.size()), t.data());
+        for (int c = 0; c < motion.component_count(); ++c) {
+          const auto& a = motion.accel_mps2(c);
+          result[c == 0 ? "h1_mps2" : "h2_mps2"] = py::array_t<double>(py::ssize_t(a.size()), a.data());
+        }
+        if (!motion.is_pair()) result["h2_mps2"] = py::none();
+        result["direction_deg"] = scene.excitation.direction_deg;
+        result["record_scale"] = motion.record_scale();
+        return result;
+      },
+      py::arg("scene"));
+  m.def("default_periods_s", &pounding::excitation::default_periods_s);
+  m.def(
+      "response_spectrum",
+      [](std::vector<double> time_s, std::vector<double> accel_mps2, std::vector<double> periods_s,
+         double damping_ratio) {
+        const pounding::excitation::SpectrumOptions options{.periods_s = std::move(periods_s),
+                                                            .damping_ratio = damping_ratio};
+        const auto ordinates =
+            pounding::excitation::response_spectrum({std::move(time_s), std::move(accel_mps2)}, options);
+        return matrix(ordinates.size(), 5, [&](std::size_t r, std::size_t c) {
+          const auto& o = ordinates[r];
+          const double values[] = {o.period_s, o.sd_m, o.psv_mps, o.psa_mps2, o.peak_time_s};
+          return values[c];
+        });
+      },
+      py::arg("time_s"), py::arg("accel_mps2"), py::arg("periods_s"), py::arg("damping_ratio"));
+  m.def(
+      "rotd_spectrum",
+      [](std::vector<double> time_s, std::vector<double> first_mps2, std::vector<double> second_mps2,
+         std::vector<double> periods_s, double damping_ratio, double angle_step_deg) {
+        const pounding::excitation::SpectrumOptions options{.periods_s = std::move(periods_s),
+                                                            .damping_ratio = damping_ratio};
+        const auto ordinates = pounding::excitation::rotd_spectrum(
+            {time_s, std::move(first_mps2)}, {time_s, std::move(second_mps2)}, options, angle_step_deg);
+        return matrix(ordinates.size(), 6, [&](std::size_t r, std::size_t c) {
+          const auto& o = ordinates[r];
+          const double values[] = {o.period_s,          o.rotd50_sd_m,     o.rotd100_sd_m,
+                                   o.rotd100_angle_deg, o.rotd50_psa_mps2, o.rotd100_psa_mps2};
+          return values[c];
+        });
+      },
+      py::arg("time_s"), py::arg("first_mps2"), py::arg("second_mps2"), py::arg("periods_s"), py::arg("damping_ratio"),
+      py::arg("angle_step_deg"));
   m.def("output_schema_json", [] { return pounding::io::output_schema_json().dump(); });
   m.def("modes_json", [](const Scene& scene) {
     return pounding::io::modes_json(pounding::analysis::summarise_buildings(scene)).dump();

@@ -22,7 +22,8 @@ import json as _json
 import numpy as _np
 
 __all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "record_list", "modes", "modes_frame",
-           "run", "needed_gap", "methods", "settings", "output_schema", "sweep", "__version__"]
+           "run", "needed_gap", "ground_motion", "response_spectrum", "rotd_spectrum", "methods", "settings",
+           "output_schema", "sweep", "__version__"]
 
 
 class InputError(ValueError):
@@ -350,6 +351,37 @@ class GapResult:
 
     def __repr__(self):
         return f"<pounding.GapResult needed gap {self.needed_gap_m} m at level {self.level}, t = {self.t_s} s>"
+
+
+def ground_motion(scene):
+    """The scene's processed ground motion, as its runs see it: a dict with time_s, h1_mps2 (along
+    direction_deg), h2_mps2 (a pair's second component along direction_deg + 90, else None) as
+    numpy arrays on one time base, direction_deg and record_scale (the factor its scaling applied,
+    in the record's own units)."""
+    return _pounding.ground_motion(scene)
+
+
+def response_spectrum(time_s, accel_mps2, periods_s=None, damping_ratio=0.05):
+    """Elastic response spectrum of a record, exact for the piecewise-linear record (as `pounding
+    spectrum`): a numpy structured array with period_s, sd_m, psv_mps, psa_mps2 and peak_time_s,
+    a row per period (default 0.01-10 s, 61 log-spaced). Raises InputError for periods outside
+    [0.001, 100] s or a damping ratio outside [0, 1)."""
+    periods = [] if periods_s is None else [float(p) for p in periods_s]
+    table = _pounding.response_spectrum(list(map(float, time_s)), list(map(float, accel_mps2)),
+                                        periods or _pounding.default_periods_s(), float(damping_ratio))
+    return _np.rec.fromarrays(table.T, names="period_s,sd_m,psv_mps,psa_mps2,peak_time_s")
+
+
+def rotd_spectrum(time_s, first_mps2, second_mps2, periods_s=None, damping_ratio=0.05, angle_step_deg=1.0):
+    """RotD50 and RotD100 of a pair on one time base (as `pounding spectrum --rotd`): a numpy
+    structured array with period_s, rotd50_sd_m, rotd100_sd_m, rotd100_angle_deg,
+    rotd50_psa_mps2 and rotd100_psa_mps2, a row per period."""
+    periods = [] if periods_s is None else [float(p) for p in periods_s]
+    table = _pounding.rotd_spectrum(list(map(float, time_s)), list(map(float, first_mps2)),
+                                    list(map(float, second_mps2)), periods or _pounding.default_periods_s(),
+                                    float(damping_ratio), float(angle_step_deg))
+    return _np.rec.fromarrays(
+        table.T, names="period_s,rotd50_sd_m,rotd100_sd_m,rotd100_angle_deg,rotd50_psa_mps2,rotd100_psa_mps2")
 
 
 def needed_gap(scene, max_wall_time_s=None, all_angles=False):

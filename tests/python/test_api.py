@@ -235,3 +235,20 @@ def test_needed_gap_over_every_angle_from_python():
     assert gap.all_angles["needed_gap_m"] >= gap.needed_gap_m
     assert gap.angles_array.shape == (360, 2)
     assert gap.angles_array[:, 1].max() == pytest.approx(gap.all_angles["envelope_largest"]["needed_gap_m"])
+
+
+def test_spectra_and_ground_motion_from_python():
+    """response_spectrum against a closed form: an undamped oscillator from rest under a constant
+    ground acceleration a0 (a step at t = 0) peaks at |x| = 2 a0 / w^2, so PSA = 2 a0 at every
+    period whose half period fits in the record; a pair's RotD100 of (a, 0) is a's own PSA; the
+    scene's ground motion is the pair on one time base."""
+    a0, t = 1.5, np.linspace(0.0, 10.0, 1001)
+    spectrum = pounding.response_spectrum(t, np.full_like(t, a0), [0.2, 1.0, 3.0], damping_ratio=0.0)
+    assert spectrum.psa_mps2 == pytest.approx(2 * a0, rel=1e-9)
+    rotd = pounding.rotd_spectrum(t, np.full_like(t, a0), np.zeros_like(t), [0.2, 1.0], damping_ratio=0.0)
+    assert rotd.rotd100_psa_mps2 == pytest.approx(2 * a0, rel=1e-9)
+    motion = pounding.ground_motion(pounding.load_scene(SOURCE / "examples" / "beyond-paper" / "two-components.toml"))
+    assert motion["h2_mps2"] is not None and len(motion["h2_mps2"]) == len(motion["time_s"]) == 4001
+    assert max(np.abs(motion["h1_mps2"]).max(), np.abs(motion["h2_mps2"]).max()) == pytest.approx(0.4 * 9.81)
+    with pytest.raises(pounding.InputError):
+        pounding.response_spectrum(t, t, [0.0])
