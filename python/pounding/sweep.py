@@ -16,7 +16,8 @@ The sweep file (TOML; paths relative to its folder; README, "Sweeps"):
     methods = ["cvode-bdf", {name = "arkode-erk", rtol = 1e-8}]   # absent: the scene's
     contact_laws = ["impulse", {name = "kelvin", stiffness_kN_per_m = 1e5},
                     {name = "hertzdamp", stiffness_kN_per_m1_5 = 1e7}]  # absent: the scene's
-    needed_gap = true                  # also the needed gap of each scene under each record
+    needed_gap = true                  # also the needed gap of each scene under each record;
+                                       # "all_angles": and over every angle (gap --all-angles)
     max_wall_time_s = 600              # each run's budget (absent: the module's default, an hour)
     out = "../../out/sweep"            # absent: out/<sweep file name> in the current folder
 
@@ -67,6 +68,8 @@ RESULTS = ("status", "message", "impact_count", "touch_count", "sustained_contac
            "max_impulse_kNs", "max_approach_speed_mps", "impact_loss_kJ",
            "b1_peak_u_m", "b1_peak_v_m", "b1_peak_phi_rad", "b2_peak_u_m", "b2_peak_v_m", "b2_peak_phi_rad", "steps")
 NEEDED_GAP = ("needed_gap_m", "needed_gap_level", "needed_gap_t_s", "needed_gap_status")
+# needed_gap = "all_angles": also the needed gap over every angle of incidence and its angle.
+ALL_ANGLES = ("all_angles_needed_gap_m", "all_angles_angle_deg")
 # Written when some scene of the sweep has yielding columns: each building's largest storey
 # ductility, the energy the columns dissipated and their branch changes.
 YIELDING = ("b1_max_ductility", "b2_max_ductility", "hysteretic_kJ", "yield_events")
@@ -137,7 +140,8 @@ class Sweep:
         self.laws = self._laws()
         self.methods = self._methods()
         self.setting_keys = [k for k in pounding.settings() if any(k in m["settings"] for m in self.methods)]
-        self.needed_gap = self._flag("needed_gap")
+        self.all_angles = self.document.get("needed_gap") == "all_angles"
+        self.needed_gap = True if self.all_angles else self._flag("needed_gap")
         self.max_wall_time_s = None
         if "max_wall_time_s" in document:
             value = document["max_wall_time_s"]
@@ -363,6 +367,7 @@ class Sweep:
     def columns(self):
         yielding = YIELDING if any(scene.yielding for scene in self.scenes.values()) else ()
         return [*self.parameter_columns(), *self.setting_keys, *RESULTS, *yielding, *(NEEDED_GAP if self.needed_gap else ()),
+                *(ALL_ANGLES if self.all_angles else ()),
                 *TIMINGS]
 
     def runs(self):
@@ -392,7 +397,8 @@ class Sweep:
         row.update({key: method["settings"].get(key) for key in self.setting_keys})
         task = {"scene_file": self._resolve(scene_file), "gap_m": gap_m, "restitution": restitution,
                 "contact_law": law["name"], "contact_stiffness": law["stiffness"],
-                "record": _record_keywords(record), "direction_deg": direction, "method": method["name"],
+                "record": _record_keywords(record), "direction_deg": direction, "all_angles": self.all_angles,
+                "method": method["name"],
                 "settings": method["settings"],
                 "max_wall_time_s": self.max_wall_time_s}
         return row, task
@@ -402,7 +408,8 @@ class Sweep:
         return {"scenes": self.scene_files, "records": [r and {"name": r["name"], "source": r["source"]} for r in
                                                         self.records],
                 "directions_deg": self.directions, "gaps_m": self.gaps_m, "restitutions": self.restitutions, "contact_laws": self.laws,
-                "methods": self.methods, "needed_gap": self.needed_gap, "max_wall_time_s": self.max_wall_time_s}
+                "methods": self.methods, "needed_gap": "all_angles" if self.all_angles else self.needed_gap,
+                "max_wall_time_s": self.max_wall_time_s}
 
 
 def _stiffness_field(entry):
@@ -443,13 +450,18 @@ def needed_gap_task(task):
     try:
         gap = pounding.needed_gap(_scene({"scene_file": task["scene_file"], "record": task["record"],
                                           "direction_deg": task.get("direction_deg")}),
-                                  max_wall_time_s=task.get("max_wall_time_s"))
+                                  max_wall_time_s=task.get("max_wall_time_s"), all_angles=task.get("all_angles", False))
     except Exception as error:  # noqa: BLE001  (a record that cannot be read: the rows say so)
-        return {"needed_gap_m": None, "needed_gap_level": None, "needed_gap_t_s": None,
-                "needed_gap_status": "failed: " + _failure(error)}
+        failed = {"needed_gap_m": None, "needed_gap_level": None, "needed_gap_t_s": None,
+                  "needed_gap_status": "failed: " + _failure(error)}
+        return {**failed, **({key: None for key in ALL_ANGLES} if task.get("all_angles") else {})}
     finite = gap.needed_gap_m is not None and math.isfinite(gap.needed_gap_m)
-    return {"needed_gap_m": gap.needed_gap_m if finite else None, "needed_gap_level": gap.level or None,
-            "needed_gap_t_s": gap.t_s if finite else None, "needed_gap_status": gap.status}
+    row = {"needed_gap_m": gap.needed_gap_m if finite else None, "needed_gap_level": gap.level or None,
+           "needed_gap_t_s": gap.t_s if finite else None, "needed_gap_status": gap.status}
+    if gap.all_angles:
+        row.update({"all_angles_needed_gap_m": gap.all_angles["needed_gap_m"],
+                    "all_angles_angle_deg": gap.all_angles["angle_deg"]})
+    return row
 
 
 def run_task(task, needed_gap=None):
@@ -602,7 +614,7 @@ def _typed(column, text):
     if column in INTEGER_COLUMNS:
         return int(text)
     if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in TIMINGS or column in PARAMETERS \
-            or column == "direction_deg":
+            or column in ALL_ANGLES or column == "direction_deg":
         return float(text)
     for kind in (int, float):
         try:

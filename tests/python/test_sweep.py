@@ -311,3 +311,20 @@ def test_directions_cross_the_records(folder, tmp_path):
     assert {row["direction_deg"] for row in result.rows} == {0.0, 60.0}
     # without directions_deg the table keeps its columns (the module's own sweep above)
     assert "direction_deg" not in sweeps.PARAMETERS
+
+
+def test_needed_gap_over_every_angle_in_a_sweep(folder, tmp_path):
+    """needed_gap = "all_angles" adds the worst angle's needed gap and angle to each row, as
+    needed_gap(scene, all_angles=True) finds them; other sweeps keep their columns."""
+    path = folder / "angles.toml"
+    path.write_text(f'scenes = ["{PAPER}"]\nrecords = [{{file = "pulse_a.txt", format = "single", units = "g", '
+                    'dt_s = 0.02}]\nneeded_gap = "all_angles"\n')
+    result = pounding.sweep(path, out=tmp_path / "angles", workers=0, progress=False)
+    row = result.rows[0]
+    scene = pounding.load_scene(PAPER).with_record(folder / "pulse_a.txt", format="single", units="g", dt_s=0.02)
+    expected = pounding.needed_gap(scene, all_angles=True).all_angles
+    assert row["all_angles_needed_gap_m"] == expected["needed_gap_m"]
+    assert row["all_angles_angle_deg"] == expected["angle_deg"]
+    assert row["all_angles_needed_gap_m"] >= row["needed_gap_m"]
+    assert not set(sweeps.ALL_ANGLES) & set(pounding.sweep(folder / "sweep.toml", out=tmp_path / "plain", workers=0,
+                                                           progress=False).rows[0])
