@@ -22,8 +22,9 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # scene-reader tests cover its parsing under the sanitizers) and test_stream_cli (100 s:
 # streamed output files; test_run_stream runs the same sink here). And yielding_scipy (408 s here
 # under load, passed at 6846839: long command-line runs of the yielding paper scene; test_yielding
-# runs the yielding columns' code, closed forms and collapse, under the sanitizers). And all_angles
-# (about 100 contact-free runs of the command line; two_components_scipy runs gap --all-angles on
-# the Kobe pair under the sanitizers).
+# runs the yielding columns' code, closed forms and collapse, under the sanitizers). And
+# two_components_scipy (706 s here, passed at 434d02f: the Kobe pair at rtol 1e-10 on three
+# methods, gap --all-angles, spectral scaling; two_components_quick runs its small scenes here)
+# and all_angles (about 400 contact-free runs of the command line).
 ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
-  -E '^(test_beyond_paper|extreme_quick|test_needed_gap|peer_scipy_exact|peer_scipy_bdf|test_step_bound|test_record_set|test_hht|test_cli|test_stream_cli|yielding_scipy|all_angles)$'
+  -E '^(test_beyond_paper|extreme_quick|test_needed_gap|peer_scipy_exact|peer_scipy_bdf|test_step_bound|test_record_set|test_hht|test_cli|test_stream_cli|yielding_scipy|all_angles|two_components_scipy)$'

@@ -235,7 +235,11 @@ void write_gap(const std::string& scene, const analysis::NeededGap& gap,
   if (gap.all_angles) {
     write_atomically(folder / "gap_angles.csv", [&](std::ostream& out) {
       out << "angle_deg,needed_gap_m\n";
-      for (const analysis::AngleGap& a : gap.all_angles->envelope) out << a.angle_deg << ',' << a.needed_gap_m << '\n';
+      for (const analysis::AngleGap& a : gap.all_angles->envelope) {
+        out << a.angle_deg << ',';
+        if (std::isfinite(a.needed_gap_m)) out << a.needed_gap_m;  // empty: no pair closes at that angle
+        out << '\n';
+      }
     });
   }
 }
