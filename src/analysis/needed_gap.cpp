@@ -349,42 +349,8 @@ void NeededGapOptions::validate() const {
 
 namespace {
 
-/// The contact-free run's options for `scene`: its solver's tolerances (Adams for cvode-adams).
-NeededGapOptions scene_options(const Scene& scene, const solvers::RunBudget& budget) {
-  const UsedSettings used = resolve(scene.solver);  // the scene's tolerances, or the defaults
-  return {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol, .budget = budget};
-}
-
-}  // namespace
-
-NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
-  const auto clock_start = std::chrono::steady_clock::now();
-  const CoupledSystem system = build_system(scene);
-  NeededGap result;
-  try {
-    result = needed_gap(system, scene.contact.gap_m, scene_options(scene, budget));
-  } catch (const InputError& error) {
-    throw error.in_context(scene.file.string());
-  }
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
-  return result;
-}
-
-namespace {
-
 /// needed_gap(system, ...) that also hands back the states it sampled every
-/// options.history_interval_s (and the FreeRun's view of the pairs, through `touch_gaps`).
-NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options,
-                             std::vector<VectorXd>* states);
-
-}  // namespace
-
-NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options) {
-  return sampled_needed_gap(system, scene_gap_m, options, nullptr);
-}
-
-namespace {
-
+/// options.history_interval_s (superposed by add_all_angles).
 NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options,
                              std::vector<VectorXd>* states) {
   options.validate();
@@ -427,7 +393,30 @@ NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, co
   return result;
 }
 
+/// The contact-free run's options for `scene`: its solver's tolerances (Adams for cvode-adams).
+NeededGapOptions scene_options(const Scene& scene, const solvers::RunBudget& budget) {
+  const UsedSettings used = resolve(scene.solver);  // the scene's tolerances, or the defaults
+  return {.adams = scene.solver.method == "cvode-adams", .rtol = used.rtol, .atol = used.atol, .budget = budget};
+}
+
 }  // namespace
+
+NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const CoupledSystem system = build_system(scene);
+  NeededGap result;
+  try {
+    result = needed_gap(system, scene.contact.gap_m, scene_options(scene, budget));
+  } catch (const InputError& error) {
+    throw error.in_context(scene.file.string());
+  }
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+NeededGap needed_gap(const CoupledSystem& system, double scene_gap_m, const NeededGapOptions& options) {
+  return sampled_needed_gap(system, scene_gap_m, options, nullptr);
+}
 
 void add_amplified_elastic(const Scene& scene, double factor, NeededGap& gap, const solvers::RunBudget& budget) {
   require_range("amplification", factor, kAmplificationFactor);
