@@ -48,25 +48,40 @@ InputError with_reading_keys(const InputError& error, const Scene& scene, const 
 
 }  // namespace
 
-excitation::ExcitationSpec resolved_excitation(const Scene& scene) {
-  excitation::ExcitationSpec spec = scene.excitation;
+namespace {
+
+/// `spec` with a spectral scaling at a building's first period (…@B1, …@B2, …@T1: the longer)
+/// given that period from `first_periods_s` (each building's longest).
+excitation::ExcitationSpec with_sa_period(excitation::ExcitationSpec spec,
+                                          const std::array<double, 2>& first_periods_s) {
   if (!spec.scale_to_sa || spec.scale_to_sa->building == 0) return spec;
-  double period_s = 0.0;
-  for (int b = 0; b < 2; ++b) {
-    if (spec.scale_to_sa->building != 3 && spec.scale_to_sa->building != b + 1) continue;
+  const int building = spec.scale_to_sa->building;
+  spec.scale_to_sa->period_s = building == 3 ? std::max(first_periods_s[0], first_periods_s[1])
+                                             : first_periods_s[static_cast<std::size_t>(building - 1)];
+  return spec;
+}
+
+std::array<model::Building, 2> scene_buildings(const Scene& scene) {
+  std::array<model::Building, 2> buildings;
+  for (std::size_t b = 0; b < 2; ++b) {
     try {
-      period_s = std::max(period_s, model::make_building(scene.buildings[b]).modes.front().period_s);
+      buildings[b] = model::make_building(scene.buildings[b]);
     } catch (const InputError& error) {
       throw error.in_context(scene.file.string(), fmt::format("building[{}]", b + 1));
     }
   }
-  spec.scale_to_sa->period_s = period_s;
-  return spec;
+  return buildings;
 }
 
-excitation::GroundMotion scene_ground_motion(const Scene& scene) {
+std::array<double, 2> first_periods_s(const std::array<model::Building, 2>& buildings) {
+  return {buildings[0].modes.front().period_s, buildings[1].modes.front().period_s};
+}
+
+/// The record (or pair) `spec` describes, its errors with the scene's file and the keys that chose
+/// how it is read.
+excitation::GroundMotion load_scene_record(const Scene& scene, const excitation::ExcitationSpec& spec) {
   try {
-    return excitation::load_ground_motion(resolved_excitation(scene));
+    return excitation::load_ground_motion(spec);
   } catch (const excitation::SecondComponentError& error) {
     const excitation::SecondComponentSpec& second = *scene.excitation.second;
     throw with_reading_keys(error, scene, second.file, reading_keys("excitation.second.", second.read));
@@ -77,16 +92,23 @@ excitation::GroundMotion scene_ground_motion(const Scene& scene) {
   }
 }
 
+}  // namespace
+
+excitation::ExcitationSpec resolved_excitation(const Scene& scene) {
+  if (!scene.excitation.scale_to_sa || scene.excitation.scale_to_sa->building == 0) return scene.excitation;
+  return with_sa_period(scene.excitation, first_periods_s(scene_buildings(scene)));
+}
+
+excitation::GroundMotion scene_ground_motion(const Scene& scene) {
+  return load_scene_record(scene, resolved_excitation(scene));
+}
+
 dynamics::CoupledSystem build_system(const Scene& scene, bool contact) {
-  std::array<model::Building, 2> buildings;
-  for (std::size_t b = 0; b < 2; ++b) {
-    try {
-      buildings[b] = model::make_building(scene.buildings[b]);
-    } catch (const InputError& error) {
-      throw error.in_context(scene.file.string(), fmt::format("building[{}]", b + 1));
-    }
-  }
-  return dynamics::CoupledSystem(std::move(buildings), scene_ground_motion(scene), scene.levels(),
+  std::array<model::Building, 2> buildings = scene_buildings(scene);
+  // A spectral scaling at a building's period takes it from the buildings just assembled.
+  excitation::GroundMotion motion =
+      load_scene_record(scene, with_sa_period(scene.excitation, first_periods_s(buildings)));
+  return dynamics::CoupledSystem(std::move(buildings), std::move(motion), scene.levels(),
                                  contact ? scene_candidates(scene) : std::vector<contact::Candidate>{});
 }
 
@@ -330,7 +352,9 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   report.warnings = scene_warnings(scene);
   report.springs = system.springs().all();
   if (scene.excitation.scale_to_sa) {
-    const excitation::SaScaling sa = *resolved_excitation(scene).scale_to_sa;
+    const std::array<double, 2> periods{system.building(0).modes.front().period_s,
+                                        system.building(1).modes.front().period_s};
+    const excitation::SaScaling sa = *with_sa_period(scene.excitation, periods).scale_to_sa;
     report.spectral_scaling = SpectralScaling{.asked = sa.text,
                                               .target_g = sa.target_g,
                                               .period_s = *sa.period_s,

@@ -87,11 +87,17 @@ void check_record_times(const RecordSamples& samples, const ComponentSource& sou
   }
 }
 
+/// max |a| (m/s²), 0 for no samples; NaN never compares larger, so a NaN sample is not it.
+double peak_of(const std::vector<double>& accel) {
+  double peak = 0.0;
+  for (double a : accel) peak = std::max(peak, std::abs(a));
+  return peak;
+}
+
 /// The processed peak must stay physical: records never exceed a few g, so more is a unit or
 /// scaling mistake (and 1e308 overflows the solver).
 void check_peak(const std::vector<double>& accel_mps2, const ExcitationSpec& spec, const ComponentSource& source) {
-  double peak = 0.0;
-  for (double a : accel_mps2) peak = std::max(peak, std::abs(a));
+  const double peak = peak_of(accel_mps2);
   if (peak <= kMaxPeakAccel_g * spec.g_mps2) return;  // false for NaN/inf
   std::string key = spec.scale_factor != 1.0 ? "excitation.scale_factor" : source.key_prefix + "units";
   std::string value = spec.scale_factor != 1.0 ? format_value(spec.scale_factor) : "";
@@ -173,12 +179,6 @@ std::array<RecordSamples, 2> on_common_span(const RecordSamples& h1, const Recor
     for (double t : times) pair[c].accel.push_back(interpolate(in.time_s, in.accel, t));
   }
   return pair;
-}
-
-double peak_of(const std::vector<double>& accel) {
-  double peak = 0.0;
-  for (double a : accel) peak = std::max(peak, std::abs(a));
-  return peak;
 }
 
 /// The record's PSA (m/s²) at each of `periods_s`: of one component its own, of a pair its
@@ -331,9 +331,8 @@ void parse_range(std::string range, const std::string& key, const std::string& w
 }  // namespace
 
 SaScaling parse_sa_scaling(const std::string& text, const std::string& key) {
-  const std::string& form = kSaForms;
   const std::size_t at = text.find('@');
-  if (at == std::string::npos || at == 0) throw InputError(key, text, form);
+  if (at == std::string::npos || at == 0) throw InputError(key, text, kSaForms);
   SaScaling scaling;
   scaling.text = text;
   if (text.rfind("asce7(", 0) == 0) {
@@ -341,9 +340,9 @@ SaScaling parse_sa_scaling(const std::string& text, const std::string& key) {
     parse_range(text.substr(at + 1), key, text, scaling);
     return scaling;
   }
-  if (text[at - 1] != 'g') throw InputError(key, text, form);
+  if (text[at - 1] != 'g') throw InputError(key, text, kSaForms);
   const std::optional<double> target = whole_number(text.substr(0, at - 1));
-  if (!target) throw InputError(key, text, form);
+  if (!target) throw InputError(key, text, kSaForms);
   if (!(*target > 0.0 && *target <= kMaxPeakAccel_g)) {
     throw InputError(key, text, fmt::format("the target must lie in (0, {}] g", kMaxPeakAccel_g));
   }
@@ -352,7 +351,7 @@ SaScaling parse_sa_scaling(const std::string& text, const std::string& key) {
   if (read_building_period(period, scaling)) return scaling;
   if (!period.empty() && period.back() == 's') period.pop_back();
   const std::optional<double> period_s = whole_number(period);
-  if (!period_s) throw InputError(key, text, form);
+  if (!period_s) throw InputError(key, text, kSaForms);
   if (!(*period_s >= kMinSaPeriod_s && *period_s <= kMaxSaPeriod_s)) {
     throw InputError(key, text, fmt::format("the period must lie in [{}, {}] s", kMinSaPeriod_s, kMaxSaPeriod_s));
   }
