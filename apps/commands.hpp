@@ -111,6 +111,27 @@ struct PlanCommand {
   bool no_plot = false;         // skip plan.png (drawn by tools/plot_plan.py)
 };
 
+/// `pounding animate RUN_DIR`: the slabs of one level in plan, moving (tools/animate_run.py).
+struct AnimateCommand {
+  std::string run_dir;
+  std::string scene;              // empty: the scene file named in the run's summary.json
+  std::optional<int> level;       // unset: the history level with the most impacts
+  std::optional<double> scale;    // motion exaggeration; unset: the largest displacement drawn as 1/8 of the plan
+  double fps = 20.0;              // frames per second of the film
+  double speed = 1.0;             // simulated seconds per second of film
+  std::optional<double> start_s;  // unset: the run's start
+  std::optional<double> end_s;    // unset: the run's end
+  std::string format = "auto";    // mp4 (needs ffmpeg), gif, or auto: mp4 when ffmpeg is there
+  std::string out_file;           // empty: RUN_DIR/level<N>.mp4 or .gif
+};
+
+/// `pounding report RUN_DIR`: one self-contained HTML page of a run (tools/report_run.py).
+struct ReportCommand {
+  std::string run_dir;
+  std::string scene;     // empty: the scene file named in the run's summary.json
+  std::string out_file;  // empty: RUN_DIR/report.html
+};
+
 struct SweepCommand {
   std::string sweep_file;
   std::optional<int> workers;  // LocalCluster processes; unset: every core
@@ -126,6 +147,8 @@ int run_gap(const GapCommand& command, const std::string& command_line);  // in 
 int run_sweep(const SweepCommand& command);  // in sweep_command.cpp
 int run_spectrum(const SpectrumCommand& command, const std::string& command_line);  // in spectrum_command.cpp
 int run_plan(const PlanCommand& command, const std::string& command_line);          // in plan_command.cpp
+int run_animate(const AnimateCommand& command, const std::string& command_line);    // in plan_command.cpp
+int run_report(const ReportCommand& command, const std::string& command_line);      // in plan_command.cpp
 int run_modes(const ModesCommand& command);
 int run_study(const StudyCommand& command, const std::string& command_line);
 int run_run(const RunCommand& command, const std::string& command_line);

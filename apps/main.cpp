@@ -286,6 +286,43 @@ int main(int argc, char** argv) {
   plan_app->add_option("--out", plan.out_dir, "Output folder (default out/<scene name>-plan)");
   plan_app->add_flag("--no-plot", plan.no_plot, "Do not draw plan.png");
 
+  pounding::cli::AnimateCommand animate;
+  CLI::App* animate_app = app.add_subcommand(
+      "animate",
+      "A film of a run: the slabs of one level in plan, their motion exaggerated, impacts marked (MP4 "
+      "with ffmpeg, else GIF; tools/animate_run.py). Writes the plan of the run's scene to RUN_DIR/plan.json");
+  animate_app->add_option("run_dir", animate.run_dir, "Folder of a run (pounding run --out)")->required();
+  animate_app->add_option("--scene", animate.scene,
+                          "Scene file of the run (default: the one its summary.json names, if unchanged)");
+  animate_app->add_option("--level", animate.level, "Level to show (default: the history level with most impacts)")
+      ->check(CLI::Range(1, 100000));
+  animate_app
+      ->add_option("--scale", animate.scale,
+                   "Motion drawn this many times larger (default: the largest displacement as 1/8 of the plan)")
+      ->check(CLI::PositiveNumber);
+  animate_app->add_option("--fps", animate.fps, "Frames per second of the film")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 60.0));
+  animate_app->add_option("--speed", animate.speed, "Simulated seconds per second of film")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  animate_app->add_option("--start", animate.start_s, "First simulated time shown (s; default the run's start)");
+  animate_app->add_option("--end", animate.end_s, "Last simulated time shown (s; default the run's end)");
+  animate_app->add_option("--format", animate.format, "mp4 (needs ffmpeg), gif, or auto")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "mp4", "gif"}));
+  animate_app->add_option("--out", animate.out_file, "Film file (default RUN_DIR/level<N>.mp4 or .gif)");
+
+  pounding::cli::ReportCommand report;
+  CLI::App* report_app = app.add_subcommand(
+      "report",
+      "One self-contained HTML page of a run: plan, histories, impacts, energy, settings and provenance "
+      "(tools/report_run.py). Writes the plan of the run's scene to RUN_DIR/plan.json");
+  report_app->add_option("run_dir", report.run_dir, "Folder of a run (pounding run --out)")->required();
+  report_app->add_option("--scene", report.scene,
+                         "Scene file of the run (default: the one its summary.json names, if unchanged)");
+  report_app->add_option("--out", report.out_file, "HTML file (default RUN_DIR/report.html)");
+
   pounding::cli::SweepCommand sweep;
   CLI::App* sweep_app = app.add_subcommand(
       "sweep", "Runs of every scene x record x gap x restitution x method x contact law of a sweep file, on Dask "
@@ -327,6 +364,8 @@ int main(int argc, char** argv) {
     if (*sweep_app) return pounding::cli::run_sweep(sweep);
     if (*spectrum_app) return pounding::cli::run_spectrum(spectrum, command_line);
     if (*plan_app) return pounding::cli::run_plan(plan, command_line);
+    if (*animate_app) return pounding::cli::run_animate(animate, command_line);
+    if (*report_app) return pounding::cli::run_report(report, command_line);
   } catch (const pounding::InputError& error) {
     fmt::print(stderr, "error: {}\n", error.what());
     return 2;

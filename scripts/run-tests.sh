@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Sets up (bootstrap.sh) and runs the whole test suite with CTest; then, unless --quick,
+# Sets up (bootstrap.sh, and Chromium for the browser test) and runs the whole test suite with CTest; then, unless --quick,
 # clang-format and clang-tidy on what the last commit changed (scripts/lint.sh), the same suite
 # under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and a short smoke run of each
 # fuzz target (FUZZ_SECONDS, default 20; scripts/fuzz.sh runs them for an hour).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+./scripts/install-packages.sh chromium  # the report's browser test (tests/cli/test_animate_report.py)
 ./scripts/bootstrap.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 [ "${1:-}" = "--quick" ] && exit 0

@@ -86,19 +86,29 @@ def draw_elevation(ax, plan):
     ax.grid(alpha=0.3, axis="y")
 
 
+def read_plan(folder: Path):
+    plan_file = folder / "plan.json"
+    if not plan_file.is_file():
+        sys.exit(f"error: {plan_file} not found (is {folder} the output folder of `pounding plan`, or of a run "
+                 "given to `pounding animate` or `pounding report`?)")
+    return json.loads(plan_file.read_text())
+
+
+def plan_figure(plan):
+    """The plan (left) and the elevation (right) in one figure."""
+    fig, (plan_ax, elevation_ax) = plt.subplots(1, 2, figsize=(14, 6), gridspec_kw={"width_ratios": [2.2, 1]})
+    draw_plan(plan_ax, plan)
+    draw_elevation(elevation_ax, plan)
+    fig.tight_layout()
+    return fig
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder", type=Path)
     parser.add_argument("--out", type=Path, help="image file (default: FOLDER/plan.png)")
     args = parser.parse_args()
-    plan_file = args.folder / "plan.json"
-    if not plan_file.is_file():
-        sys.exit(f"error: {plan_file} not found (is {args.folder} the output folder of `pounding plan`?)")
-    plan = json.loads(plan_file.read_text())
-    fig, (plan_ax, elevation_ax) = plt.subplots(1, 2, figsize=(14, 6), gridspec_kw={"width_ratios": [2.2, 1]})
-    draw_plan(plan_ax, plan)
-    draw_elevation(elevation_ax, plan)
-    fig.tight_layout()
+    fig = plan_figure(read_plan(args.folder))
     out = args.out or args.folder / "plan.png"
     fig.savefig(out, dpi=120)
     print(f"Wrote {out}")

@@ -1,0 +1,217 @@
+#!/usr/bin/python3
+"""Writes one self-contained HTML page of a `pounding run` folder: report.html.
+
+The page holds the run's key numbers (gap, k, contact law, impacts, first impact, energy residual,
+run time), the plan and elevation of the scene (plan.json), the histories of the level with most
+impacts (tools/plot_run.py's figure), the impacts and sustained contacts, the peaks of every
+floor, the energy balance, the solver's statistics, the settings given and used, the warnings and
+the provenance. Figures are embedded as PNG data and nothing is fetched from elsewhere, so the file
+can be mailed or archived alone. A few lines of script check, once the page is loaded, that every
+figure decoded and count the table rows, and write what they found at the foot of the page (the
+project's browser test reads it).
+
+    tools/report_run.py RUN_DIR [--out FILE]
+
+RUN_DIR needs summary.json and plan.json (`pounding report RUN_DIR` writes the plan of the run's
+scene there and runs this script); history.csv and impacts.csv are used when present.
+"""
+import argparse
+import base64
+import contextlib
+import html
+import io
+import json
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import plot_run  # noqa: E402
+from animate_run import default_level  # noqa: E402
+from plot_plan import plan_figure, read_plan  # noqa: E402
+
+MAX_IMPACT_ROWS = 1000  # the page stays light; impacts.csv holds them all
+
+STYLE = """
+body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 75em; color: #222; line-height: 1.4; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.2em; margin-top: 2em; border-bottom: 1px solid #ccc; }
+table { border-collapse: collapse; font-size: 0.85em; margin: 0.5em 0; }
+th, td { border: 1px solid #ddd; padding: 0.2em 0.5em; text-align: right; }
+th { background: #f3f3f3; } td.text, th.text { text-align: left; }
+img { max-width: 100%; border: 1px solid #eee; }
+pre { background: #f7f7f7; padding: 0.8em; overflow-x: auto; font-size: 0.8em; }
+.status-completed { color: #196c1e; } .status-other { color: #b00020; } .note { color: #666; font-size: 0.85em; }
+"""
+
+# After load: every figure decoded (naturalWidth > 0) and the rows of each table, written into
+# #render-check and as data attributes of <body>, for a reader or a headless browser.
+RENDER_CHECK = """
+window.addEventListener("load", function () {
+  var images = Array.prototype.slice.call(document.images);
+  var decoded = images.filter(function (i) { return i.complete && i.naturalWidth > 0; }).length;
+  var impacts = document.querySelectorAll("#impacts tbody tr").length;
+  document.body.dataset.figures = images.length;
+  document.body.dataset.figuresDecoded = decoded;
+  document.body.dataset.impactRows = impacts;
+  document.getElementById("render-check").textContent =
+    "Rendered: " + decoded + " of " + images.length + " figures decoded; " + impacts + " impact rows shown.";
+});
+"""
+
+
+def text(value):
+    return html.escape(str(value))
+
+
+def number(value, digits=6):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return text(value if value is not None else "")
+    return f"{value:.{digits}g}"
+
+
+def table(header, rows, table_id=None, text_columns=()):
+    """An HTML table; the columns named in text_columns are left-aligned."""
+    def cell(tag, column, value):
+        klass = ' class="text"' if column in text_columns else ""
+        return f"<{tag}{klass}>{value}</{tag}>"
+    head = "".join(cell("th", c, text(c)) for c in header)
+    body = "".join("<tr>" + "".join(cell("td", c, v) for c, v in zip(header, row)) + "</tr>" for row in rows)
+    identity = f' id="{table_id}"' if table_id else ""
+    return f"<table{identity}><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def figure_html(fig, alt):
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=90)
+    plt.close(fig)
+    data = base64.b64encode(buffer.getvalue()).decode("ascii")
+    return f'<img alt="{text(alt)}" src="data:image/png;base64,{data}">'
+
+
+def history_figure_html(folder, summary):
+    """plot_run's figure of the level with most impacts, or a note saying why there is none."""
+    if not summary["outputs"].get("history") or not summary["history_levels"]:
+        return '<p class="note">No history in this run (history off): no histories drawn.</p>'
+    level = default_level(summary)
+    image = folder / ".report-history.png"
+    try:
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            plot_run.plot(folder, level, None, None, image)
+        data = base64.b64encode(image.read_bytes()).decode("ascii")
+    finally:
+        image.unlink(missing_ok=True)
+    return (f'<img alt="histories of level {level}" src="data:image/png;base64,{data}">'
+            f'<p class="note">Level {level}: u, v, φ of both slabs, the x-displacement of the contact corners and '
+            "the signed gap of every corner–edge pair; dotted green lines mark the impacts (tools/plot_run.py).</p>")
+
+
+def key_numbers(summary):
+    stats, energy = summary["statistics"], summary["energy"]
+    impacts = summary["impacts"]
+    rows = [("scene", text(summary["scene"])),
+            ("method", text(summary["method"])),
+            ("status", f'<span class="status-{"completed" if summary["status"] == "completed" else "other"}">'
+                       f'{text(summary["status"])}</span> {text(summary["status_detail"])}'),
+            ("clear gap", f"{number(summary['gap_m'])} m"),
+            ("coefficient of restitution k", number(summary["restitution"])),
+            ("contact law", text(summary["contact_law"].get("name", ""))),
+            ("simulated time", f"{number(summary['start_s'])}–{number(summary['end_s'])} s"),
+            ("impacts", f"{summary['impact_count']}"),
+            ("first impact", f"{impacts[0]['t_s']:.6f} s at level {impacts[0]['level']}" if impacts else "none"),
+            ("impacts by level", text(", ".join(f"level {k}: {v}" for k, v in summary["impacts_by_level"].items())
+                                      or "none")),
+            ("sustained contacts", f"{len(summary['sustained_contacts'])}"),
+            ("largest interpenetration", f"{number(stats.get('max_interpenetration_m', 0.0), 3)} m"),
+            ("energy residual", f"{number(energy.get('residual_kJ', 0.0), 3)} kJ "
+                                f"({number(energy.get('relative_residual', 0.0), 3)} of the input)"),
+            ("run time", f"{number(stats.get('wall_time_s', 0.0), 3)} s")]
+    return table(("quantity", "value"), rows, text_columns=("quantity", "value"))
+
+
+def impacts_table(summary):
+    impacts = summary["impacts"]
+    if not impacts:
+        return '<p>No impact.</p><table id="impacts"><tbody></tbody></table>'
+    header = ("t [s]", "level", "striking", "corner at rest [m]", "struck edge", "approach [m/s]",
+              "separation [m/s]", "impulse [kN·s]", "peak force [kN]", "energy lost [kJ]", "starts hold")
+    rows = [(f"{i['t_s']:.9f}", i["level"], f"B{i['striking_building']} vertex {i['vertex']}",
+             text(f"({i['vertex_rest'][0]:g}, {i['vertex_rest'][1]:g})"), i["struck_edge"],
+             number(i["approach_velocity_mps"], 5), number(i["separation_velocity_mps"], 5),
+             number(i["impulse_kNs"], 5), number(i["peak_force_kN"], 5), number(i["energy_lost_kJ"], 5),
+             "yes" if i["starts_sustained_contact"] else "")
+            for i in impacts[:MAX_IMPACT_ROWS]]
+    note = (f'<p class="note">The first {MAX_IMPACT_ROWS} of {len(impacts)} impacts; impacts.csv holds all.</p>'
+            if len(impacts) > MAX_IMPACT_ROWS else "")
+    return table(header, rows, "impacts") + note
+
+
+def sustained_table(summary):
+    holds = summary["sustained_contacts"]
+    if not holds:
+        return "<p>No sustained contact.</p>"
+    header = ("level", "striking", "start [s]", "release [s]", "release reason", "largest force [kN]")
+    rows = [(c["level"], f"B{c['striking_building']} vertex {c['vertex']}", f"{c['start_s']:.6f}",
+             f"{c['release_s']:.6f}", text(c["release_reason"]), number(c["max_force_kN"], 5)) for c in holds]
+    return table(header, rows, text_columns=("release reason",))
+
+
+def peaks_tables(summary):
+    """Per building, one row a floor: every scalar peak (value at time), whatever the run computed."""
+    parts = []
+    for building in summary["peaks"]:
+        floors = building["floors"]
+        keys = [k for k in floors[0] if isinstance(floors[0][k], dict) and "value" in floors[0][k]] if floors else []
+        rows = [[f["floor"]] + [f"{number(f[k]['value'], 4)} @ {f[k]['t_s']:.3f} s" for k in keys] for f in floors]
+        parts.append(f"<h3>{text(building['building'])}</h3>" + table(["floor"] + keys, rows))
+    return "".join(parts)
+
+
+def dictionary_table(values, unit_note=""):
+    rows = [(text(k), number(v) if not isinstance(v, (dict, list)) else f"<code>{text(json.dumps(v))}</code>")
+            for k, v in values.items()]
+    return table(("quantity", "value"), rows, text_columns=("quantity", "value")) + unit_note
+
+
+def page(folder, summary, plan):
+    warnings = "".join(f"<li>{text(w)}</li>" for w in summary["warnings"]) or "<li>none</li>"
+    sections = [
+        f"<h1>pounding run: {text(summary['scene'])}</h1>",
+        f'<p class="note">{text(folder.resolve())}</p>',
+        "<h2>Key numbers</h2>", key_numbers(summary),
+        "<h2>Plan and elevation</h2>", figure_html(plan_figure(plan), "plan and elevation"),
+        "<h2>Histories</h2>", history_figure_html(folder, summary),
+        f"<h2>Impacts ({summary['impact_count']})</h2>", impacts_table(summary),
+        "<h2>Sustained contacts</h2>", sustained_table(summary),
+        "<h2>Peaks</h2>", '<p class="note">Value at its time; units in each name (drifts as ratios).</p>',
+        peaks_tables(summary),
+        "<h2>Energy balance</h2>", dictionary_table(summary["energy"]),
+        "<h2>Solver statistics</h2>", dictionary_table(summary["statistics"]),
+        "<h2>Settings</h2>", f"<pre>{text(json.dumps(summary['settings'], indent=2))}</pre>",
+        "<h2>Warnings</h2>", f"<ul>{warnings}</ul>",
+        "<h2>Provenance</h2>", dictionary_table(summary["provenance"]),
+        '<p id="render-check" class="note">Rendered: the check did not run (scripts off).</p>',
+    ]
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<title>pounding: {text(summary['scene'])}</title><style>{STYLE}</style></head>\n<body>\n"
+            + "\n".join(sections) + f"\n<script>{RENDER_CHECK}</script>\n</body></html>\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("folder", type=Path, help="output folder of `pounding run`, with plan.json")
+    parser.add_argument("--out", type=Path, help="HTML file (default: FOLDER/report.html)")
+    args = parser.parse_args()
+    summary_file = args.folder / "summary.json"
+    if not summary_file.is_file():
+        sys.exit(f"error: {summary_file} not found (is {args.folder} the output folder of `pounding run`?)")
+    summary = json.loads(summary_file.read_text())
+    out = args.out or args.folder / "report.html"
+    out.write_text(page(args.folder, summary, read_plan(args.folder)), encoding="utf-8")
+    print(f"Wrote {out}")
+
+
+if __name__ == "__main__":
+    main()
