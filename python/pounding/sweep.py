@@ -509,6 +509,20 @@ def _worker_identity():
     return pounding.__version__, pounding._pounding.git_commit
 
 
+def _probe_identity():
+    """A worker's pounding (version, commit), or ("not importable", why). The probe is built inside
+    a function so that Dask (cloudpickle) sends its code, not a reference into pounding.sweep: a
+    worker without the module answers instead of logging a traceback while unpickling it."""
+    def probe():
+        try:
+            import pounding as module
+            import pounding._pounding as extension
+        except ImportError as error:
+            return "not importable", f"{type(error).__name__}: {error}"
+        return module.__version__, extension.git_commit
+    return probe
+
+
 # ------------------------------------------------------------------------------------------------
 # The table
 
@@ -693,14 +707,14 @@ def run_sweep(sweep_file, out=None, workers=None, scheduler=None, progress=True,
     skipped = len(runs) - len(todo)
     if max_runs is not None:
         todo = todo[:max_runs]
-    executed, failures, interrupted, where = 0, 0, False, "serial"
-    bar = _progress_bar(len(todo), len(runs), progress)
+    executed, failures, interrupted, where, bar = 0, 0, False, "serial", None
     try:
         if workers == 0:
             results = _serial(sweep, todo)
         else:
             client, where = _client(workers, scheduler)
             results = _distributed(client, sweep, todo)
+        bar = _progress_bar(len(todo), len(runs), progress)  # after the cluster: its refusals print alone
         try:
             for row, result in results:
                 row = {**row, **result}
@@ -714,7 +728,8 @@ def run_sweep(sweep_file, out=None, workers=None, scheduler=None, progress=True,
     except KeyboardInterrupt:
         interrupted = True
     finally:
-        bar.close()
+        if bar is not None:
+            bar.close()
         table.close()
     # Incomplete when a run of the product has no row yet: interrupted, stopped by max_runs, or a
     # worker lost with its result.
@@ -773,13 +788,18 @@ def _client(workers, scheduler):
         client = _connect(dask.distributed, scheduler)
         mine = _worker_identity()
         try:
-            identities = client.run(_worker_identity)
-        except Exception as error:  # a worker that cannot import pounding raises its ImportError here
+            identities = client.run(_probe_identity())
+        except Exception as error:  # noqa: BLE001  (a worker lost while answering)
             client.close()
-            raise _error("", "--scheduler", scheduler,
-                         f"a worker cannot run pounding ({type(error).__name__}: {error}); start the workers with "
-                         f"PYTHONPATH holding this build's module") from None
+            raise _error("", "--scheduler", scheduler, f"a worker did not answer ({type(error).__name__}: {error})") \
+                from None
         for worker, identity in identities.items():
+            if identity[0] == "not importable":
+                client.close()
+                module_parent = pathlib.Path(pounding.__file__).resolve().parents[1]
+                raise _error("", "--scheduler", scheduler,
+                             f"worker {worker} cannot import pounding ({identity[1]}): start the workers with "
+                             f"PYTHONPATH={module_parent} (this build's module)")
             if tuple(identity) != mine:
                 client.close()
                 raise _error("", "--scheduler", scheduler,
@@ -793,7 +813,10 @@ def _client(workers, scheduler):
     count = workers or os.cpu_count() or 1
     # Ctrl-C reaches the whole process group: the workers, started with SIGINT ignored (a
     # disposition a new process keeps, and under which Python installs no KeyboardInterrupt), leave
-    # it to this process, which closes the cluster, instead of each printing a traceback.
+    # it to this process, which closes the cluster, instead of each printing a traceback. A Ctrl-C
+    # while the cluster starts (about half a second) is therefore lost: press it again. (Blocking
+    # SIGINT instead, to keep it pending, does not reach the workers: Dask spawns them from threads
+    # of its own, which do not inherit the block.)
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         cluster = dask.distributed.LocalCluster(n_workers=count, threads_per_worker=1, processes=True,

@@ -256,6 +256,42 @@ def test_ctrl_c_stops_a_cluster_sweep_without_worker_tracebacks(tmp_path):
     assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
 
 
+def test_a_worker_without_the_module_is_named_without_tracebacks(tmp_path):
+    # A worker started without this build's module on PYTHONPATH: the sweep exits 2 naming the
+    # worker and the PYTHONPATH to use, and the worker's own log holds no traceback (the probe
+    # travels as code, so the worker has nothing of pounding to unpickle).
+    environment = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    address_file = tmp_path / "scheduler.json"
+    scheduler = subprocess.Popen(["/usr/bin/dask-scheduler", "--scheduler-file", address_file, "--port", "0",
+                                  "--dashboard-address", ":0"], cwd=tmp_path, env=environment,
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    worker_log = (tmp_path / "worker.log").open("w")
+    worker = None
+    try:
+        deadline = time.monotonic() + 60
+        while not address_file.exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        worker = subprocess.Popen(["/usr/bin/dask-worker", "--scheduler-file", address_file, "--nthreads", "1",
+                                   "--nworkers", "1", "--no-dashboard"], cwd=tmp_path, env=environment,
+                                  stdout=worker_log, stderr=subprocess.STDOUT)
+        address = json.loads(address_file.read_text())["address"]
+        while time.monotonic() < deadline and "Registered to" not in (tmp_path / "worker.log").read_text():
+            time.sleep(0.1)
+        (tmp_path / "s.toml").write_text(f'scenes = ["{PAPER}"]\ngaps_m = [0.2]\n')
+        done = subprocess.run([CLI, "sweep", tmp_path / "s.toml", "--scheduler", address, "--out", tmp_path / "out"],
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == 2, done.stderr
+        assert "cannot import pounding (ModuleNotFoundError" in done.stderr, done.stderr
+        assert f"PYTHONPATH={pathlib.Path(pounding.__file__).resolve().parents[1]}" in done.stderr, done.stderr
+    finally:
+        for process in (worker, scheduler):
+            if process is not None:
+                process.terminate()
+                process.wait(timeout=60)
+        worker_log.close()
+    assert "Traceback" not in (tmp_path / "worker.log").read_text()
+
+
 def test_plot_sweep_fits_the_needed_gaps(folder, serial):
     """tools/plot_sweep.py on the serial table: its lognormal fit of two needed gaps g1, g2 has the
     closed form median √(g1·g2) and 84th percentile exp(m + s), s = |ln g1 − ln g2| / √2."""
