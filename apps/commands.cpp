@@ -438,7 +438,7 @@ int run_laws(const LawsCommand& command) {
       // Without a closed form the rebound depends on the masses and the approach speed: say where it is measured.
       const std::string rebound_text =
           law.rebound
-              ? rebound.dump()
+              ? fmt::format("{:.6g}", rebound.get<double>())
               : "no closed form (measured on a two-slab impact: docs/guide/contact-laws.md, 'Which law for what')";
       fmt::print("{:<12} {}\n{:<12} {}; rebound at e = {}: {}\n", law.name, law.description, "", stiffness,
                  command.restitution, rebound_text);

@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
   run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
   run_app->add_option("--max-history-values", run.max_history_values,
                       "Refuse a run whose history.csv would hold more values (default 2e7)");
-  run_app->add_flag("--no-progress", run.no_progress,
+  run_app->add_flag("--no-progress,--quiet", run.no_progress,
                     "No progress line (simulated time, impacts) on the terminal while the run goes; it is never "
                     "shown when stderr is not a terminal");
 
@@ -337,7 +337,7 @@ int main(int argc, char** argv) {
   sweep_app->add_option("--scheduler", sweep.scheduler, "Address of a running Dask scheduler (tcp://HOST:8786)")
       ->excludes(workers)->excludes(serial);
   sweep_app->add_option("--out", sweep.out_dir, "Output folder (default: the file's out, else out/<sweep file name>)");
-  sweep_app->add_flag("--no-progress", sweep.no_progress, "No progress bar");
+  sweep_app->add_flag("--no-progress,--quiet", sweep.no_progress, "No progress bar");
 
   harden_options(app);
   if (const auto unknown = unknown_command(app, argc, argv)) {

@@ -18,6 +18,7 @@ run() and needed_gap() release the GIL: runs on several threads proceed in paral
 import csv as _csv
 import io as _io
 import json as _json
+import os as _os
 
 import numpy as _np
 
@@ -62,8 +63,30 @@ def _with_record(self, file, format=None, units=None, scale_factor=None, scale_t
     Errors name the scene key (`excitation.scale_to_pga_g`, ...) that the argument sets.
     read=False checks the arguments and that the file exists without reading it (as a record list
     is checked); the record is then read by the run."""
+    _check_record_types({"file": file, "format": format, "units": units, "scale_factor": scale_factor,
+                         "scale_to_pga_g": scale_to_pga_g, "direction_deg": direction_deg, "dt_s": dt_s,
+                         "accel_column": accel_column, "second.file": record2, "second.accel_column": record2_column,
+                         "scale_to_sa": scale_to_sa})
     return self._with_record(file, format, units, scale_factor, scale_to_pga_g, direction_deg, dt_s,
                              accel_column, record2, record2_column, scale_to_sa, read)
+
+
+_RECORD_KINDS = {"file": "path", "second.file": "path", "format": "text", "units": "text", "scale_to_sa": "text",
+                 "scale_factor": "number", "scale_to_pga_g": "number", "direction_deg": "number", "dt_s": "number",
+                 "accel_column": "whole number", "second.accel_column": "whole number"}
+
+
+def _check_record_types(arguments):
+    """with_record's arguments of the wrong type: InputError naming the scene key they set
+    (`excitation.dt_s`, ...), not the binding's signature dump."""
+    accepted = {"path": (str, _os.PathLike), "text": (str,), "number": (int, float), "whole number": (int,)}
+    for key, value in arguments.items():
+        kind = _RECORD_KINDS[key]
+        if value is None or (isinstance(value, accepted[kind]) and not isinstance(value, bool)):
+            continue
+        text = repr(value) if len(repr(value)) <= 40 else repr(value)[:40] + "..."
+        raise InputError(f"excitation.{key} = {text}: expected a {kind}", "", f"excitation.{key}", text,
+                         f"expected a {kind}")
 
 
 def _check_settings(settings):

@@ -103,8 +103,8 @@ void check_peak(const std::vector<double>& accel_mps2, const ExcitationSpec& spe
   std::string value = spec.scale_factor != 1.0 ? format_value(spec.scale_factor) : "";
   if (spec.scale_to_sa) key = "excitation.scale_to_sa", value = spec.scale_to_sa->text;
   throw InputError(key, value,
-                   fmt::format("the processed record peaks at |a_g| = {} m/s2 ({} g), above the limit of {} g", peak,
-                               peak / spec.g_mps2, kMaxPeakAccel_g),
+                   fmt::format("the processed record peaks at |a_g| = {:.6g} m/s2 ({:.6g} g), above the limit of {} g",
+                               peak, peak / spec.g_mps2, kMaxPeakAccel_g),
                    source.file);
 }
 

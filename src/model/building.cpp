@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <fmt/format.h>
 
 #include "pounding/input_error.hpp"
@@ -24,6 +25,7 @@ constexpr Range kTargetPeriod{0.02, 20.0, "s"};
 constexpr double kMaxStoreyStiffness = 1e16;  // torsional entries reach k·r², 1e12 kN/m · (100 m)²
 constexpr double kMinCentreOfMassInset_m = 1e-3;  // a CM on the slab's edge is a typo
 constexpr double kColumnOutsideTolerance_m = 1e-6;  // columns on the slab's edge are usual
+constexpr double kRepeatedColumnDistance_m = 1e-6;  // closer columns are one column given twice
 
 double distance_to_boundary(const Polygon& slab, const Point2& p) {
   double distance = std::numeric_limits<double>::infinity();
@@ -78,6 +80,28 @@ void validate_per_floor(const std::vector<double>& values, const char* key, int 
   for (std::size_t i = 0; i < values.size(); ++i) require_range(indexed(key, i), values[i], range);
 }
 
+/// Two columns at one position (a grid line or a list entry repeated) would count one column's
+/// stiffness twice without a word: refused, naming both.
+void refuse_repeated_columns(const std::vector<Column>& columns) {
+  std::vector<std::size_t> order(columns.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto by_position = [&columns](std::size_t a, std::size_t b) {
+    const Point2 &p = columns[a].position_m, &q = columns[b].position_m;
+    return p.x() != q.x() ? p.x() < q.x() : (p.y() != q.y() ? p.y() < q.y() : a < b);
+  };
+  std::sort(order.begin(), order.end(), by_position);
+  const auto name = [&columns](std::size_t i) {
+    return columns[i].key.empty() ? indexed("columns", i) : columns[i].key;
+  };
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const Column &first = columns[order[k - 1]], &second = columns[order[k]];
+    if ((first.position_m - second.position_m).norm() > kRepeatedColumnDistance_m) continue;
+    throw InputError(
+        name(order[k]), point_text(second.position_m),
+        fmt::format("stands where {} stands: a column given twice counts its stiffness twice", name(order[k - 1])));
+  }
+}
+
 void validate_columns(const BuildingDefinition& b) {
   if (b.columns.empty()) {
     throw InputError("columns", "none", "give columns (or column_grid), or storey_stiffness");
@@ -96,6 +120,7 @@ void validate_columns(const BuildingDefinition& b) {
     require_range(key + ".b", c.b_m, kColumnSize);
     require_range(key + ".h", c.h_m, kColumnSize);
   }
+  refuse_repeated_columns(b.columns);
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
   if (b.target_period_s) {
     require_range("target_period_s", *b.target_period_s, kTargetPeriod);

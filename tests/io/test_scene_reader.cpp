@@ -391,6 +391,14 @@ BOOST_AUTO_TEST_CASE(AbsurdBuildingValuesNameTheirRange) {
           "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]",
           grid)),
       {"building[1].column_grid[1] x[3] y[1] = [5, 0]", "outside its slab"}));
+  // A grid line or a column given twice would count its stiffness twice: refused, naming both.
+  BOOST_TEST(mentions(
+      error_of(edited(
+          "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]",
+          "column_grid = [{x = [-10.0, 0.0, 0.0], y = [0.0, 8.0], b_m = 0.4, h_m = 0.4}]")),
+      {"building[1].column_grid[1] x[3] y[1] = [0, 0]", "stands where column_grid[1] x[2] y[1] stands"}));
+  BOOST_TEST(mentions(error_of(edited("[0.0, 8.0, 0.4, 0.4]", "[0.0, 0.0, 0.5, 0.5]")),
+                      {"building[1].columns[3] = [0, 0]", "stands where columns[2] stands", "stiffness twice"}));
   BOOST_TEST(mentions(error_of(edited("centre_of_mass = [-5.0, 4.0]", "centre_of_mass = [-5.0, 0.0]")),
                       {"building[1].centre_of_mass = [-5, 0]", "slab's edge", "0.001 m inside"}));
   BOOST_TEST(mentions(error_of(edited("name = \"small\"", "name = \"\"")), {"name = \"\"", "must not be empty"}));

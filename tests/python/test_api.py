@@ -252,3 +252,19 @@ def test_spectra_and_ground_motion_from_python():
     assert max(np.abs(motion["h1_mps2"]).max(), np.abs(motion["h2_mps2"]).max()) == pytest.approx(0.4 * 9.81)
     with pytest.raises(pounding.InputError):
         pounding.response_spectrum(t, t, [0.0])
+
+
+def test_with_record_names_the_key_of_an_argument_of_the_wrong_type():
+    # The binding would raise a TypeError listing its signature; a sweep's record table then
+    # printed that dump instead of naming records[i].pga_g.
+    scene = pounding.load_scene(PAPER)
+    record = SOURCE / "examples" / "records" / "elcentro1940_ns_0.02s.AT2"
+    for keyword, value, key, kind in (("scale_to_pga_g", "x", "excitation.scale_to_pga_g", "number"),
+                                      ("dt_s", True, "excitation.dt_s", "number"),
+                                      ("accel_column", 2.5, "excitation.accel_column", "whole number"),
+                                      ("record2", 3, "excitation.second.file", "path"),
+                                      ("units", 9.81, "excitation.units", "text")):
+        with pytest.raises(pounding.InputError) as caught:
+            scene.with_record(record, **{keyword: value})
+        assert caught.value.key == key and caught.value.reason == f"expected a {kind}", str(caught.value)
+    assert scene.with_record(record, scale_to_pga_g=1, dt_s=0.05).name == "paper"  # an int is a number
