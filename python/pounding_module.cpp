@@ -404,6 +404,21 @@ PYBIND11_MODULE(_pounding, m) {
       py::arg("file"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"),
       py::arg("contact_stiffness"));
   m.def(
+      "scene_from_toml",
+      [](const std::string& text, const std::filesystem::path& anchor, std::optional<double> gap_m,
+         std::optional<double> restitution, std::optional<std::string> contact_law,
+         std::optional<double> contact_stiffness) {
+        Scene scene = pounding::io::parse_scene(text, anchor,
+                                                {.gap_m = gap_m,
+                                                 .restitution = restitution,
+                                                 .contact_law = std::move(contact_law),
+                                                 .contact_stiffness = contact_stiffness});
+        scene.file.clear();  // built in code: no file to hash, provenance says so (scene_file null)
+        return scene;
+      },
+      py::arg("text"), py::arg("anchor"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"),
+      py::arg("contact_stiffness"));
+  m.def(
       "contact_law_stiffness_key",
       [](const std::string& law) {
         return std::string(pounding::analysis::contact_law_info(law, "contact_law").stiffness_key);

@@ -22,7 +22,8 @@ import os as _os
 
 import numpy as _np
 
-__all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "record_list", "modes", "modes_frame",
+__all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "scene_from_dict", "scene_toml",
+           "record_list", "modes", "modes_frame",
            "run", "needed_gap", "ground_motion", "response_spectrum", "rotd_spectrum", "methods", "settings",
            "output_schema", "sweep", "__version__"]
 
@@ -143,6 +144,58 @@ def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiff
     with_outputs(history=, peaks=) copies. `contact_stiffness` is in the
     law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp and jankowski."""
     return _pounding.load_scene(path, gap, restitution, contact_law, contact_stiffness)
+
+
+def scene_from_dict(document, folder=None, gap=None, restitution=None, contact_law=None,
+                    contact_stiffness=None):
+    """A scene built in code: `document` holds the scene file's tables and keys under the same
+    names (docs/scene-format.md), as dicts, lists, text, numbers and booleans (numpy numbers and
+    arrays too), e.g. {"name": "pair", "building": [{"name": "A", "storeys": 4, ...}, {...}],
+    "excitation": {"file": "el-centro.AT2", ...}, "contact": {"gap_m": 0.1}}; tomllib.load() of a
+    scene file gives one to change. Relative record paths are taken from `folder` (default: the
+    current folder). It is read and checked exactly as a file is (scene_toml(document) is the text),
+    so errors name the same keys; the other arguments are load_scene's. The scene has no file: its
+    runs' provenance says scene_file null (pounding animate and report then need --scene)."""
+    if not isinstance(document, dict):
+        raise InputError(f"scene = {type(document).__name__}: expected a dict of the scene file's tables", "",
+                         "scene", type(document).__name__, "expected a dict of the scene file's tables")
+    anchor = _os.path.join(_os.fspath(folder) if folder is not None else _os.getcwd(), "(scene from a dict).toml")
+    document = document if "name" in document else {"name": "scene", **document}
+    return _pounding.scene_from_toml(scene_toml(document), anchor, gap, restitution, contact_law, contact_stiffness)
+
+
+def scene_toml(document):
+    """The TOML text of a scene given as a dict (scene_from_dict): one line per top-level key,
+    tables inline. Raises InputError naming the key of a value TOML cannot hold."""
+    return "".join(f"{_toml_key(key)} = {_toml_value(value, str(key))}\n" for key, value in document.items())
+
+
+def _toml_key(key):
+    text = str(key)
+    return text if text and all(c.isalnum() or c in "_-" for c in text) and text.isascii() else _json.dumps(text)
+
+
+def _toml_value(value, where):
+    if isinstance(value, (bool, _np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, (int, _np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, _np.floating)):
+        number = float(value)
+        if number != number:
+            return "nan"
+        return repr(number) if abs(number) != float("inf") else ("inf" if number > 0 else "-inf")
+    if isinstance(value, (str, _os.PathLike)):
+        return _json.dumps(_os.fspath(value))  # JSON's escapes are TOML basic-string escapes
+    if isinstance(value, _np.ndarray):
+        value = value.tolist()
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v, f'{where}.{k}')}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v, f"{where}[{i + 1}]") for i, v in enumerate(value)) + "]"
+    text = repr(value) if len(repr(value)) <= 40 else repr(value)[:40] + "..."
+    raise InputError(f"{where} = {text}: a scene holds text, numbers, booleans, lists and dicts, not "
+                     f"{type(value).__name__}", "", where, text, f"not a {type(value).__name__}")
 
 
 def record_list(scene, list_or_folder):

@@ -2,9 +2,11 @@
 model's matrices and mode shapes (checked against scipy's own eigen-solution), and the pandas
 DataFrames beside the numpy arrays. CTest runs this file in python_module."""
 
+import math
 import os
 import pathlib
 import pydoc
+import tomllib
 
 import numpy as np
 import pytest
@@ -268,3 +270,45 @@ def test_with_record_names_the_key_of_an_argument_of_the_wrong_type():
             scene.with_record(record, **{keyword: value})
         assert caught.value.key == key and caught.value.reason == f"expected a {kind}", str(caught.value)
     assert scene.with_record(record, scale_to_pga_g=1, dt_s=0.05).name == "paper"  # an int is a number
+
+
+def test_a_scene_built_from_a_dict_runs_as_its_file_does():
+    # tomllib's dict of the paper scene, built in code, runs bit for bit as load_scene's (the same
+    # reader checks both); only the provenance differs: no scene file.
+    document = tomllib.loads(PAPER.read_text())
+    from_dict = pounding.run(pounding.scene_from_dict(document, folder=PAPER.parent))
+    from_file = pounding.run(pounding.load_scene(PAPER))
+    for key in ("impacts", "peaks", "energy", "sustained_contacts"):
+        assert from_dict.summary[key] == from_file.summary[key], key
+    assert from_dict.summary["provenance"]["scene_file"] is None
+    assert from_dict.summary["provenance"]["record_sha256"] == from_file.summary["provenance"]["record_sha256"]
+    document["building"][0]["mass_t"] = np.float64(-1.0)
+    with pytest.raises(pounding.InputError) as caught:
+        pounding.scene_from_dict(document, folder=PAPER.parent)
+    assert caught.value.key == "building[1].mass_t" and "positive" in caught.value.reason
+    document["building"][0]["mass_t"] = object()
+    with pytest.raises(pounding.InputError) as caught:
+        pounding.scene_from_dict(document)
+    assert caught.value.key == "building[1].mass_t", str(caught.value)
+
+
+def test_a_one_storey_building_written_in_code_has_the_closed_form_period():
+    # Four square columns b = 0.4 m, h = 3.5 m, E = 3e7 kPa, fixed-fixed (frame factor 1):
+    # k = 4 · 12 E (b⁴/12) / h³ in x and in y, m = 400 t, so T = 2π √(m / k) (the CM at the centre
+    # of stiffness: no coupling with torsion), within 1e-12 relative.
+    def building(name, x0):
+        corners = [[x0, 0.0], [x0 + 10.0, 0.0], [x0 + 10.0, 10.0], [x0, 10.0]]
+        return {"name": name, "storeys": 1, "storey_height_m": 3.5, "slab": corners,
+                "centre_of_mass": [x0 + 5.0, 5.0], "mass_t": 400.0, "polar_moment_tm2": "uniform", "E_kPa": 3e7,
+                "frame_factor": 1.0, "columns": np.array([[x, y, 0.4, 0.4] for x, y in corners]),
+                "damping": {"ratio": 0.05, "modes": [1, 3]}}
+    record = SOURCE / "examples" / "records" / "elcentro1940_ns_0.02s.AT2"
+    scene = pounding.scene_from_dict({"name": "in code", "building": [building("A", 0.0), building("B", 10.3)],
+                                      "excitation": {"file": record, "format": "peer-at2", "units": "g"},
+                                      "contact": {"gap_m": 0.3, "restitution": 0.5}})
+    stiffness_kN_per_m = 4 * 12 * 3e7 * 0.4**4 / 12 / 3.5**3
+    period_s = 2 * math.pi * math.sqrt(400.0 / stiffness_kN_per_m)
+    periods = pounding.modes(scene)[0]["periods_s"]
+    assert sorted(periods)[-1] == pytest.approx(period_s, rel=1e-12)
+    assert scene.name == "in code" and scene.gap_m == pytest.approx(0.3, abs=1e-12)
+    assert pounding.run(scene).status == "completed"
