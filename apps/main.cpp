@@ -34,9 +34,11 @@ void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& r
   command.add_option("--record-dt", record.dt_s,
                      "single: the record's sample spacing (s); other formats: re-spaces it");
   command.add_option("--record-column", record.accel_column, "Column of the acceleration in the record (from 1)");
-  command.add_option("--scale", record.scale_factor, "Multiply the record by this (replaces the scene's scaling)");
-  command.add_option("--pga-g", record.pga_g,
-                     "Scale the record to this peak |a_g| in g (replaces the scene's scaling)");
+  command.add_option("--scale,--scale-factor", record.scale_factor,
+                     "Multiply the record by this (the scene's scale_factor; replaces the scene's scaling)");
+  command.add_option("--pga-g,--scale-to-pga-g", record.pga_g,
+                     "Scale the record to this peak |a_g| in g (the scene's scale_to_pga_g; replaces the scene's "
+                     "scaling)");
   command.add_option("--scale-to-sa", record.sa,
                      "Scale the record so its 5%-damped PSA (of a pair: RotD100) at a period is this: 0.5g@T1 (the "
                      "longer first period of the two buildings), 0.5g@B1, 0.5g@B2 or 0.5g@1.2s; or so it best fits "

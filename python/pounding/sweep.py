@@ -53,9 +53,12 @@ from pounding import InputError
 SWEEP_KEYS = ("scenes", "records", "directions_deg", "gaps_m", "restitutions", "methods", "contact_laws", "needed_gap",
               "max_wall_time_s", "out")
 RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "dt_s",
-                 "accel_column": "accel_column", "scale": "scale_factor", "pga_g": "scale_to_pga_g",
-                 "sa": "scale_to_sa", "direction_deg": "direction_deg", "record2": "record2",
-                 "record2_column": "record2_column"}  # field -> Scene.with_record keyword
+                 "accel_column": "accel_column", "scale_factor": "scale_factor", "scale_to_pga_g": "scale_to_pga_g",
+                 "scale_to_sa": "scale_to_sa", "direction_deg": "direction_deg", "record2": "record2",
+                 "record2_column": "record2_column",
+                 "scale": "scale_factor", "pga_g": "scale_to_pga_g", "sa": "scale_to_sa"}  # the short names last
+# field -> Scene.with_record keyword: the scaling fields under the scene's names, or the record
+# list's short ones (scale, pga_g, sa)
 SECOND_KEYS = {"excitation.second.file": "record2", "excitation.second.accel_column": "record2_column"}
 STIFFNESS_KEYS = ("stiffness_kN_per_m", "stiffness_kN_per_m1_5")  # kelvin; hertzdamp, jankowski
 LAW_KEYS = ("name", *STIFFNESS_KEYS)
@@ -298,7 +301,11 @@ class Sweep:
             for field, given in item.items():
                 if field not in RECORD_FIELDS:
                     raise _error(self.file, f"{where}.{field}", _text(given),
-                                 f"unknown field (expected {', '.join(RECORD_FIELDS)})")
+                                 f"unknown field (expected {', '.join(list(RECORD_FIELDS)[:-3])}; scale, pga_g "
+                                 "and sa are short for the scaling fields)")
+                if choice[RECORD_FIELDS[field]] is not None:  # scale_to_pga_g and pga_g both given
+                    other = next(f for f in item if f != field and RECORD_FIELDS.get(f) == RECORD_FIELDS[field])
+                    raise _error(self.file, f"{where}.{field}", _text(given), f"given twice (also as {other})")
                 choice[RECORD_FIELDS[field]] = given
             choice["file"] = self._resolve(item["file"])
             if isinstance(choice["record2"], str):  # a pair's second component, from the sweep file's folder
@@ -309,7 +316,7 @@ class Sweep:
                 except (InputError, TypeError) as error:
                     key = getattr(error, "key", "")
                     key = SECOND_KEYS.get(key, key.removeprefix("excitation."))
-                    field = {v: k for k, v in RECORD_FIELDS.items()}.get(key, key)
+                    field = next((f for f in item if RECORD_FIELDS.get(f) == key), key)  # as the table spelled it
                     raise _error(self.file, f"{where}.{field}" if field else where,
                                  getattr(error, "value", _text(item)),
                                  f"{getattr(error, 'reason', str(error))} (scene {scene_file})") from None

@@ -64,6 +64,14 @@ class ListLine {
     return std::string(text_.substr(start, at_ - start));
   }
 
+  /// Remembers how this line spelled a field (`scale_factor` or its alias `scale`), so that an
+  /// error found later names it as written.
+  void spelled(const std::string& field, const std::string& as_written) { spelling_[field] = as_written; }
+  std::string spelling(const std::string& field) const {
+    const auto found = spelling_.find(field);
+    return found != spelling_.end() ? found->second : field;
+  }
+
   template <class Number>
   Number number(const std::string& field, const std::string& value) const {
     Number parsed{};
@@ -78,22 +86,34 @@ class ListLine {
   std::string where_;
   std::string_view text_;
   std::size_t at_ = 0;
+  std::map<std::string, std::string> spelling_;
 };
+
+/// The scene's names of the scaling keys, which a line may use (the one spelling the docs give),
+/// and the short names the lists had first (kept, as `--scale` and `--pga-g` are).
+const std::string& short_name(const std::string& field) {
+  static const std::map<std::string, std::string> kShort = {
+      {"scale_factor", "scale"}, {"scale_to_pga_g", "pga_g"}, {"scale_to_sa", "sa"}};
+  const auto found = kShort.find(field);
+  return found != kShort.end() ? found->second : field;
+}
 
 /// Sets the field `field` of `choice` from its text (a pair's record2 resolved against `folder`).
 /// @throws InputError for an unknown or repeated field.
-void set_field(const ListLine& line, const std::string& field, const std::string& value,
+void set_field(ListLine& line, const std::string& written, const std::string& value,
                const std::filesystem::path& folder, RecordChoice& choice) {
+  const std::string& field = short_name(written);
+  line.spelled(field, written);
   auto once = [&](auto& slot, auto parsed) {
-    if (slot) throw line.error(field, value, "given twice on this line");
+    if (slot) throw line.error(written, value, "given twice on this line");
     slot = parsed;
   };
   if (field == "format") return once(choice.format, value);
   if (field == "units") return once(choice.units, value);
   if (field == "dt_s") return once(choice.dt_s, line.number<double>(field, value));
   if (field == "accel_column") return once(choice.accel_column, line.number<int>(field, value));
-  if (field == "scale") return once(choice.scale_factor, line.number<double>(field, value));
-  if (field == "pga_g") return once(choice.pga_g, line.number<double>(field, value));
+  if (field == "scale") return once(choice.scale_factor, line.number<double>(written, value));
+  if (field == "pga_g") return once(choice.pga_g, line.number<double>(written, value));
   if (field == "sa") return once(choice.sa, value);
   if (field == "direction_deg") return once(choice.direction_deg, line.number<double>(field, value));
   if (field == "record2") {
@@ -101,9 +121,10 @@ void set_field(const ListLine& line, const std::string& field, const std::string
     return once(choice.second_file, (second.is_absolute() ? second : folder / second).lexically_normal());
   }
   if (field == "record2_column") return once(choice.second_accel_column, line.number<int>(field, value));
-  throw line.error(field, value,
-                   "unknown field (expected format, units, dt_s, accel_column, scale, pga_g, sa, direction_deg, "
-                   "record2 or record2_column)");
+  throw line.error(written, value,
+                   "unknown field (expected format, units, dt_s, accel_column, scale_factor, scale_to_pga_g, "
+                   "scale_to_sa, direction_deg, record2 or record2_column; scale, pga_g and sa are short for the "
+                   "scaling fields)");
 }
 
 /// `base` with `choice` applied; errors name the list line and the field.
@@ -116,7 +137,8 @@ analysis::RecordEntry entry(const ListLine& line, const RecordChoice& choice, co
     return {name, line.where(), excitation::with_record(base, choice), choice};
   } catch (const InputError& error) {
     const auto field = field_of_key().find(error.key());
-    throw line.error(field != field_of_key().end() ? field->second : error.key(), error.value(), error.reason());
+    throw line.error(field != field_of_key().end() ? line.spelling(field->second) : error.key(), error.value(),
+                     error.reason());
   }
 }
 

@@ -49,9 +49,12 @@ BOOST_AUTO_TEST_CASE(LinesGiveTheirRecordWithTheScenesOptionsWhereTheyAreSilent)
                                                "a.AT2   # the scene's format and units\r\n"
                                                "\"sub folder/b.txt\" format=single units=cm/s2 dt_s=0.005 "
                                                "accel_column=2 scale=1.5 direction_deg=30\n"
-                                               "a.AT2 pga_g=0.4 dt_s=0.01");  // no final newline
+                                               "a.AT2 pga_g=0.4 dt_s=0.01\n"
+                                               "a.AT2 scale_to_pga_g=0.4 dt_s=0.01");  // no final newline
   const std::vector<analysis::RecordEntry> set = io::read_record_list(file, paper_excitation());
-  BOOST_TEST_REQUIRE(set.size() == 3u);
+  BOOST_TEST_REQUIRE(set.size() == 4u);
+  BOOST_TEST((set[3].choice.pga_g == set[2].choice.pga_g));  // scale_to_pga_g is pga_g's own name
+  BOOST_TEST(*set[3].choice.pga_g == 0.4);
 
   const excitation::ExcitationSpec& a = set[0].excitation;
   BOOST_TEST(set[0].name == "a.AT2");
@@ -86,6 +89,12 @@ BOOST_AUTO_TEST_CASE(ErrorsNameTheListFileTheLineAndTheField) {
   require_list_error("a.AT2 units=furlong/s2\n", 1, "units", "furlong/s2");
   require_list_error("a.AT2 pga_g=0.3 scale=2\n", 1, "scale", "2");
   require_list_error("a.AT2 pga_g=0.3 pga_g=0.2\n", 1, "pga_g", "0.2");
+  // The scene's names of the scaling keys (scale_factor, scale_to_pga_g, scale_to_sa) are the
+  // fields' names, the short ones aliases: an error names the field as the line spelled it.
+  require_list_error("a.AT2 scale_to_pga_g=0.3 scale_factor=2\n", 1, "scale_factor", "2");
+  require_list_error("a.AT2 pga_g=0.3 scale_to_pga_g=0.2\n", 1, "scale_to_pga_g", "0.2");
+  require_list_error("a.AT2 scale_to_pga_g=-1\n", 1, "scale_to_pga_g", "-1");
+  require_list_error("a.AT2 scale_to_sa=0.5@T1\n", 1, "scale_to_sa", "0.5@T1");
   require_list_error("a.AT2 dt_s=2\n", 1, "dt_s", "2");
   require_list_error("a.AT2 direction_deg=400\n", 1, "direction_deg", "400");
   require_list_error("a.AT2 accel_column=1.5\n", 1, "accel_column", "1.5");

@@ -182,6 +182,11 @@ def test_a_failed_run_is_a_row(folder):
     ("directions_deg = [0, 400]", "directions_deg[2]", "400", "[-360, 360]"),
     ("directions_deg = [30, 30]", "directions_deg", "30", "given twice"),
     ('records = [{file = "pulse_a.txt", record2 = "nowhere.txt"}]', "records[1].record2", "nowhere.txt", "no such"),
+    # The scaling fields under the scene's names, the short ones aliases: errors spell them as given.
+    ('records = [{file = "pulse_a.txt", scale_to_pga_g = -1.0}]', "records[1].scale_to_pga_g", "-1", "must lie in"),
+    ('records = [{file = "pulse_a.txt", pga_g = 0.3, scale_to_pga_g = 0.2}]', "records[1].scale_to_pga_g", "0.2",
+     "given twice (also as pga_g)"),
+    ('records = [{file = "pulse_a.txt", pga_g = "x"}]', "records[1].pga_g", "x", "expected a number"),
 ])
 def test_bad_sweep_file_names_file_key_and_value(folder, tmp_path, text, key, value, reason):
     path = folder / "bad.toml"
