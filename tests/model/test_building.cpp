@@ -163,14 +163,19 @@ BOOST_AUTO_TEST_CASE(UniformPolarMomentOfRectangleIsMassTimesDiagonalSquaredOver
 }
 
 BOOST_AUTO_TEST_CASE(ColumnsAtOnePointCannotResistTorsion) {
-  // Two columns on one line still resist torsion by the couple of their x forces; columns that
-  // all stand at one point do not.
+  // Two columns on one line still resist torsion by the couple of their x forces; a single column
+  // (columns all at one point) does not.
   BuildingDefinition b = square_building(1, 10.0, 100.0, 1000.0);
   b.columns = {{Point2(0, -5), 0.4, 0.4}, {Point2(0, 5), 0.4, 0.4}};
   BOOST_CHECK_NO_THROW(make_building(b));
-  b.columns = {{Point2(0, 0), 0.4, 0.4}, {Point2(0, 0), 0.5, 0.5}};
+  b.columns = {{Point2(0, 0), 0.4, 0.4}};
   BOOST_CHECK_EXCEPTION(make_building(b), pounding::InputError, [](const pounding::InputError& e) {
     return e.key() == "columns" && std::string(e.what()).find("singular") != std::string::npos;
+  });
+  // Two at one point are one column given twice (its stiffness counted twice): refused as such.
+  b.columns = {{Point2(0, 0), 0.4, 0.4}, {Point2(0, 0), 0.5, 0.5}};
+  BOOST_CHECK_EXCEPTION(make_building(b), pounding::InputError, [](const pounding::InputError& e) {
+    return e.key() == "columns[2]" && std::string(e.what()).find("stands where columns[1] stands") != std::string::npos;
   });
 }
 
