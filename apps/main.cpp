@@ -22,6 +22,12 @@ void add_scene_argument(CLI::App& command, std::string& scene) {
   command.add_option("scene", scene, "Scene file (TOML)")->required();
 }
 
+/// A run's folder and, for a scene built in code or changed since, its scene file (animate, report).
+void add_run_folder_arguments(CLI::App& command, std::string& run_dir, std::string& scene) {
+  command.add_option("run_dir", run_dir, "Folder of a run (pounding run --out)")->required();
+  command.add_option("--scene", scene, "Scene file of the run (default: the one its summary.json names, if unchanged)");
+}
+
 /// The options that replace the scene's record or its scaling (io::SceneOverrides::record).
 void add_record_options(CLI::App& command, pounding::excitation::RecordChoice& record) {
   command.add_option_function<std::string>(
@@ -293,9 +299,7 @@ int main(int argc, char** argv) {
       "animate",
       "A film of a run: the slabs of one level in plan, their motion exaggerated, impacts marked (MP4 "
       "with ffmpeg, else GIF; tools/animate_run.py). Writes the plan of the run's scene to RUN_DIR/plan.json");
-  animate_app->add_option("run_dir", animate.run_dir, "Folder of a run (pounding run --out)")->required();
-  animate_app->add_option("--scene", animate.scene,
-                          "Scene file of the run (default: the one its summary.json names, if unchanged)");
+  add_run_folder_arguments(*animate_app, animate.run_dir, animate.scene);
   animate_app->add_option("--level", animate.level, "Level to show (default: the history level with most impacts)")
       ->check(CLI::Range(1, 100000));
   animate_app
@@ -320,9 +324,7 @@ int main(int argc, char** argv) {
       "report",
       "One self-contained HTML page of a run: plan, histories, impacts, energy, settings and provenance "
       "(tools/report_run.py). Writes the plan of the run's scene to RUN_DIR/plan.json");
-  report_app->add_option("run_dir", report.run_dir, "Folder of a run (pounding run --out)")->required();
-  report_app->add_option("--scene", report.scene,
-                         "Scene file of the run (default: the one its summary.json names, if unchanged)");
+  add_run_folder_arguments(*report_app, report.run_dir, report.scene);
   report_app->add_option("--out", report.out_file, "HTML file (default RUN_DIR/report.html)");
 
   pounding::cli::SweepCommand sweep;
