@@ -132,6 +132,22 @@ struct ReportCommand {
   std::string out_file;  // empty: RUN_DIR/report.html
 };
 
+/// `pounding verify MANIFEST` (python -m pounding.verify).
+struct VerifyCommand {
+  std::string manifest;
+  bool bless = false;       // store this run's results as the expected ones first
+  std::optional<int> jobs;  // cases at a time; unset: every core
+  std::string out_dir;      // empty: out/verify-<manifest name>
+  bool no_progress = false;
+};
+
+/// `pounding compare RUN_A RUN_B` (tools/compare_runs.py).
+struct CompareCommand {
+  std::string run_a, run_b;
+  std::optional<double> window_s;  // largest time difference of a match
+  std::string json_file;           // also the comparison as JSON
+};
+
 struct SweepCommand {
   std::string sweep_file;
   std::optional<int> workers;  // LocalCluster processes; unset: every core
@@ -144,7 +160,9 @@ struct SweepCommand {
 int run_gap(const GapCommand& command, const std::string& command_line);  // in gap_command.cpp
 /// Replaces the process by `python3 -m pounding.sweep` (its exit code is the command's).
 /// @throws InputError when the interpreter or the module is missing.
-int run_sweep(const SweepCommand& command);  // in sweep_command.cpp
+int run_sweep(const SweepCommand& command);                                         // in sweep_command.cpp
+int run_verify(const VerifyCommand& command);                                       // in sweep_command.cpp
+int run_compare(const CompareCommand& command);                                     // in plan_command.cpp
 int run_spectrum(const SpectrumCommand& command, const std::string& command_line);  // in spectrum_command.cpp
 int run_plan(const PlanCommand& command, const std::string& command_line);          // in plan_command.cpp
 int run_animate(const AnimateCommand& command, const std::string& command_line);    // in plan_command.cpp

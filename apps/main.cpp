@@ -327,6 +327,29 @@ int main(int argc, char** argv) {
   add_run_folder_arguments(*report_app, report.run_dir, report.scene);
   report_app->add_option("--out", report.out_file, "HTML file (default RUN_DIR/report.html)");
 
+  pounding::cli::VerifyCommand verify;
+  CLI::App* verify_app = app.add_subcommand(
+      "verify",
+      "Runs a manifest's cases and checks them against stored (--bless) or written expected results: impact "
+      "counts and times, impulses, peaks, needed gaps, energy, overlap. A table, OUT/junit.xml, verify.md and "
+      "verify.json; exit 1 when a check fails (python3 -m pounding.verify)");
+  verify_app->add_option("manifest", verify.manifest, "Manifest file (TOML)")->required();
+  verify_app->add_flag("--bless", verify.bless, "Store this run's results as the expected ones first");
+  verify_app->add_option("--jobs", verify.jobs, "Cases at a time (default: every core)")->check(CLI::Range(1, 4096));
+  verify_app->add_option("--out", verify.out_dir, "Output folder (default out/verify-<manifest name>)");
+  verify_app->add_flag("--no-progress,--quiet", verify.no_progress, "No progress line");
+
+  pounding::cli::CompareCommand compare;
+  CLI::App* compare_app = app.add_subcommand(
+      "compare",
+      "Two runs of any methods compared: impacts matched by contact and time, the peaks and histories "
+      "(tools/compare_runs.py)");
+  compare_app->add_option("run_a", compare.run_a, "Folder of run A (pounding run --out)")->required();
+  compare_app->add_option("run_b", compare.run_b, "Folder of run B")->required();
+  compare_app->add_option("--window", compare.window_s, "Largest time difference of a match (s; default 0.05)")
+      ->check(CLI::PositiveNumber);
+  compare_app->add_option("--json", compare.json_file, "Also write the comparison as JSON");
+
   pounding::cli::SweepCommand sweep;
   CLI::App* sweep_app = app.add_subcommand(
       "sweep", "Runs of every scene x record x gap x restitution x method x contact law of a sweep file, on Dask "
@@ -366,6 +389,8 @@ int main(int argc, char** argv) {
     if (*study_app) return pounding::cli::run_study(study, command_line);
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);
     if (*sweep_app) return pounding::cli::run_sweep(sweep);
+    if (*verify_app) return pounding::cli::run_verify(verify);
+    if (*compare_app) return pounding::cli::run_compare(compare);
     if (*spectrum_app) return pounding::cli::run_spectrum(spectrum, command_line);
     if (*plan_app) return pounding::cli::run_plan(plan, command_line);
     if (*animate_app) return pounding::cli::run_animate(animate, command_line);

@@ -37,6 +37,14 @@ void print_building(const analysis::BuildingPlan& b, int number) {
     fmt::print("  the centres of stiffness of the other storeys lie within {:.3f} m of it\n", spread_m);
 }
 
+/// tools/`script` run with `arguments`: its exit status, or 1 when there is no Python to run it.
+int run_tool(const std::string& script, const std::vector<std::string>& arguments) {
+  const std::optional<int> status = run_script(script, arguments);
+  if (status) return *status;
+  fmt::print(stderr, "error: this build has no Python with tools/{} (a build with the Python module has)\n", script);
+  return 1;
+}
+
 /// The scene a run folder ran, at the run's gap: `scene_file` if given, else the file its
 /// summary.json names, refused when it has gone or changed since the run (its plan would not be
 /// the run's).
@@ -66,10 +74,7 @@ int draw_run(const std::string& run_dir, const std::string& scene_file, const st
   const analysis::Scene scene = scene_of_run(run_dir, scene_file);
   io::write_plan(analysis::scene_plan(scene), io::make_provenance(scene, command_line), run_dir);
   arguments.insert(arguments.begin(), run_dir);
-  const std::optional<int> status = run_script(script, arguments);
-  if (status) return *status;
-  fmt::print(stderr, "error: this build has no Python with tools/{} (a build with the Python module has)\n", script);
-  return 1;
+  return run_tool(script, arguments);
 }
 
 }  // namespace
@@ -92,6 +97,13 @@ int run_report(const ReportCommand& command, const std::string& command_line) {
   std::vector<std::string> arguments;
   if (!command.out_file.empty()) arguments = {"--out", command.out_file};
   return draw_run(command.run_dir, command.scene, command_line, "report_run.py", arguments);
+}
+
+int run_compare(const CompareCommand& command) {
+  std::vector<std::string> arguments = {command.run_a, command.run_b};
+  if (command.window_s) arguments.insert(arguments.end(), {"--window", fmt::format("{}", *command.window_s)});
+  if (!command.json_file.empty()) arguments.insert(arguments.end(), {"--json", command.json_file});
+  return run_tool("compare_runs.py", arguments);
 }
 
 int run_plan(const PlanCommand& command, const std::string& command_line) {

@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 packages=(g++ make cmake libsundials-dev libeigen3-dev libboost-test-dev libtomlplusplus-dev
           libcli11-dev nlohmann-json3-dev libfmt-dev python3-matplotlib python3-numpy python3-scipy
           libbenchmark-dev pybind11-dev python3-dev python3-pytest python3-distributed python3-tqdm
-          python3-venv python3-pandas mkdocs mkdocs-material)
+          python3-venv python3-pandas python3-lxml mkdocs mkdocs-material)
 ./scripts/install-packages.sh "${packages[@]}"
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release

@@ -1,0 +1,584 @@
+"""Validation runs as a feature: the cases of a manifest run and checked against stored or
+written expected results, with a table, JUnit XML and a markdown summary.
+
+    python3 -m pounding.verify MANIFEST.toml [--bless] [--jobs N] [--out DIR] [--no-progress]
+    pounding.verify.verify("MANIFEST.toml")          # the same from Python; returns a VerifyResult
+
+The manifest (TOML; paths relative to its folder; docs/guide/verify.md):
+
+    name = "paper"                          # absent: the file's name
+    expected = "paper.expected.json"        # the blessed results; absent: <manifest stem>.expected.json
+    [defaults.checks]                       # merged under every case's checks
+    energy_residual = { max_relative = 1e-6 }
+
+    [[case]]
+    name = "cvode-bdf"                      # unique; required
+    scene = "../examples/paper/paper.toml"  # required
+    gap_m = 0.2                             # optional, as load_scene: gap_m, restitution, contact_law,
+                                            # contact_stiffness
+    record = { file = "...", scale_to_pga_g = 0.3 }   # optional: Scene.with_record's keywords
+    method = "cvode-bdf"                    # optional, with its [solver] settings
+    settings = { rtol = 1e-10, atol = 1e-12 }
+    max_wall_time_s = 600                   # optional: the run's budget
+    [case.checks]                           # what to check, each with its tolerance
+    status = true                           # the expected status ("completed")
+    impact_count = true                     # exactly; or { abs = 2 }
+    impact_times = { abs_s = 1e-6 }         # or { scaled = 100 }: 100 × the method's tolerance
+    impulses = { rel = 1e-4, abs_kNs = 1e-6 }
+    peaks = { rel = 1e-6, abs = 1e-12 }     # every peak of summary.json
+    needed_gap = { abs_m = 1e-6 }           # runs `pounding gap` too
+    energy_residual = { max_relative = 1e-6 }   # bounds: need no expected value
+    interpenetration = { max_m = 1e-9 }
+    [case.expected]                         # values written here (closed forms, published numbers)
+    impact_count = 45                       # override the blessed ones: status, impact_count,
+    first_impact_s = 5.7008                 # first_impact_s, impact_times_s, needed_gap_m
+"""
+
+import argparse
+import concurrent.futures
+import datetime
+import json
+import os
+import pathlib
+import socket
+import sys
+import time
+import tomllib
+import xml.etree.ElementTree as ElementTree
+
+import pounding
+from pounding import InputError
+
+CASE_KEYS = ("name", "scene", "gap_m", "restitution", "contact_law", "contact_stiffness", "record", "method",
+             "settings", "max_wall_time_s", "checks", "expected")
+# Each check kind and its tolerance fields (each a number >= 0).
+CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled"),
+                "impulses": ("rel", "abs_kNs"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
+                "energy_residual": ("max_relative",), "interpenetration": ("max_m",)}
+EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "needed_gap_m")
+MATCH_WINDOW_S = 0.05  # impacts further apart than this at one contact are different impacts
+
+
+def _error(file, key, value, reason, line=None):
+    where = f"{file}:{line}" if line else f"{file}"
+    message = f"{where}: {key}" + (f" = {value}" if value != "" else "") + f": {reason}"
+    return InputError(message, str(file), key, str(value), reason)
+
+
+class Manifest:
+    """A manifest read and checked: name, file, expected_file, cases (dicts with the keys above,
+    paths resolved, checks merged over the defaults)."""
+
+    def __init__(self, path):
+        self.file = pathlib.Path(path)
+        try:
+            self.text = self.file.read_text()
+        except OSError as error:
+            raise _error(self.file, "manifest", "", f"cannot read it ({error.strerror})") from None
+        try:
+            document = tomllib.loads(self.text)
+        except tomllib.TOMLDecodeError as error:
+            raise _error(self.file, "manifest", "", f"not valid TOML ({error})") from None
+        self.name = self._text(document.get("name", self.file.stem), "name")
+        self.expected_file = self._path(document.get("expected", f"{self.file.stem}.expected.json"), "expected")
+        defaults = document.get("defaults", {})
+        self._known(document, ("name", "expected", "defaults", "case"), "")
+        self._known(defaults, ("checks",), "defaults")
+        default_checks = self._checks(defaults.get("checks", {}), "defaults.checks")
+        cases = document.get("case")
+        if not isinstance(cases, list) or not cases:
+            raise _error(self.file, "case", "", "a manifest needs at least one [[case]]")
+        self.cases, names = [], set()
+        for index, case in enumerate(cases, start=1):
+            case = self._case(case, f"case[{index}]", default_checks)
+            if case["name"] in names:
+                raise _error(self.file, f"case[{index}].name", case["name"], "given twice", self._line(case["name"]))
+            names.add(case["name"])
+            self.cases.append(case)
+
+    def _line(self, text):
+        """The first line of the manifest that holds `text` (for messages), or None."""
+        for number, line in enumerate(self.text.splitlines(), start=1):
+            if str(text) in line:
+                return number
+        return None
+
+    def _known(self, table, keys, where):
+        if not isinstance(table, dict):
+            raise _error(self.file, where, repr(table), "expected a table")
+        for key in table:
+            if key not in keys:
+                name = f"{where}.{key}" if where else key
+                raise _error(self.file, name, "", f"unknown key (expected {', '.join(keys)})", self._line(key))
+
+    def _text(self, value, key):
+        if not isinstance(value, str) or not value:
+            raise _error(self.file, key, repr(value), "expected non-empty text", self._line(key.split(".")[-1]))
+        return value
+
+    def _path(self, value, key):
+        return (self.file.parent / self._text(value, key)).resolve()
+
+    def _number(self, value, key):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not value >= 0 or value == float("inf"):
+            raise _error(self.file, key, repr(value), "expected a finite number >= 0", self._line(key.split(".")[-1]))
+        return float(value)
+
+    def _checks(self, table, where):
+        self._known(table, tuple(CHECK_FIELDS), where)
+        checks = {}
+        for kind, spec in table.items():
+            if spec is False:  # a default switched off for this case
+                checks[kind] = None
+                continue
+            if kind == "status":
+                if spec is not True and not isinstance(spec, str):
+                    raise _error(self.file, f"{where}.status", repr(spec), "expected true or a status name")
+                checks[kind] = {} if spec is True else {"value": spec}
+                continue
+            spec = {} if spec is True else spec
+            self._known(spec, CHECK_FIELDS[kind], f"{where}.{kind}")
+            checks[kind] = {field: self._number(value, f"{where}.{kind}.{field}") for field, value in spec.items()}
+            if kind in ("impact_times", "impulses", "peaks", "needed_gap", "energy_residual", "interpenetration") \
+                    and not checks[kind]:
+                raise _error(self.file, f"{where}.{kind}", "{}",
+                             f"give its tolerance ({' or '.join(CHECK_FIELDS[kind])})", self._line(kind))
+        return checks
+
+    def _written(self, value, key):
+        """A value written in [case.expected]: as given, or {value, abs_s | abs_m} with its own
+        tolerance (a published number known to so many digits)."""
+        if not isinstance(value, dict):
+            return value
+        self._known(value, ("value", "abs_s", "abs_m"), key)
+        if "value" not in value or len(value) != 2:
+            raise _error(self.file, key, repr(value), "expected {value = ..., abs_s = ...} (or abs_m)", self._line(key))
+        return {"value": value["value"], "abs": self._number(value.get("abs_s", value.get("abs_m")), key)}
+
+    def _case(self, case, where, default_checks):
+        self._known(case, CASE_KEYS, where)
+        if "name" not in case or "scene" not in case:
+            raise _error(self.file, where, "", "a case needs a name and a scene")
+        result = {key: case.get(key) for key in CASE_KEYS}
+        result["name"] = self._text(case["name"], f"{where}.name")
+        result["scene"] = self._path(case["scene"], f"{where}.scene")
+        if not result["scene"].is_file():
+            raise _error(self.file, f"{where}.scene", case["scene"], "no such scene file", self._line(case["scene"]))
+        record = dict(case.get("record") or {})
+        if "file" in record:
+            record["file"] = str(self._path(record["file"], f"{where}.record.file"))
+        if isinstance(record.get("record2"), str):
+            record["record2"] = str(self._path(record["record2"], f"{where}.record.record2"))
+        result["record"] = record or None
+        result["settings"] = dict(case.get("settings") or {})
+        merged = {**default_checks, **self._checks(case.get("checks", {}), f"{where}.checks")}
+        result["checks"] = {kind: spec for kind, spec in merged.items() if spec is not None}
+        expected = case.get("expected", {})
+        self._known(expected, EXPECTED_KEYS, f"{where}.expected")
+        result["expected"] = {key: self._written(value, f"{where}.expected.{key}") for key, value in expected.items()}
+        if not result["checks"]:
+            raise _error(self.file, f"{where}.checks", "", "nothing to check: give [case.checks]")
+        return result
+
+
+# ------------------------------------------------------------------------------------------------
+# Running a case
+
+
+def _scene(case):
+    scene = pounding.load_scene(case["scene"], gap=case["gap_m"], restitution=case["restitution"],
+                                contact_law=case["contact_law"], contact_stiffness=case["contact_stiffness"])
+    if case["record"]:
+        scene = scene.with_record(**case["record"])
+    return scene
+
+
+def _peaks(summary):
+    """Every scalar peak of summary.json, named building.floor.quantity (with an index for lists)."""
+    values = {}
+    for building in summary["peaks"]:
+        for floor in building["floors"]:
+            prefix = f"{building['building']}.f{floor['floor']}."
+            for key, entry in floor.items():
+                if isinstance(entry, dict) and "value" in entry:
+                    values[prefix + key] = entry["value"]
+                elif isinstance(entry, list):
+                    for index, item in enumerate(entry, start=1):
+                        if isinstance(item, dict) and "value" in item:
+                            values[f"{prefix}{key}[{index}]"] = item["value"]
+    return values
+
+
+def _method_tolerance(summary):
+    """(kind, value): the used rtol (relative), hht's dt_s (absolute, s) or the exact path's hold_rtol."""
+    used = summary["settings"]["used"]
+    for key, kind in (("rtol", "relative"), ("dt_s", "absolute"), ("hold_rtol", "relative")):
+        if key in used:
+            return kind, float(used[key])
+    return "absolute", 0.0
+
+
+def observe(case):
+    """Runs one case; the quantities its checks read (JSON-ready), or {"error": message}."""
+    started = time.perf_counter()
+    try:
+        scene = _scene(case)
+        result = pounding.run(scene, method=case["method"], max_wall_time_s=case["max_wall_time_s"],
+                              **case["settings"])
+        summary = result.summary
+        observed = {
+            "status": summary["status"], "status_detail": summary["status_detail"],
+            "method": summary["method"], "method_tolerance": _method_tolerance(summary),
+            "impact_count": summary["impact_count"],
+            "impacts": [{key: i[key] for key in ("t_s", "level", "striking_building", "vertex", "struck_edge",
+                                                 "impulse_kNs")} for i in summary["impacts"]],
+            "peaks": _peaks(summary),
+            "energy_relative_residual": summary["energy"].get("relative_residual"),
+            "max_interpenetration_m": summary["statistics"].get("max_interpenetration_m"),
+        }
+        if "needed_gap" in case["checks"]:
+            gap = pounding.needed_gap(scene, max_wall_time_s=case["max_wall_time_s"])
+            observed["needed_gap_m"] = gap.needed_gap_m
+    except InputError as error:
+        observed = {"error": str(error)}
+    observed["wall_time_s"] = time.perf_counter() - started
+    return observed
+
+
+# ------------------------------------------------------------------------------------------------
+# Checking a case
+
+
+def _match(expected, observed, window_s):
+    """Greedy in time order: each expected impact takes the nearest unused observed impact at the
+    same contact (level, striking building and vertex, struck edge) within window_s."""
+    used, pairs, missing = set(), [], []
+    contact = ("level", "striking_building", "vertex", "struck_edge")
+    for e in expected:
+        best = None
+        for j, o in enumerate(observed):
+            if j in used or any(o[k] != e[k] for k in contact if k in e):
+                continue
+            dt = abs(o["t_s"] - e["t_s"])
+            if dt <= window_s and (best is None or dt < best[0]):
+                best = (dt, j)
+        if best is None:
+            missing.append(e)
+        else:
+            used.add(best[1])
+            pairs.append((e, observed[best[1]]))
+    extra = [o for j, o in enumerate(observed) if j not in used]
+    return pairs, missing, extra
+
+
+def _impact_text(impact):
+    return f"level {impact['level']} at {impact['t_s']:.9f} s" if "level" in impact else f"{impact['t_s']:.9f} s"
+
+
+def _time_tolerance(spec, observed, t_s):
+    if "abs_s" in spec:
+        return spec["abs_s"]
+    kind, value = observed["method_tolerance"]
+    return spec["scaled"] * value * (max(abs(t_s), 1.0) if kind == "relative" else 1.0)
+
+
+def _expected_impacts(case, blessed):
+    written = case["expected"]
+    if "impact_times_s" in written:
+        return [{"t_s": float(t)} for t in written["impact_times_s"]]
+    return blessed.get("impacts") if blessed else None
+
+
+def _checks(case, observed, blessed):
+    """[(check name, passed, detail)] of one case."""
+    results, checks, written = [], case["checks"], case["expected"]
+    blessed = blessed or {}
+
+    def expected_value(key, written_key=None):
+        written_key = written_key or key
+        return written[written_key] if written_key in written else blessed.get(key)
+
+    def no_expectation(name):
+        results.append((name, False, "no expected value: run `pounding verify --bless` or write it in "
+                                     "[case.expected]"))
+
+    if "status" in checks:
+        wanted = checks["status"].get("value") or expected_value("status")
+        if wanted is None:
+            no_expectation("status")
+        else:
+            results.append(("status", observed["status"] == wanted,
+                            f"{observed['status']} (expected {wanted}) {observed['status_detail']}".strip()))
+    if "impact_count" in checks:
+        wanted = expected_value("impact_count")
+        if wanted is None:
+            no_expectation("impact_count")
+        else:
+            allowed = checks["impact_count"].get("abs", 0.0)
+            difference = observed["impact_count"] - wanted
+            results.append(("impact_count", abs(difference) <= allowed,
+                            f"{observed['impact_count']} impacts, expected {wanted} (allowed ±{allowed:g})"))
+    if "impact_times" in checks:
+        _check_times(case, observed, blessed, checks["impact_times"], results)
+    if "impulses" in checks:
+        _check_impulses(observed, blessed, checks["impulses"], results, no_expectation)
+    if "peaks" in checks:
+        _check_peaks(observed, blessed, checks["peaks"], results, no_expectation)
+    if "needed_gap" in checks:
+        wanted, own_tolerance = _written_value(expected_value("needed_gap_m"))
+        if wanted is None:
+            no_expectation("needed_gap")
+        else:
+            got = observed.get("needed_gap_m")
+            tolerance = checks["needed_gap"]["abs_m"] if own_tolerance is None else own_tolerance
+            ok = got is not None and abs(got - wanted) <= tolerance
+            results.append(("needed_gap", ok, f"{got} m, expected {wanted} m ± {tolerance:g} m"
+                            + ("" if got is None else f" (differs by {got - wanted:.3e} m)")))
+    if "energy_residual" in checks:
+        got, bound = observed["energy_relative_residual"], checks["energy_residual"]["max_relative"]
+        ok = got is not None and abs(got) <= bound
+        results.append(("energy_residual", ok, f"relative residual {got:.3e}, at most {bound:g}"))
+    if "interpenetration" in checks:
+        got, bound = observed["max_interpenetration_m"] or 0.0, checks["interpenetration"]["max_m"]
+        results.append(("interpenetration", got <= bound, f"largest overlap {got:.3e} m, at most {bound:g} m"))
+    return results
+
+
+def _check_times(case, observed, blessed, spec, results):
+    expected = _expected_impacts(case, blessed)
+    if "first_impact_s" in case["expected"]:
+        first, tolerance = _written_value(case["expected"]["first_impact_s"])
+        got = observed["impacts"][0]["t_s"] if observed["impacts"] else None
+        tolerance = _time_tolerance(spec, observed, first) if tolerance is None else tolerance
+        ok = got is not None and abs(got - first) <= tolerance
+        results.append(("first_impact", ok, f"{got} s, expected {first} s ± {tolerance:.3g} s"
+                        + ("" if got is None else f" (differs by {got - first:.3e} s)")))
+    if expected is None:
+        if "first_impact_s" not in case["expected"]:
+            results.append(("impact_times", False, "no expected value: run `pounding verify --bless` or write "
+                                                   "impact_times_s in [case.expected]"))
+        return
+    pairs, missing, extra = _match(expected, observed["impacts"], MATCH_WINDOW_S)
+    worst, worst_text = 0.0, ""
+    failed = []
+    for e, o in pairs:
+        tolerance = _time_tolerance(spec, observed, e["t_s"])
+        difference = o["t_s"] - e["t_s"]
+        if abs(difference) > tolerance:
+            failed.append(f"{_impact_text(e)} moved by {difference:.3e} s (tolerance {tolerance:.3g} s)")
+        if abs(difference) >= worst:
+            worst, worst_text = abs(difference), _impact_text(e)
+    failed += [f"expected impact {_impact_text(e)} not found" for e in missing[:5]]
+    failed += [f"impact {_impact_text(o)} not expected" for o in extra[:5]]
+    detail = f"{len(pairs)} matched, largest difference {worst:.3e} s ({worst_text or 'none'})"
+    if missing or extra:
+        detail += f"; {len(missing)} expected not found, {len(extra)} not expected"
+    results.append(("impact_times", not failed, detail + ("; " + "; ".join(failed[:5]) if failed else "")))
+
+
+def _written_value(written):
+    """(value, its own tolerance or None) of a [case.expected] entry."""
+    return (written["value"], written["abs"]) if isinstance(written, dict) else (written, None)
+
+
+def _within(got, wanted, spec, abs_key):
+    return abs(got - wanted) <= max(spec.get(abs_key, 0.0), spec.get("rel", 0.0) * abs(wanted))
+
+
+def _check_impulses(observed, blessed, spec, results, no_expectation):
+    if "impacts" not in blessed:
+        return no_expectation("impulses")
+    pairs, _, _ = _match(blessed["impacts"], observed["impacts"], MATCH_WINDOW_S)
+    failed = [f"{_impact_text(e)}: {o['impulse_kNs']:.6g} kN·s, expected {e['impulse_kNs']:.6g}"
+              for e, o in pairs if not _within(o["impulse_kNs"], e["impulse_kNs"], spec, "abs_kNs")]
+    worst = max((abs(o["impulse_kNs"] - e["impulse_kNs"]) for e, o in pairs), default=0.0)
+    results.append(("impulses", not failed, f"{len(pairs)} matched impacts, largest difference {worst:.3e} kN·s"
+                    + ("; " + "; ".join(failed[:5]) if failed else "")))
+
+
+def _check_peaks(observed, blessed, spec, results, no_expectation):
+    if "peaks" not in blessed:
+        return no_expectation("peaks")
+    failed, worst = [], (0.0, "")
+    for name, wanted in blessed["peaks"].items():
+        got = observed["peaks"].get(name)
+        if got is None:
+            failed.append(f"{name} missing")
+            continue
+        if not _within(got, wanted, spec, "abs"):
+            failed.append(f"{name} = {got:.9g}, expected {wanted:.9g}")
+        if abs(got - wanted) >= worst[0]:
+            worst = (abs(got - wanted), name)
+    results.append(("peaks", not failed, f"{len(blessed['peaks'])} peaks, largest difference {worst[0]:.3e} "
+                    f"({worst[1] or 'none'})" + ("; " + "; ".join(failed[:5]) if failed else "")))
+
+
+# ------------------------------------------------------------------------------------------------
+# The whole manifest
+
+
+class VerifyResult:
+    """cases: [{name, observed, checks: [(check, passed, detail)], error}]; passed, failures,
+    the files written (junit, markdown, json), blessed (the expected file written, or None)."""
+
+    def __init__(self, manifest, cases, out, wall_time_s, blessed):
+        self.manifest, self.cases, self.out, self.wall_time_s, self.blessed = manifest, cases, out, wall_time_s, blessed
+        self.failures = sum(1 for c in cases for _, ok, _ in c["checks"] if not ok) + sum(
+            1 for c in cases if c["error"])
+        self.passed = self.failures == 0
+        self.junit, self.markdown, self.json = out / "junit.xml", out / "verify.md", out / "verify.json"
+
+
+def _provenance():
+    return {"program_version": pounding.__version__, "git_commit": pounding._pounding.git_commit or None,
+            "python": sys.version.split()[0], "host": socket.gethostname(),
+            "date_utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")}
+
+
+def _read_blessed(manifest):
+    if not manifest.expected_file.is_file():
+        return {}
+    try:
+        document = json.loads(manifest.expected_file.read_text())
+        return document["cases"]
+    except (ValueError, KeyError, TypeError):
+        raise _error(manifest.expected_file, "cases", "", "not an expected-results file of pounding verify "
+                                                          "(write it again with --bless)") from None
+
+
+def verify(manifest_path, out=None, jobs=None, bless=False, progress=True):
+    """Runs every case of the manifest (jobs at a time: threads, the runs release the GIL) and
+    checks it; with bless, first writes the observed results as the expected ones (with
+    provenance). Writes OUT/junit.xml, verify.md and verify.json (default out/verify-<manifest
+    stem>). Returns a VerifyResult. @throws InputError for a bad manifest."""
+    started = time.perf_counter()
+    manifest = Manifest(manifest_path)
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
+        raise _error("", "--jobs", repr(jobs), "expected a whole number >= 1")
+    out = pathlib.Path(out or pathlib.Path("out") / f"verify-{manifest.file.stem}")
+    out.mkdir(parents=True, exist_ok=True)
+    observed = _run_all(manifest, jobs or os.cpu_count() or 1, progress)
+    blessed_file = None
+    if bless:
+        document = {"manifest": manifest.file.name, "provenance": _provenance(),
+                    "cases": {name: o for name, o in observed.items() if "error" not in o}}
+        manifest.expected_file.write_text(json.dumps(document, indent=1) + "\n")
+        blessed_file = manifest.expected_file
+    blessed = _read_blessed(manifest)
+    cases = []
+    for case in manifest.cases:
+        o = observed[case["name"]]
+        checks = [] if "error" in o else _checks(case, o, blessed.get(case["name"]))
+        cases.append({"name": case["name"], "observed": o, "checks": checks, "error": o.get("error")})
+    result = VerifyResult(manifest, cases, out, time.perf_counter() - started, blessed_file)
+    _write_junit(result)
+    _write_markdown(result)
+    result.json.write_text(json.dumps({"manifest": str(manifest.file.resolve()), "passed": result.passed,
+                                       "failures": result.failures, "wall_time_s": result.wall_time_s,
+                                       "provenance": _provenance(),
+                                       "cases": [{"name": c["name"], "error": c["error"],
+                                                  "checks": [{"check": n, "passed": ok, "detail": d}
+                                                             for n, ok, d in c["checks"]],
+                                                  "wall_time_s": c["observed"]["wall_time_s"]} for c in cases]},
+                                      indent=1) + "\n")
+    return result
+
+
+def _run_all(manifest, jobs, progress):
+    observed, done, failed = {}, 0, 0
+    show = progress and sys.stderr.isatty()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = {pool.submit(observe, case): case["name"] for case in manifest.cases}
+        for future in concurrent.futures.as_completed(futures):
+            observed[futures[future]] = future.result()
+            done += 1
+            failed += "error" in observed[futures[future]]
+            if show:
+                print(f"\rverify {manifest.name}: {done}/{len(futures)} cases run, {failed} errors",
+                      end="", file=sys.stderr, flush=True)
+    if show:
+        print(file=sys.stderr)
+    return observed
+
+
+def _write_junit(result):
+    """JUnit XML as Ant writes it (the schema CI servers read: tests/data/junit/JUnit.xsd): one
+    testsuite, one testcase a check; a case that could not run is one testcase with an error."""
+    testcases = [(c["name"], n, ok, d, c["observed"]["wall_time_s"]) for c in result.cases for n, ok, d in c["checks"]]
+    errors = [c for c in result.cases if c["error"]]
+    root = ElementTree.Element("testsuites")
+    suite = ElementTree.SubElement(root, "testsuite", {
+        "package": "pounding.verify", "id": "0", "name": result.manifest.name,
+        "timestamp": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%S"),
+        "hostname": socket.gethostname() or "localhost", "tests": str(len(testcases) + len(errors)),
+        "failures": str(sum(1 for t in testcases if not t[2])), "errors": str(len(errors)),
+        "time": f"{result.wall_time_s:.3f}"})
+    properties = ElementTree.SubElement(suite, "properties")
+    for name, value in _provenance().items():
+        ElementTree.SubElement(properties, "property", {"name": name, "value": str(value)})
+    for case, check, ok, detail, seconds in testcases:
+        element = ElementTree.SubElement(suite, "testcase", {"classname": f"{result.manifest.name}.{case}",
+                                                             "name": check, "time": f"{seconds:.3f}"})
+        if not ok:
+            ElementTree.SubElement(element, "failure", {"message": detail, "type": "tolerance"}).text = detail
+    for case in errors:
+        element = ElementTree.SubElement(suite, "testcase", {"classname": f"{result.manifest.name}.{case['name']}",
+                                                             "name": "run", "time": "0"})
+        ElementTree.SubElement(element, "error", {"message": case["error"], "type": "InputError"}).text = case["error"]
+    ElementTree.SubElement(suite, "system-out").text = ""
+    ElementTree.SubElement(suite, "system-err").text = ""
+    ElementTree.ElementTree(root).write(result.junit, encoding="UTF-8", xml_declaration=True)
+
+
+def _rows(result):
+    for case in result.cases:
+        if case["error"]:
+            yield case["name"], "run", "ERROR", case["error"]
+        for check, ok, detail in case["checks"]:
+            yield case["name"], check, "pass" if ok else "FAIL", detail
+
+
+def _write_markdown(result):
+    lines = [f"# pounding verify: {result.manifest.name}", "",
+             f"{'All checks passed' if result.passed else f'{result.failures} failed'}; "
+             f"{len(result.cases)} cases in {result.wall_time_s:.1f} s (`{result.manifest.file}`).", "",
+             "| case | check | result | detail |", "|---|---|---|---|"]
+    lines += [f"| {c} | {k} | {r} | {d.replace('|', '/')} |" for c, k, r, d in _rows(result)]
+    result.markdown.write_text("\n".join(lines) + "\n")
+
+
+def _print_table(result):
+    rows = list(_rows(result))
+    width = max((len(c) for c, _, _, _ in rows), default=4)
+    for case, check, outcome, detail in rows:
+        print(f"{case:<{width}}  {check:<16} {outcome:<5} {detail}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="pounding verify", description="Run a manifest's cases and check them "
+                                     "against stored (--bless) or written expected results; JUnit XML and markdown "
+                                     "in OUT; exit 1 when a check fails.")
+    parser.add_argument("manifest", help="manifest file (TOML)")
+    parser.add_argument("--bless", action="store_true", help="store this run's results as the expected ones first")
+    parser.add_argument("--jobs", type=int, help="cases at a time (default: every core)")
+    parser.add_argument("--out", help="output folder (default out/verify-<manifest name>)")
+    parser.add_argument("--no-progress", action="store_true", help="no progress line")
+    arguments = parser.parse_args(argv)
+    try:
+        result = verify(arguments.manifest, out=arguments.out, jobs=arguments.jobs, bless=arguments.bless,
+                        progress=not arguments.no_progress)
+    except InputError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    _print_table(result)
+    if result.blessed:
+        print(f"Blessed: wrote the expected results to {result.blessed}")
+    print(f"{'All checks passed' if result.passed else f'{result.failures} checks failed'} "
+          f"({len(result.cases)} cases, {result.wall_time_s:.1f} s); wrote {result.junit}, {result.markdown.name}, "
+          f"{result.json.name}")
+    return 0 if result.passed else 1
+
+
+if __name__ == "__main__":
+    from pounding.verify import main as _main
+    sys.exit(_main())
