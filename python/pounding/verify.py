@@ -171,6 +171,10 @@ class Manifest:
             record["record2"] = str(self._path(record["record2"], f"{where}.record.record2"))
         result["record"] = record or None
         result["settings"] = dict(case.get("settings") or {})
+        try:
+            pounding._check_settings(result["settings"])  # unknown names refused here, not per run
+        except TypeError as error:
+            raise _error(self.file, f"{where}.settings", "", str(error), self._line("settings")) from None
         merged = {**default_checks, **self._checks(case.get("checks", {}), f"{where}.checks")}
         result["checks"] = {kind: spec for kind, spec in merged.items() if spec is not None}
         expected = case.get("expected", {})
@@ -239,8 +243,10 @@ def observe(case):
         if "needed_gap" in case["checks"]:
             gap = pounding.needed_gap(scene, max_wall_time_s=case["max_wall_time_s"])
             observed["needed_gap_m"] = gap.needed_gap_m
-    except InputError as error:
+    except InputError as error:  # a scene, record or setting the library refuses
         observed = {"error": str(error)}
+    except Exception as error:  # noqa: BLE001  (any other failure of one case is that case's error)
+        observed = {"error": f"{type(error).__name__}: {error}"}
     observed["wall_time_s"] = time.perf_counter() - started
     return observed
 
