@@ -26,12 +26,13 @@ The manifest (TOML; paths relative to its folder; docs/guide/verify.md):
     impact_times = { abs_s = 1e-6 }         # or { scaled = 100 }: 100 × the method's tolerance
     impulses = { rel = 1e-4, abs_kNs = 1e-6 }
     peaks = { rel = 1e-6, abs = 1e-12 }     # every peak of summary.json
+    rebound = { rel = 0.01 }                # the first impact's separation / approach speed
     needed_gap = { abs_m = 1e-6 }           # runs `pounding gap` too
     energy_residual = { max_relative = 1e-6 }   # bounds: need no expected value
     interpenetration = { max_m = 1e-9 }
     [case.expected]                         # values written here (closed forms, published numbers)
     impact_count = 45                       # override the blessed ones: status, impact_count,
-    first_impact_s = 5.7008                 # first_impact_s, impact_times_s, needed_gap_m
+    first_impact_s = 5.7008                 # first_impact_s, impact_times_s, needed_gap_m, rebound
 """
 
 import argparse
@@ -54,8 +55,9 @@ CASE_KEYS = ("name", "scene", "gap_m", "restitution", "contact_law", "contact_st
 # Each check kind and its tolerance fields (each a number >= 0).
 CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled"),
                 "impulses": ("rel", "abs_kNs"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
+                "rebound": ("rel", "abs"),
                 "energy_residual": ("max_relative",), "interpenetration": ("max_m",)}
-EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "needed_gap_m")
+EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "needed_gap_m", "rebound")
 MATCH_WINDOW_S = 0.05  # impacts further apart than this at one contact are different impacts
 
 
@@ -139,8 +141,7 @@ class Manifest:
             spec = {} if spec is True else spec
             self._known(spec, CHECK_FIELDS[kind], f"{where}.{kind}")
             checks[kind] = {field: self._number(value, f"{where}.{kind}.{field}") for field, value in spec.items()}
-            if kind in ("impact_times", "impulses", "peaks", "needed_gap", "energy_residual", "interpenetration") \
-                    and not checks[kind]:
+            if kind not in ("status", "impact_count") and not checks[kind]:
                 raise _error(self.file, f"{where}.{kind}", "{}",
                              f"give its tolerance ({' or '.join(CHECK_FIELDS[kind])})", self._line(kind))
         return checks
@@ -238,6 +239,9 @@ def observe(case):
                                                  "impulse_kNs")} for i in summary["impacts"]],
             "peaks": _peaks(summary),
             "energy_relative_residual": summary["energy"].get("relative_residual"),
+            # The first impact's separation over approach speed: the restitution a law achieves.
+            "rebound": (summary["impacts"][0]["separation_velocity_mps"] / summary["impacts"][0]["approach_velocity_mps"]
+                        if summary["impacts"] else None),
             "max_interpenetration_m": summary["statistics"].get("max_interpenetration_m"),
         }
         if "needed_gap" in case["checks"]:
@@ -340,6 +344,17 @@ def _checks(case, observed, blessed):
             ok = got is not None and abs(got - wanted) <= tolerance
             results.append(("needed_gap", ok, f"{got} m, expected {wanted} m ± {tolerance:g} m"
                             + ("" if got is None else f" (differs by {got - wanted:.3e} m)")))
+    if "rebound" in checks:
+        wanted, own_tolerance = _written_value(expected_value("rebound"))
+        if wanted is None:
+            no_expectation("rebound")
+        else:
+            got, spec = observed["rebound"], checks["rebound"]
+            spec = spec if own_tolerance is None else {"abs": own_tolerance}
+            ok = got is not None and _within(got, wanted, spec, "abs")
+            results.append(("rebound", ok, f"first impact's separation/approach speed {got}, expected {wanted:.6g} "
+                            f"(rel {spec.get('rel', 0):g}, abs {spec.get('abs', 0):g})"
+                            + ("" if got is None else f", differs by {got / wanted - 1:+.3e} relative")))
     if "energy_residual" in checks:
         got, bound = observed["energy_relative_residual"], checks["energy_residual"]["max_relative"]
         ok = got is not None and abs(got) <= bound
