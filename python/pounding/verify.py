@@ -53,11 +53,12 @@ from pounding import InputError
 CASE_KEYS = ("name", "scene", "gap_m", "restitution", "contact_law", "contact_stiffness", "record", "method",
              "settings", "max_wall_time_s", "checks", "expected")
 # Each check kind and its tolerance fields (each a number >= 0).
-CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled"),
-                "impulses": ("rel", "abs_kNs"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
+CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled", "after_s"),
+                "impulses": ("rel", "abs_kNs"), "approach_velocity": ("rel", "abs_mps", "after_s"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
                 "rebound": ("rel", "abs"),
                 "energy_residual": ("max_relative",), "interpenetration": ("max_m",)}
-EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "needed_gap_m", "rebound")
+EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "approach_velocity_mps", "needed_gap_m",
+                 "rebound")
 MATCH_WINDOW_S = 0.05  # impacts further apart than this at one contact are different impacts
 
 
@@ -141,7 +142,7 @@ class Manifest:
             spec = {} if spec is True else spec
             self._known(spec, CHECK_FIELDS[kind], f"{where}.{kind}")
             checks[kind] = {field: self._number(value, f"{where}.{kind}.{field}") for field, value in spec.items()}
-            if kind not in ("status", "impact_count") and not checks[kind]:
+            if kind not in ("status", "impact_count") and not set(checks[kind]) - {"after_s"}:
                 raise _error(self.file, f"{where}.{kind}", "{}",
                              f"give its tolerance ({' or '.join(CHECK_FIELDS[kind])})", self._line(kind))
         return checks
@@ -236,7 +237,7 @@ def observe(case):
             "method": summary["method"], "method_tolerance": _method_tolerance(summary),
             "impact_count": summary["impact_count"],
             "impacts": [{key: i[key] for key in ("t_s", "level", "striking_building", "vertex", "struck_edge",
-                                                 "impulse_kNs")} for i in summary["impacts"]],
+                                                 "approach_velocity_mps", "impulse_kNs")} for i in summary["impacts"]],
             "peaks": _peaks(summary),
             "energy_relative_residual": summary["energy"].get("relative_residual"),
             # The first impact's separation over approach speed: the restitution a law achieves.
@@ -332,6 +333,8 @@ def _checks(case, observed, blessed):
         _check_times(case, observed, blessed, checks["impact_times"], results)
     if "impulses" in checks:
         _check_impulses(observed, blessed, checks["impulses"], results, no_expectation)
+    if "approach_velocity" in checks:
+        _check_approach(case, observed, blessed, checks["approach_velocity"], results, no_expectation)
     if "peaks" in checks:
         _check_peaks(observed, blessed, checks["peaks"], results, no_expectation)
     if "needed_gap" in checks:
@@ -379,7 +382,9 @@ def _check_times(case, observed, blessed, spec, results):
             results.append(("impact_times", False, "no expected value: run `pounding verify --bless` or write "
                                                    "impact_times_s in [case.expected]"))
         return
-    pairs, missing, extra = _match(expected, observed["impacts"], MATCH_WINDOW_S)
+    after = spec.get("after_s", -float("inf"))  # a steady state: the impacts from after_s on
+    pairs, missing, extra = _match([e for e in expected if e["t_s"] >= after],
+                                   [o for o in observed["impacts"] if o["t_s"] >= after], MATCH_WINDOW_S)
     worst, worst_text = 0.0, ""
     failed = []
     for e, o in pairs:
@@ -415,6 +420,27 @@ def _check_impulses(observed, blessed, spec, results, no_expectation):
     worst = max((abs(o["impulse_kNs"] - e["impulse_kNs"]) for e, o in pairs), default=0.0)
     results.append(("impulses", not failed, f"{len(pairs)} matched impacts, largest difference {worst:.3e} kN·s"
                     + ("; " + "; ".join(failed[:5]) if failed else "")))
+
+
+def _check_approach(case, observed, blessed, spec, results, no_expectation):
+    """Every impact's approach speed (from after_s on): against the written steady value
+    approach_velocity_mps, else against the stored impact it matches."""
+    after = spec.get("after_s", -float("inf"))
+    impacts = [o for o in observed["impacts"] if o["t_s"] >= after]
+    if "approach_velocity_mps" in case["expected"]:
+        wanted, own = _written_value(case["expected"]["approach_velocity_mps"])
+        spec = spec if own is None else {"abs_mps": own}
+        pairs = [({"t_s": o["t_s"], "level": o["level"], "approach_velocity_mps": wanted}, o) for o in impacts]
+    elif "impacts" in blessed:
+        pairs, _, _ = _match([e for e in blessed["impacts"] if e["t_s"] >= after], impacts, MATCH_WINDOW_S)
+    else:
+        return no_expectation("approach_velocity")
+    failed = [f"{_impact_text(o)}: {o['approach_velocity_mps']:.9g} m/s, expected {e['approach_velocity_mps']:.9g}"
+              for e, o in pairs if not _within(o["approach_velocity_mps"], e["approach_velocity_mps"], spec, "abs_mps")]
+    worst = max((abs(o["approach_velocity_mps"] / e["approach_velocity_mps"] - 1) for e, o in pairs), default=0.0)
+    results.append(("approach_velocity", bool(pairs) and not failed,
+                    f"{len(pairs)} impacts, largest relative difference {worst:.3e}"
+                    + ("" if pairs else "; no impact to compare") + ("; " + "; ".join(failed[:5]) if failed else "")))
 
 
 def _check_peaks(observed, blessed, spec, results, no_expectation):
@@ -572,7 +598,7 @@ def _print_table(result):
     rows = list(_rows(result))
     width = max((len(c) for c, _, _, _ in rows), default=4)
     for case, check, outcome, detail in rows:
-        print(f"{case:<{width}}  {check:<16} {outcome:<5} {detail}")
+        print(f"{case:<{width}}  {check:<17} {outcome:<5} {detail}")
 
 
 def main(argv=None):

@@ -7,7 +7,7 @@
   JUnit schema (tests/data/junit/JUnit.xsd, with lxml), as does that of a failing run;
 - each quantity kind fails (exit 1) with a message naming the case, the check and the difference
   when its expected value is moved beyond the tolerance: status, impact count, an impact time (by
-  3 × its tolerance), an impulse, a peak, the first impact's rebound, the needed gap written in the
+  3 × its tolerance), an impulse, an approach speed, a peak, the first impact's rebound, the needed gap written in the
   manifest, and the two
   bounds (energy residual, overlap) tightened below the run's value;
 - a case that cannot run is an error testcase, not a crash;
@@ -44,6 +44,7 @@ impact_times = {{ scaled = 100 }}
 impulses = {{ rel = 1e-5 }}
 peaks = {{ rel = 1e-6, abs = 1e-12 }}
 rebound = {{ rel = 1e-6 }}
+approach_velocity = {{ rel = 1e-6 }}
 
 [[case]]
 name = "gap"
@@ -100,6 +101,8 @@ def check_perturbations(work, manifest):
         "impulses": lambda e: e["impacts"][3].update(impulse_kNs=e["impacts"][3]["impulse_kNs"] * (1 + 1e-4)),
         "peaks": lambda e: e["peaks"].update({"B1.f7.u_m": e["peaks"]["B1.f7.u_m"] * (1 + 1e-5)}),
         "rebound": lambda e: e.update(rebound=e["rebound"] * (1 + 1e-4)),
+        "approach_velocity": lambda e: e["impacts"][2].update(
+            approach_velocity_mps=e["impacts"][2]["approach_velocity_mps"] * (1 + 1e-4)),
     }
     for kind, change in cases.items():
         done, out = perturbed(work, manifest, kind, change)
