@@ -55,10 +55,10 @@ CASE_KEYS = ("name", "scene", "gap_m", "restitution", "contact_law", "contact_st
 # Each check kind and its tolerance fields (each a number >= 0).
 CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled", "after_s"),
                 "impulses": ("rel", "abs_kNs"), "approach_velocity": ("rel", "abs_mps", "after_s"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
-                "rebound": ("rel", "abs"),
+                "rebound": ("rel", "abs"), "gap_rules": ("rel", "abs_m"),
                 "energy_residual": ("max_relative",), "interpenetration": ("max_m",)}
 EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "approach_velocity_mps", "needed_gap_m",
-                 "rebound")
+                 "gap_rules_m", "rebound")
 MATCH_WINDOW_S = 0.05  # impacts further apart than this at one contact are different impacts
 
 
@@ -157,6 +157,11 @@ class Manifest:
             raise _error(self.file, key, repr(value), "expected {value = ..., abs_s = ...} (or abs_m)", self._line(key))
         return {"value": value["value"], "abs": self._number(value.get("abs_s", value.get("abs_m")), key)}
 
+    def _rules(self, value, key):
+        """gap_rules_m: {abs_m, srss_m, ddc_m} (any of them), each a number."""
+        self._known(value, ("abs_m", "srss_m", "ddc_m"), key)
+        return {rule: self._number(number, f"{key}.{rule}") for rule, number in value.items()}
+
     def _case(self, case, where, default_checks):
         self._known(case, CASE_KEYS, where)
         if "name" not in case or "scene" not in case:
@@ -181,7 +186,8 @@ class Manifest:
         result["checks"] = {kind: spec for kind, spec in merged.items() if spec is not None}
         expected = case.get("expected", {})
         self._known(expected, EXPECTED_KEYS, f"{where}.expected")
-        result["expected"] = {key: self._written(value, f"{where}.expected.{key}") for key, value in expected.items()}
+        result["expected"] = {key: self._rules(value, f"{where}.expected.{key}") if key == "gap_rules_m"
+                              else self._written(value, f"{where}.expected.{key}") for key, value in expected.items()}
         if not result["checks"]:
             raise _error(self.file, f"{where}.checks", "", "nothing to check: give [case.checks]")
         return result
@@ -245,9 +251,10 @@ def observe(case):
                         if summary["impacts"] else None),
             "max_interpenetration_m": summary["statistics"].get("max_interpenetration_m"),
         }
-        if "needed_gap" in case["checks"]:
+        if "needed_gap" in case["checks"] or "gap_rules" in case["checks"]:
             gap = pounding.needed_gap(scene, max_wall_time_s=case["max_wall_time_s"])
             observed["needed_gap_m"] = gap.needed_gap_m
+            observed["gap_rules_m"] = gap.rules  # ABS, SRSS and DDC from the contact-free peaks
     except InputError as error:  # a scene, record or setting the library refuses
         observed = {"error": str(error)}
     except Exception as error:  # noqa: BLE001  (any other failure of one case is that case's error)
@@ -358,6 +365,17 @@ def _checks(case, observed, blessed):
             results.append(("rebound", ok, f"first impact's separation/approach speed {got}, expected {wanted:.6g} "
                             f"(rel {spec.get('rel', 0):g}, abs {spec.get('abs', 0):g})"
                             + ("" if got is None else f", differs by {got / wanted - 1:+.3e} relative")))
+    if "gap_rules" in checks:
+        wanted = expected_value("gap_rules_m")
+        if wanted is None:
+            no_expectation("gap_rules")
+        else:
+            got = observed.get("gap_rules_m") or {}
+            failed = [f"{rule} = {got.get(rule)}, expected {value:.9g}" for rule, value in wanted.items()
+                      if got.get(rule) is None or not _within(got[rule], value, checks["gap_rules"], "abs_m")]
+            worst = max((abs(got[r] / v - 1) for r, v in wanted.items() if got.get(r) is not None and v), default=0.0)
+            results.append(("gap_rules", not failed, f"{', '.join(wanted)}: largest relative difference {worst:.3e}"
+                            + ("; " + "; ".join(failed) if failed else "")))
     if "energy_residual" in checks:
         got, bound = observed["energy_relative_residual"], checks["energy_residual"]["max_relative"]
         ok = got is not None and abs(got) <= bound
