@@ -14,6 +14,7 @@ It follows the flight up to the first impact that would be held in sustained con
 defined without a contact-holding model, and prints the impacts it found.
 
     bench/peers/scipy_paper.py [--gap 0.20] [--rtol 1e-10] [--compare out/paper]
+    bench/peers/scipy_paper.py --manifest validation/peers/scipy-paper.verify.toml   (the check cases for verify)
 """
 import argparse
 import csv
@@ -279,6 +280,50 @@ def check(pounding, method, time_tol_s, impulse_tol, args):
     return 1 if failures else 0
 
 
+MANIFEST_METHODS = [("exact", "", 1e-9, 1e-6),
+                    ("cvode-bdf", "settings = { rtol = 1e-12, atol = 1e-14 }", 1e-9, 1e-5)]
+
+
+def write_manifest(path, args):
+    """A `pounding verify` manifest of CHECK_CASES on the exact path and CVODE BDF (rtol 1e-12):
+    this solver's impact times and impulses written as the expected ones, over the stretch it
+    covers (up to the first held contact), with --check's tolerances."""
+    t_rec, a_rec = record()
+    lines = ["# Written by bench/peers/scipy_paper.py --manifest (an independent solution of the paper",
+             "# scene: scipy DOP853 with events, sharing no code with pounding): its impact times and",
+             "# impulses up to the first held contact, as `pounding verify` cases (CTest verify_scipy_peer).",
+             f"# DOP853 rtol {args.rtol}, atol {args.atol}, hold velocity {args.hold_velocity} m/s.",
+             'name = "scipy-peer"', ""]
+    for gap, k in CHECK_CASES:
+        impacts, t_end, reason = solve(Scene(gap, k), t_rec, a_rec, args.rtol, args.atol, args.hold_velocity)
+        # Up to and including the impact that starts the first held contact (then pounding holds it).
+        window = f", before_s = {impacts[-1]['t_s'] + 1e-6!r}" if reason == "held" else ""
+        for method, settings, time_tol, impulse_tol in MANIFEST_METHODS:
+            lines += ["[[case]]", f'name = "gap{gap:g}-k{k:g}-{method}"', 'scene = "../../examples/paper/paper.toml"',
+                      f"gap_m = {gap!r}", f"restitution = {k!r}", f'method = "{method}"', *([settings] if settings else []),
+                      "[case.checks]", f"impact_times = {{ abs_s = {time_tol!r}{window} }}",
+                      f"impulses = {{ rel = {impulse_tol!r}{window} }}", "[case.expected]",
+                      f"impact_times_s = [{', '.join(repr(i['t_s']) for i in impacts)}]",
+                      f"impulses_kNs = [{', '.join(repr(i['impulse_kNs']) for i in impacts)}]", ""]
+    Path(path).write_text("\n".join(lines))
+    print(f"Wrote {path}: {len(CHECK_CASES)} cases x {len(MANIFEST_METHODS)} methods")
+
+
+def manifest_is_current(committed, fresh):
+    """Whether the committed manifest's expected impacts are this solver's today (times within
+    1e-11 s, impulses within 1e-9 relative: last-digit differences of another machine's LAPACK)."""
+    import tomllib
+    old, new = (tomllib.loads(Path(f).read_text())["case"] for f in (committed, fresh))
+    for a, b in zip(old, new):
+        ta, tb = a["expected"]["impact_times_s"], b["expected"]["impact_times_s"]
+        ja, jb = a["expected"]["impulses_kNs"], b["expected"]["impulses_kNs"]
+        if a["name"] != b["name"] or len(ta) != len(tb) or any(abs(x - y) > 1e-11 for x, y in zip(ta, tb)) \
+                or any(abs(x - y) > 1e-9 * abs(y) for x, y in zip(ja, jb)):
+            print(f"{committed}: case {a['name']} is not what the peer computes now: run --manifest again")
+            return False
+    return len(old) == len(new)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--gap", type=float, default=0.20)
@@ -293,7 +338,13 @@ def main():
                         help="with --check: one more argument for `pounding run` (repeat it)")
     parser.add_argument("--time-tol", type=float, default=1e-9, help="with --check: impact times (s)")
     parser.add_argument("--impulse-tol", type=float, default=1e-6, help="with --check: relative impulses")
+    parser.add_argument("--manifest", help="write the check cases as a `pounding verify` manifest to this file")
+    parser.add_argument("--manifest-current", metavar="COMMITTED",
+                        help="with --manifest: exit 1 unless COMMITTED holds the same expected impacts")
     args = parser.parse_args()
+    if args.manifest:
+        write_manifest(args.manifest, args)
+        sys.exit(0 if not args.manifest_current or manifest_is_current(args.manifest_current, args.manifest) else 1)
     if args.check:
         sys.exit(check(args.check, args.method, args.time_tol, args.impulse_tol, args))
     scene = Scene(args.gap, args.restitution)

@@ -39,6 +39,7 @@ import argparse
 import concurrent.futures
 import datetime
 import json
+import math
 import os
 import pathlib
 import socket
@@ -53,12 +54,13 @@ from pounding import InputError
 CASE_KEYS = ("name", "scene", "gap_m", "restitution", "contact_law", "contact_stiffness", "record", "method",
              "settings", "max_wall_time_s", "checks", "expected")
 # Each check kind and its tolerance fields (each a number >= 0).
-CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled", "after_s"),
-                "impulses": ("rel", "abs_kNs"), "approach_velocity": ("rel", "abs_mps", "after_s"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
+CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled", "after_s", "before_s"),
+                "impulses": ("rel", "abs_kNs", "after_s", "before_s"),
+                "approach_velocity": ("rel", "abs_mps", "after_s", "before_s"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
                 "rebound": ("rel", "abs"), "gap_rules": ("rel", "abs_m"),
                 "energy_residual": ("max_relative",), "interpenetration": ("max_m",)}
-EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "approach_velocity_mps", "needed_gap_m",
-                 "gap_rules_m", "rebound")
+EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "impulses_kNs", "approach_velocity_mps",
+                 "needed_gap_m", "gap_rules_m", "rebound")
 MATCH_WINDOW_S = 0.05  # impacts further apart than this at one contact are different impacts
 
 
@@ -142,7 +144,7 @@ class Manifest:
             spec = {} if spec is True else spec
             self._known(spec, CHECK_FIELDS[kind], f"{where}.{kind}")
             checks[kind] = {field: self._number(value, f"{where}.{kind}.{field}") for field, value in spec.items()}
-            if kind not in ("status", "impact_count") and not set(checks[kind]) - {"after_s"}:
+            if kind not in ("status", "impact_count") and not set(checks[kind]) - {"after_s", "before_s"}:
                 raise _error(self.file, f"{where}.{kind}", "{}",
                              f"give its tolerance ({' or '.join(CHECK_FIELDS[kind])})", self._line(kind))
         return checks
@@ -301,10 +303,18 @@ def _time_tolerance(spec, observed, t_s):
 
 
 def _expected_impacts(case, blessed):
+    """The written impacts (impact_times_s, with impulses_kNs when given), else the stored ones."""
     written = case["expected"]
     if "impact_times_s" in written:
-        return [{"t_s": float(t)} for t in written["impact_times_s"]]
+        impulses = written.get("impulses_kNs", [None] * len(written["impact_times_s"]))
+        return [{"t_s": float(t), "impulse_kNs": j} for t, j in zip(written["impact_times_s"], impulses)]
     return blessed.get("impacts") if blessed else None
+
+
+def _in_window(impacts, spec):
+    """The impacts within [after_s, before_s) of a check (a steady state, or a stretch a peer covers)."""
+    after, before = spec.get("after_s", -math.inf), spec.get("before_s", math.inf)
+    return [i for i in impacts if after <= i["t_s"] < before]
 
 
 def _checks(case, observed, blessed):
@@ -339,7 +349,7 @@ def _checks(case, observed, blessed):
     if "impact_times" in checks:
         _check_times(case, observed, blessed, checks["impact_times"], results)
     if "impulses" in checks:
-        _check_impulses(observed, blessed, checks["impulses"], results, no_expectation)
+        _check_impulses(case, observed, blessed, checks["impulses"], results, no_expectation)
     if "approach_velocity" in checks:
         _check_approach(case, observed, blessed, checks["approach_velocity"], results, no_expectation)
     if "peaks" in checks:
@@ -400,9 +410,7 @@ def _check_times(case, observed, blessed, spec, results):
             results.append(("impact_times", False, "no expected value: run `pounding verify --bless` or write "
                                                    "impact_times_s in [case.expected]"))
         return
-    after = spec.get("after_s", -float("inf"))  # a steady state: the impacts from after_s on
-    pairs, missing, extra = _match([e for e in expected if e["t_s"] >= after],
-                                   [o for o in observed["impacts"] if o["t_s"] >= after], MATCH_WINDOW_S)
+    pairs, missing, extra = _match(_in_window(expected, spec), _in_window(observed["impacts"], spec), MATCH_WINDOW_S)
     worst, worst_text = 0.0, ""
     failed = []
     for e, o in pairs:
@@ -429,10 +437,11 @@ def _within(got, wanted, spec, abs_key):
     return abs(got - wanted) <= max(spec.get(abs_key, 0.0), spec.get("rel", 0.0) * abs(wanted))
 
 
-def _check_impulses(observed, blessed, spec, results, no_expectation):
-    if "impacts" not in blessed:
+def _check_impulses(case, observed, blessed, spec, results, no_expectation):
+    expected = _expected_impacts(case, blessed)
+    if not expected or any(e.get("impulse_kNs") is None for e in expected):
         return no_expectation("impulses")
-    pairs, _, _ = _match(blessed["impacts"], observed["impacts"], MATCH_WINDOW_S)
+    pairs, _, _ = _match(_in_window(expected, spec), _in_window(observed["impacts"], spec), MATCH_WINDOW_S)
     failed = [f"{_impact_text(e)}: {o['impulse_kNs']:.6g} kN·s, expected {e['impulse_kNs']:.6g}"
               for e, o in pairs if not _within(o["impulse_kNs"], e["impulse_kNs"], spec, "abs_kNs")]
     worst = max((abs(o["impulse_kNs"] - e["impulse_kNs"]) for e, o in pairs), default=0.0)
@@ -443,14 +452,13 @@ def _check_impulses(observed, blessed, spec, results, no_expectation):
 def _check_approach(case, observed, blessed, spec, results, no_expectation):
     """Every impact's approach speed (from after_s on): against the written steady value
     approach_velocity_mps, else against the stored impact it matches."""
-    after = spec.get("after_s", -float("inf"))
-    impacts = [o for o in observed["impacts"] if o["t_s"] >= after]
+    impacts = _in_window(observed["impacts"], spec)
     if "approach_velocity_mps" in case["expected"]:
         wanted, own = _written_value(case["expected"]["approach_velocity_mps"])
         spec = spec if own is None else {"abs_mps": own}
         pairs = [({"t_s": o["t_s"], "level": o["level"], "approach_velocity_mps": wanted}, o) for o in impacts]
     elif "impacts" in blessed:
-        pairs, _, _ = _match([e for e in blessed["impacts"] if e["t_s"] >= after], impacts, MATCH_WINDOW_S)
+        pairs, _, _ = _match(_in_window(blessed["impacts"], spec), impacts, MATCH_WINDOW_S)
     else:
         return no_expectation("approach_velocity")
     failed = [f"{_impact_text(o)}: {o['approach_velocity_mps']:.9g} m/s, expected {e['approach_velocity_mps']:.9g}"
