@@ -51,7 +51,16 @@ int run_tool(const std::string& script, const std::vector<std::string>& argument
 analysis::Scene scene_of_run(const std::string& run_dir, const std::string& scene_file) {
   const io::RunSceneReference run = io::read_run_scene_reference(run_dir);
   const std::string summary = (std::filesystem::path(run_dir) / "summary.json").string();
-  if (!scene_file.empty()) return io::read_scene(scene_file, {.gap_m = run.gap_m});
+  if (!scene_file.empty()) {
+    if (!run.scene_sha256.empty() && std::filesystem::is_regular_file(scene_file) &&
+        io::sha256_file_hex(scene_file) != run.scene_sha256) {
+      fmt::print(stderr,
+                 "warning: --scene {} is not the file the run read (its sha256 differs from {}'s): the plan "
+                 "drawn is this file's\n",
+                 scene_file, summary);
+    }
+    return io::read_scene(scene_file, {.gap_m = run.gap_m});
+  }
   if (run.scene_file.empty()) {
     throw InputError("provenance.scene_file", "null", "the run's scene was built in code: give its file with --scene",
                      summary);

@@ -109,8 +109,13 @@ def default_scale(slabs):
 def choose_writer(requested, out, fps):
     """(extension, writer): mp4 with ffmpeg, else gif; --out's suffix decides under auto."""
     has_ffmpeg = animation.FFMpegWriter.isAvailable()
-    if requested == "auto" and out is not None and out.suffix.lower() in (".mp4", ".gif"):
-        requested = out.suffix.lower()[1:]
+    suffix = out.suffix.lower()[1:] if out is not None else None
+    if out is not None and suffix not in ("mp4", "gif"):
+        refuse(f"--out {out}: the film is an .mp4 or a .gif file")
+    if requested == "auto" and suffix:
+        requested = suffix
+    if suffix and requested != suffix:
+        refuse(f"--out {out} is a .{suffix} file but --format is {requested}")
     if requested == "mp4" and not has_ffmpeg:
         refuse("--format mp4 needs ffmpeg (Debian: apt-get install ffmpeg); --format gif needs nothing more")
     use = "mp4" if requested == "mp4" or (requested == "auto" and has_ffmpeg) else "gif"

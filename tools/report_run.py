@@ -96,13 +96,10 @@ def history_figure_html(folder, summary):
     if not summary["outputs"].get("history") or not summary["history_levels"]:
         return '<p class="note">No history in this run (history off): no histories drawn.</p>'
     level = default_level(summary)
-    image = folder / ".report-history.png"
-    try:
-        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-            plot_run.plot(folder, level, None, None, image)
-        data = base64.b64encode(image.read_bytes()).decode("ascii")
-    finally:
-        image.unlink(missing_ok=True)
+    image = io.BytesIO()  # plot_run saves to any file object: nothing is written into the run folder
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        plot_run.plot(folder, level, None, None, image)
+    data = base64.b64encode(image.getvalue()).decode("ascii")
     return (f'<img alt="histories of level {level}" src="data:image/png;base64,{data}">'
             f'<p class="note">Level {level}: u, v, φ of both slabs, the x-displacement of the contact corners and '
             "the signed gap of every corner–edge pair; dotted green lines mark the impacts (tools/plot_run.py).</p>")

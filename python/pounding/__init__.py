@@ -18,6 +18,7 @@ run() and needed_gap() release the GIL: runs on several threads proceed in paral
 import csv as _csv
 import io as _io
 import json as _json
+import numbers as _numbers
 import os as _os
 
 import numpy as _np
@@ -80,7 +81,7 @@ _RECORD_KINDS = {"file": "path", "second.file": "path", "format": "text", "units
 def _check_record_types(arguments):
     """with_record's arguments of the wrong type: InputError naming the scene key they set
     (`excitation.dt_s`, ...), not the binding's signature dump."""
-    accepted = {"path": (str, _os.PathLike), "text": (str,), "number": (int, float), "whole number": (int,)}
+    accepted = {"path": (str, _os.PathLike), "text": (str,), "number": (_numbers.Real,), "whole number": (_numbers.Integral,)}
     for key, value in arguments.items():
         kind = _RECORD_KINDS[key]
         if value is None or (isinstance(value, accepted[kind]) and not isinstance(value, bool)):
@@ -186,9 +187,11 @@ def _toml_value(value, where):
             return "nan"
         return repr(number) if abs(number) != float("inf") else ("inf" if number > 0 else "-inf")
     if isinstance(value, (str, _os.PathLike)):
-        return _json.dumps(_os.fspath(value))  # JSON's escapes are TOML basic-string escapes
+        # JSON's escapes are TOML basic-string escapes; characters beyond U+FFFF stay as they are
+        # (JSON would write surrogate pairs, which TOML refuses).
+        return _json.dumps(_os.fspath(value), ensure_ascii=False)
     if isinstance(value, _np.ndarray):
-        value = value.tolist()
+        return _toml_value(value.tolist(), where)  # a 0-d array is a number
     if isinstance(value, dict):
         return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v, f'{where}.{k}')}" for k, v in value.items()) + "}"
     if isinstance(value, (list, tuple)):

@@ -42,6 +42,7 @@ import json
 import math
 import os
 import pathlib
+import re
 import socket
 import sys
 import time
@@ -59,6 +60,11 @@ CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s"
                 "approach_velocity": ("rel", "abs_mps", "after_s", "before_s"), "peaks": ("rel", "abs"), "needed_gap": ("abs_m",),
                 "rebound": ("rel", "abs"), "gap_rules": ("rel", "abs_m"),
                 "energy_residual": ("max_relative",), "interpenetration": ("max_m",)}
+RECORD_KEYS = ("file", "format", "units", "scale_factor", "scale_to_pga_g", "scale_to_sa", "direction_deg", "dt_s",
+               "accel_column", "record2", "record2_column")  # Scene.with_record's keywords
+# The keys of [case.expected] that may carry their own tolerance, and its name.
+WRITTEN_TOLERANCE = {"first_impact_s": "abs_s", "needed_gap_m": "abs_m", "rebound": "abs",
+                     "approach_velocity_mps": "abs_mps"}
 EXPECTED_KEYS = ("status", "impact_count", "first_impact_s", "impact_times_s", "impulses_kNs", "approach_velocity_mps",
                  "needed_gap_m", "gap_rules_m", "rebound")
 MATCH_WINDOW_S = 0.05  # impacts further apart than this at one contact are different impacts
@@ -97,37 +103,57 @@ class Manifest:
         for index, case in enumerate(cases, start=1):
             case = self._case(case, f"case[{index}]", default_checks)
             if case["name"] in names:
-                raise _error(self.file, f"case[{index}].name", case["name"], "given twice", self._line(case["name"]))
+                raise self._refuse(f"case[{index}].name", case["name"], "given twice")
             names.add(case["name"])
             self.cases.append(case)
 
-    def _line(self, text):
-        """The first line of the manifest that holds `text` (for messages), or None."""
-        for number, line in enumerate(self.text.splitlines(), start=1):
-            if str(text) in line:
-                return number
-        return None
+    def _line(self, key):
+        """The manifest line that sets `key` (a path such as case[2].checks.impulses.rel): the first
+        line from that case's [[case]] on (the file's start for other keys) where its last part is
+        assigned, comments aside; None when not found."""
+        lines = [line.split("#")[0] for line in self.text.splitlines()]
+        start = 0
+        case = re.match(r"case\[(\d+)\]", key)
+        if case:
+            headers = [i for i, line in enumerate(lines) if line.strip().startswith("[[case]]")]
+            start = headers[int(case.group(1)) - 1] if int(case.group(1)) <= len(headers) else 0
+        parts = [re.sub(r"\[\d+\]$", "", part) for part in key.split(".")[1 if case else 0:]]
+        for depth, part in enumerate(parts):  # each table on the way ([case.checks], checks = {...}), then the key
+            assigned = re.compile(rf"(^|[\s{{,]){re.escape(part)}\s*=|^\s*\[[\w.]*\b{re.escape(part)}\]")
+            found = next((n for n in range(start, len(lines)) if assigned.search(lines[n])), None)
+            if found is None:
+                return start + 1 if depth else None
+            start = found
+        return start + 1
+
+    def _refuse(self, key, value, reason):
+        return _error(self.file, key, value, reason, self._line(key))
 
     def _known(self, table, keys, where):
         if not isinstance(table, dict):
-            raise _error(self.file, where, repr(table), "expected a table")
+            raise self._refuse(where, repr(table), "expected a table")
         for key in table:
             if key not in keys:
                 name = f"{where}.{key}" if where else key
-                raise _error(self.file, name, "", f"unknown key (expected {', '.join(keys)})", self._line(key))
+                raise self._refuse(name, "", f"unknown key (expected {', '.join(keys)})")
 
     def _text(self, value, key):
         if not isinstance(value, str) or not value:
-            raise _error(self.file, key, repr(value), "expected non-empty text", self._line(key.split(".")[-1]))
+            raise self._refuse(key, repr(value), "expected non-empty text")
         return value
 
     def _path(self, value, key):
         return (self.file.parent / self._text(value, key)).resolve()
 
     def _number(self, value, key):
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not value >= 0 or value == float("inf"):
-            raise _error(self.file, key, repr(value), "expected a finite number >= 0", self._line(key.split(".")[-1]))
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < math.inf:
+            raise self._refuse(key, repr(value), "expected a finite number >= 0")
         return float(value)
+
+    def _numbers(self, value, key):
+        if not isinstance(value, list):
+            raise self._refuse(key, repr(value), "expected a list of numbers")
+        return [self._number(v, f"{key}[{i + 1}]") for i, v in enumerate(value)]
 
     def _checks(self, table, where):
         self._known(table, tuple(CHECK_FIELDS), where)
@@ -138,60 +164,85 @@ class Manifest:
                 continue
             if kind == "status":
                 if spec is not True and not isinstance(spec, str):
-                    raise _error(self.file, f"{where}.status", repr(spec), "expected true or a status name")
+                    raise self._refuse(f"{where}.status", repr(spec), "expected true or a status name")
                 checks[kind] = {} if spec is True else {"value": spec}
                 continue
             spec = {} if spec is True else spec
             self._known(spec, CHECK_FIELDS[kind], f"{where}.{kind}")
             checks[kind] = {field: self._number(value, f"{where}.{kind}.{field}") for field, value in spec.items()}
             if kind not in ("status", "impact_count") and not set(checks[kind]) - {"after_s", "before_s"}:
-                raise _error(self.file, f"{where}.{kind}", "{}",
-                             f"give its tolerance ({' or '.join(CHECK_FIELDS[kind])})", self._line(kind))
+                raise self._refuse(f"{where}.{kind}", "{}", f"give its tolerance ({' or '.join(CHECK_FIELDS[kind])})")
         return checks
 
-    def _written(self, value, key):
-        """A value written in [case.expected]: as given, or {value, abs_s | abs_m} with its own
-        tolerance (a published number known to so many digits)."""
+    def _written(self, value, key, tolerance):
+        """A number written in [case.expected], or {value, <tolerance>} with its own tolerance (a
+        published number known to so many digits): the number, or {value, abs}."""
         if not isinstance(value, dict):
-            return value
-        self._known(value, ("value", "abs_s", "abs_m"), key)
-        if "value" not in value or len(value) != 2:
-            raise _error(self.file, key, repr(value), "expected {value = ..., abs_s = ...} (or abs_m)", self._line(key))
-        return {"value": value["value"], "abs": self._number(value.get("abs_s", value.get("abs_m")), key)}
+            return self._number(value, key)
+        self._known(value, ("value", tolerance), key)
+        if set(value) != {"value", tolerance}:
+            raise self._refuse(key, repr(value), f"expected a number or {{value = ..., {tolerance} = ...}}")
+        return {"value": self._number(value["value"], f"{key}.value"), "abs": self._number(value[tolerance], key)}
 
-    def _rules(self, value, key):
-        """gap_rules_m: {abs_m, srss_m, ddc_m} (any of them), each a number."""
-        self._known(value, ("abs_m", "srss_m", "ddc_m"), key)
-        return {rule: self._number(number, f"{key}.{rule}") for rule, number in value.items()}
+    def _expected(self, expected, where):
+        """[case.expected] checked: each key its type (exit 2 naming it, not a traceback later)."""
+        self._known(expected, EXPECTED_KEYS, where)
+        result = {}
+        for key, value in expected.items():
+            name = f"{where}.{key}"
+            if key == "status":
+                result[key] = self._text(value, name)
+            elif key == "impact_count":
+                if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+                    raise self._refuse(name, repr(value), "expected a whole number >= 0")
+                result[key] = value
+            elif key in ("impact_times_s", "impulses_kNs"):
+                result[key] = self._numbers(value, name)
+            elif key == "gap_rules_m":
+                self._known(value, ("abs_m", "srss_m", "ddc_m"), name)
+                result[key] = {rule: self._number(number, f"{name}.{rule}") for rule, number in value.items()}
+            else:
+                result[key] = self._written(value, name, WRITTEN_TOLERANCE[key])
+        if "impulses_kNs" in result and len(result["impulses_kNs"]) != len(result.get("impact_times_s", [])):
+            raise self._refuse(f"{where}.impulses_kNs", f"{len(result['impulses_kNs'])} values",
+                               "needs one impulse per impact_times_s entry")
+        return result
+
+    def _record(self, record, where):
+        """with_record's keywords (file required), paths resolved from the manifest's folder."""
+        self._known(record, RECORD_KEYS, where)
+        if "file" not in record:
+            raise self._refuse(where, repr(record), "a record needs its file")
+        record = dict(record)
+        for key in ("file", "record2"):
+            if key in record:
+                record[key] = str(self._path(record[key], f"{where}.{key}"))
+        return record
 
     def _case(self, case, where, default_checks):
         self._known(case, CASE_KEYS, where)
         if "name" not in case or "scene" not in case:
-            raise _error(self.file, where, "", "a case needs a name and a scene")
+            raise self._refuse(where, "", "a case needs a name and a scene")
         result = {key: case.get(key) for key in CASE_KEYS}
         result["name"] = self._text(case["name"], f"{where}.name")
         result["scene"] = self._path(case["scene"], f"{where}.scene")
         if not result["scene"].is_file():
-            raise _error(self.file, f"{where}.scene", case["scene"], "no such scene file", self._line(case["scene"]))
-        record = dict(case.get("record") or {})
-        if "file" in record:
-            record["file"] = str(self._path(record["file"], f"{where}.record.file"))
-        if isinstance(record.get("record2"), str):
-            record["record2"] = str(self._path(record["record2"], f"{where}.record.record2"))
-        result["record"] = record or None
-        result["settings"] = dict(case.get("settings") or {})
-        try:
-            pounding._check_settings(result["settings"])  # unknown names refused here, not per run
-        except TypeError as error:
-            raise _error(self.file, f"{where}.settings", "", str(error), self._line("settings")) from None
+            raise self._refuse(f"{where}.scene", case["scene"], "no such scene file")
+        for key in ("gap_m", "restitution", "contact_stiffness", "max_wall_time_s"):
+            if key in case:
+                result[key] = self._number(case[key], f"{where}.{key}")
+        for key in ("contact_law", "method"):
+            if key in case:
+                result[key] = self._text(case[key], f"{where}.{key}")
+        result["record"] = self._record(case["record"], f"{where}.record") if "record" in case else None
+        settings = case.get("settings", {})
+        self._known(settings, pounding._pounding.setting_keys(), f"{where}.settings")
+        result["settings"] = dict(settings)
         merged = {**default_checks, **self._checks(case.get("checks", {}), f"{where}.checks")}
         result["checks"] = {kind: spec for kind, spec in merged.items() if spec is not None}
-        expected = case.get("expected", {})
-        self._known(expected, EXPECTED_KEYS, f"{where}.expected")
-        result["expected"] = {key: self._rules(value, f"{where}.expected.{key}") if key == "gap_rules_m"
-                              else self._written(value, f"{where}.expected.{key}") for key, value in expected.items()}
+        result["expected"] = self._expected(case.get("expected", {}), f"{where}.expected")
         if not result["checks"]:
-            raise _error(self.file, f"{where}.checks", "", "nothing to check: give [case.checks]")
+            raise self._refuse(f"{where}.checks", "", "nothing to check: give [case.checks]")
         return result
 
 
@@ -232,6 +283,13 @@ def _method_tolerance(summary):
     return "absolute", 0.0
 
 
+def _rebound(impacts):
+    """The first impact's separation over approach speed, or None (no impact, or a grazing one)."""
+    if not impacts or not impacts[0]["approach_velocity_mps"] > 0:
+        return None
+    return impacts[0]["separation_velocity_mps"] / impacts[0]["approach_velocity_mps"]
+
+
 def observe(case):
     """Runs one case; the quantities its checks read (JSON-ready), or {"error": message}."""
     started = time.perf_counter()
@@ -249,8 +307,7 @@ def observe(case):
             "peaks": _peaks(summary),
             "energy_relative_residual": summary["energy"].get("relative_residual"),
             # The first impact's separation over approach speed: the restitution a law achieves.
-            "rebound": (summary["impacts"][0]["separation_velocity_mps"] / summary["impacts"][0]["approach_velocity_mps"]
-                        if summary["impacts"] else None),
+            "rebound": _rebound(summary["impacts"]),
             "max_interpenetration_m": summary["statistics"].get("max_interpenetration_m"),
         }
         if "needed_gap" in case["checks"] or "gap_rules" in case["checks"]:
@@ -374,7 +431,7 @@ def _checks(case, observed, blessed):
             ok = got is not None and _within(got, wanted, spec, "abs")
             results.append(("rebound", ok, f"first impact's separation/approach speed {got}, expected {wanted:.6g} "
                             f"(rel {spec.get('rel', 0):g}, abs {spec.get('abs', 0):g})"
-                            + ("" if got is None else f", differs by {got / wanted - 1:+.3e} relative")))
+                            + ("" if got is None else f", differs by {got - wanted:+.3e}")))
     if "gap_rules" in checks:
         wanted = expected_value("gap_rules_m")
         if wanted is None:
@@ -389,7 +446,8 @@ def _checks(case, observed, blessed):
     if "energy_residual" in checks:
         got, bound = observed["energy_relative_residual"], checks["energy_residual"]["max_relative"]
         ok = got is not None and abs(got) <= bound
-        results.append(("energy_residual", ok, f"relative residual {got:.3e}, at most {bound:g}"))
+        results.append(("energy_residual", ok, f"relative residual {'none' if got is None else f'{got:.3e}'}, "
+                                               f"at most {bound:g}"))
     if "interpenetration" in checks:
         got, bound = observed["max_interpenetration_m"] or 0.0, checks["interpenetration"]["max_m"]
         results.append(("interpenetration", got <= bound, f"largest overlap {got:.3e} m, at most {bound:g} m"))
@@ -441,11 +499,13 @@ def _check_impulses(case, observed, blessed, spec, results, no_expectation):
     expected = _expected_impacts(case, blessed)
     if not expected or any(e.get("impulse_kNs") is None for e in expected):
         return no_expectation("impulses")
-    pairs, _, _ = _match(_in_window(expected, spec), _in_window(observed["impacts"], spec), MATCH_WINDOW_S)
+    pairs, missing, _ = _match(_in_window(expected, spec), _in_window(observed["impacts"], spec), MATCH_WINDOW_S)
     failed = [f"{_impact_text(e)}: {o['impulse_kNs']:.6g} kN·s, expected {e['impulse_kNs']:.6g}"
               for e, o in pairs if not _within(o["impulse_kNs"], e["impulse_kNs"], spec, "abs_kNs")]
+    failed += [f"expected impact {_impact_text(e)} not found" for e in missing[:5]]
     worst = max((abs(o["impulse_kNs"] - e["impulse_kNs"]) for e, o in pairs), default=0.0)
-    results.append(("impulses", not failed, f"{len(pairs)} matched impacts, largest difference {worst:.3e} kN·s"
+    results.append(("impulses", not failed and (bool(pairs) or not expected), f"{len(pairs)} matched impacts, largest "
+                    f"difference {worst:.3e} kN·s"
                     + ("; " + "; ".join(failed[:5]) if failed else "")))
 
 
@@ -457,12 +517,14 @@ def _check_approach(case, observed, blessed, spec, results, no_expectation):
         wanted, own = _written_value(case["expected"]["approach_velocity_mps"])
         spec = spec if own is None else {"abs_mps": own}
         pairs = [({"t_s": o["t_s"], "level": o["level"], "approach_velocity_mps": wanted}, o) for o in impacts]
+        missing = []
     elif "impacts" in blessed:
-        pairs, _, _ = _match(_in_window(blessed["impacts"], spec), impacts, MATCH_WINDOW_S)
+        pairs, missing, _ = _match(_in_window(blessed["impacts"], spec), impacts, MATCH_WINDOW_S)
     else:
         return no_expectation("approach_velocity")
     failed = [f"{_impact_text(o)}: {o['approach_velocity_mps']:.9g} m/s, expected {e['approach_velocity_mps']:.9g}"
               for e, o in pairs if not _within(o["approach_velocity_mps"], e["approach_velocity_mps"], spec, "abs_mps")]
+    failed += [f"expected impact {_impact_text(e)} not found" for e in missing[:5]]
     worst = max((abs(o["approach_velocity_mps"] / e["approach_velocity_mps"] - 1) for e, o in pairs), default=0.0)
     results.append(("approach_velocity", bool(pairs) and not failed,
                     f"{len(pairs)} impacts, largest relative difference {worst:.3e}"
@@ -528,13 +590,14 @@ def verify(manifest_path, out=None, jobs=None, bless=False, progress=True):
     manifest = Manifest(manifest_path)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise _error("", "--jobs", repr(jobs), "expected a whole number >= 1")
-    out = pathlib.Path(out or pathlib.Path("out") / f"verify-{manifest.file.stem}")
+    out = pathlib.Path(out or pathlib.Path("out") / ("verify-" + re.sub(r"[^A-Za-z0-9_.-]", "-", manifest.name)))
     out.mkdir(parents=True, exist_ok=True)
     observed = _run_all(manifest, jobs or os.cpu_count() or 1, progress)
     blessed_file = None
-    if bless:
+    if bless:  # a case that did not run keeps its earlier expected values
+        kept = {name: o for name, o in _read_blessed(manifest).items() if "error" in observed.get(name, {})}
         document = {"manifest": manifest.file.name, "provenance": _provenance(),
-                    "cases": {name: o for name, o in observed.items() if "error" not in o}}
+                    "cases": {**kept, **{name: o for name, o in observed.items() if "error" not in o}}}
         manifest.expected_file.write_text(json.dumps(document, indent=1) + "\n")
         blessed_file = manifest.expected_file
     blessed = _read_blessed(manifest)
@@ -611,12 +674,17 @@ def _rows(result):
             yield case["name"], check, "pass" if ok else "FAIL", detail
 
 
+def _cell(text):
+    """Text fit for a markdown table cell."""
+    return str(text).replace("|", "/").replace("\n", " ")
+
+
 def _write_markdown(result):
     lines = [f"# pounding verify: {result.manifest.name}", "",
              f"{'All checks passed' if result.passed else f'{result.failures} failed'}; "
              f"{len(result.cases)} cases in {result.wall_time_s:.1f} s (`{result.manifest.file}`).", "",
              "| case | check | result | detail |", "|---|---|---|---|"]
-    lines += [f"| {c} | {k} | {r} | {d.replace('|', '/')} |" for c, k, r, d in _rows(result)]
+    lines += [f"| {_cell(c)} | {k} | {r} | {_cell(d)} |" for c, k, r, d in _rows(result)]
     result.markdown.write_text("\n".join(lines) + "\n")
 
 

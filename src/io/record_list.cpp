@@ -67,9 +67,13 @@ class ListLine {
   /// Remembers how this line spelled a field (`scale_factor` or its alias `scale`), so that an
   /// error found later names it as written.
   void spelled(const std::string& field, const std::string& as_written) { spelling_[field] = as_written; }
+  /// As the line wrote `field`; a field it did not write by the scene's name (scale_to_pga_g).
   std::string spelling(const std::string& field) const {
-    const auto found = spelling_.find(field);
-    return found != spelling_.end() ? found->second : field;
+    static const std::map<std::string, std::string> kSceneName = {
+        {"scale", "scale_factor"}, {"pga_g", "scale_to_pga_g"}, {"sa", "scale_to_sa"}};
+    if (const auto found = spelling_.find(field); found != spelling_.end()) return found->second;
+    const auto scene = kSceneName.find(field);
+    return scene != kSceneName.end() ? scene->second : field;
   }
 
   template <class Number>

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 #include <fmt/format.h>
 
 #include "pounding/input_error.hpp"
@@ -81,24 +82,28 @@ void validate_per_floor(const std::vector<double>& values, const char* key, int 
 }
 
 /// Two columns at one position (a grid line or a list entry repeated) would count one column's
-/// stiffness twice without a word: refused, naming both.
+/// stiffness twice without a word: refused, naming both. Sorted by x, each column is compared with
+/// the ones after it whose x lies within the tolerance.
 void refuse_repeated_columns(const std::vector<Column>& columns) {
   std::vector<std::size_t> order(columns.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto by_position = [&columns](std::size_t a, std::size_t b) {
-    const Point2 &p = columns[a].position_m, &q = columns[b].position_m;
-    return p.x() != q.x() ? p.x() < q.x() : (p.y() != q.y() ? p.y() < q.y() : a < b);
-  };
-  std::sort(order.begin(), order.end(), by_position);
+  std::sort(order.begin(), order.end(), [&columns](std::size_t a, std::size_t b) {
+    return std::make_pair(columns[a].position_m.x(), a) < std::make_pair(columns[b].position_m.x(), b);
+  });
   const auto name = [&columns](std::size_t i) {
     return columns[i].key.empty() ? indexed("columns", i) : columns[i].key;
   };
-  for (std::size_t k = 1; k < order.size(); ++k) {
-    const Column &first = columns[order[k - 1]], &second = columns[order[k]];
-    if ((first.position_m - second.position_m).norm() > kRepeatedColumnDistance_m) continue;
-    throw InputError(
-        name(order[k]), point_text(second.position_m),
-        fmt::format("stands where {} stands: a column given twice counts its stiffness twice", name(order[k - 1])));
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Point2& p = columns[order[k]].position_m;
+    for (std::size_t j = k + 1; j < order.size(); ++j) {
+      const Point2& q = columns[order[j]].position_m;
+      if (q.x() - p.x() > kRepeatedColumnDistance_m) break;
+      if ((q - p).norm() > kRepeatedColumnDistance_m) continue;
+      const auto [first, second] = std::minmax(order[k], order[j]);  // the later one is the repeat
+      throw InputError(
+          name(second), point_text(columns[second].position_m),
+          fmt::format("stands where {} stands: a column given twice counts its stiffness twice", name(first)));
+    }
   }
 }
 

@@ -151,6 +151,12 @@ def check_refusals(work):
         "missing scene": ("\n".join(base).replace(f'scene = "{PAPER}"\nsettings', 'scene = "nowhere.toml"\nsettings'),
                           "case[1].scene", ":10:"),
         "broken TOML": ("\n".join(base).replace('name = "bdf"', 'name = "bdf'), "manifest", "not valid TOML"),
+        "second case's key": ("\n".join(base).replace("needed_gap = { abs_m = 1e-6 }", "needed_gap = { abs_m = -1 }"),
+                              "case[2].checks.needed_gap.abs_m", ":23:"),
+        "record not a table": ("\n".join(base).replace('name = "gap"', 'name = "gap"\nrecord = "x"'),
+                               "case[2].record", ":21:"),
+        "expected of the wrong type": ("\n".join(base).replace("needed_gap_m = 0.364275", 'needed_gap_m = "far"'),
+                                       "case[2].expected.needed_gap_m", ":25:"),
     }
     for label, (text, key, where) in bad.items():
         manifest = work / f"{label.replace(' ', '-')}.toml"

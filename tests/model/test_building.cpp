@@ -172,6 +172,12 @@ BOOST_AUTO_TEST_CASE(ColumnsAtOnePointCannotResistTorsion) {
   BOOST_CHECK_EXCEPTION(make_building(b), pounding::InputError, [](const pounding::InputError& e) {
     return e.key() == "columns" && std::string(e.what()).find("singular") != std::string::npos;
   });
+  // A near repeat is found even when another column shares the first one's x (sorted by x alone,
+  // (0, 5) stands between them).
+  b.columns = {{Point2(0, -5), 0.4, 0.4}, {Point2(0, 5), 0.4, 0.4}, {Point2(1e-9, -5), 0.4, 0.4}};
+  BOOST_CHECK_EXCEPTION(make_building(b), pounding::InputError, [](const pounding::InputError& e) {
+    return e.key() == "columns[3]" && std::string(e.what()).find("stands where columns[1] stands") != std::string::npos;
+  });
   // Two at one point are one column given twice (its stiffness counted twice): refused as such.
   b.columns = {{Point2(0, 0), 0.4, 0.4}, {Point2(0, 0), 0.5, 0.5}};
   BOOST_CHECK_EXCEPTION(make_building(b), pounding::InputError, [](const pounding::InputError& e) {

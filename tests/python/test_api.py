@@ -270,6 +270,9 @@ def test_with_record_names_the_key_of_an_argument_of_the_wrong_type():
             scene.with_record(record, **{keyword: value})
         assert caught.value.key == key and caught.value.reason == f"expected a {kind}", str(caught.value)
     assert scene.with_record(record, scale_to_pga_g=1, dt_s=0.05).name == "paper"  # an int is a number
+    # numpy's numbers are numbers (np.arange's angles, float32 scales), as the binding takes them
+    assert scene.with_record(record, direction_deg=np.int64(30), scale_to_pga_g=np.float32(0.25),
+                             accel_column=np.int64(1)).name == "paper"
 
 
 def test_a_scene_built_from_a_dict_runs_as_its_file_does():
@@ -286,6 +289,9 @@ def test_a_scene_built_from_a_dict_runs_as_its_file_does():
     with pytest.raises(pounding.InputError) as caught:
         pounding.scene_from_dict(document, folder=PAPER.parent)
     assert caught.value.key == "building[1].mass_t" and "positive" in caught.value.reason
+    # Text beyond U+FFFF and 0-d arrays are written as TOML reads them back.
+    assert tomllib.loads(pounding.scene_toml({"name": "tower \U0001F600", "x": np.array(2.5)})) == \
+        {"name": "tower \U0001F600", "x": 2.5}
     document["building"][0]["mass_t"] = object()
     with pytest.raises(pounding.InputError) as caught:
         pounding.scene_from_dict(document)
