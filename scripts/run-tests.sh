@@ -8,6 +8,12 @@ cd "$(dirname "$0")/.."
 ./scripts/install-packages.sh chromium  # the report's browser test (tests/cli/test_animate_report.py)
 ./scripts/bootstrap.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)"
+# The validation manifests' reports (pounding verify: junit.xml, verify.md), kept where CI keeps files.
+for report in build/verify-*/; do
+  [ -f "$report/junit.xml" ] || continue
+  mkdir -p out/ci-reports/"$(basename "$report")"
+  cp "$report"/junit.xml "$report"/verify.md out/ci-reports/"$(basename "$report")"/
+done
 [ "${1:-}" = "--quick" ] && exit 0
 ./scripts/lint.sh
 ./scripts/run-sanitized-tests.sh
