@@ -26,7 +26,7 @@ import numpy as _np
 __all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "scene_from_dict", "scene_toml",
            "record_list", "modes", "modes_frame",
            "run", "needed_gap", "ground_motion", "response_spectrum", "rotd_spectrum", "methods", "settings",
-           "output_schema", "sweep", "__version__"]
+           "output_schema", "sweep", "verify", "__version__"]
 
 
 class InputError(ValueError):
@@ -212,12 +212,13 @@ def record_list(scene, list_or_folder):
 
 
 def __getattr__(name):
-    """pounding.sweep, imported on first use: a module (`python3 -m pounding.sweep SWEEP.toml`)
-    that is also callable, pounding.sweep(SWEEP.toml, ...) being pounding.sweep.run_sweep. Not
-    imported with the package, so that `-m pounding.sweep` runs it once."""
-    if name == "sweep":
+    """pounding.sweep and pounding.verify, imported on first use: modules (`python3 -m
+    pounding.sweep SWEEP.toml`, `-m pounding.verify MANIFEST.toml`; pounding.sweep(SWEEP.toml, ...)
+    is pounding.sweep.run_sweep, pounding.verify.verify(MANIFEST.toml) runs a manifest). Not
+    imported with the package, so that `-m` runs each once."""
+    if name in ("sweep", "verify"):
         import importlib
-        return importlib.import_module(".sweep", __name__)
+        return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

@@ -374,6 +374,18 @@ def _in_window(impacts, spec):
     return [i for i in impacts if after <= i["t_s"] < before]
 
 
+def _match_in_window(expected, observed, spec):
+    """_match over the whole lists, then what the window keeps: the pairs with either side in it and
+    the unmatched impacts in it (so an impact just inside the window whose partner lies just outside
+    is a pair, not one missing and one extra)."""
+    pairs, missing, extra = _match(expected, observed, MATCH_WINDOW_S)
+
+    def inside(impact):
+        return bool(_in_window([impact], spec))
+    return ([(e, o) for e, o in pairs if inside(e) or inside(o)], [e for e in missing if inside(e)],
+            [o for o in extra if inside(o)])
+
+
 def _checks(case, observed, blessed):
     """[(check name, passed, detail)] of one case."""
     results, checks, written = [], case["checks"], case["expected"]
@@ -468,7 +480,7 @@ def _check_times(case, observed, blessed, spec, results):
             results.append(("impact_times", False, "no expected value: run `pounding verify --bless` or write "
                                                    "impact_times_s in [case.expected]"))
         return
-    pairs, missing, extra = _match(_in_window(expected, spec), _in_window(observed["impacts"], spec), MATCH_WINDOW_S)
+    pairs, missing, extra = _match_in_window(expected, observed["impacts"], spec)
     worst, worst_text = 0.0, ""
     failed = []
     for e, o in pairs:
@@ -499,7 +511,7 @@ def _check_impulses(case, observed, blessed, spec, results, no_expectation):
     expected = _expected_impacts(case, blessed)
     if not expected or any(e.get("impulse_kNs") is None for e in expected):
         return no_expectation("impulses")
-    pairs, missing, _ = _match(_in_window(expected, spec), _in_window(observed["impacts"], spec), MATCH_WINDOW_S)
+    pairs, missing, _ = _match_in_window(expected, observed["impacts"], spec)
     failed = [f"{_impact_text(e)}: {o['impulse_kNs']:.6g} kN·s, expected {e['impulse_kNs']:.6g}"
               for e, o in pairs if not _within(o["impulse_kNs"], e["impulse_kNs"], spec, "abs_kNs")]
     failed += [f"expected impact {_impact_text(e)} not found" for e in missing[:5]]
@@ -519,7 +531,7 @@ def _check_approach(case, observed, blessed, spec, results, no_expectation):
         pairs = [({"t_s": o["t_s"], "level": o["level"], "approach_velocity_mps": wanted}, o) for o in impacts]
         missing = []
     elif "impacts" in blessed:
-        pairs, missing, _ = _match(_in_window(blessed["impacts"], spec), impacts, MATCH_WINDOW_S)
+        pairs, missing, _ = _match_in_window(blessed["impacts"], observed["impacts"], spec)
     else:
         return no_expectation("approach_velocity")
     failed = [f"{_impact_text(o)}: {o['approach_velocity_mps']:.9g} m/s, expected {e['approach_velocity_mps']:.9g}"
