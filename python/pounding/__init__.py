@@ -48,6 +48,16 @@ __version__ = _pounding.__version__
 Scene = _pounding.Scene
 
 
+def _input_error(file, key, value, reason, line=None):
+    """InputError with the message the library composes (input_error.cpp):
+    FILE[:LINE]: KEY = VALUE: REASON, each part left out when empty."""
+    where = f"{file}:{line}" if file and line else str(file or "")
+    message = f"{where}: " if where else ""
+    message += key + ((" = " if key else "") + value if value else "")
+    message += (": " if key or value else "") + reason
+    return InputError(message, str(file or ""), key, value, reason)
+
+
 def _with_record(self, file, format=None, units=None, scale_factor=None, scale_to_pga_g=None,
                  direction_deg=None, dt_s=None, accel_column=None, record2=None, record2_column=None,
                  scale_to_sa=None, read=True):
@@ -87,8 +97,7 @@ def _check_record_types(arguments):
         if value is None or (isinstance(value, accepted[kind]) and not isinstance(value, bool)):
             continue
         text = repr(value) if len(repr(value)) <= 40 else repr(value)[:40] + "..."
-        raise InputError(f"excitation.{key} = {text}: expected a {kind}", "", f"excitation.{key}", text,
-                         f"expected a {kind}")
+        raise _input_error("", f"excitation.{key}", text, f"expected a {kind}")
 
 
 def _check_settings(settings):
@@ -108,8 +117,7 @@ def _check_number(name, value, smallest, largest):
         return  # text settings (newton, form, ...) and None are the library's to check
     if isinstance(value, int) and not smallest <= value <= largest:
         text = str(value) if len(str(value)) <= 40 else str(value)[:40] + "..."
-        raise InputError(f"{name} = {text}: must lie in [{smallest}, {largest}]", "", name, text,
-                         f"must lie in [{smallest}, {largest}]")
+        raise _input_error("", name, text, f"must lie in [{smallest}, {largest}]")
 
 
 def _with_method(self, method=None, **settings):
@@ -158,8 +166,7 @@ def scene_from_dict(document, folder=None, gap=None, restitution=None, contact_l
     so errors name the same keys; the other arguments are load_scene's. The scene has no file: its
     runs' provenance says scene_file null (pounding animate and report then need --scene)."""
     if not isinstance(document, dict):
-        raise InputError(f"scene = {type(document).__name__}: expected a dict of the scene file's tables", "",
-                         "scene", type(document).__name__, "expected a dict of the scene file's tables")
+        raise _input_error("", "scene", type(document).__name__, "expected a dict of the scene file's tables")
     anchor = _os.path.join(_os.fspath(folder) if folder is not None else _os.getcwd(), "(scene from a dict).toml")
     document = document if "name" in document else {"name": "scene", **document}
     return _pounding.scene_from_toml(scene_toml(document), anchor, gap, restitution, contact_law, contact_stiffness)
@@ -197,8 +204,8 @@ def _toml_value(value, where):
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_value(v, f"{where}[{i + 1}]") for i, v in enumerate(value)) + "]"
     text = repr(value) if len(repr(value)) <= 40 else repr(value)[:40] + "..."
-    raise InputError(f"{where} = {text}: a scene holds text, numbers, booleans, lists and dicts, not "
-                     f"{type(value).__name__}", "", where, text, f"not a {type(value).__name__}")
+    raise _input_error("", where, text, f"a scene holds text, numbers, booleans, lists and dicts, not "
+                                        f"{type(value).__name__}")
 
 
 def record_list(scene, list_or_folder):

@@ -48,6 +48,7 @@ import types
 
 import pounding
 from pounding import InputError
+from pounding import _input_error as _error  # InputError with the library's message
 
 # The keys of a sweep file, and what each record table may set (the record list's fields).
 SWEEP_KEYS = ("scenes", "records", "directions_deg", "gaps_m", "restitutions", "methods", "contact_laws", "needed_gap",
@@ -86,14 +87,6 @@ def _text(value):
     if isinstance(value, str):
         return f'"{value}"'
     return repr(value)
-
-
-def _error(file, key, value, reason):
-    """InputError with the message the library composes (input_error.cpp)."""
-    message = f"{file}: " if file else ""
-    message += key + ((" = " if key else "") + value if value else "")
-    message += (": " if key or value else "") + reason
-    return InputError(message, str(file), key, value, reason)
 
 
 # ------------------------------------------------------------------------------------------------

@@ -29,11 +29,11 @@ const std::map<std::string, std::string>& field_of_key() {
                                                              {"excitation.units", "units"},
                                                              {"excitation.dt_s", "dt_s"},
                                                              {"excitation.accel_column", "accel_column"},
-                                                             {"excitation.scale_factor", "scale"},
-                                                             {"excitation.scale_to_pga_g", "pga_g"},
+                                                             {"excitation.scale_factor", "scale_factor"},
+                                                             {"excitation.scale_to_pga_g", "scale_to_pga_g"},
                                                              {"excitation.second.file", "record2"},
                                                              {"excitation.second.accel_column", "record2_column"},
-                                                             {"excitation.scale_to_sa", "sa"},
+                                                             {"excitation.scale_to_sa", "scale_to_sa"},
                                                              {"excitation.direction_deg", "direction_deg"}};
   return kFields;
 }
@@ -67,13 +67,10 @@ class ListLine {
   /// Remembers how this line spelled a field (`scale_factor` or its alias `scale`), so that an
   /// error found later names it as written.
   void spelled(const std::string& field, const std::string& as_written) { spelling_[field] = as_written; }
-  /// As the line wrote `field`; a field it did not write by the scene's name (scale_to_pga_g).
+  /// As the line wrote `field` (a field it did not write: its own name).
   std::string spelling(const std::string& field) const {
-    static const std::map<std::string, std::string> kSceneName = {
-        {"scale", "scale_factor"}, {"pga_g", "scale_to_pga_g"}, {"sa", "scale_to_sa"}};
-    if (const auto found = spelling_.find(field); found != spelling_.end()) return found->second;
-    const auto scene = kSceneName.find(field);
-    return scene != kSceneName.end() ? scene->second : field;
+    const auto found = spelling_.find(field);
+    return found != spelling_.end() ? found->second : field;
   }
 
   template <class Number>
@@ -93,20 +90,20 @@ class ListLine {
   std::map<std::string, std::string> spelling_;
 };
 
-/// The scene's names of the scaling keys, which a line may use (the one spelling the docs give),
-/// and the short names the lists had first (kept, as `--scale` and `--pga-g` are).
-const std::string& short_name(const std::string& field) {
-  static const std::map<std::string, std::string> kShort = {
-      {"scale_factor", "scale"}, {"scale_to_pga_g", "pga_g"}, {"scale_to_sa", "sa"}};
-  const auto found = kShort.find(field);
-  return found != kShort.end() ? found->second : field;
+/// A field by its scene name: the scaling fields' short names, which the lists had first, are
+/// kept as aliases (as `--scale` and `--pga-g` are) of the scene's names the docs give.
+const std::string& scene_name(const std::string& field) {
+  static const std::map<std::string, std::string> kAliases = {
+      {"scale", "scale_factor"}, {"pga_g", "scale_to_pga_g"}, {"sa", "scale_to_sa"}};
+  const auto found = kAliases.find(field);
+  return found != kAliases.end() ? found->second : field;
 }
 
 /// Sets the field `field` of `choice` from its text (a pair's record2 resolved against `folder`).
 /// @throws InputError for an unknown or repeated field.
 void set_field(ListLine& line, const std::string& written, const std::string& value,
                const std::filesystem::path& folder, RecordChoice& choice) {
-  const std::string& field = short_name(written);
+  const std::string& field = scene_name(written);
   line.spelled(field, written);
   auto once = [&](auto& slot, auto parsed) {
     if (slot) throw line.error(written, value, "given twice on this line");
@@ -114,17 +111,17 @@ void set_field(ListLine& line, const std::string& written, const std::string& va
   };
   if (field == "format") return once(choice.format, value);
   if (field == "units") return once(choice.units, value);
-  if (field == "dt_s") return once(choice.dt_s, line.number<double>(field, value));
-  if (field == "accel_column") return once(choice.accel_column, line.number<int>(field, value));
-  if (field == "scale") return once(choice.scale_factor, line.number<double>(written, value));
-  if (field == "pga_g") return once(choice.pga_g, line.number<double>(written, value));
-  if (field == "sa") return once(choice.sa, value);
-  if (field == "direction_deg") return once(choice.direction_deg, line.number<double>(field, value));
+  if (field == "dt_s") return once(choice.dt_s, line.number<double>(written, value));
+  if (field == "accel_column") return once(choice.accel_column, line.number<int>(written, value));
+  if (field == "scale_factor") return once(choice.scale_factor, line.number<double>(written, value));
+  if (field == "scale_to_pga_g") return once(choice.pga_g, line.number<double>(written, value));
+  if (field == "scale_to_sa") return once(choice.sa, value);
+  if (field == "direction_deg") return once(choice.direction_deg, line.number<double>(written, value));
   if (field == "record2") {
     const std::filesystem::path second(value);
     return once(choice.second_file, (second.is_absolute() ? second : folder / second).lexically_normal());
   }
-  if (field == "record2_column") return once(choice.second_accel_column, line.number<int>(field, value));
+  if (field == "record2_column") return once(choice.second_accel_column, line.number<int>(written, value));
   throw line.error(written, value,
                    "unknown field (expected format, units, dt_s, accel_column, scale_factor, scale_to_pga_g, "
                    "scale_to_sa, direction_deg, record2 or record2_column; scale, pga_g and sa are short for the "
