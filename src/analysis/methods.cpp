@@ -560,6 +560,10 @@ Eigen::VectorXd ComponentAtol::vector(const dynamics::CoupledSystem& system) con
       atol.segment<3>(n + i) = rate_per_s * atol.segment<3>(i);
     }
   }
+  // A Bouc–Wen z moves the column's force as a drift d_y z would.
+  for (const dynamics::YieldingSpring& spring : system.springs().all()) {
+    if (spring.bouc_wen) atol[spring.z_index] = displacement_m / spring.yield_drift_m;
+  }
   return atol;
 }
 

@@ -86,23 +86,26 @@ class FreeRun final : public solvers::OdeFunctions {
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
     system_.rhs(t, y, y_dot, yields_.states());
   }
-  void jacobian(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
+  void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
     if (yields_.empty()) {
       jac = system_.jacobian();
       return;
     }
     Eigen::SparseMatrix<double> rows;
-    acceleration_jacobian(t, y, rows);
-    const int n = system_.dof();
-    jac.topRows(n).setZero();
-    jac.topRightCorner(n, n).setIdentity();
-    jac.bottomRows(n) = rows;
+    system_.constrained_acceleration_jacobian(y, {}, rows, yields_.states());
+    system_.full_jacobian(y, rows, jac);
   }
   // Sparse, so that CVODE's Newton matrices cost O(n) to factor rather than O(n³).
   bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
     system_.constrained_acceleration_jacobian(y, {}, rows, yields_.states());
     return true;
   }
+  int extra_state_count() const override { return system_.springs().smooth_count(); }
+  void extra_state_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& accel_by_w,
+                            Eigen::SparseMatrix<double>& w_rate_by_velocity, VectorXd& w_rate_by_w) override {
+    system_.smooth_jacobian(y, accel_by_w, w_rate_by_velocity, w_rate_by_w);
+  }
+
   // Every root of the first two blocks falls through zero at a maximum: a pair's touch gap (−ġ at
   // its touch geometry), a facing vertex's displacement towards the other building (its velocity
   // that way). The last block: the yielding columns' branch changes (YieldStates).

@@ -172,15 +172,16 @@ void require_yielding_supported(const Scene& scene, const UsedSettings& used) {
       if (method.yielding_columns) able.push_back(method.name);
     }
     const std::string key = fmt::format("building[{}].hysteresis.law", b + 1);
+    const std::string law = fmt::format("\"{}\"", model::to_string(scene.buildings[b].hysteresis.kind));
     if (!used.method->yielding_columns) {
-      throw InputError(key, "\"bilinear\"",
+      throw InputError(key, law,
                        fmt::format("yielding columns do not run on method {} (it assumes elastic buildings); they run "
                                    "on {}",
                                    used.method->name, fmt::join(able, ", ")),
                        scene.file.string());
     }
     if (used.form != "physical") {
-      throw InputError(key, "\"bilinear\"",
+      throw InputError(key, law,
                        fmt::format("yielding columns need solver.form = \"physical\" (the {} form assumes elastic "
                                    "buildings)",
                                    used.form),

@@ -46,17 +46,19 @@ CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
 void CoupledSystem::rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot, const SpringStates* springs) const {
   // q̈ = −M⁻¹(K q + C q̇ − slip forces) − r a_g; the accelerations first, in case y_dot aliases y.
   if (springs != nullptr && !springs_.empty()) {
-    VectorXd restoring = stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.tail(dof_);
+    VectorXd restoring = stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.segment(dof_, dof_);
     VectorXd slip_force = VectorXd::Zero(dof_);
-    springs_.add_slip_force(y.head(dof_), *springs, slip_force);
+    springs_.add_slip_force(y, *springs, slip_force);
     restoring -= slip_force;
-    y_dot.tail(dof_) = -(restoring.cwiseQuotient(mass_) + influence() * ground_motion_.accel_at(t));
+    y_dot.segment(dof_, dof_) = -(restoring.cwiseQuotient(mass_) + influence() * ground_motion_.accel_at(t));
   } else {
-    y_dot.tail(dof_) = -((stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.tail(dof_)).cwiseQuotient(mass_) +
-                         influence() * ground_motion_.accel_at(t));
+    y_dot.segment(dof_, dof_) =
+        -((stiffness_sparse_ * y.head(dof_) + damping_sparse_ * y.segment(dof_, dof_)).cwiseQuotient(mass_) +
+          influence() * ground_motion_.accel_at(t));
   }
-  if (ground_motion_.is_pair()) y_dot.tail(dof_) -= influence(1) * ground_motion_.accel_at(t, 1);
-  y_dot.head(dof_) = y.tail(dof_);
+  if (ground_motion_.is_pair()) y_dot.segment(dof_, dof_) -= influence(1) * ground_motion_.accel_at(t, 1);
+  y_dot.head(dof_) = y.segment(dof_, dof_);
+  if (springs_.smooth_count() > 0) springs_.hysteretic_rates(y, y_dot.tail(springs_.smooth_count()));
 }
 
 VectorXd CoupledSystem::ground_acceleration(double t) const {
@@ -160,9 +162,9 @@ void CoupledSystem::constrained_rhs(double t, ConstVectorRef y, const std::vecto
   const VectorXd inverse_mass = mass_.cwiseInverse();
   const MatrixXd w = rows * inverse_mass.asDiagonal() * rows.transpose();
   // W λ = −(G q̈_free + bias): the forces that make every held gap's (stabilised) g̈ vanish.
-  const VectorXd needed = -(rows * y_dot.tail(dof_) + bias);
+  const VectorXd needed = -(rows * y_dot.segment(dof_, dof_) + bias);
   forces_kN = w.completeOrthogonalDecomposition().solve(needed);
-  y_dot.tail(dof_) += inverse_mass.asDiagonal() * (rows.transpose() * forces_kN);
+  y_dot.segment(dof_, dof_) += inverse_mass.asDiagonal() * (rows.transpose() * forces_kN);
 }
 
 contact::LcpSolution CoupledSystem::hold_complementarity(double t, ConstVectorRef y,
@@ -174,7 +176,7 @@ contact::LcpSolution CoupledSystem::hold_complementarity(double t, ConstVectorRe
   VectorXd bias;
   constraint_rows(y, held, rows, bias);
   const MatrixXd w = rows * mass_.cwiseInverse().asDiagonal() * rows.transpose();
-  return contact::solve_lcp(w, rows * y_dot.tail(dof_) + bias);
+  return contact::solve_lcp(w, rows * y_dot.segment(dof_, dof_) + bias);
 }
 
 CoupledSystem::PhysicalHoldForces CoupledSystem::physical_hold_forces(double t, ConstVectorRef y,
@@ -186,7 +188,7 @@ CoupledSystem::PhysicalHoldForces CoupledSystem::physical_hold_forces(double t, 
   VectorXd bias;
   constraint_rows(y, held, rows, bias, false);
   const MatrixXd w = rows * mass_.cwiseInverse().asDiagonal() * rows.transpose();
-  const auto free_accel = y_dot.tail(dof_);
+  const auto free_accel = y_dot.segment(dof_, dof_);
   PhysicalHoldForces result;
   result.forces_kN = w.completeOrthogonalDecomposition().solve(-(rows * free_accel + bias));
   // The free gap accelerations are differences of terms of this size; below it a force is noise.
@@ -205,6 +207,26 @@ void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std
   jacobian.topRows(dof_).setZero();
   jacobian.topRightCorner(dof_, dof_).setIdentity();
   jacobian.bottomRows(dof_) = rows;
+}
+
+void CoupledSystem::full_jacobian(ConstVectorRef y, const Eigen::SparseMatrix<double>& acceleration_rows,
+                                  Eigen::Ref<MatrixXd> jacobian) const {
+  jacobian.setZero();
+  jacobian.block(0, dof_, dof_, dof_).setIdentity();
+  jacobian.block(dof_, 0, dof_, 2 * dof_) = acceleration_rows;
+  const int m = springs_.smooth_count();
+  if (m == 0) return;
+  Eigen::SparseMatrix<double> accel_by_z, z_rate_by_velocity;
+  VectorXd z_rate_by_z;
+  springs_.smooth_jacobian(y, mass_.cwiseInverse(), accel_by_z, z_rate_by_velocity, z_rate_by_z);
+  jacobian.block(dof_, 2 * dof_, dof_, m) = accel_by_z;
+  jacobian.block(2 * dof_, dof_, m, dof_) = z_rate_by_velocity;
+  jacobian.bottomRightCorner(m, m).diagonal() = z_rate_by_z;
+}
+
+void CoupledSystem::smooth_jacobian(ConstVectorRef y, Eigen::SparseMatrix<double>& accel_by_z,
+                                    Eigen::SparseMatrix<double>& z_rate_by_velocity, VectorXd& z_rate_by_z) const {
+  springs_.smooth_jacobian(y, mass_.cwiseInverse(), accel_by_z, z_rate_by_velocity, z_rate_by_z);
 }
 
 void CoupledSystem::constrained_acceleration_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
@@ -255,7 +277,7 @@ double CoupledSystem::normal_inverse_mass(ConstVectorRef y, std::size_t index) c
 void CoupledSystem::add_contact_force(ConstVectorRef y, std::size_t index, double force_kN,
                                       Eigen::Ref<VectorXd> y_dot) const {
   const Eigen::RowVectorXd row = full_row(y, index);
-  y_dot.tail(dof_) += (row.transpose() * force_kN).cwiseQuotient(mass_);
+  y_dot.segment(dof_, dof_) += (row.transpose() * force_kN).cwiseQuotient(mass_);
 }
 
 Eigen::SparseMatrix<double> CoupledSystem::contact_force_rows(ConstVectorRef y, std::size_t index,
@@ -287,23 +309,23 @@ void CoupledSystem::add_contact_force_jacobian(ConstVectorRef y, std::size_t ind
 }
 
 double CoupledSystem::kinetic_energy(ConstVectorRef y) const {
-  return 0.5 * y.tail(dof_).cwiseAbs2().dot(mass_);
+  return 0.5 * y.segment(dof_, dof_).cwiseAbs2().dot(mass_);
 }
 
 double CoupledSystem::strain_energy(ConstVectorRef y, const SpringStates* springs) const {
   const double elastic_kJ = 0.5 * y.head(dof_).dot(stiffness_sparse_ * y.head(dof_));
   if (springs == nullptr || springs_.empty()) return elastic_kJ;
-  return elastic_kJ + springs_.stored_energy_change(y.head(dof_), *springs);
+  return elastic_kJ + springs_.stored_energy_change(y, *springs);
 }
 
 double CoupledSystem::damping_power(ConstVectorRef y) const {
-  return y.tail(dof_).dot(damping_sparse_ * y.tail(dof_));
+  return y.segment(dof_, dof_).dot(damping_sparse_ * y.segment(dof_, dof_));
 }
 
 double CoupledSystem::input_power(double t, ConstVectorRef y) const {
-  double power = -y.tail(dof_).dot(mass_.cwiseProduct(influence())) * ground_motion_.accel_at(t);
+  double power = -y.segment(dof_, dof_).dot(mass_.cwiseProduct(influence())) * ground_motion_.accel_at(t);
   for (int c = 1; c < ground_motion_.component_count(); ++c) {
-    power -= y.tail(dof_).dot(mass_.cwiseProduct(influence(c))) * ground_motion_.accel_at(t, c);
+    power -= y.segment(dof_, dof_).dot(mass_.cwiseProduct(influence(c))) * ground_motion_.accel_at(t, c);
   }
   return power;
 }

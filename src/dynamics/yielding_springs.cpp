@@ -8,6 +8,11 @@ namespace pounding::dynamics {
 
 namespace {
 
+std::optional<BoucWenShape> bouc_wen_shape(const model::HystereticLaw& law) {
+  if (!law.is_smooth()) return std::nullopt;
+  return BoucWenShape{.a = law.bouc_wen_a, .beta = law.bouc_wen_beta, .gamma = law.bouc_wen_gamma, .n = law.bouc_wen_n};
+}
+
 /// The springs of one building (empty if its columns stay elastic).
 void add_building_springs(const model::Building& building, int b, int offset, std::vector<YieldingSpring>& springs) {
   const model::BuildingDefinition& d = building.definition;
@@ -28,7 +33,10 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .stiffness_kN_per_m = k[direction],
                               .hardening_ratio = d.hysteresis.hardening_ratio,
                               .yield_drift_m = d.hysteresis.yield_drift_of(height_m),
-                              .storey_height_m = height_m};
+                              .storey_height_m = height_m,
+                              .indices = {},
+                              .coefficients = {},
+                              .bouc_wen = bouc_wen_shape(d.hysteresis)};
         for (int floor : {storey, storey - 1}) {
           if (floor == 0) continue;  // the ground does not move relative to the base
           const double sign = floor == storey ? 1.0 : -1.0;
@@ -44,10 +52,21 @@ void add_building_springs(const model::Building& building, int b, int offset, st
   }
 }
 
+double sign_of(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+/// The factor of ż = (ḋ/d_y) Φ: Φ = A − |z|ⁿ (β sgn(ḋ z) + γ).
+double bouc_wen_factor(const BoucWenShape& shape, double z, double drift_rate) {
+  return shape.a - std::pow(std::abs(z), shape.n) * (shape.beta * sign_of(drift_rate * z) + shape.gamma);
+}
+
 }  // namespace
 
-YieldingSprings::YieldingSprings(const std::array<model::Building, 2>& buildings, const std::array<int, 2>& offsets) {
+YieldingSprings::YieldingSprings(const std::array<model::Building, 2>& buildings, const std::array<int, 2>& offsets)
+    : dof_(offsets[1] + buildings[1].dof()) {
   for (int b = 0; b < 2; ++b) add_building_springs(buildings[b], b, offsets[b], springs_);
+  for (YieldingSpring& spring : springs_) {
+    if (spring.bouc_wen) spring.z_index = 2 * dof_ + smooth_count_++;
+  }
 }
 
 double YieldingSprings::drift(const Eigen::Ref<const Eigen::VectorXd>& q, std::size_t j) const {
@@ -57,23 +76,25 @@ double YieldingSprings::drift(const Eigen::Ref<const Eigen::VectorXd>& q, std::s
   return d;
 }
 
-double YieldingSprings::slip(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states,
+double YieldingSprings::slip(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,
                              std::size_t j) const {
+  const YieldingSpring& spring = springs_[j];
+  if (spring.bouc_wen) return drift(y.head(dof_), j) - spring.yield_drift_m * y[spring.z_index];
   switch (states[j].branch) {
     case SpringBranch::elastic:
       return states[j].slip_m;
     case SpringBranch::yielding_up:
-      return drift(q, j) - springs_[j].yield_drift_m;
+      return drift(y.head(dof_), j) - spring.yield_drift_m;
     case SpringBranch::yielding_down:
-      return drift(q, j) + springs_[j].yield_drift_m;
+      return drift(y.head(dof_), j) + spring.yield_drift_m;
   }
   return 0.0;
 }
 
-void YieldingSprings::add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states,
+void YieldingSprings::add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,
                                      Eigen::Ref<Eigen::VectorXd> force) const {
   for (std::size_t j = 0; j < springs_.size(); ++j) {
-    const double s = slip(q, states, j);
+    const double s = slip(y, states, j);
     if (s == 0.0) continue;
     const YieldingSpring& spring = springs_[j];
     const double magnitude = spring.plastic_stiffness() * s;
@@ -82,13 +103,24 @@ void YieldingSprings::add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& q,
   }
 }
 
+void YieldingSprings::hysteretic_rates(const Eigen::Ref<const Eigen::VectorXd>& y,
+                                       Eigen::Ref<Eigen::VectorXd> z_dot) const {
+  for (std::size_t j = 0; j < springs_.size(); ++j) {
+    const YieldingSpring& spring = springs_[j];
+    if (!spring.bouc_wen) continue;
+    const double rate_mps = drift(y.segment(dof_, dof_), j);
+    z_dot[spring.z_index - 2 * dof_] =
+        rate_mps / spring.yield_drift_m * bouc_wen_factor(*spring.bouc_wen, y[spring.z_index], rate_mps);
+  }
+}
+
 void YieldingSprings::add_tangent_rows(const SpringStates& states, const Eigen::VectorXd& inverse_mass,
                                        Eigen::SparseMatrix<double>& rows) const {
   std::vector<Eigen::Triplet<double>> terms;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
-    if (states[j].branch == SpringBranch::elastic) continue;
     const YieldingSpring& spring = springs_[j];
-    // s_j = d_j ∓ d_y: the slip force (1 − α) k t tᵀ q adds to q̈ through M⁻¹.
+    if (!spring.bouc_wen && states[j].branch == SpringBranch::elastic) continue;
+    // s_j = d_j ∓ d_y (or d_j − d_y z_j): the slip force (1 − α) k t tᵀ q adds to q̈ through M⁻¹.
     for (std::size_t a = 0; a < spring.indices.size(); ++a) {
       for (std::size_t c = 0; c < spring.indices.size(); ++c) {
         terms.emplace_back(spring.indices[a], spring.indices[c],
@@ -103,28 +135,72 @@ void YieldingSprings::add_tangent_rows(const SpringStates& states, const Eigen::
   rows += tangent;
 }
 
+void YieldingSprings::smooth_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::VectorXd& inverse_mass,
+                                      Eigen::SparseMatrix<double>& accel_by_z,
+                                      Eigen::SparseMatrix<double>& z_rate_by_velocity,
+                                      Eigen::VectorXd& z_rate_by_z) const {
+  std::vector<Eigen::Triplet<double>> accel_terms, rate_terms;
+  z_rate_by_z.resize(smooth_count_);
+  for (std::size_t j = 0; j < springs_.size(); ++j) {
+    const YieldingSpring& spring = springs_[j];
+    if (!spring.bouc_wen) continue;
+    const BoucWenShape& shape = *spring.bouc_wen;
+    const int k = spring.z_index - 2 * dof_;
+    const double z = y[spring.z_index], rate_mps = drift(y.segment(dof_, dof_), j), d_y = spring.yield_drift_m;
+    const double factor_slope = -shape.n * std::pow(std::abs(z), shape.n - 1.0) * sign_of(z) *
+                                (shape.beta * sign_of(rate_mps * z) + shape.gamma);
+    z_rate_by_z[k] = rate_mps / d_y * factor_slope;
+    const double factor = bouc_wen_factor(shape, z, rate_mps);
+    for (std::size_t i = 0; i < spring.indices.size(); ++i) {
+      const int q = spring.indices[i];
+      rate_terms.emplace_back(k, q, factor / d_y * spring.coefficients[i]);
+      accel_terms.emplace_back(q, k, -inverse_mass[q] * spring.plastic_stiffness() * d_y * spring.coefficients[i]);
+    }
+  }
+  accel_by_z.resize(dof_, smooth_count_);
+  accel_by_z.setFromTriplets(accel_terms.begin(), accel_terms.end());
+  z_rate_by_velocity.resize(smooth_count_, dof_);
+  z_rate_by_velocity.setFromTriplets(rate_terms.begin(), rate_terms.end());
+}
+
 double YieldingSprings::witness(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,
                                 std::size_t j) const {
-  const Eigen::Index n = y.size() / 2;
+  if (springs_[j].bouc_wen) return 1.0;
   switch (states[j].branch) {
     case SpringBranch::elastic:
-      return springs_[j].yield_drift_m - std::abs(drift(y.head(n), j) - states[j].slip_m);
+      return springs_[j].yield_drift_m - std::abs(drift(y.head(dof_), j) - states[j].slip_m);
     case SpringBranch::yielding_up:
-      return drift(y.tail(n), j);
+      return drift(y.segment(dof_, dof_), j);
     case SpringBranch::yielding_down:
-      return -drift(y.tail(n), j);
+      return -drift(y.segment(dof_, dof_), j);
   }
   return 1.0;
 }
 
-double YieldingSprings::stored_energy_change(const Eigen::Ref<const Eigen::VectorXd>& q,
+double YieldingSprings::stored_energy_change(const Eigen::Ref<const Eigen::VectorXd>& y,
                                              const SpringStates& states) const {
   double change_kJ = 0.0;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
-    const double s = slip(q, states, j);
-    change_kJ += springs_[j].plastic_stiffness() * s * (0.5 * s - drift(q, j));
+    const YieldingSpring& spring = springs_[j];
+    if (spring.bouc_wen) {
+      // ½ k d² (in ½ qᵀ K q) becomes ½ α k d² + ½ (1 − α) k d_y² z²/A.
+      const double d = drift(y.head(dof_), j), z = y[spring.z_index], d_y = spring.yield_drift_m;
+      change_kJ += 0.5 * spring.plastic_stiffness() * (d_y * d_y * z * z / spring.bouc_wen->a - d * d);
+      continue;
+    }
+    const double s = slip(y, states, j);
+    change_kJ += spring.plastic_stiffness() * s * (0.5 * s - drift(y.head(dof_), j));
   }
   return change_kJ;
+}
+
+double YieldingSprings::dissipation_power(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const {
+  const YieldingSpring& spring = springs_[j];
+  if (!spring.bouc_wen) return 0.0;
+  const BoucWenShape& shape = *spring.bouc_wen;
+  const double z = y[spring.z_index], rate_mps = drift(y.segment(dof_, dof_), j);
+  return spring.plastic_stiffness() * spring.yield_drift_m * rate_mps * z * std::pow(std::abs(z), shape.n) *
+         (shape.beta * sign_of(rate_mps * z) + shape.gamma) / shape.a;
 }
 
 }  // namespace pounding::dynamics

@@ -93,7 +93,7 @@ void append_design_peaks(const analysis::RunReport& report, std::string& text) {
 void append_yielding(const analysis::RunReport& report, std::string& text) {
   if (report.springs.empty()) return;
   auto out = std::back_inserter(text);
-  fmt::format_to(out, "Yielding columns: {} branch changes, hysteretic energy {:.3f} kJ\n",
+  fmt::format_to(out, "Yielding columns: {} yield events, hysteretic energy {:.3f} kJ\n",
                  report.result.statistics.yield_events, report.result.energy.hysteretic_kJ);
   for (const analysis::StoreyYielding& s : analysis::storey_yielding(report.springs, report.result.springs)) {
     fmt::format_to(

@@ -113,7 +113,13 @@ json yielding_json(const analysis::RunReport& report) {
                                            {"springs", s.springs},
                                            {"hysteretic_kJ", s.hysteretic_kJ}});
   }
-  return {{"law", "bilinear"},
+  // "bilinear", "bouc-wen", or "mixed" when the two buildings' columns follow different laws.
+  std::string law;
+  for (const dynamics::YieldingSpring& spring : report.springs) {
+    const std::string own = spring.bouc_wen ? "bouc-wen" : "bilinear";
+    law = law.empty() || law == own ? own : "mixed";
+  }
+  return {{"law", law},
           {"yield_events", report.result.statistics.yield_events},
           {"hysteretic_kJ", report.result.energy.hysteretic_kJ},
           {"per_spring", "yielding.csv"},

@@ -401,29 +401,41 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
 }
 
 model::HystereticLaw read_hysteresis(TableReader& table) {
+  using Kind = model::HystereticLaw::Kind;
   model::HystereticLaw law;
   const toml::node& kind = table.require("law");
   const std::string name = table.string_of(kind, table.key_path("law"));
   if (name == "bilinear") {
-    law.kind = model::HystereticLaw::Kind::bilinear;
+    law.kind = Kind::bilinear;
+  } else if (name == "bouc-wen") {
+    law.kind = Kind::bouc_wen;
   } else if (name != "elastic") {
-    throw table.error(kind, table.key_path("law"), "expected \"elastic\" or \"bilinear\"");
-  } else {
-    for (const char* key : {"yield_drift_ratio", "yield_drift_m", "hardening_ratio"}) {
-      if (const toml::node* given = table.find(key)) {
-        throw table.error(*given, table.key_path(key), "applies to law = \"bilinear\" only (the law is elastic)");
+    throw table.error(kind, table.key_path("law"), "expected \"elastic\", \"bilinear\" or \"bouc-wen\"");
+  }
+  const auto refuse_unless = [&](std::initializer_list<const char*> keys, bool applies, const char* laws) {
+    for (const char* key : keys) {
+      const toml::node* given = table.find(key);
+      if (given != nullptr && !applies) {
+        throw table.error(*given, table.key_path(key),
+                          fmt::format("applies to law = {} only (the law is {})", laws, name));
       }
     }
-  }
-  if (const toml::node* ratio = table.find("yield_drift_ratio")) {
-    law.yield_drift_ratio = in_range(table, *ratio, table.key_path("yield_drift_ratio"), model::kYieldDriftRatio);
-  }
-  if (const toml::node* drift = table.find("yield_drift_m")) {
-    law.yield_drift_m = in_range(table, *drift, table.key_path("yield_drift_m"), model::kYieldDrift);
-  }
-  if (const toml::node* alpha = table.find("hardening_ratio")) {
-    law.hardening_ratio = in_range(table, *alpha, table.key_path("hardening_ratio"), model::kHardeningRatio);
-  }
+  };
+  refuse_unless({"yield_drift_ratio", "yield_drift_m", "hardening_ratio"}, law.yields(),
+                "\"bilinear\" or \"bouc-wen\"");
+  refuse_unless({"a", "beta", "gamma", "n"}, law.is_smooth(), "\"bouc-wen\"");
+  const auto number = [&](const char* key, const Range& range) -> std::optional<double> {
+    const toml::node* given = table.find(key);
+    if (given == nullptr) return std::nullopt;
+    return in_range(table, *given, table.key_path(key), range);
+  };
+  law.yield_drift_ratio = number("yield_drift_ratio", model::kYieldDriftRatio);
+  law.yield_drift_m = number("yield_drift_m", model::kYieldDrift);
+  law.hardening_ratio = number("hardening_ratio", model::kHardeningRatio).value_or(law.hardening_ratio);
+  law.bouc_wen_a = number("a", model::kBoucWenA).value_or(law.bouc_wen_a);
+  law.bouc_wen_beta = number("beta", model::kBoucWenBeta).value_or(law.bouc_wen_beta);
+  law.bouc_wen_gamma = number("gamma", model::kBoucWenGamma).value_or(law.bouc_wen_gamma);
+  law.bouc_wen_n = number("n", model::kBoucWenN).value_or(law.bouc_wen_n);
   table.finish();
   return law;
 }

@@ -153,11 +153,25 @@ void validate_storey_matrices(const BuildingDefinition& b) {
   }
 }
 
+/// Bouc–Wen's shape: β > 0 and |γ| ≤ β keep every loop dissipative and z bounded.
+void validate_bouc_wen(const HystereticLaw& law) {
+  require_range("hysteresis.a", law.bouc_wen_a, kBoucWenA);
+  require_range("hysteresis.beta", law.bouc_wen_beta, kBoucWenBeta);
+  require_range("hysteresis.gamma", law.bouc_wen_gamma, kBoucWenGamma);
+  require_range("hysteresis.n", law.bouc_wen_n, kBoucWenN);
+  if (std::abs(law.bouc_wen_gamma) > law.bouc_wen_beta) {
+    throw InputError("hysteresis.gamma", format_value(law.bouc_wen_gamma),
+                     fmt::format("must lie in [-beta, beta] = [{0:g}, {1:g}]: with |gamma| > beta a loop returns "
+                                 "energy (or z grows without bound)",
+                                 -law.bouc_wen_beta, law.bouc_wen_beta));
+  }
+}
+
 void validate_hysteresis(const BuildingDefinition& b) {
   const HystereticLaw& law = b.hysteresis;
   if (!law.yields()) return;
   if (!b.uses_columns()) {
-    throw InputError("hysteresis.law", "\"bilinear\"",
+    throw InputError("hysteresis.law", fmt::format("\"{}\"", to_string(law.kind)),
                      "needs columns: storeys given as storey_stiffness matrices stay elastic");
   }
   if (law.yield_drift_ratio.has_value() == law.yield_drift_m.has_value()) {
@@ -180,6 +194,7 @@ void validate_hysteresis(const BuildingDefinition& b) {
   if (!(law.hardening_ratio >= 0.0 && law.hardening_ratio < 1.0)) {
     throw InputError("hysteresis.hardening_ratio", format_value(law.hardening_ratio), "must lie in [0, 1)");
   }
+  if (law.is_smooth()) validate_bouc_wen(law);
 }
 
 void validate_damping(const BuildingDefinition& b) {
@@ -246,6 +261,18 @@ void BuildingDefinition::validate() const {
   }
   validate_damping(*this);
   validate_hysteresis(*this);
+}
+
+const char* to_string(HystereticLaw::Kind kind) {
+  switch (kind) {
+    case HystereticLaw::Kind::elastic:
+      return "elastic";
+    case HystereticLaw::Kind::bilinear:
+      return "bilinear";
+    case HystereticLaw::Kind::bouc_wen:
+      return "bouc-wen";
+  }
+  return "?";
 }
 
 double uniform_polar_moment(const Polygon& slab, double mass_t) {

@@ -31,6 +31,10 @@ void EnergyBalance::add_piece(double t_a, double t_b, const std::function<dynami
     audit_.input_kJ += half * kGaussWeights[k] * system_.input_power(t, y);
     audit_.damping_kJ += half * kGaussWeights[k] * system_.damping_power(y);
     audit_.constraint_work_kJ += half * kGaussWeights[k] * constraint_power(t, y);
+    if (system_.springs().smooth_count() == 0) continue;
+    for (std::size_t j = 0; j < smooth_dissipated_kJ_.size(); ++j) {
+      smooth_dissipated_kJ_[j] += half * kGaussWeights[k] * system_.springs().dissipation_power(y, j);
+    }
   }
 }
 

@@ -104,7 +104,10 @@ class EventDrivenRun final : public OdeFunctions {
   int root_count() const override { return witnesses_.size(); }
   // A yielding column changes the Jacobian at its events, and its slip force moves with q.
   bool is_linear() const override { return is_free_motion() && yields_.empty(); }
-  bool is_free_motion() const override { return states_.free_motion() && !yields_.any_yielding(); }
+  // Bouc–Wen springs never leave the motion free: their z moves with it.
+  bool is_free_motion() const override {
+    return states_.free_motion() && !yields_.any_yielding() && system_.springs().smooth_count() == 0;
+  }
 
   void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
     forces_.resize(static_cast<Eigen::Index>(states_.held().size()));
@@ -112,19 +115,20 @@ class EventDrivenRun final : public OdeFunctions {
     law_->add_forces(y, y_dot);
   }
 
-  void jacobian(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
-    const int n = system_.dof();
+  void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
     Eigen::SparseMatrix<double> rows;
-    acceleration_jacobian(t, y, rows);
-    jac.topRows(n).setZero();
-    jac.topRightCorner(n, n).setIdentity();
-    jac.bottomRows(n) = rows;
+    acceleration_rows(y, rows);
+    system_.full_jacobian(y, rows, jac);
   }
 
   bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
-    system_.constrained_acceleration_jacobian(y, states_.held(), rows, yields_.states());
-    law_->add_force_jacobian(y, rows);
+    acceleration_rows(y, rows);
     return true;
+  }
+  int extra_state_count() const override { return system_.springs().smooth_count(); }
+  void extra_state_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& accel_by_w,
+                            Eigen::SparseMatrix<double>& w_rate_by_velocity, VectorXd& w_rate_by_w) override {
+    system_.smooth_jacobian(y, accel_by_w, w_rate_by_velocity, w_rate_by_w);
   }
 
   // The witnesses (contact_states.hpp, Witness): the gap roots of armed and masked pairs here,
@@ -144,6 +148,11 @@ class EventDrivenRun final : public OdeFunctions {
   RunResult run(const IntegratorFactory& make_integrator, const std::string& method);
 
  private:
+  /// [∂q̈/∂q, ∂q̈/∂q̇] (n × 2n) of the present phase: held contacts, the law's forces, the springs.
+  void acceleration_rows(const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) const {
+    system_.constrained_acceleration_jacobian(y, states_.held(), rows, yields_.states());
+    law_->add_force_jacobian(y, rows);
+  }
   std::unique_ptr<LawEvents> make_law_events() {
     const EventContext context{system_,
                                options_,
@@ -507,7 +516,7 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
   report_overlap();
   law_->finish(prev_t_, prev_y_);
   double hysteretic_kJ = 0.0;
-  if (!yields_.empty()) result_.springs = yields_.finish(prev_y_, hysteretic_kJ);
+  if (!yields_.empty()) result_.springs = yields_.finish(prev_y_, recorder_.smooth_dissipated_kJ(), hysteretic_kJ);
   recorder_.finish(prev_y_, result_, yields_.states());
   result_.energy.hysteretic_kJ = hysteretic_kJ;  // the audit's own terms come from the recorder
   result_.statistics.wall_time_s =

@@ -60,7 +60,7 @@ double drift_per_unit(const dynamics::YieldingSprings& springs, int b, int offse
 
 GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolution_m, double steps_per_period,
                            double modes_cutoff_hz)
-    : resolution_m_(resolution_m), steps_per_period_(steps_per_period) {
+    : dof_(system.dof()), resolution_m_(resolution_m), steps_per_period_(steps_per_period) {
   const excitation::GroundMotion& motion = system.ground_motion();
   const RestRows rest = rest_rows(system);
   double longest_period_s = 0.0;
@@ -106,11 +106,10 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
 }
 
 double GapModeBound::max_step_s(const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  const Eigen::Index dof = y.size() / 2;
   for (const OscillatingMode& m : modes_) {
     const Eigen::Index n = m.mass_shape.size();
     const double eta = m.mass_shape.dot(y.segment(m.offset, n));
-    const double eta_rate = m.mass_shape.dot(y.segment(dof + m.offset, n));
+    const double eta_rate = m.mass_shape.dot(y.segment(dof_ + m.offset, n));
     const double amplitude = std::hypot(eta, eta_rate / m.omega_rad_s) + m.forced_amplitude;
     if (m.gap_per_unit_m * amplitude > resolution_m_) {
       governing_period_s_ = m.damped_period_s;

@@ -114,7 +114,7 @@ RunKinematics::Drift RunKinematics::storey_drift(const dynamics::VectorXd& y, in
 
 void RunKinematics::absolute_accelerations(double t, const dynamics::VectorXd& y, dynamics::VectorXd& accel) const {
   dynamics_.derivative(t, y, y_dot_);
-  accel = y_dot_.tail(system_.dof()) + system_.ground_acceleration(t);
+  accel = y_dot_.segment(system_.dof(), system_.dof()) + system_.ground_acceleration(t);
 }
 
 void RunKinematics::measure(double t, const dynamics::VectorXd& y, bool accelerations, bool drifts,
@@ -133,9 +133,9 @@ void RunKinematics::free_acceleration_rates(double t, const dynamics::VectorXd& 
   // gives A_v ẏ − r a_g(t) in its acceleration rows (sparse, O(n)). r a_g: summed over components.
   const int n = system_.dof();
   const dynamics::VectorXd ground = system_.ground_acceleration(t);
-  y_dot_ << y.tail(n), accel - ground;
+  y_dot_ << y.segment(n, n), accel - ground;  // free motion: no Bouc–Wen states
   system_.rhs(t, y_dot_, y_ddot_);
-  rate = y_ddot_.tail(n) + ground;
+  rate = y_ddot_.segment(n, n) + ground;
 }
 
 }  // namespace pounding::solvers

@@ -33,7 +33,8 @@ SecondOrderLinearSolver::SecondOrderLinearSolver(OdeFunctions& functions, std::f
                                                  SUNContext context, std::string& error_sink)
     : functions_(functions),
       newton_data_(std::move(newton_data)),
-      n_(functions.state_size() / 2),
+      n_((functions.state_size() - functions.extra_state_count()) / 2),
+      m_(functions.extra_state_count()),
       error_sink_(error_sink) {
   SUNLinearSolver solver = SUNLinSolNewEmpty(context);
   if (!solver) throw std::runtime_error("SUNDIALS: could not create a linear solver");
@@ -65,12 +66,17 @@ void SecondOrderLinearSolver::factor(const NewtonData& data) {
     factor_dense(data.gamma);
   }
   gamma_ = data.gamma;
+  factored_t_s_ = data.t_s;
   stale_ = false;
   ++factorizations_;
 }
 
 void SecondOrderLinearSolver::evaluate_jacobian(const NewtonData& data) {
   sparse_ = functions_.acceleration_jacobian(data.t_s, view(data.prediction), sparse_rows_);
+  if (m_ > 0) {
+    if (!sparse_) throw std::logic_error("extra states need the sparse acceleration rows");
+    functions_.extra_state_jacobian(data.t_s, view(data.prediction), accel_by_w_, w_rate_by_velocity_, w_rate_by_w_);
+  }
   if (!sparse_) {
     jacobian_.resize(2 * n_, 2 * n_);
     functions_.jacobian(data.t_s, view(data.prediction), jacobian_);
@@ -88,8 +94,11 @@ void SecondOrderLinearSolver::evaluate_jacobian(const NewtonData& data) {
 void SecondOrderLinearSolver::factor_sparse(double g, bool new_rows) {
   Eigen::SparseMatrix<double> identity(n_, n_);
   identity.setIdentity();
-  const Eigen::SparseMatrix<double> reduced =
-      identity - g * sparse_rows_.rightCols(n_) - (g * g) * sparse_rows_.leftCols(n_);
+  Eigen::SparseMatrix<double> reduced = identity - g * sparse_rows_.rightCols(n_) - (g * g) * sparse_rows_.leftCols(n_);
+  if (m_ > 0) {
+    w_factor_ = (1.0 - g * w_rate_by_w_.array()).inverse().matrix();
+    reduced -= (g * g) * (accel_by_w_ * w_factor_.asDiagonal() * w_rate_by_velocity_);
+  }
   // The pattern changes with the contact phase only, and ordering it costs half as much as the
   // numeric factorisation: order again only when the pattern is not the one ordered (rows kept
   // from the last factorisation keep its pattern, which was ordered then).
@@ -126,16 +135,29 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
     // Refactor when the contact phase changed or γ moved by more than 20 % from the factored
     // value (the policy of CVODE's own matrix-based path): a modestly stale Newton matrix still
     // converges quickly, a badly stale one does not.
-    if (me->stale_ || std::abs(data.gamma - me->gamma_) > kGammaTolerance * std::abs(me->gamma_)) me->factor(data);
+    // Extra states (Bouc–Wen's z) change J sharply where a drift rate turns: J is evaluated anew
+    // at every new step attempt (t), which costs little next to the steps it saves.
+    const bool new_step = me->m_ > 0 && data.t_s != me->factored_t_s_;
+    if (me->stale_ || new_step || std::abs(data.gamma - me->gamma_) > kGammaTolerance * std::abs(me->gamma_)) {
+      me->factor(data);
+    }
     const Eigen::Index n = me->n_;
     const auto rhs = view(b);
     auto out = view(x);
     const double g = me->gamma_;  // solve the system that was factored, consistently
     if (me->sparse_) {
-      const Eigen::VectorXd x2 =
-          me->sparse_reduced_.solve(rhs.tail(n) + g * (me->sparse_rows_.leftCols(n) * rhs.head(n)));
+      const Eigen::Index m = me->m_;
+      Eigen::VectorXd right = rhs.segment(n, n) + g * (me->sparse_rows_.leftCols(n) * rhs.head(n));
+      Eigen::VectorXd w_part;  // D⁻¹ b₃
+      if (m > 0) {
+        w_part = me->w_factor_.cwiseProduct(rhs.tail(m));
+        right += g * (me->accel_by_w_ * w_part);
+      }
+      const Eigen::VectorXd x2 = me->sparse_reduced_.solve(right);
+      // x may alias b: b₁ and b₃ are read before x₁ and x₃ are written.
+      if (m > 0) out.tail(m) = w_part + g * me->w_factor_.cwiseProduct(me->w_rate_by_velocity_ * x2);
       out.head(n) = rhs.head(n) + g * x2;
-      out.tail(n) = x2;
+      out.segment(n, n) = x2;
       return SUNLS_SUCCESS;
     }
     if (me->diagonal_) {

@@ -404,6 +404,31 @@ BOOST_AUTO_TEST_CASE(AbsurdBuildingValuesNameTheirRange) {
   BOOST_TEST(mentions(error_of(edited("name = \"small\"", "name = \"\"")), {"name = \"\"", "must not be empty"}));
 }
 
+BOOST_AUTO_TEST_CASE(BoucWenParametersAreCheckedAndOnlyForTheirLaw) {
+  // Building 1 has columns; its hysteresis table goes after them.
+  const std::string columns =
+      "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";
+  const auto with_law = [&](const std::string& table) {
+    return edited(columns, columns + "\n[building.hysteresis]\nyield_drift_ratio = 0.005\n" + table);
+  };
+  Case valid(with_law("law = \"bouc-wen\"\nbeta = 0.6\ngamma = -0.2\nn = 3\n"));
+  const pounding::model::HystereticLaw law = read_scene(valid.file).buildings[0].hysteresis;
+  BOOST_TEST((law.kind == pounding::model::HystereticLaw::Kind::bouc_wen));
+  BOOST_TEST(law.bouc_wen_a == 1.0);  // the default
+  BOOST_TEST(law.bouc_wen_beta == 0.6);
+  BOOST_TEST(law.bouc_wen_gamma == -0.2);
+  BOOST_TEST(law.bouc_wen_n == 3.0);
+  BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\ngamma = 0.7\n")),
+                      {"building[1].hysteresis.gamma = 0.7", "[-beta, beta] = [-0.5, 0.5]"}));
+  BOOST_TEST(
+      mentions(error_of(with_law("law = \"bouc-wen\"\nn = 0.5\n")), {"building[1].hysteresis.n = 0.5", "[1, 50]"}));
+  BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\na = 0\n")), {"building[1].hysteresis.a = 0", "(0, 10]"}));
+  BOOST_TEST(mentions(error_of(with_law("law = \"bilinear\"\nbeta = 0.3\n")),
+                      {"building[1].hysteresis.beta = 0.3", "applies to law = \"bouc-wen\" only"}));
+  BOOST_TEST(mentions(error_of(with_law("law = \"plastic\"\n")),
+                      {"building[1].hysteresis.law", "\"elastic\", \"bilinear\" or \"bouc-wen\""}));
+}
+
 BOOST_AUTO_TEST_CASE(AbsurdContactSolverAndOutputValuesNameTheirRange) {
   BOOST_TEST(mentions(error_of(kScene, {.gap_m = 1e17}), {"--gap = 1e+17", "[0, 10] m"}));
   BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = 0.5\nhold_velocity_mps = 1e6")),

@@ -218,3 +218,108 @@ BOOST_AUTO_TEST_CASE(ElasticColumnsAddNoWitnessesAndNoOutputs) {
   BOOST_TEST(run.statistics.yield_events == 0);
   BOOST_TEST(run.energy.hysteretic_kJ == 0.0);
 }
+
+// Bouc–Wen with A = 1, β = γ = ½, n = 2: while the drift grows from rest, ż = ḋ (1 − z²)/d_y, so
+// z = tanh(d/d_y) along the whole loading (whatever the time history), and the column's force is
+// α k d + (1 − α) k d_y tanh(d/d_y). Released with v0 and undamped, the work gives the speed at
+// every drift, ½ m v² = ½ m v0² − ½ α k d² − (1 − α) k d_y² ln cosh(d/d_y), so the time to reach a
+// drift d is ∫ dd/v (Simpson below, far from the peak where v vanishes). Of the plastic part's work
+// (1 − α) k d_y² ln cosh x (x = d/d_y) it stores ½ (1 − α) k d_y² tanh² x: the rest is dissipated.
+namespace {
+
+struct BoucWenLoading {
+  double k, m, d_y, alpha, v0;
+  double speed(double d) const {
+    const double x = d / d_y;
+    const double work = 0.5 * alpha * k * d * d + (1.0 - alpha) * k * d_y * d_y * std::log(std::cosh(x));
+    return std::sqrt(v0 * v0 - 2.0 * work / m);
+  }
+  /// The time at which the drift reaches d (composite Simpson, 20 000 intervals).
+  double time_to(double d) const {
+    constexpr int kIntervals = 20000;
+    const double h = d / kIntervals;
+    double sum = 1.0 / speed(0.0) + 1.0 / speed(d);
+    for (int i = 1; i < kIntervals; ++i) sum += (i % 2 == 1 ? 4.0 : 2.0) / speed(i * h);
+    return sum * h / 3.0;
+  }
+  /// Per column (of k/4): what the plastic part dissipated by drift d (kJ).
+  double dissipated_kJ(double d) const {
+    const double x = d / d_y;
+    return (1.0 - alpha) * (k / 4.0) * d_y * d_y * (std::log(std::cosh(x)) - 0.5 * std::tanh(x) * std::tanh(x));
+  }
+};
+
+model::HystereticLaw bouc_wen(double d_y, double alpha, double n) {
+  model::HystereticLaw law{
+      .kind = model::HystereticLaw::Kind::bouc_wen, .yield_drift_m = d_y, .hardening_ratio = alpha};
+  law.bouc_wen_n = n;
+  return law;
+}
+
+solvers::RunResult released(const dynamics::CoupledSystem& system, double v0, double rtol = 1e-11) {
+  solvers::EventOptions options;
+  options.initial_state = Eigen::VectorXd::Zero(system.state_size());
+  options.initial_state[system.dof()] = v0;  // u̇ of building A's floor 1
+  return solvers::run_event_driven(system, options, cvode(rtol, rtol / 100), "cvode-bdf");
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(BoucWenOscillatorLoadsAlongItsClosedFormBackbone) {
+  const BoucWenLoading sdof{4.0 * kColumn_kN_per_m, kMass_t, 0.01, 0.1, 0.5};
+  const double d_end = 0.02;  // well past d_y, well before the peak (speed there: 0.32 m/s)
+  BOOST_TEST_REQUIRE(sdof.speed(d_end) > 0.3);
+  const double t_end = sdof.time_to(d_end);
+  const auto system = system_of(bouc_wen(sdof.d_y, sdof.alpha, 2.0), t_end);
+  BOOST_TEST_REQUIRE(system.state_size() == 2 * system.dof() + 8);  // one z per column and direction
+  const solvers::RunResult run = released(system, sdof.v0);
+  BOOST_TEST(solvers::to_string(run.status) == "completed");
+  BOOST_TEST_REQUIRE(run.springs.size() == 8u);
+  for (std::size_t j = 0; j < run.springs.size(); ++j) {
+    const solvers::SpringResult& r = run.springs[j];
+    if (system.springs()[j].direction == 1) {
+      BOOST_TEST(r.yield_count == 0);
+      BOOST_TEST(r.hysteretic_kJ == 0.0);
+      continue;
+    }
+    BOOST_TEST(std::abs(r.final_drift_m - d_end) < 1e-9);
+    BOOST_TEST(std::abs(r.final_slip_m - (d_end - sdof.d_y * std::tanh(d_end / sdof.d_y))) < 1e-9);
+    BOOST_TEST(std::abs(r.first_yield_t_s - sdof.time_to(sdof.d_y)) < 1e-9);  // |d| reaching d_y
+    BOOST_TEST(r.hysteretic_kJ == sdof.dissipated_kJ(d_end), tt::tolerance(1e-6));
+  }
+  const double initial_kJ = 0.5 * kMass_t * sdof.v0 * sdof.v0;
+  BOOST_TEST(run.energy.kinetic_kJ + run.energy.strain_kJ + run.energy.hysteretic_kJ == initial_kJ,
+             tt::tolerance(1e-8));
+}
+
+BOOST_AUTO_TEST_CASE(BoucWenTendsToTheBilinearLawAsNGrows) {
+  // The bilinear oscillator of the first test (α = 0.1, no P-Δ) against Bouc–Wen (A = 1,
+  // β = γ = ½) of growing n, each run to a quarter period after the bilinear peak: the peak drift
+  // and the slip approach the bilinear closed form, each n closer than the one before.
+  const Bilinear sdof{4.0 * kColumn_kN_per_m, 0.0, kMass_t, 0.01, 0.1, 0.5};
+  const double t_end = sdof.t_yield() + sdof.post_yield_time() + 0.25 * 2.0 * std::numbers::pi / sdof.omega();
+  double previous_peak_error = 1.0, previous_slip_error = 1.0;
+  for (double n : {2.0, 8.0, 32.0}) {
+    BOOST_TEST_CONTEXT("n = " << n) {
+      const auto system = system_of(bouc_wen(sdof.d_y, sdof.alpha, n), t_end);
+      const solvers::RunResult run = released(system, sdof.v0, 1e-10);
+      BOOST_TEST_REQUIRE(solvers::to_string(run.status) == "completed");
+      const double peak_error = std::abs(run.springs[0].peak_drift_m - sdof.x_max());
+      const double slip_error = std::abs(run.springs[0].final_slip_m - sdof.slip());
+      BOOST_TEST_MESSAGE("n = " << n << ": peak drift " << run.springs[0].peak_drift_m << " m (bilinear "
+                                << sdof.x_max() << "), slip " << run.springs[0].final_slip_m << " m (bilinear "
+                                << sdof.slip() << ")");
+      BOOST_TEST(peak_error < previous_peak_error);
+      BOOST_TEST(slip_error < previous_slip_error);
+      if (n == 32.0) {
+        BOOST_TEST(peak_error < 1e-3 * sdof.x_max());  // 4.4e-4 here
+        BOOST_TEST(slip_error < 2e-3 * sdof.slip());   // 7.2e-4
+      }
+      previous_peak_error = peak_error;
+      previous_slip_error = slip_error;
+      const double initial_kJ = 0.5 * kMass_t * sdof.v0 * sdof.v0;
+      BOOST_TEST(run.energy.kinetic_kJ + run.energy.strain_kJ + run.energy.hysteretic_kJ == initial_kJ,
+                 tt::tolerance(1e-6));
+    }
+  }
+}

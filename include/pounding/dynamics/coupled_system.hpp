@@ -1,7 +1,8 @@
 #pragma once
 // The two buildings as one first-order system, independent of any solver:
 //   y = (q₁, q₂, q̇₁, q̇₂),  ẏ = A y + B a_g(t),  A = [[0, I], [−M⁻¹K, −M⁻¹C]],  B = [0; −r],
-// with q_b ordered floor by floor (u, v, φ). Units: m, rad, s, t, kN.
+// with q_b ordered floor by floor (u, v, φ). Bouc–Wen columns (yielding_springs.hpp) append their
+// hysteretic variables: y = (q, q̇, z), and the motion is no longer linear. Units: m, rad, s, t, kN.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -34,7 +35,8 @@ class CoupledSystem {
                 std::vector<contact::Level> levels, std::vector<contact::Candidate> candidates);
 
   int dof() const { return dof_; }
-  int state_size() const { return 2 * dof_; }
+  /// 2n, plus one z per Bouc–Wen spring (springs().smooth_count()).
+  int state_size() const { return 2 * dof_ + springs_.smooth_count(); }
   /// Index in q of the u of `floor` (1-based) of `building` (0 or 1).
   int floor_index(int building, int floor) const { return offset_[building] + 3 * (floor - 1); }
 
@@ -67,8 +69,17 @@ class CoupledSystem {
   void rhs(double t, ConstVectorRef y, Eigen::Ref<VectorXd> y_dot, const SpringStates* springs = nullptr) const;
   /// The yielding column springs (empty when every building's columns stay elastic).
   const YieldingSprings& springs() const { return springs_; }
-  /// The constant Jacobian A of the free motion (with every spring elastic).
+  /// The constant Jacobian A of the free motion (with every spring elastic; 2n square, without
+  /// Bouc–Wen states).
   const MatrixXd& jacobian() const { return a_matrix_; }
+  /// The full Jacobian (state_size() square) of rhs with `springs` in state y, its acceleration
+  /// rows `acceleration_rows` (n × 2n, as constrained_acceleration_jacobian gives them) completed
+  /// by the Bouc–Wen states' rows and columns.
+  void full_jacobian(ConstVectorRef y, const Eigen::SparseMatrix<double>& acceleration_rows,
+                     Eigen::Ref<MatrixXd> jacobian) const;
+  /// The Bouc–Wen states' blocks of the Jacobian (YieldingSprings::smooth_jacobian).
+  void smooth_jacobian(ConstVectorRef y, Eigen::SparseMatrix<double>& accel_by_z,
+                       Eigen::SparseMatrix<double>& z_rate_by_velocity, VectorXd& z_rate_by_z) const;
 
   /// Gap state of candidate `index` in state y.
   contact::GapState gap(ConstVectorRef y, std::size_t index) const;

@@ -14,11 +14,17 @@
 // changes are root functions ("witnesses") the integrator locates:
 //   elastic:    d_y − |d_j − s_j|   falls where the spring yields;
 //   yielding ±: ±ḋ_j                falls where it unloads.
+// A Bouc–Wen spring (model::HystereticLaw::Kind::bouc_wen) is smooth instead: its plastic part's
+// force is (1 − α) k d_y z_j, i.e. its slip is s_j = d_j − d_y z_j, with z_j an extra ODE state
+// after (q, q̇) in y (z_index) obeying ż = (ḋ/d_y)(A − |z|ⁿ(β sgn(ḋ z) + γ)); it has no branches
+// and no witness. Its part stores ½ (1 − α) k d_y² z²/A and dissipates the rest of its work at
+// the rate dissipation_power() ≥ 0.
 // Units: m, s, kN.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +43,11 @@ struct SpringState {
 /// The branch and slip of every yielding spring, one per spring: a run's discrete state.
 using SpringStates = std::vector<SpringState>;
 
+/// Bouc–Wen's shape parameters (model::HystereticLaw): A, β, γ and the exponent n.
+struct BoucWenShape {
+  double a = 1.0, beta = 0.5, gamma = 0.5, n = 2.0;
+};
+
 struct YieldingSpring {
   int building = 0;                 // 0 or 1
   int storey = 1;                   // 1-based: joins floor storey − 1 (the ground for 1) and floor storey
@@ -49,6 +60,9 @@ struct YieldingSpring {
   /// d = Σ coefficients[i] · q[indices[i]] (the lower floor's terms absent for storey 1).
   std::vector<int> indices;
   std::vector<double> coefficients;
+  /// A smooth (Bouc–Wen) spring: its shape, and the index in y of its z. Empty: bilinear.
+  std::optional<BoucWenShape> bouc_wen;
+  int z_index = -1;
 
   /// (1 − α) k (kN/m): the stiffness of the elastic–perfectly-plastic part.
   double plastic_stiffness() const { return (1.0 - hardening_ratio) * stiffness_kN_per_m; }
@@ -65,26 +79,45 @@ class YieldingSprings {
   std::size_t size() const { return springs_.size(); }
   const YieldingSpring& operator[](std::size_t j) const { return springs_[j]; }
   const std::vector<YieldingSpring>& all() const { return springs_; }
+  /// The number of smooth (Bouc–Wen) springs: the ODE states z after (q, q̇) in y.
+  int smooth_count() const { return smooth_count_; }
+  /// n, the number of displacements: y = (q, q̇, z).
+  int dof() const { return dof_; }
 
   /// d_j (m) for displacements q, or ḋ_j (m/s) for velocities q̇.
   double drift(const Eigen::Ref<const Eigen::VectorXd>& q, std::size_t j) const;
-  /// s_j (m): the stored slip while elastic, d_j ∓ d_y while yielding.
-  double slip(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states, std::size_t j) const;
-  /// Adds Σ (1 − α) k s_j t_j (kN, kN·m) to `force`.
-  void add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states,
+  /// s_j (m) in state y: the stored slip while elastic, d_j ∓ d_y while yielding; d_j − d_y z_j
+  /// for a smooth spring.
+  double slip(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states, std::size_t j) const;
+  /// Adds Σ (1 − α) k s_j t_j (kN, kN·m) in state y to `force` (size n).
+  void add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,
                       Eigen::Ref<Eigen::VectorXd> force) const;
+  /// Writes the smooth springs' ż (1/s) in state y into `z_dot` (size smooth_count()).
+  void hysteretic_rates(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> z_dot) const;
   /// Adds the yielding springs' ∂(slip force)/∂q = (1 − α) k t tᵀ, scaled by M⁻¹ (`inverse_mass`),
-  /// to the ∂q̈/∂q block of `rows` (n × 2n).
+  /// to the ∂q̈/∂q block of `rows` (n × 2n): the springs on a yielding branch, and every smooth one.
   void add_tangent_rows(const SpringStates& states, const Eigen::VectorXd& inverse_mass,
                         Eigen::SparseMatrix<double>& rows) const;
-  /// Spring j's witness in y = (q, q̇) (see the header comment).
+  /// The smooth springs' blocks of the Jacobian in state y: ∂q̈/∂z = −M⁻¹ (1 − α) k d_y t
+  /// (n × m), ∂ż/∂q̇ = Φ t/d_y (m × n) and the diagonal ∂ż/∂z = (ḋ/d_y) Φ'(z) (m), with
+  /// Φ = A − |z|ⁿ (β sgn(ḋ z) + γ), whose sign term is piecewise constant.
+  void smooth_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::VectorXd& inverse_mass,
+                       Eigen::SparseMatrix<double>& accel_by_z, Eigen::SparseMatrix<double>& z_rate_by_velocity,
+                       Eigen::VectorXd& z_rate_by_z) const;
+  /// Spring j's witness in y = (q, q̇) (see the header comment); 1 for a smooth spring.
   double witness(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states, std::size_t j) const;
   /// The energy (kJ) the slips take out of ½ qᵀ K q: the springs store
-  /// ½ qᵀ K q − Σ (1 − α) k s_j d_j + ½ Σ (1 − α) k s_j².
-  double stored_energy_change(const Eigen::Ref<const Eigen::VectorXd>& q, const SpringStates& states) const;
+  /// ½ qᵀ K q − Σ (1 − α) k s_j d_j + ½ Σ (1 − α) k s_j², a smooth one ½ α k d² + ½ (1 − α) k d_y² z²/A.
+  double stored_energy_change(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states) const;
+  /// The rate (kW) at which smooth spring j dissipates energy in state y:
+  /// (1 − α) k d_y ḋ z |z|ⁿ (β sgn(ḋ z) + γ)/A ≥ 0; 0 for a bilinear spring (it dissipates at its
+  /// events, YieldStates).
+  double dissipation_power(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
 
  private:
   std::vector<YieldingSpring> springs_;
+  int dof_ = 0;           // n: y = (q, q̇, z)
+  int smooth_count_ = 0;  // the springs with a z
 };
 
 }  // namespace pounding::dynamics

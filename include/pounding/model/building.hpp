@@ -56,26 +56,44 @@ struct RayleighSpec {
 /// `elastic`: the linear spring of column_stiffness. `bilinear`: kinematic hardening; the initial
 /// stiffness k up to the yield drift, then hardening_ratio · k, unloading at k; the same as a
 /// linear spring α k in parallel with an elastic–perfectly-plastic one of stiffness (1 − α) k
-/// that yields at the same drift. Storeys given as 3×3 matrices stay elastic.
+/// that yields at the same drift. `bouc_wen`: the smooth law F = α k d + (1 − α) k d_y z with
+/// the hysteretic variable z (dimensionless) obeying ż = (ḋ/d_y)(A − |z|ⁿ(β sgn(ḋ z) + γ));
+/// with A = β + γ = 1 it saturates at the bilinear law's yield force and tends to it as n grows.
+/// Storeys given as 3×3 matrices stay elastic.
 struct HystereticLaw {
-  enum class Kind { elastic, bilinear };
+  enum class Kind { elastic, bilinear, bouc_wen };
   Kind kind = Kind::elastic;
   /// The yield drift (m) of storey j: yield_drift_ratio · H_j, or yield_drift_m for every storey.
   std::optional<double> yield_drift_ratio;
   std::optional<double> yield_drift_m;
   double hardening_ratio = 0.0;  // α ∈ [0, 1): post-yield over initial stiffness
+  /// Bouc–Wen's shape parameters (only for Kind::bouc_wen): A > 0; β > 0 and |γ| ≤ β, so that
+  /// z stays within (A/(β + γ))^(1/n) and no loop returns energy; n ≥ 1, the sharpness.
+  double bouc_wen_a = 1.0;
+  double bouc_wen_beta = 0.5;
+  double bouc_wen_gamma = 0.5;
+  double bouc_wen_n = 2.0;
 
   bool yields() const { return kind != Kind::elastic; }
+  /// True for the laws whose state is an ODE variable (Bouc–Wen's z) rather than branches.
+  bool is_smooth() const { return kind == Kind::bouc_wen; }
   /// @pre yields(); storey_height_m > 0.
   double yield_drift_of(double storey_height_m) const {
     return yield_drift_m ? *yield_drift_m : *yield_drift_ratio * storey_height_m;
   }
 };
 
+/// The scene's name of a law ("elastic", "bilinear", "bouc-wen").
+const char* to_string(HystereticLaw::Kind kind);
+
 /// The ranges of HystereticLaw's parameters, public for the scene reader's messages.
 inline constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};
 inline constexpr Range kYieldDrift{0.0, 1.0, "m", true};
 inline constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
+inline constexpr Range kBoucWenA{0.0, 10.0, "", true};
+inline constexpr Range kBoucWenBeta{0.0, 10.0, "", true};
+inline constexpr Range kBoucWenGamma{-10.0, 10.0};
+inline constexpr Range kBoucWenN{1.0, 50.0};
 
 /// Everything a scene says about one building. All floors share the slab outline and the CM.
 struct BuildingDefinition {

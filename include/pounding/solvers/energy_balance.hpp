@@ -6,6 +6,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/integrator.hpp"
@@ -21,7 +22,8 @@ inline constexpr std::array<double, 3> kGaussWeights{5.0 / 9.0, 8.0 / 9.0, 5.0 /
 class EnergyBalance {
  public:
   /// @pre `system` outlives the balance.
-  explicit EnergyBalance(const dynamics::CoupledSystem& system) : system_(system) {}
+  explicit EnergyBalance(const dynamics::CoupledSystem& system)
+      : system_(system), smooth_dissipated_kJ_(system.springs().size(), 0.0) {}
 
   /// Adds the smooth stretch (t_a, t_b] whose states `at(t)` returns: input and damping from
   /// `closed_form` when given (the integrator's own, for a stretch without contact forces), else
@@ -38,6 +40,10 @@ class EnergyBalance {
   /// HHT: energy a step's update removed (kJ), see HhtStepper::algorithmic_dissipation.
   void add_algorithmic_dissipation(double energy_kJ) { audit_.algorithmic_dissipation_kJ += energy_kJ; }
 
+  /// Per yielding spring, the energy (kJ) a smooth (Bouc–Wen) one dissipated so far, by the same
+  /// quadrature as the damping (YieldingSprings::dissipation_power); 0 for a bilinear one.
+  const std::vector<double>& smooth_dissipated_kJ() const { return smooth_dissipated_kJ_; }
+
   /// The audit, with the kinetic and strain energy of `final_state` (with its yielding springs'
   /// `springs`, CoupledSystem::strain_energy).
   EnergyAudit close(const dynamics::VectorXd& final_state, const dynamics::SpringStates* springs = nullptr) const;
@@ -49,6 +55,7 @@ class EnergyBalance {
 
   const dynamics::CoupledSystem& system_;
   EnergyAudit audit_;
+  std::vector<double> smooth_dissipated_kJ_;
   bool split_at_samples_ = false;
 };
 

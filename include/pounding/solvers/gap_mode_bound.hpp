@@ -46,6 +46,7 @@ class GapModeBound {
   };
 
   std::vector<OscillatingMode> modes_;  // shortest damped period first
+  Eigen::Index dof_ = 0;                // n: the velocities start at y[n]
   double resolution_m_;
   double steps_per_period_;
   double longest_period_s_ = 0.0;  // of either building (the damped one where it oscillates)

@@ -22,11 +22,22 @@ class OdeFunctions {
   virtual void roots(double t, const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> g) = 0;
   /// For a second-order system, jacobian() = [[0, I], [A21, A22]]: writes its lower half
   /// [A21, A22] (n × 2n) sparse and returns true, so that a linear solver can use the sparsity;
-  /// false (the default): not available, use jacobian().
+  /// false (the default): not available, use jacobian(). With extra states (extra_state_count)
+  /// these are the rows' (q, q̇) columns, the rest coming from extra_state_jacobian().
   virtual bool acceleration_jacobian(double /*t*/, const Eigen::Ref<const Eigen::VectorXd>& /*y*/,
                                      Eigen::SparseMatrix<double>& /*rows*/) {
     return false;
   }
+  /// First-order states w after (q, q̇) (Bouc–Wen's z): y = (q, q̇, w), their rates depending on
+  /// q̇ and w only, each w_j on itself alone. 0 (the default): none.
+  virtual int extra_state_count() const { return 0; }
+  /// Their blocks of jacobian(): ∂q̈/∂w (n × m), ∂ẇ/∂q̇ (m × n) and the diagonal ∂ẇ/∂w (m), sparse,
+  /// for a linear solver that eliminates w (SecondOrderLinearSolver).
+  /// @pre extra_state_count() > 0.
+  virtual void extra_state_jacobian(double /*t*/, const Eigen::Ref<const Eigen::VectorXd>& /*y*/,
+                                    Eigen::SparseMatrix<double>& /*accel_by_w*/,
+                                    Eigen::SparseMatrix<double>& /*w_rate_by_velocity*/,
+                                    Eigen::VectorXd& /*w_rate_by_w*/) {}
   /// True when rhs is affine in y with a constant jacobian() (free flight); false when it may
   /// depend on y nonlinearly (a held contact's rotating geometry).
   virtual bool is_linear() const { return false; }

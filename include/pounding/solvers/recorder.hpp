@@ -69,6 +69,8 @@ class Recorder {
   /// See EnergyBalance::split_at_samples.
   void split_energy_at_samples(bool on) { energy_.split_at_samples(on); }
   void add_impact_loss(double energy_kJ) { energy_.add_impact_loss(energy_kJ); }
+  /// See EnergyBalance::smooth_dissipated_kJ.
+  const std::vector<double>& smooth_dissipated_kJ() const { return energy_.smooth_dissipated_kJ(); }
   /// Passes the impacts appended to `impacts` since the last call to the sink (if any). Call it
   /// once an event's records are final.
   void stream_new_impacts(const std::vector<ImpactRecord>& impacts);

@@ -13,6 +13,11 @@
 // refactorisation for a new γ redoes only the γ-dependent work (O(n) in modal free flight, where
 // evaluating and scanning the dense J is O(n²)); a nonlinear phase (a hold, a compliant contact)
 // evaluates J at every refactorisation.
+//   Extra first-order states w (OdeFunctions::extra_state_count: Bouc–Wen's z), with
+// J = [[0, I, 0], [A21, A22, B], [0, C, diag d]], are eliminated too (sparse path only): with
+// D = I − γ diag d,
+//   (I − γA22 − γ²A21 − γ² B D⁻¹ C) x₂ = b₂ + γ A21 b₁ + γ B D⁻¹ b₃,  x₃ = D⁻¹ (b₃ + γ C x₂),
+// where B D⁻¹ C couples only the floors a column joins, so the reduced matrix keeps K's pattern.
 
 #include <Eigen/LU>
 #include <Eigen/SparseLU>
@@ -62,7 +67,8 @@ class SecondOrderLinearSolver {
   OdeFunctions& functions_;
   std::function<NewtonData()> newton_data_;
   sundials::LinearSolver handle_;
-  Eigen::Index n_ = 0;  // second-order DOF count: the state has 2n entries
+  Eigen::Index n_ = 0;  // second-order DOF count: the state has 2n entries, then m_ extra ones
+  Eigen::Index m_ = 0;
   /// Factors I − γA22 − γ²A21 from the sparse rows [A21, A22] in sparse_rows_; orders its pattern
   /// again only when `new_rows` (just evaluated) and the pattern is not the one ordered.
   void factor_sparse(double gamma, bool new_rows);
@@ -73,6 +79,8 @@ class SecondOrderLinearSolver {
   Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;  // dense path, when not diagonal
   bool sparse_ = false;                           // the last evaluation of J gave sparse rows
   Eigen::SparseMatrix<double> sparse_rows_;       // [A21, A22], n × 2n
+  Eigen::SparseMatrix<double> accel_by_w_, w_rate_by_velocity_;  // B (n × m) and C (m × n)
+  Eigen::VectorXd w_rate_by_w_, w_factor_;                       // d, and D⁻¹ = 1/(1 − γ d) as factored
   Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_reduced_;
   std::vector<int> ordered_outer_, ordered_inner_;  // the pattern sparse_reduced_ was ordered for
   bool diagonal_ = false;              // A21 and A22 diagonal: reduced_diagonal_ holds the matrix
@@ -80,6 +88,7 @@ class SecondOrderLinearSolver {
   Eigen::VectorXd a21_diagonal_, a22_diagonal_;
   bool jacobian_current_ = false;      // J is this phase's (kept while the phase is linear)
   double gamma_ = 0.0;
+  double factored_t_s_ = 0.0;  // the Newton prediction's time at the last factorisation
   bool stale_ = true;
   long factorizations_ = 0, jacobian_evaluations_ = 0;
   std::string& error_sink_;

@@ -6,7 +6,9 @@
 //   elastic  → yielding ±  where |d − s| reaches d_y with the drift moving outwards;
 //   yielding → elastic     where the drift rate turns (ḋ = 0), keeping the slip s = d ∓ d_y.
 // A yielding phase dissipates (1 − α) k d_y |Δs| (the plastic part's constant force times its
-// slip), added when it ends.
+// slip), added when it ends. A smooth (Bouc–Wen) spring has no branches: its one event is its
+// first yield (|d| reaching d_y outwards), and its dissipation is integrated with the energy
+// audit (EnergyBalance) and handed to finish().
 
 #include <Eigen/Core>
 #include <deque>
@@ -29,16 +31,17 @@ class YieldStates {
   /// The states for the system's functions: nullptr when nothing yields (the elastic path).
   const dynamics::SpringStates* states() const { return springs_.empty() ? nullptr : &states_; }
   bool any_yielding() const { return yielding_ > 0; }
-  /// Spring j's witness in y (YieldingSprings::witness).
-  double witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const {
-    return springs_.witness(y, states_, j);
-  }
+  /// Spring j's witness in y (YieldingSprings::witness); a smooth spring's is d_y − |d| until it
+  /// first yields, then 1.
+  double witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
 
   /// At an event at (t, y), ẏ = y_dot (on the present branches): switches every spring whose
   /// witness is at or below zero (the flagged ones and any that crossed with them by rounding)
   /// if its motion goes on past the switch: outwards from the yield drift (a drift rate, or at
   /// zero rate an acceleration, pointing out), back from a yielding branch (the drift rate
-  /// turned, unless at zero rate the acceleration reloads it). @return the number switched.
+  /// turned, unless at zero rate the acceleration reloads it). A smooth spring
+  /// moving outwards at its first yield counts too (it is the integrator's to restart).
+  /// @return the number switched.
   int switch_branches(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& y_dot);
   /// The first spring that switched more than max_switches_per_s times within one simulated
   /// second (a drift rate held at round-off on the yield drift), if any.
@@ -47,8 +50,10 @@ class YieldStates {
   /// index of a spring whose drift passed kCollapseDriftRatio of its storey height, if one did.
   std::optional<std::size_t> observe(const Eigen::VectorXd& y);
   /// The per-spring results at the run's end (ending the yielding phases in progress), and the
-  /// energy they dissipated (kJ).
-  std::vector<SpringResult> finish(const Eigen::VectorXd& y, double& hysteretic_kJ);
+  /// energy they dissipated (kJ). `smooth_dissipated_kJ`: per spring, what the audit integrated
+  /// for the smooth ones (EnergyBalance::smooth_dissipated_kJ).
+  std::vector<SpringResult> finish(const Eigen::VectorXd& y, const std::vector<double>& smooth_dissipated_kJ,
+                                   double& hysteretic_kJ);
 
  private:
   /// Ends a yielding phase of spring j at slip `slip_m`: adds its dissipation.
