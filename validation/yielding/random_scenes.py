@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Yielding columns on random scenes: the paper's buildings (examples/paper/paper-yielding.toml)
 with a random yield drift, hardening, P-Δ, gap, restitution, contact law, record scale and
-method, each run once. Checks that no run crashes, hangs or writes NaN, that every run ends with
+method, each run once; with --law bouc-wen the columns are Bouc-Wen with random n in
+{1, 2, 5, 20}, beta in [0.1, 0.9] and gamma in [-beta, beta] (A = 1). Checks that no run crashes, hangs or writes NaN, that every run ends with
 a named status, and that every completed run's energy audit (with the hysteretic term) closes
 to 1e-4 of the input at the default tolerances. Prints a table and a summary line.
 
     validation/yielding/random_scenes.py [--pounding build/apps/pounding] [--count 60] [--seed 1]
-                                         [--out out/yielding-random]
+                                         [--law bilinear|bouc-wen] [--out out/yielding-random]
 """
 import argparse
 import json
@@ -23,7 +24,7 @@ METHODS = ("cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk")
 STATUSES = {"completed", "collapse", "event_limit", "step_limit", "time_limit", "unresolved_overlap"}
 
 
-def scene_text(rng):
+def scene_text(rng, law="bilinear"):
     ratio = math.exp(rng.uniform(math.log(5e-4), math.log(2e-2)))
     hardening = rng.choice((0.0, 0.01, 0.05, 0.2, 0.9))
     p_delta = rng.random() < 0.5
@@ -34,7 +35,13 @@ def scene_text(rng):
                         f"hardening_ratio = {hardening!r}")
     if p_delta:
         text = text.replace("E_kPa = 3.15e7", "E_kPa = 3.15e7\np_delta = true")
-    return text, {"yield_drift_ratio": round(ratio, 5), "hardening_ratio": hardening, "p_delta": p_delta}
+    case = {"yield_drift_ratio": round(ratio, 5), "hardening_ratio": hardening, "p_delta": p_delta}
+    if law == "bouc-wen":
+        beta = round(rng.uniform(0.1, 0.9), 3)
+        shape = {"n": rng.choice((1.0, 2.0, 5.0, 20.0)), "beta": beta, "gamma": round(rng.uniform(-beta, beta), 3)}
+        text = text.replace('law = "bilinear"', 'law = "bouc-wen"\n' + "".join(f"{k} = {v!r}\n" for k, v in shape.items()))
+        case.update(shape)
+    return text, case
 
 
 def main():
@@ -42,6 +49,7 @@ def main():
     parser.add_argument("--pounding", default=str(ROOT / "build/apps/pounding"))
     parser.add_argument("--count", type=int, default=60)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--law", choices=("bilinear", "bouc-wen"), default="bilinear")
     parser.add_argument("--out", default=str(ROOT / "out/yielding-random"))
     args = parser.parse_args()
     rng = random.Random(args.seed)
@@ -49,7 +57,7 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     failures, rows = [], []
     for k in range(args.count):
-        text, case = scene_text(rng)
+        text, case = scene_text(rng, args.law)
         case.update(gap_m=round(rng.uniform(0.0, 0.3), 4), restitution=rng.choice((0.0, 0.5, 1.0)),
                     law=rng.choice(("impulse", "impulse", "kelvin")), pga_g=round(rng.uniform(0.1, 1.0), 3),
                     method=rng.choice(METHODS))
@@ -86,7 +94,8 @@ def main():
         ductility = max((max(s["peak_ductility_x"], s["peak_ductility_y"]) for b in summary["yielding"]["buildings"]
                          for s in b["storeys"]), default=0.0)
         rows.append((k, case, status, summary["impact_count"], ductility, residual, elapsed))
-        print(f"{k:3d} {case['method']:<11} ratio {case['yield_drift_ratio']:<8} alpha {case['hardening_ratio']:<4} "
+        shape = f"n {case['n']:g} b {case['beta']} g {case['gamma']} " if "n" in case else ""
+        print(f"{k:3d} {case['method']:<11} {shape}ratio {case['yield_drift_ratio']:<8} alpha {case['hardening_ratio']:<4} "
               f"P-D {int(case['p_delta'])} gap {case['gap_m']:<6} k {case['restitution']:<3} {case['law']:<7} "
               f"{case['pga_g']:<5} g: {status:<12} {summary['impact_count']:5d} impacts, ductility {ductility:9.3f}, "
               f"residual {residual:+.1e}, {elapsed:.1f} s", flush=True)
