@@ -8,6 +8,8 @@ The manifest (TOML; paths relative to its folder; docs/guide/verify.md):
 
     name = "paper"                          # absent: the file's name
     expected = "paper.expected.json"        # the blessed results; absent: <manifest stem>.expected.json
+    isolate = true                          # each case in a process of its own (or --isolate): a crash
+                                            # or a hang fails that case only
     [defaults.checks]                       # merged under every case's checks
     energy_residual = { max_relative = 1e-6 }
 
@@ -20,8 +22,11 @@ The manifest (TOML; paths relative to its folder; docs/guide/verify.md):
     method = "cvode-bdf"                    # optional, with its [solver] settings
     settings = { rtol = 1e-10, atol = 1e-12 }
     max_wall_time_s = 600                   # optional: the run's budget
+    reference = "other case"                # optional: expect that case's results of this run, not
+                                            # the blessed ones (a method against a reference run)
     [case.checks]                           # what to check, each with its tolerance
-    status = true                           # the expected status ("completed")
+    status = true                           # the expected status ("completed"); or a name, or a
+                                            # list of the statuses allowed
     impact_count = true                     # exactly; or { abs = 2 }
     impact_times = { abs_s = 1e-6 }         # or { scaled = 100 }: 100 × the method's tolerance
     impulses = { rel = 1e-4, abs_kNs = 1e-6 }
@@ -43,7 +48,9 @@ import math
 import os
 import pathlib
 import re
+import signal
 import socket
+import subprocess
 import sys
 import time
 import tomllib
@@ -54,7 +61,9 @@ from pounding import InputError
 from pounding import _input_error as _error  # InputError with the library's message
 
 CASE_KEYS = ("name", "scene", "gap_m", "restitution", "contact_law", "contact_stiffness", "record", "method",
-             "settings", "max_wall_time_s", "checks", "expected")
+             "settings", "max_wall_time_s", "reference", "checks", "expected")
+ISOLATED_BUDGET_S = 600.0  # an isolated case's budget when it gives none
+HANG_GRACE_S = 60.0        # an isolated case still running this long after its budget hangs
 # Each check kind and its tolerance fields (each a number >= 0).
 CHECK_FIELDS = {"status": (), "impact_count": ("abs",), "impact_times": ("abs_s", "scaled", "after_s", "before_s"),
                 "impulses": ("rel", "abs_kNs", "after_s", "before_s"),
@@ -87,8 +96,11 @@ class Manifest:
             raise _error(self.file, "manifest", "", f"not valid TOML ({error})") from None
         self.name = self._text(document.get("name", self.file.stem), "name")
         self.expected_file = self._path(document.get("expected", f"{self.file.stem}.expected.json"), "expected")
+        self.isolate = document.get("isolate", False)
+        if not isinstance(self.isolate, bool):
+            raise self._refuse("isolate", repr(self.isolate), "expected true or false")
         defaults = document.get("defaults", {})
-        self._known(document, ("name", "expected", "defaults", "case"), "")
+        self._known(document, ("name", "expected", "isolate", "defaults", "case"), "")
         self._known(defaults, ("checks",), "defaults")
         default_checks = self._checks(defaults.get("checks", {}), "defaults.checks")
         cases = document.get("case")
@@ -101,6 +113,12 @@ class Manifest:
                 raise self._refuse(f"case[{index}].name", case["name"], "given twice")
             names.add(case["name"])
             self.cases.append(case)
+        for index, case in enumerate(self.cases, start=1):
+            reference = case["reference"]
+            if reference is not None and (reference not in names or reference == case["name"]):
+                raise self._refuse(f"case[{index}].reference", reference,
+                                   "names no other case of this manifest" if reference != case["name"]
+                                   else "a case cannot be its own reference")
 
     def _line(self, key):
         """The manifest line that sets `key` (a path such as case[2].checks.impulses.rel): the first
@@ -158,9 +176,10 @@ class Manifest:
                 checks[kind] = None
                 continue
             if kind == "status":
-                if spec is not True and not isinstance(spec, str):
-                    raise self._refuse(f"{where}.status", repr(spec), "expected true or a status name")
-                checks[kind] = {} if spec is True else {"value": spec}
+                names = spec if isinstance(spec, list) else [spec]
+                if spec is not True and (not names or not all(isinstance(n, str) and n for n in names)):
+                    raise self._refuse(f"{where}.status", repr(spec), "expected true, a status name or a list of them")
+                checks[kind] = {} if spec is True else {"allowed": names}
                 continue
             spec = {} if spec is True else spec
             self._known(spec, CHECK_FIELDS[kind], f"{where}.{kind}")
@@ -226,7 +245,7 @@ class Manifest:
         for key in ("gap_m", "restitution", "contact_stiffness", "max_wall_time_s"):
             if key in case:
                 result[key] = self._number(case[key], f"{where}.{key}")
-        for key in ("contact_law", "method"):
+        for key in ("contact_law", "method", "reference"):
             if key in case:
                 result[key] = self._text(case[key], f"{where}.{key}")
         result["record"] = self._record(case["record"], f"{where}.record") if "record" in case else None
@@ -317,6 +336,37 @@ def observe(case):
     return observed
 
 
+def run_child(command, payload, timeout_s):
+    """Runs `command` with `payload` (text) on its standard input: its standard output (JSON), or
+    {"error": ...} when it crashed, was killed, wrote no result or ran past timeout_s (a hang)."""
+    try:
+        done = subprocess.run(command, input=payload, capture_output=True, text=True, timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        return {"error": f"hang: no result within {timeout_s:g} s (killed)"}
+    if done.returncode < 0:
+        name = signal.Signals(-done.returncode).name if -done.returncode in signal.valid_signals() else "?"
+        return {"error": f"crashed: signal {-done.returncode} ({name})"}
+    try:
+        return json.loads(done.stdout.strip().splitlines()[-1])
+    except (json.JSONDecodeError, IndexError):
+        last = done.stderr.strip().splitlines()[-1] if done.stderr.strip() else "no output"
+        return {"error": f"exit {done.returncode}, no result: {last}"}
+
+
+def observe_isolated(case):
+    """observe() in a Python process of its own, so that a crash or a hang fails this case alone:
+    killed HANG_GRACE_S after its budget (max_wall_time_s, else ISOLATED_BUDGET_S, which it is
+    then given)."""
+    budget_s = case["max_wall_time_s"] or ISOLATED_BUDGET_S
+    payload = json.dumps({**case, "max_wall_time_s": budget_s}, default=str)
+    command = [sys.executable, "-c", "import sys, json, pounding.verify as v; "
+               "print(json.dumps(v.observe(json.loads(sys.stdin.read()))))"]
+    started = time.perf_counter()
+    observed = run_child(command, payload, budget_s + HANG_GRACE_S)
+    observed.setdefault("wall_time_s", time.perf_counter() - started)
+    return observed
+
+
 # ------------------------------------------------------------------------------------------------
 # Checking a case
 
@@ -396,12 +446,13 @@ def _checks(case, observed, blessed):
                                      "[case.expected]"))
 
     if "status" in checks:
-        wanted = checks["status"].get("value") or expected_value("status")
-        if wanted is None:
+        allowed = checks["status"].get("allowed") or [expected_value("status")]
+        if allowed[0] is None:
             no_expectation("status")
         else:
-            results.append(("status", observed["status"] == wanted,
-                            f"{observed['status']} (expected {wanted}) {observed['status_detail']}".strip()))
+            results.append(("status", observed["status"] in allowed,
+                            f"{observed['status']} (expected {' or '.join(allowed)}) "
+                            f"{observed['status_detail']}".strip()))
     if "impact_count" in checks:
         wanted = expected_value("impact_count")
         if wanted is None:
@@ -589,18 +640,21 @@ def _read_blessed(manifest):
                                                           "(write it again with --bless)") from None
 
 
-def verify(manifest_path, out=None, jobs=None, bless=False, progress=True):
-    """Runs every case of the manifest (jobs at a time: threads, the runs release the GIL) and
-    checks it; with bless, first writes the observed results as the expected ones (with
-    provenance). Writes OUT/junit.xml, verify.md and verify.json (default out/verify-<manifest
-    stem>). Returns a VerifyResult. @throws InputError for a bad manifest."""
+def verify(manifest_path, out=None, jobs=None, bless=False, progress=True, isolate=None):
+    """Runs every case of the manifest (jobs at a time: threads, the runs release the GIL; with
+    isolate, or the manifest's isolate = true, each in a process of its own) and checks it; with
+    bless, first writes the observed results as the expected ones (with provenance). A case with
+    a reference is checked against that case's results of this run. Writes OUT/junit.xml,
+    verify.md and verify.json (default out/verify-<manifest stem>). Returns a VerifyResult.
+    @throws InputError for a bad manifest."""
     started = time.perf_counter()
     manifest = Manifest(manifest_path)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise _error("", "--jobs", repr(jobs), "expected a whole number >= 1")
     out = pathlib.Path(out or pathlib.Path("out") / ("verify-" + re.sub(r"[^A-Za-z0-9_.-]", "-", manifest.name)))
     out.mkdir(parents=True, exist_ok=True)
-    observed = _run_all(manifest, jobs or os.cpu_count() or 1, progress)
+    observe_one = observe_isolated if (manifest.isolate if isolate is None else isolate) else observe
+    observed = _run_all(manifest, jobs or os.cpu_count() or 1, progress, observe_one)
     blessed_file = None
     if bless:  # a case that did not run keeps its earlier expected values
         kept = {name: o for name, o in _read_blessed(manifest).items() if "error" in observed.get(name, {})}
@@ -612,8 +666,15 @@ def verify(manifest_path, out=None, jobs=None, bless=False, progress=True):
     cases = []
     for case in manifest.cases:
         o = observed[case["name"]]
+        expected = observed[case["reference"]] if case["reference"] else blessed.get(case["name"])
         try:
-            checks = [] if "error" in o else _checks(case, o, blessed.get(case["name"]))
+            if "error" in o:
+                checks = []
+            elif expected is not None and "error" in expected:
+                checks = [("reference", False, f"the reference case {case['reference']} did not run: "
+                                               f"{expected['error']}")]
+            else:
+                checks = _checks(case, o, expected)
         except (TypeError, KeyError, ValueError, ZeroDivisionError) as error:  # a stored file of another shape
             checks = [("expected", False, f"cannot compare with the expected results ({type(error).__name__}: "
                                           f"{error}); bless them again")]
@@ -632,11 +693,11 @@ def verify(manifest_path, out=None, jobs=None, bless=False, progress=True):
     return result
 
 
-def _run_all(manifest, jobs, progress):
+def _run_all(manifest, jobs, progress, observe_one):
     observed, done, failed = {}, 0, 0
     show = progress and sys.stderr.isatty()
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = {pool.submit(observe, case): case["name"] for case in manifest.cases}
+        futures = {pool.submit(observe_one, case): case["name"] for case in manifest.cases}
         for future in concurrent.futures.as_completed(futures):
             observed[futures[future]] = future.result()
             done += 1
@@ -716,10 +777,12 @@ def main(argv=None):
     parser.add_argument("--jobs", type=int, help="cases at a time (default: every core)")
     parser.add_argument("--out", help="output folder (default out/verify-<manifest name>)")
     parser.add_argument("--no-progress", action="store_true", help="no progress line")
+    parser.add_argument("--isolate", action="store_true", default=None,
+                        help="each case in a process of its own: a crash or a hang fails that case only")
     arguments = parser.parse_args(argv)
     try:
         result = verify(arguments.manifest, out=arguments.out, jobs=arguments.jobs, bless=arguments.bless,
-                        progress=not arguments.no_progress)
+                        progress=not arguments.no_progress, isolate=arguments.isolate)
     except InputError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
