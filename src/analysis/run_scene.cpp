@@ -124,6 +124,7 @@ solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used) {
   options.restitution = scene.contact.restitution;
   options.outputs = scene.output.selection();
   options.history_floors = scene.output.history_floors;
+  options.history_other_floors = scene.history_other_floors();
   options.history_interval_s = scene.output.history_interval_s;
   return options;
 }
@@ -140,6 +141,7 @@ solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used
   options.contact_stiffness = scene.contact.used_stiffness();
   options.outputs = scene.output.selection();
   options.history_floors = scene.output.history_floors;
+  options.history_other_floors = scene.history_other_floors();
   options.history_interval_s = scene.output.history_interval_s;
   if (method.steps_per_period > 0.0) options.steps_per_period = method.steps_per_period;
   options.modes_cutoff_hz = used.modes_cutoff_hz;
@@ -249,8 +251,8 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   estimate.duration_s = system.ground_motion().end_s() - system.ground_motion().start_s();
   if (scene.output.history) {
     estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
-    estimate.history_columns =
-        static_cast<double>(solvers::history_columns(system, scene.output.history_floors).size());
+    estimate.history_columns = static_cast<double>(
+        solvers::history_columns(system, {scene.output.history_floors, scene.history_other_floors()}).size());
   }
   const UsedSettings used = resolve(scene.solver, &system);
   if (!used.method->event_driven) {

@@ -160,6 +160,29 @@ void validate_levels(const Scene& scene) {
                                fmt::join(elevations(0), ", "), fmt::join(elevations(1), ", "), tolerance));
 }
 
+/// [output.floor_history]: a building's name, then floors in 1..its storeys, none twice.
+void validate_floor_history(const Scene& scene) {
+  for (const auto& [name, floors] : scene.output.floor_history) {
+    const auto building = std::find_if(scene.buildings.begin(), scene.buildings.end(),
+                                       [&](const model::BuildingDefinition& b) { return b.name == name; });
+    const std::string key = fmt::format("output.floor_history.{}", name);
+    if (building == scene.buildings.end()) {
+      throw InputError(key, "",
+                       fmt::format("names no building (the buildings are {} and {})", scene.buildings[0].name,
+                                   scene.buildings[1].name));
+    }
+    std::set<int> seen;
+    for (std::size_t i = 0; i < floors.size(); ++i) {
+      const std::string floor_key = fmt::format("{}[{}]", key, i + 1);
+      if (floors[i] < 1 || floors[i] > building->storeys) {
+        throw InputError(floor_key, std::to_string(floors[i]),
+                         fmt::format("lists floors of {}, numbered 1..{}", name, building->storeys));
+      }
+      if (!seen.insert(floors[i]).second) throw InputError(floor_key, std::to_string(floors[i]), "is listed twice");
+    }
+  }
+}
+
 void validate_output(const OutputSettings& output, std::size_t levels) {
   std::set<int> seen;
   for (std::size_t i = 0; i < output.history_floors.size(); ++i) {
@@ -270,10 +293,20 @@ void Scene::validate() const {
     validate_levels(*this);
     solver.validate();
     validate_output(output, levels().size());
+    validate_floor_history(*this);
     validate_pair(*this);
   } catch (const InputError& error) {
     throw error.in_context(file.string());
   }
+}
+
+std::vector<std::array<int, 2>> Scene::history_other_floors() const {
+  std::vector<std::array<int, 2>> floors;
+  for (const auto& [name, listed] : output.floor_history) {
+    const int b = buildings[0].name == name ? 0 : 1;
+    for (int floor : listed) floors.push_back({b, floor});
+  }
+  return floors;
 }
 
 }  // namespace pounding::analysis

@@ -588,6 +588,20 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   return solver;
 }
 
+/// [output.floor_history]: building name = [floors]; names and ranges are Scene::validate's.
+std::vector<std::pair<std::string, std::vector<int>>> read_floor_history(TableReader& table) {
+  std::vector<std::pair<std::string, std::vector<int>>> floors;
+  for (const std::string& name : table.unasked_keys()) {
+    const std::string key = table.key_path(name);
+    const toml::array& array = table.array_of(*table.find(name), key);
+    std::vector<int>& listed = floors.emplace_back(name, std::vector<int>{}).second;
+    for (std::size_t i = 0; i < array.size(); ++i) {
+      listed.push_back(table.integer_of(array[i], fmt::format("{}[{}]", key, i + 1)));
+    }
+  }
+  return floors;
+}
+
 analysis::OutputSettings read_output(std::optional<TableReader> table) {
   analysis::OutputSettings output;
   if (!table) return output;
@@ -598,6 +612,7 @@ analysis::OutputSettings read_output(std::optional<TableReader> table) {
       output.history_floors.push_back(table->integer_of(array[i], fmt::format("{}[{}]", key, i + 1)));
     }
   }
+  if (auto floors = table->optional_subtable("floor_history")) output.floor_history = read_floor_history(*floors);
   output.history_interval_s = table->number_or("history_interval_s", output.history_interval_s);
   if (const toml::node* history = table->find("history")) {
     if (!history->is_boolean()) throw table->error(*history, table->key_path("history"), "expected true or false");

@@ -96,8 +96,8 @@ class EventDrivenRun final : public OdeFunctions {
         yields_(system.springs(), options.max_events_per_s),
         witnesses_(count_, yields_.size()),
         gap_components_(gap_components(system)),
-        recorder_(system, recorded_dynamics(), options.history_floors, options.history_interval_s, options.outputs,
-                  options.sink),
+        recorder_(system, recorded_dynamics(), {options.history_floors, options.history_other_floors},
+                  options.history_interval_s, options.outputs, options.sink),
         law_(make_law_events()) {}
 
   int state_size() const override { return system_.state_size(); }

@@ -124,8 +124,8 @@ class HhtRun {
         stepper_(
             system.mass_diagonal(), system.damping(), system.stiffness(),
             [&system](double t, Eigen::Ref<VectorXd> f) { system.external_force(t, f); }, options.alpha),
-        recorder_(system, free_dynamics(system), options.history_floors, options.history_interval_s, options.outputs,
-                  options.sink),
+        recorder_(system, free_dynamics(system), {options.history_floors, options.history_other_floors},
+                  options.history_interval_s, options.outputs, options.sink),
         touching_(system.candidates().size(), false),
         sunk_(system.candidates().size(), false),
         no_approach_mps_(1e-6 * options.contact_tolerance_m / options.dt_s),

@@ -19,53 +19,60 @@ RecordedDynamics free_dynamics(const dynamics::CoupledSystem& system) {
 
 namespace {
 
-std::vector<contact::Level> chosen_levels(const dynamics::CoupledSystem& system,
-                                          const std::vector<int>& history_levels) {
-  if (history_levels.empty()) return system.levels();
-  std::vector<contact::Level> levels;
-  for (int level : history_levels) levels.push_back(system.levels().at(static_cast<std::size_t>(level - 1)));
-  return levels;
+std::vector<contact::Level> chosen_levels(const dynamics::CoupledSystem& system, const std::vector<int>& levels) {
+  if (levels.empty()) return system.levels();
+  std::vector<contact::Level> chosen;
+  for (int level : levels) chosen.push_back(system.levels().at(static_cast<std::size_t>(level - 1)));
+  return chosen;
+}
+
+/// Every slab `slabs` selects, {building, floor}, in column order.
+std::vector<std::array<int, 2>> chosen_slabs(const dynamics::CoupledSystem& system, const HistorySlabs& slabs) {
+  std::vector<std::array<int, 2>> chosen;
+  for (const contact::Level& level : chosen_levels(system, slabs.levels)) {
+    for (int b = 0; b < 2; ++b) chosen.push_back({b, level.floors[b]});
+  }
+  for (const std::array<int, 2>& slab : slabs.other_floors) {
+    if (std::find(chosen.begin(), chosen.end(), slab) == chosen.end()) chosen.push_back(slab);
+  }
+  return chosen;
 }
 
 }  // namespace
 
-std::vector<std::string> history_columns(const dynamics::CoupledSystem& system,
-                                         const std::vector<int>& history_levels) {
+std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const HistorySlabs& slabs) {
   std::vector<std::string> columns{"t_s"};
   std::array<std::vector<int>, 2> numbers;
   for (int b = 0; b < 2; ++b) {
     std::vector<model::Point2> vertices = contact_vertices(system.candidates(), b);
     numbers[b] = outline_numbers(system.building(b).definition.slab, vertices);
   }
-  for (const contact::Level& level : chosen_levels(system, history_levels)) {
-    for (int b = 0; b < 2; ++b) {
-      const std::string prefix = fmt::format("B{}_f{}_", b + 1, level.floors[b]);
-      const std::size_t corners = system.building(b).definition.slab.size();
-      for_each_slab_column(numbers[b].size(), corners, [&](const HistoryQuantity& quantity, std::size_t k) {
-        const bool vertex = quantity.per == HistoryQuantity::Per::contact_vertex;
-        columns.push_back(prefix + quantity.column(vertex ? numbers[b][k] : static_cast<int>(k) + 1));
-      });
-    }
+  for (const auto& [b, floor] : chosen_slabs(system, slabs)) {
+    const std::string prefix = fmt::format("B{}_f{}_", b + 1, floor);
+    const std::size_t corners = system.building(b).definition.slab.size();
+    for_each_slab_column(numbers[b].size(), corners, [&](const HistoryQuantity& quantity, std::size_t k) {
+      const bool vertex = quantity.per == HistoryQuantity::Per::contact_vertex;
+      columns.push_back(prefix + quantity.column(vertex ? numbers[b][k] : static_cast<int>(k) + 1));
+    });
   }
   return columns;
 }
 
-Recorder::Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics,
-                   const std::vector<int>& history_levels, double history_interval_s, const OutputSelection& outputs,
-                   RunSink* sink)
+Recorder::Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics, const HistorySlabs& slabs,
+                   double history_interval_s, const OutputSelection& outputs, RunSink* sink)
     : system_(system),
       kinematics_(system, std::move(dynamics)),
       outputs_(outputs),
       peaks_(kinematics_, outputs),
-      history_levels_(chosen_levels(system, history_levels)),
+      history_slabs_(chosen_slabs(system, slabs)),
       interval_s_(history_interval_s),
       energy_(system),
       sink_(sink) {
   next_sample_s_ = system.ground_motion().start_s();
   if (outputs_.history) {
-    for (const contact::Level& level : history_levels_) history_.levels.push_back(level.index);
+    for (const contact::Level& level : chosen_levels(system, slabs.levels)) history_.levels.push_back(level.index);
     history_.interval_s = interval_s_;
-    history_.columns = history_columns(system, history_levels);
+    history_.columns = history_columns(system, slabs);
     row_.resize(static_cast<Eigen::Index>(history_.columns.size()) - 1);
   }
 }
@@ -74,19 +81,15 @@ void Recorder::append_row(const Instant& at) {
   const double t = *at.t_s;
   const dynamics::VectorXd& y = at.y;
   Eigen::Index c = 0;
-  for (const contact::Level& level : history_levels_) {
-    for (int b = 0; b < 2; ++b) {
-      const int i = system_.floor_index(b, level.floors[b]);
-      const SlabSample slab{
-          .q = &y[i],
-          .accel = &at.accel[i],
-          .drift = &at.drifts.value[static_cast<Eigen::Index>(kinematics_.drift_index(b, level.floors[b], 0))],
-          .contact_vertices = kinematics_.contact_vertices(b),
-          .centre = system_.building(b).definition.centre_of_mass};
-      for_each_slab_column(
-          kinematics_.contact_vertices(b).size(), system_.building(b).definition.slab.size(),
-          [&](const HistoryQuantity& quantity, std::size_t k) { row_[c++] = quantity.value(slab, k); });
-    }
+  for (const auto& [b, floor] : history_slabs_) {
+    const int i = system_.floor_index(b, floor);
+    const SlabSample slab{.q = &y[i],
+                          .accel = &at.accel[i],
+                          .drift = &at.drifts.value[static_cast<Eigen::Index>(kinematics_.drift_index(b, floor, 0))],
+                          .contact_vertices = kinematics_.contact_vertices(b),
+                          .centre = system_.building(b).definition.centre_of_mass};
+    for_each_slab_column(kinematics_.contact_vertices(b).size(), system_.building(b).definition.slab.size(),
+                         [&](const HistoryQuantity& quantity, std::size_t k) { row_[c++] = quantity.value(slab, k); });
   }
   std::vector<ContactForceSample> forces;
   if (kinematics_.dynamics().contact_forces) {

@@ -404,6 +404,20 @@ BOOST_AUTO_TEST_CASE(AbsurdBuildingValuesNameTheirRange) {
   BOOST_TEST(mentions(error_of(edited("name = \"small\"", "name = \"\"")), {"name = \"\"", "must not be empty"}));
 }
 
+BOOST_AUTO_TEST_CASE(FloorHistoryNamesABuildingAndItsFloors) {
+  Case ok(kScene + "[output]\n[output.floor_history]\nB = [3, 1]\n");
+  const pounding::analysis::Scene scene = read_scene(ok.file);
+  BOOST_TEST(scene.history_other_floors().size() == 2u);
+  BOOST_TEST((scene.history_other_floors()[0] == std::array<int, 2>{1, 3}));
+  BOOST_TEST(mentions(error_of(kScene + "[output.floor_history]\nC = [1]\n"),
+                      {"output.floor_history.C", "names no building", "A and B"}));
+  BOOST_TEST(mentions(error_of(kScene + "[output.floor_history]\nA = [3]\n"),
+                      {"output.floor_history.A[1] = 3", "floors of A, numbered 1..2"}));
+  BOOST_TEST(mentions(error_of(kScene + "[output.floor_history]\nB = [2, 2]\n"),
+                      {"output.floor_history.B[2] = 2", "listed twice"}));
+  BOOST_TEST(mentions(error_of(kScene + "[output.floor_history]\nB = 2\n"), {"output.floor_history.B"}));
+}
+
 BOOST_AUTO_TEST_CASE(BoucWenParametersAreCheckedAndOnlyForTheirLaw) {
   // Building 1 has columns; its hysteresis table goes after them.
   const std::string columns =

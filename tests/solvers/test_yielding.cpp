@@ -250,8 +250,10 @@ struct BoucWenLoading {
 };
 
 model::HystereticLaw bouc_wen(double d_y, double alpha, double n) {
-  model::HystereticLaw law{
-      .kind = model::HystereticLaw::Kind::bouc_wen, .yield_drift_m = d_y, .hardening_ratio = alpha};
+  model::HystereticLaw law;
+  law.kind = model::HystereticLaw::Kind::bouc_wen;
+  law.yield_drift_m = d_y;
+  law.hardening_ratio = alpha;
   law.bouc_wen_n = n;
   return law;
 }

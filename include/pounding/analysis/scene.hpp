@@ -68,6 +68,10 @@ inline constexpr std::array<std::string_view, 3> kPeakGroups{"displacements", "a
 struct OutputSettings {
   bool history = true;               // history.csv and contacts_history.csv; false: neither computed nor written
   std::vector<int> history_floors;   // levels (1-based, as `check` lists them); empty: every level
+  /// [output.floor_history]: more floors to write, by building name: any floor of either
+  /// building (a roof above the other building, a floor with no counterpart), after the levels'
+  /// slabs; one already written with a level is not repeated.
+  std::vector<std::pair<std::string, std::vector<int>>> floor_history;
   double history_interval_s = 0.01;
   std::vector<std::string> peaks{kPeakGroups.begin(), kPeakGroups.end()};  // peak groups (kPeakGroups), any subset
   /// Also run the scene without contact (same method and settings) and report the pounding-
@@ -86,6 +90,8 @@ struct Scene {
   SolverSettings solver;  // as given (methods.hpp)
   OutputSettings output;
 
+  /// output.floor_history as {building (0 or 1), floor}. @pre valid.
+  std::vector<std::array<int, 2>> history_other_floors() const;
   /// The floor pairs at a common elevation (within contact.level_tolerance_m), lowest first.
   /// @pre buildings valid.
   std::vector<contact::Level> levels() const;

@@ -32,6 +32,7 @@
 //  8. End. A completed run whose pairs sank deeper than the touch band becomes
 //     unresolved_overlap; holds and compliant contacts still open are closed as "end of run".
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -100,6 +101,9 @@ struct EventOptions {
   Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
   OutputSelection outputs;             // what the run records besides impacts and energy; default: all
   std::vector<int> history_floors;     // levels (1-based) to write; empty: every level
+  /// Other slabs to write as well, {building (0 or 1), floor (1-based)}: any floor of either
+  /// building, after the levels' slabs (Recorder).
+  std::vector<std::array<int, 2>> history_other_floors;
   double history_interval_s = 0.01;
   /// Receives the history rows and impacts as they come (the history then holds no rows); null:
   /// the whole history is kept in the result. Must outlive the run.

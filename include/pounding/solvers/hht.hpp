@@ -6,6 +6,7 @@
 // halving), and the contact instant found on the step's cubic Hermite interpolant.
 
 #include <Eigen/Cholesky>
+#include <array>
 #include <functional>
 #include <map>
 
@@ -72,6 +73,8 @@ struct HhtOptions {
   Eigen::VectorXd initial_state;      // (q, q̇) at the record's start; empty: at rest
   OutputSelection outputs;            // what the run records besides impacts and energy; default: all
   std::vector<int> history_floors;    // levels (1-based) to write; empty: every level
+  std::vector<std::array<int, 2>> history_other_floors;  // as EventOptions'
+
   double history_interval_s = 0.01;
   /// Receives the history rows and impacts as they come (the history then holds no rows); null:
   /// the whole history is kept in the result. Must outlive the run.

@@ -7,6 +7,7 @@
 // (EnergyBalance); the history's columns and row values are declared in history_schema.hpp and
 // written here, on the same instants the peaks see.
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -25,22 +26,28 @@ namespace pounding::solvers {
 /// The free motion's dynamics (no contact forces between impacts), for the fixed-step path.
 RecordedDynamics free_dynamics(const dynamics::CoupledSystem& system);
 
-/// The columns of history.csv for the levels `history_levels` (1-based; empty: every level),
-/// `t_s` first, then per level building 1's slab then building 2's, each with the columns of
+/// The slabs history.csv writes: the levels `levels` (1-based indices into system.levels();
+/// empty: every level), each as building 1's floor then building 2's, then `other_floors`
+/// ({building 0 or 1, floor 1-based}: any floor of either building) that are not among them.
+struct HistorySlabs {
+  std::vector<int> levels;
+  std::vector<std::array<int, 2>> other_floors;
+};
+
+/// The columns of history.csv for `slabs`: `t_s` first, then per slab the columns of
 /// history_quantities() (history_schema.hpp). @pre indices valid.
-std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const std::vector<int>& history_levels);
+std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const HistorySlabs& slabs);
 
 class Recorder {
  public:
   using ComponentsAt = PeakTracker::ComponentsAt;
 
-  /// History of the levels `history_levels` (1-based indices into system.levels(); empty: every
-  /// level), each as building 1's floor then building 2's, when `outputs.history`; the peak groups
+  /// History of the slabs `slabs` (HistorySlabs) when `outputs.history`; the peak groups
   /// `outputs` asks for (the others are neither computed nor reported). `sink` (may be null; must
   /// outlive the recorder) receives the columns at the first sample (none without history), then
   /// every row, contact force and impact; the history in the result then has its columns and no
   /// rows. @pre indices valid.
-  Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics, const std::vector<int>& history_levels,
+  Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynamics, const HistorySlabs& slabs,
            double history_interval_s, const OutputSelection& outputs, RunSink* sink = nullptr);
 
   /// Writes a history row at t (once per instant, with history) and updates the peaks at the
@@ -89,7 +96,7 @@ class Recorder {
   RunKinematics kinematics_;
   OutputSelection outputs_;
   PeakTracker peaks_;
-  std::vector<contact::Level> history_levels_;
+  std::vector<std::array<int, 2>> history_slabs_;  // {building, floor} in column order
   double interval_s_;
   double next_sample_s_;
   History history_;
