@@ -332,7 +332,7 @@ int run_check(const CheckCommand& command) {
   const excitation::GroundMotion& motion = system.ground_motion();
 
   fmt::print("Scene '{}' ({}) is valid.\n", scene.name, scene.file.string());
-  int total_dof = 0;
+  int total_dof = 0, hysteretic_states = 0;
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     const auto& b = buildings[i];
     const auto& definition = scene.buildings[i];
@@ -352,13 +352,19 @@ int run_check(const CheckCommand& command) {
       fmt::print("  P-Δ: storeys lowered by the gravity load above them (g = {} m/s²)\n", definition.g_mps2);
     const model::HystereticLaw& law = definition.hysteresis;
     if (law.yields()) {
-      fmt::print("  columns bilinear in x and y: yield drift {}, hardening ratio {}\n",
+      const std::string shape = law.is_smooth() ? fmt::format(", A {}, beta {}, gamma {}, n {}", law.bouc_wen_a,
+                                                              law.bouc_wen_beta, law.bouc_wen_gamma, law.bouc_wen_n)
+                                                : std::string();
+      fmt::print("  columns {} in x and y: yield drift {}, hardening ratio {}{}\n", model::to_string(law.kind),
                  law.yield_drift_m ? fmt::format("{} m", *law.yield_drift_m)
                                    : fmt::format("{} of the storey height", *law.yield_drift_ratio),
-                 law.hardening_ratio);
+                 law.hardening_ratio, shape);
+      // One hysteretic variable per column, storey and direction (dynamics/yielding_springs.hpp).
+      if (law.is_smooth()) hysteretic_states += 2 * static_cast<int>(definition.columns.size()) * definition.storeys;
     }
   }
-  fmt::print("Coupled system: {} DOF ({} first-order states)\n", total_dof, 2 * total_dof);
+  fmt::print("Coupled system: {} DOF ({} first-order states{})\n", total_dof, 2 * total_dof + hysteretic_states,
+             hysteretic_states > 0 ? fmt::format(", {} of them Bouc-Wen's z", hysteretic_states) : std::string());
   print_levels(scene);
   print_excitation(scene, motion);
   const std::string law = scene.contact.law == "impulse"

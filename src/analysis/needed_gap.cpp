@@ -103,7 +103,7 @@ class FreeRun final : public solvers::OdeFunctions {
   int extra_state_count() const override { return system_.springs().smooth_count(); }
   void extra_state_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& accel_by_w,
                             Eigen::SparseMatrix<double>& w_rate_by_velocity, VectorXd& w_rate_by_w) override {
-    system_.smooth_jacobian(y, accel_by_w, w_rate_by_velocity, w_rate_by_w);
+    system_.smooth_jacobian(y, {}, accel_by_w, w_rate_by_velocity, w_rate_by_w);
   }
 
   // Every root of the first two blocks falls through zero at a maximum: a pair's touch gap (−ġ at

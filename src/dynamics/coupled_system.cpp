@@ -210,7 +210,7 @@ void CoupledSystem::constrained_jacobian(ConstVectorRef y, const std::vector<std
 }
 
 void CoupledSystem::full_jacobian(ConstVectorRef y, const Eigen::SparseMatrix<double>& acceleration_rows,
-                                  Eigen::Ref<MatrixXd> jacobian) const {
+                                  Eigen::Ref<MatrixXd> jacobian, const std::vector<std::size_t>& held) const {
   jacobian.setZero();
   jacobian.block(0, dof_, dof_, dof_).setIdentity();
   jacobian.block(dof_, 0, dof_, 2 * dof_) = acceleration_rows;
@@ -218,15 +218,25 @@ void CoupledSystem::full_jacobian(ConstVectorRef y, const Eigen::SparseMatrix<do
   if (m == 0) return;
   Eigen::SparseMatrix<double> accel_by_z, z_rate_by_velocity;
   VectorXd z_rate_by_z;
-  springs_.smooth_jacobian(y, mass_.cwiseInverse(), accel_by_z, z_rate_by_velocity, z_rate_by_z);
+  smooth_jacobian(y, held, accel_by_z, z_rate_by_velocity, z_rate_by_z);
   jacobian.block(dof_, 2 * dof_, dof_, m) = accel_by_z;
   jacobian.block(2 * dof_, dof_, m, dof_) = z_rate_by_velocity;
   jacobian.bottomRightCorner(m, m).diagonal() = z_rate_by_z;
 }
 
-void CoupledSystem::smooth_jacobian(ConstVectorRef y, Eigen::SparseMatrix<double>& accel_by_z,
+void CoupledSystem::smooth_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,
+                                    Eigen::SparseMatrix<double>& accel_by_z,
                                     Eigen::SparseMatrix<double>& z_rate_by_velocity, VectorXd& z_rate_by_z) const {
   springs_.smooth_jacobian(y, mass_.cwiseInverse(), accel_by_z, z_rate_by_velocity, z_rate_by_z);
+  if (held.empty()) return;
+  MatrixXd rows;
+  VectorXd bias;
+  constraint_rows(y, held, rows, bias);
+  const MatrixXd m_inv_gt = mass_.cwiseInverse().asDiagonal() * rows.transpose();
+  const MatrixXd w = rows * m_inv_gt;
+  // B − M⁻¹Gᵀ W⁺ G B: only the held floors' rows change (W⁺ as constrained_rhs' least squares).
+  const MatrixXd correction = m_inv_gt * (w.completeOrthogonalDecomposition().pseudoInverse() * (rows * accel_by_z));
+  accel_by_z = (MatrixXd(accel_by_z) - correction).sparseView();
 }
 
 void CoupledSystem::constrained_acceleration_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held,

@@ -153,16 +153,22 @@ void validate_storey_matrices(const BuildingDefinition& b) {
   }
 }
 
-/// Bouc–Wen's shape: β > 0 and |γ| ≤ β keep every loop dissipative and z bounded.
+/// Bouc–Wen's shape: β > 0 and −β < γ ≤ β keep every loop dissipative and z bounded; A = 1
+/// keeps the initial stiffness the k that K, the modes, the damping and the step bounds use.
 void validate_bouc_wen(const HystereticLaw& law) {
   require_range("hysteresis.a", law.bouc_wen_a, kBoucWenA);
+  if (law.bouc_wen_a != 1.0) {
+    throw InputError("hysteresis.a", format_value(law.bouc_wen_a),
+                     "must be 1: the columns' initial stiffness would become alpha k + (1 - alpha) k A, while K, "
+                     "the modes, the Rayleigh damping and the step bounds use k (scale the yield drift instead)");
+  }
   require_range("hysteresis.beta", law.bouc_wen_beta, kBoucWenBeta);
   require_range("hysteresis.gamma", law.bouc_wen_gamma, kBoucWenGamma);
   require_range("hysteresis.n", law.bouc_wen_n, kBoucWenN);
-  if (std::abs(law.bouc_wen_gamma) > law.bouc_wen_beta) {
+  if (!(law.bouc_wen_gamma > -law.bouc_wen_beta && law.bouc_wen_gamma <= law.bouc_wen_beta)) {
     throw InputError("hysteresis.gamma", format_value(law.bouc_wen_gamma),
-                     fmt::format("must lie in [-beta, beta] = [{0:g}, {1:g}]: with |gamma| > beta a loop returns "
-                                 "energy (or z grows without bound)",
+                     fmt::format("must lie in (-beta, beta] = ({0:g}, {1:g}]: with |gamma| > beta a loop returns "
+                                 "energy, and at gamma = -beta z grows without bound (the column never yields)",
                                  -law.bouc_wen_beta, law.bouc_wen_beta));
   }
 }

@@ -118,7 +118,7 @@ class EventDrivenRun final : public OdeFunctions {
   void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
     Eigen::SparseMatrix<double> rows;
     acceleration_rows(y, rows);
-    system_.full_jacobian(y, rows, jac);
+    system_.full_jacobian(y, rows, jac, states_.held());
   }
 
   bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
@@ -128,7 +128,7 @@ class EventDrivenRun final : public OdeFunctions {
   int extra_state_count() const override { return system_.springs().smooth_count(); }
   void extra_state_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& accel_by_w,
                             Eigen::SparseMatrix<double>& w_rate_by_velocity, VectorXd& w_rate_by_w) override {
-    system_.smooth_jacobian(y, accel_by_w, w_rate_by_velocity, w_rate_by_w);
+    system_.smooth_jacobian(y, states_.held(), accel_by_w, w_rate_by_velocity, w_rate_by_w);
   }
 
   // The witnesses (contact_states.hpp, Witness): the gap roots of armed and masked pairs here,

@@ -433,7 +433,11 @@ BOOST_AUTO_TEST_CASE(BoucWenParametersAreCheckedAndOnlyForTheirLaw) {
   BOOST_TEST(law.bouc_wen_gamma == -0.2);
   BOOST_TEST(law.bouc_wen_n == 3.0);
   BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\ngamma = 0.7\n")),
-                      {"building[1].hysteresis.gamma = 0.7", "[-beta, beta] = [-0.5, 0.5]"}));
+                      {"building[1].hysteresis.gamma = 0.7", "(-beta, beta] = (-0.5, 0.5]"}));
+  BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\ngamma = -0.5\n")),
+                      {"building[1].hysteresis.gamma = -0.5", "grows without bound"}));
+  BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\na = 2\n")),
+                      {"building[1].hysteresis.a = 2", "must be 1", "alpha k + (1 - alpha) k A"}));
   BOOST_TEST(
       mentions(error_of(with_law("law = \"bouc-wen\"\nn = 0.5\n")), {"building[1].hysteresis.n = 0.5", "[1, 50]"}));
   BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\na = 0\n")), {"building[1].hysteresis.a = 0", "(0, 10]"}));

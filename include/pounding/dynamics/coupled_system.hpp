@@ -76,9 +76,11 @@ class CoupledSystem {
   /// rows `acceleration_rows` (n × 2n, as constrained_acceleration_jacobian gives them) completed
   /// by the Bouc–Wen states' rows and columns.
   void full_jacobian(ConstVectorRef y, const Eigen::SparseMatrix<double>& acceleration_rows,
-                     Eigen::Ref<MatrixXd> jacobian) const;
-  /// The Bouc–Wen states' blocks of the Jacobian (YieldingSprings::smooth_jacobian).
-  void smooth_jacobian(ConstVectorRef y, Eigen::SparseMatrix<double>& accel_by_z,
+                     Eigen::Ref<MatrixXd> jacobian, const std::vector<std::size_t>& held = {}) const;
+  /// The Bouc–Wen states' blocks of the Jacobian (YieldingSprings::smooth_jacobian), with the
+  /// contacts `held` kept closed: ∂q̈/∂z projected by P = I − M⁻¹Gᵀ W⁻¹ G, as constrained_rhs
+  /// solves the hold forces after the springs' forces (rows G frozen at y).
+  void smooth_jacobian(ConstVectorRef y, const std::vector<std::size_t>& held, Eigen::SparseMatrix<double>& accel_by_z,
                        Eigen::SparseMatrix<double>& z_rate_by_velocity, VectorXd& z_rate_by_z) const;
 
   /// Gap state of candidate `index` in state y.

@@ -67,8 +67,9 @@ struct HystereticLaw {
   std::optional<double> yield_drift_ratio;
   std::optional<double> yield_drift_m;
   double hardening_ratio = 0.0;  // α ∈ [0, 1): post-yield over initial stiffness
-  /// Bouc–Wen's shape parameters (only for Kind::bouc_wen): A > 0; β > 0 and |γ| ≤ β, so that
-  /// z stays within (A/(β + γ))^(1/n) and no loop returns energy; n ≥ 1, the sharpness.
+  /// Bouc–Wen's shape parameters (only for Kind::bouc_wen): A = 1 (so that the initial stiffness
+  /// is k, which K uses); β > 0 and −β < γ ≤ β, so that z stays within (A/(β + γ))^(1/n) and no
+  /// loop returns energy; n ≥ 1, the sharpness.
   double bouc_wen_a = 1.0;
   double bouc_wen_beta = 0.5;
   double bouc_wen_gamma = 0.5;
