@@ -21,6 +21,8 @@ Then Bouc-Wen with impacts, against a second method: the paper's buildings with 
 (yield drift 0.2 % of the storey, 5 % hardening, n = 2) at gap 0.05 m, run on cvode-bdf and
 arkode-erk at rtol 1e-10:
   4. the same impacts, pair by pair, at times within 1e-6 s, and both audits close to 1e-6.
+And `pounding gap` on examples/paper/paper-bouc-wen.toml (the contact-free run carrying z):
+  5. at its needed gap G + 1e-5 m the buildings do not meet, at G - 1e-5 m they strike.
 """
 import csv
 import json
@@ -33,8 +35,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_yielding_scipy import (ALPHA, COLUMNS, YIELD_DRIFT_M, Peer, check_second_method,  # noqa: E402
-                                 paper_with_yielding, record, scene_text)
+from test_yielding_scipy import (ALPHA, COLUMNS, YIELD_DRIFT_M, Peer, check_needed_gap_brackets,  # noqa: E402
+                                 check_second_method, paper_with_yielding, record, scene_text)
 
 A, BETA, GAMMA, N = 1.0, 0.6, 0.4, 3.0
 LAW = f'law = "bouc-wen"\nyield_drift_m = {YIELD_DRIFT_M}\nhardening_ratio = {ALPHA}\n' \
@@ -149,6 +151,8 @@ def main():
     law = 'law = "bouc-wen"\nyield_drift_ratio = 0.002\nhardening_ratio = 0.05\nn = 2\n'
     check_second_method(program, out, failures, paper_with_yielding(out, law, "paper-bouc-wen.toml"), "Bouc-Wen",
                         residual_limit=1e-6)
+    root = Path(__file__).resolve().parents[2]
+    check_needed_gap_brackets(program, out, root / "examples/paper/paper-bouc-wen.toml", failures)
     for failure in failures:
         print("FAIL:", failure)
     sys.exit(1 if failures else 0)

@@ -250,25 +250,33 @@ def check_second_method(program, out, failures, scene=None, label="yielding", re
         failures.append(f"{label} paper scene: an energy audit does not close")
 
 
-def check_needed_gap(program, out, failures):
-    root = Path(__file__).resolve().parents[2]
-    scene = root / "examples/paper/paper-yielding.toml"
-    run = subprocess.run([program, "gap", str(scene), "--amplification", "2", "--out", str(out / "gap")],
-                         capture_output=True, text=True)
+def check_needed_gap_brackets(program, out, scene, failures, *gap_options):
+    """`pounding gap` on the scene (with gap_options), then runs 1e-5 m either side of its needed
+    gap: the wider must not strike, the narrower must. Returns gap.json."""
+    folder = out / f"gap-{scene.stem}"
+    run = subprocess.run([program, "gap", str(scene), *gap_options, "--out", str(folder)], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
-    gap = json.loads((out / "gap/gap.json").read_text())
+    gap = json.loads((folder / "gap.json").read_text())
     needed = gap["needed_gap_m"]
     counts = {}
     for offset in (1e-5, -1e-5):
-        folder = out / f"gap{offset:+g}"
+        run_folder = out / f"{scene.stem}-gap{offset:+g}"
         run = subprocess.run([program, "run", str(scene), "--gap", repr(needed + offset), "--history", "off",
-                              "--peaks", "none", "--out", str(folder), "--no-progress"], capture_output=True, text=True)
+                              "--peaks", "none", "--out", str(run_folder), "--no-progress"], capture_output=True,
+                             text=True)
         assert run.returncode == 0, run.stderr
-        counts[offset] = json.loads((folder / "summary.json").read_text())["impact_count"]
-    print(f"needed gap of the yielding paper scene {needed:.6f} m ({gap['yield_events']} branch changes); impacts "
+        counts[offset] = json.loads((run_folder / "summary.json").read_text())["impact_count"]
+    print(f"needed gap of {scene.name} {needed:.6f} m ({gap['yield_events']} yield events); impacts "
           f"at +1e-5 m: {counts[1e-5]}, at -1e-5 m: {counts[-1e-5]}")
     if counts[1e-5] != 0 or counts[-1e-5] == 0:
-        failures.append("the needed gap of the yielding scene is not where the runs start to strike")
+        failures.append(f"the needed gap of {scene.name} is not where the runs start to strike")
+    return gap
+
+
+def check_needed_gap(program, out, failures):
+    root = Path(__file__).resolve().parents[2]
+    gap = check_needed_gap_brackets(program, out, root / "examples/paper/paper-yielding.toml", failures,
+                                    "--amplification", "2")
     run = subprocess.run([program, "gap", str(root / "examples/paper/paper.toml"), "--out", str(out / "gap-elastic")],
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
