@@ -2,7 +2,7 @@
 """Yielding columns on random scenes: the paper's buildings (examples/paper/paper-yielding.toml)
 with a random yield drift, hardening, P-Δ, gap, restitution, contact law, record scale and
 method, each run once; with --law bouc-wen the columns are Bouc-Wen with random n in
-{1, 2, 5, 20}, beta in [0.1, 0.9] and gamma in [-beta, beta] (A = 1). Checks that no run crashes, hangs or writes NaN, that every run ends with
+{1, 2, 5, 20}, beta in [0.1, 0.9] and gamma in (-beta, beta] (A = 1). Checks that no run crashes, hangs or writes NaN, that every run ends with
 a named status, and that every completed run's energy audit (with the hysteretic term) closes
 to 1e-4 of the input at the default tolerances. Prints a table and a summary line.
 
@@ -38,7 +38,8 @@ def scene_text(rng, law="bilinear"):
     case = {"yield_drift_ratio": round(ratio, 5), "hardening_ratio": hardening, "p_delta": p_delta}
     if law == "bouc-wen":
         beta = round(rng.uniform(0.1, 0.9), 3)
-        shape = {"n": rng.choice((1.0, 2.0, 5.0, 20.0)), "beta": beta, "gamma": round(rng.uniform(-beta, beta), 3)}
+        gamma = max(round(rng.uniform(-beta, beta), 3), round(-beta + 0.001, 3))  # gamma = -beta is refused
+        shape = {"n": rng.choice((1.0, 2.0, 5.0, 20.0)), "beta": beta, "gamma": gamma}
         text = text.replace('law = "bilinear"', 'law = "bouc-wen"\n' + "".join(f"{k} = {v!r}\n" for k, v in shape.items()))
         case.update(shape)
     return text, case
