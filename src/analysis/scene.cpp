@@ -162,7 +162,9 @@ void validate_levels(const Scene& scene) {
 
 /// [output.floor_history]: a building's name, then floors in 1..its storeys, none twice.
 void validate_floor_history(const Scene& scene) {
-  for (const auto& [name, floors] : scene.output.floor_history) {
+  for (const auto& entry : scene.output.floor_history) {
+    const std::string& name = entry.first;  // not a structured binding: the lambda below captures it
+    const std::vector<int>& floors = entry.second;
     const auto building = std::find_if(scene.buildings.begin(), scene.buildings.end(),
                                        [&](const model::BuildingDefinition& b) { return b.name == name; });
     const std::string key = fmt::format("output.floor_history.{}", name);

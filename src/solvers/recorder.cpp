@@ -47,8 +47,9 @@ std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, 
     std::vector<model::Point2> vertices = contact_vertices(system.candidates(), b);
     numbers[b] = outline_numbers(system.building(b).definition.slab, vertices);
   }
-  for (const auto& [b, floor] : chosen_slabs(system, slabs)) {
-    const std::string prefix = fmt::format("B{}_f{}_", b + 1, floor);
+  for (const std::array<int, 2>& slab : chosen_slabs(system, slabs)) {
+    const int b = slab[0];  // not a structured binding: the lambda below captures it (clang < 16 cannot)
+    const std::string prefix = fmt::format("B{}_f{}_", b + 1, slab[1]);
     const std::size_t corners = system.building(b).definition.slab.size();
     for_each_slab_column(numbers[b].size(), corners, [&](const HistoryQuantity& quantity, std::size_t k) {
       const bool vertex = quantity.per == HistoryQuantity::Per::contact_vertex;
