@@ -199,8 +199,9 @@ double YieldingSprings::dissipation_power(const Eigen::Ref<const Eigen::VectorXd
   if (!spring.bouc_wen) return 0.0;
   const BoucWenShape& shape = *spring.bouc_wen;
   const double z = y[spring.z_index], rate_mps = drift(y.segment(dof_, dof_), j);
-  return spring.plastic_stiffness() * spring.yield_drift_m * rate_mps * z * std::pow(std::abs(z), shape.n) *
-         (shape.beta * sign_of(rate_mps * z) + shape.gamma) / shape.a;
+  // ḋ z |z|ⁿ (β sgn(ḋ z) + γ) = ḋ z (A − Φ): the part of the work ż does not store.
+  return spring.plastic_stiffness() * spring.yield_drift_m * rate_mps * z *
+         (shape.a - bouc_wen_factor(shape, z, rate_mps)) / shape.a;
 }
 
 }  // namespace pounding::dynamics

@@ -24,9 +24,6 @@ arkode-erk at rtol 1e-10:
 And `pounding gap` on examples/paper/paper-bouc-wen.toml (the contact-free run carrying z):
   5. at its needed gap G + 1e-5 m the buildings do not meet, at G - 1e-5 m they strike.
 """
-import csv
-import json
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -36,7 +33,7 @@ from scipy.integrate import solve_ivp
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_yielding_scipy import (ALPHA, COLUMNS, YIELD_DRIFT_M, Peer, check_needed_gap_brackets,  # noqa: E402
-                                 check_second_method, paper_with_yielding, record, scene_text)
+                                 check_second_method, paper_with_yielding, run_one_storey)
 
 A, BETA, GAMMA, N = 1.0, 0.6, 0.4, 3.0
 LAW = f'law = "bouc-wen"\nyield_drift_m = {YIELD_DRIFT_M}\nhardening_ratio = {ALPHA}\n' \
@@ -90,22 +87,7 @@ class BoucWenPeer(Peer):
 
 
 def check_one_storey(program, out, failures):
-    times, accel = record()
-    (out / "pulse.txt").write_text("\n".join(f"{a!r}" for a in accel) + "\n")
-    text = scene_text(out / "pulse.txt")
-    bilinear = f'law = "bilinear"\nyield_drift_m = {YIELD_DRIFT_M}\nhardening_ratio = {ALPHA}\n'
-    assert bilinear in text
-    (out / "scene.toml").write_text(text.replace(bilinear, LAW))
-    run = subprocess.run([program, "run", str(out / "scene.toml"), "--out", str(out / "run"), "--no-progress"],
-                         capture_output=True, text=True)
-    assert run.returncode == 0, run.stderr
-    with open(out / "run/history.csv") as f:
-        hist = list(csv.DictReader(f))
-    t_out = np.array([float(r["t_s"]) for r in hist])
-    program_q = np.array([[float(r["B1_f1_u_m"]), float(r["B1_f1_v_m"]), float(r["B1_f1_phi_rad"])] for r in hist])
-    with open(out / "run/yielding.csv") as f:
-        springs = [r for r in csv.DictReader(f) if r["building"] == "1"]
-    summary = json.loads((out / "run/summary.json").read_text())
+    times, accel, t_out, program_q, springs, summary = run_one_storey(program, out, LAW)
 
     peer = BoucWenPeer()
     peer_q = peer.run(times, accel, t_out)

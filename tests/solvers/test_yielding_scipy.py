@@ -328,13 +328,16 @@ def check_pounding_demand(program, out, failures):
         failures.append("pounding demand: the contact-free reference is not the run without contact")
 
 
-def main():
-    program = sys.argv[1]
-    out = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp())
-    out.mkdir(parents=True, exist_ok=True)
+def run_one_storey(program, out, law=None):
+    """The one-storey scene under the pulse, its columns' law replaced by `law` (TOML lines) when
+    given: the record (times, accel), the history times, the program's (u, v, phi) rows, building
+    1's yielding.csv rows and summary.json."""
     times, accel = record()
     (out / "pulse.txt").write_text("\n".join(f"{a!r}" for a in accel) + "\n")
-    (out / "scene.toml").write_text(scene_text(out / "pulse.txt"))
+    text = scene_text(out / "pulse.txt")
+    bilinear = f'law = "bilinear"\nyield_drift_m = {YIELD_DRIFT_M}\nhardening_ratio = {ALPHA}\n'
+    assert bilinear in text
+    (out / "scene.toml").write_text(text.replace(bilinear, law or bilinear))
     run = subprocess.run([program, "run", str(out / "scene.toml"), "--out", str(out / "run"), "--no-progress"],
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
@@ -344,7 +347,14 @@ def main():
     program_q = np.array([[float(r["B1_f1_u_m"]), float(r["B1_f1_v_m"]), float(r["B1_f1_phi_rad"])] for r in hist])
     with open(out / "run/yielding.csv") as f:
         springs = [r for r in csv.DictReader(f) if r["building"] == "1"]
-    summary = json.loads((out / "run/summary.json").read_text())
+    return times, accel, t_out, program_q, springs, json.loads((out / "run/summary.json").read_text())
+
+
+def main():
+    program = sys.argv[1]
+    out = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp())
+    out.mkdir(parents=True, exist_ok=True)
+    times, accel, t_out, program_q, springs, summary = run_one_storey(program, out)
 
     peer = Peer()
     peer_q = peer.run(times, accel, t_out)
