@@ -15,6 +15,7 @@
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/analysis/study.hpp"
 #include "pounding/contact/candidates.hpp"
+#include "pounding/contact/column_contact.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/json_report.hpp"
@@ -45,6 +46,37 @@ void print_modes_table(const analysis::BuildingSummary& building, int count) {
   }
 }
 
+/// The slabs between two floors of the other building and the facade columns each can strike.
+void print_column_levels(const analysis::Scene& scene, const std::vector<contact::ColumnLevel>& column_levels,
+                         const std::array<std::vector<double>, 2>& z) {
+  if (scene.contact.slab_to_column == "off") {
+    const auto all = contact::column_levels(z, scene.contact.level_tolerance_m);
+    if (!all.empty())
+      fmt::print("Slab to column: off (contact.slab_to_column); {} slab(s) between floors left out\n", all.size());
+    return;
+  }
+  if (column_levels.empty()) return;
+  const std::vector<contact::Candidate> candidates = analysis::scene_candidates(scene);
+  fmt::print("Slab to column (a slab between two floors of the other building strikes its facade columns): {}\n",
+             column_levels.size());
+  for (const contact::ColumnLevel& l : column_levels) {
+    const int columns = 1 - l.slab_building;
+    std::vector<std::string> struck;
+    for (const contact::Candidate& c : candidates) {
+      if (!c.column || c.struck_building != l.slab_building || c.floors[l.slab_building] != l.slab_floor) continue;
+      const std::string label =
+          fmt::format("{} ({:.3g} mm/MN)", c.column_index + 1, c.flexibility_m_per_kN * 1e6);  // m/kN -> mm/MN
+      if (std::find(struck.begin(), struck.end(), label) == struck.end()) struck.push_back(label);
+    }
+    const double below = l.storey > 1 ? z[columns][l.storey - 2] : 0.0;
+    fmt::print("  B{} floor {} ({:.6g} m) -> B{} storey {} ({:.6g} to {:.6g} m) at height ratio {:.4g}: {}\n",
+               l.slab_building + 1, l.slab_floor, l.elevation_m, columns + 1, l.storey, below, z[columns][l.storey - 1],
+               l.height_ratio,
+               struck.empty() ? std::string("no facade column within reach")
+                              : fmt::format("columns {} (number, local flexibility)", fmt::join(struck, ", ")));
+  }
+}
+
 /// The floor pairs that can touch, with both elevations, and the floors at no level.
 void print_levels(const analysis::Scene& scene) {
   const std::vector<contact::Level> levels = scene.levels();
@@ -56,16 +88,23 @@ void print_levels(const analysis::Scene& scene) {
     fmt::print("  level {}: B1 floor {} ({:.6g} m) ↔ B2 floor {} ({:.6g} m)\n", l.index, l.floors[0],
                z[0][l.floors[0] - 1], l.floors[1], z[1][l.floors[1] - 1]);
   }
+  const std::vector<contact::ColumnLevel> column_levels = scene.column_levels();
   for (std::size_t b = 0; b < 2; ++b) {
     std::vector<int> alone;
     for (int f = 1; f <= static_cast<int>(z[b].size()); ++f) {
-      if (std::none_of(levels.begin(), levels.end(), [&](const contact::Level& l) { return l.floors[b] == f; })) {
-        alone.push_back(f);
-      }
+      const bool at_level =
+          std::any_of(levels.begin(), levels.end(), [&](const contact::Level& l) { return l.floors[b] == f; });
+      const bool facing_columns = std::any_of(column_levels.begin(), column_levels.end(), [&](const auto& l) {
+        return l.slab_building == static_cast<int>(b) && l.slab_floor == f;
+      });
+      if (!at_level && !facing_columns) alone.push_back(f);
     }
-    if (!alone.empty())
-      fmt::print("  B{} floors at no level (no slab of the other building there): {}\n", b + 1, fmt::join(alone, ", "));
+    if (!alone.empty()) {
+      fmt::print("  B{} floors at no level{} (no slab of the other building there): {}\n", b + 1,
+                 column_levels.empty() ? "" : " and facing no columns", fmt::join(alone, ", "));
+    }
   }
+  print_column_levels(scene, column_levels, z);
 }
 
 std::string_view format_name(excitation::RecordFormat format) {
@@ -219,6 +258,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
     limits.validate();
     created = io::require_writable_folder(folder, "--out");  // before the run, not after an hour of it
     provenance = io::make_provenance(scene, command_line);
+    files.slab_to_column(contact::has_column_pairs(analysis::scene_candidates(scene)));
     const InterruptRequests interrupts;
     report = analysis::run_scene(scene, limits, &files);
   } catch (const InputError& error) {
@@ -374,8 +414,16 @@ int run_check(const CheckCommand& command) {
                                             analysis::contact_law_info(scene.contact.law).stiffness_unit);
   fmt::print("Contact: gap {} m, restitution k = {}{}\n", scene.contact.gap_m, scene.contact.restitution, law);
   const auto candidates = analysis::scene_candidates(scene);
-  fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
-             candidates.size());
+  const auto column_pairs = std::count_if(candidates.begin(), candidates.end(), [](const auto& c) { return c.column; });
+  if (column_pairs == 0) {
+    fmt::print("Contact candidates: {} (vertex of one slab against an edge of the other, same level)\n",
+               candidates.size());
+  } else {
+    fmt::print(
+        "Contact candidates: {} ({} slab vertex against slab edge at a level, {} column against slab edge, "
+        "level 0)\n",
+        candidates.size(), candidates.size() - static_cast<std::size_t>(column_pairs), column_pairs);
+  }
   for (const auto& c : candidates) fmt::print("  level {}: {}\n", c.level, contact::describe(c));
   const analysis::UsedSettings used = analysis::resolve(scene.solver, &system);
   fmt::print("Solver: {} ({}): {}\n", scene.solver.method, used.method->description,

@@ -87,6 +87,11 @@ std::string contact_default(const analysis::ContactSettingSpec& spec) {
 }
 
 std::string contact_type(const analysis::ContactSettingSpec& spec) {
+  if (!spec.choices.empty()) {
+    std::vector<std::string> names;
+    for (std::string_view choice : spec.choices) names.push_back(fmt::format("`\"{}\"`", choice));
+    return fmt::format("{}", fmt::join(names, ", "));
+  }
   if (!spec.range) {  // the law
     std::vector<std::string> names;
     for (const analysis::ContactLawInfo& law : analysis::contact_laws())

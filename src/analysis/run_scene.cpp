@@ -17,8 +17,13 @@ namespace pounding::analysis {
 std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
   contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
                                  {scene.buildings[0].centre_of_mass, scene.buildings[1].centre_of_mass}};
-  return contact::find_candidates(geometry, scene.levels(),
-                                  {.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m});
+  const contact::CandidateOptions options{.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m};
+  std::vector<contact::Candidate> candidates = contact::find_candidates(geometry, scene.levels(), options);
+  // Slab to column after slab to slab, so that a scene without them keeps its candidates' numbers.
+  const std::vector<contact::Candidate> columns =
+      contact::find_column_candidates({&scene.buildings[0], &scene.buildings[1]}, scene.column_levels(), options);
+  candidates.insert(candidates.end(), columns.begin(), columns.end());
+  return candidates;
 }
 
 namespace {

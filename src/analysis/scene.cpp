@@ -70,6 +70,14 @@ const std::vector<ContactSettingSpec>& contact_specs() {
                   "which also says which law to use for what). The compliant laws run on cvode-bdf, cvode-adams, "
                   "arkode-erk and arkode-dirk; hht and exact refuse them (exit 2). `jankowski` refuses "
                   "`restitution = 0` (its damping ratio is infinite there)"},
+      {.key = "slab_to_column",
+       .member = &ContactSettings::slab_to_column,
+       .choices = {"on", "off"},
+       .description = "whether a slab between two floors of the other building meets its facade columns",
+       .details = "`\"on\"`: such a slab strikes the columns of the other building's facing facade at its "
+                  "height, the force shared by the column's two floors and the column's local flexibility in "
+                  "series with the law ([model.md §6b](model.md#6b-slab-to-column-contact)); it needs a "
+                  "compliant law. `\"off\"` leaves those slabs out: only floors at a common level touch"},
       {.key = "stiffness_kN_per_m",
        .option = "--contact-stiffness",
        .member = &ContactSettings::stiffness_kN_per_m,
@@ -114,6 +122,15 @@ void validate_contact(const ContactSettings& contact) {
       require_range("contact." + std::string(spec.key), contact.**number, *spec.range);
     }
   }
+  for (const ContactSettingSpec& spec : contact_specs()) {
+    const auto* text = std::get_if<std::string ContactSettings::*>(&spec.member);
+    if (text == nullptr || spec.choices.empty()) continue;
+    const std::string& value = contact.**text;
+    if (std::find(spec.choices.begin(), spec.choices.end(), value) == spec.choices.end()) {
+      throw InputError("contact." + std::string(spec.key), fmt::format("\"{}\"", value),
+                       fmt::format("expected \"{}\"", fmt::join(spec.choices, "\" or \"")));
+    }
+  }
   const ContactLawInfo& law = contact_law_info(contact.law);
   auto check_stiffness = [&](std::string_view key, const std::optional<double>& value) {
     if (!value) return;
@@ -149,15 +166,47 @@ void validate_levels(const Scene& scene) {
       }
     }
   }
-  if (!scene.levels().empty()) return;
+  if (!scene.levels().empty() || !scene.column_levels().empty()) return;
   const auto elevations = [&](std::size_t b) { return model::floor_elevations(scene.buildings[b]); };
+  const bool columns_off = scene.contact.slab_to_column == "off";
   throw InputError(building_key(1) + ".storey_height_m",
                    fmt::format("[{}]", fmt::join(scene.buildings[1].storey_height_m, ", ")),
                    fmt::format("no floor of building 2 stands at the elevation of a floor of building 1 "
                                "(building 1's floors at {:.6g} m, building 2's at {:.6g} m, matched within "
-                               "contact.level_tolerance_m = {} m): their slabs could only strike columns, and "
-                               "slab-to-column impacts are outside this model",
-                               fmt::join(elevations(0), ", "), fmt::join(elevations(1), ", "), tolerance));
+                               "contact.level_tolerance_m = {} m){}: nothing could touch",
+                               fmt::join(elevations(0), ", "), fmt::join(elevations(1), ", "), tolerance,
+                               columns_off ? ", and contact.slab_to_column = \"off\" leaves out the slabs that "
+                                             "would strike columns"
+                                           : ""));
+}
+
+/// Where slabs meet columns: a compliant law (an impulse would need the column rigid and its
+/// floors' shares solved together, which the impact module does not do), and column storeys
+/// (a storey given as a matrix has no columns to strike).
+void validate_column_contacts(const Scene& scene) {
+  const std::vector<contact::ColumnLevel> levels = scene.column_levels();
+  if (levels.empty()) return;
+  const contact::ColumnLevel& first = levels.front();
+  const int columns = 1 - first.slab_building;
+  if (contact_law_info(scene.contact.law).law == contact::ContactLaw::impulse) {
+    throw InputError(
+        "contact.law", fmt::format("\"{}\"", scene.contact.law),
+        fmt::format("cannot resolve slab-to-column contact: {} floor {} ({:.6g} m) stands between floors of {} and "
+                    "would strike the columns of its storey {} (and {} such floor{} in all). Use a compliant law "
+                    "(kelvin, hertzdamp or jankowski), whose force the column's two floors share, or set "
+                    "contact.slab_to_column = \"off\" to leave such contacts out",
+                    scene.buildings[first.slab_building].name, first.slab_floor, first.elevation_m,
+                    scene.buildings[columns].name, first.storey, levels.size(), levels.size() == 1 ? "" : "s"));
+  }
+  for (const contact::ColumnLevel& level : levels) {
+    const std::size_t b = static_cast<std::size_t>(1 - level.slab_building);
+    if (scene.buildings[b].uses_columns()) continue;
+    throw InputError(fmt::format("{}.storey_stiffness[{}]", building_key(b), level.storey), "",
+                     fmt::format("is a matrix, but {} floor {} ({:.6g} m) would strike the columns of {}'s storey {}: "
+                                 "give that building's columns (or set contact.slab_to_column = \"off\")",
+                                 scene.buildings[static_cast<std::size_t>(level.slab_building)].name, level.slab_floor,
+                                 level.elevation_m, scene.buildings[b].name, level.storey));
+  }
 }
 
 /// [output.floor_history]: a building's name, then floors in 1..its storeys, none twice.
@@ -280,6 +329,12 @@ std::vector<contact::Level> Scene::levels() const {
                                 contact.level_tolerance_m);
 }
 
+std::vector<contact::ColumnLevel> Scene::column_levels() const {
+  if (contact.slab_to_column == "off") return {};
+  return contact::column_levels({model::floor_elevations(buildings[0]), model::floor_elevations(buildings[1])},
+                                contact.level_tolerance_m);
+}
+
 void Scene::validate() const {
   if (name.empty()) throw InputError("name", "\"\"", "must not be empty", file.string());
   for (std::size_t i = 0; i < buildings.size(); ++i) {
@@ -293,6 +348,7 @@ void Scene::validate() const {
     excitation.validate();
     validate_contact(contact);
     validate_levels(*this);
+    validate_column_contacts(*this);
     solver.validate();
     validate_output(output, levels().size());
     validate_floor_history(*this);

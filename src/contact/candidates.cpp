@@ -1,10 +1,10 @@
 #include "pounding/contact/candidates.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
 namespace pounding::contact {
-namespace {
 
 using model::Point2;
 
@@ -21,6 +21,19 @@ bool faces(const Point2& q1, const Point2& normal, const model::Polygon& other) 
   return false;
 }
 
+bool within_reach(const Point2& p, const Point2& q1, const Point2& q2, const Point2& normal,
+                  const CandidateOptions& options) {
+  const double length = (q2 - q1).norm();
+  const Point2 tangent = (q2 - q1) / length;
+  const double distance = (p - q1).dot(normal);
+  const double along = (p - q1).dot(tangent);
+  const bool in_front = distance >= -1e-9 && distance <= options.gap_m + options.margin_m;
+  const bool over_edge = along >= -options.margin_m && along <= length + options.margin_m;
+  return in_front && over_edge;
+}
+
+namespace {
+
 void add_pairs(const PairGeometry& geometry, int striking, const Level& level, const CandidateOptions& options,
                std::vector<Candidate>& out) {
   const int struck = 1 - striking;
@@ -31,15 +44,9 @@ void add_pairs(const PairGeometry& geometry, int striking, const Level& level, c
     const Point2& q2 = edges.edge_end(e);
     const Point2 normal = outward_normal(q1, q2);
     if (!faces(q1, normal, vertices)) continue;
-    const double length = (q2 - q1).norm();
-    const Point2 tangent = (q2 - q1) / length;
     for (std::size_t v = 0; v < vertices.size(); ++v) {
       const Point2& p = vertices.vertex(v);
-      const double distance = (p - q1).dot(normal);
-      const double along = (p - q1).dot(tangent);
-      const bool in_front = distance >= -1e-9 && distance <= options.gap_m + options.margin_m;
-      const bool over_edge = along >= -options.margin_m && along <= length + options.margin_m;
-      if (in_front && over_edge) {
+      if (within_reach(p, q1, q2, normal, options)) {
         out.push_back({level.index, level.floors, level.elevation_m, striking, struck, v, e, p, q1, q2, normal});
       }
     }
@@ -79,7 +86,17 @@ std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::
   return candidates;
 }
 
+bool has_column_pairs(const std::vector<Candidate>& candidates) {
+  return std::any_of(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.column; });
+}
+
 std::string describe(const Candidate& c) {
+  if (c.column) {
+    return fmt::format("B{} column {} ({:g}, {:g}) storey {} at {:.4g} -> B{} edge {} ({:g}, {:g})-({:g}, {:g})",
+                       c.striking_building + 1, c.column_index + 1, c.vertex_rest.x(), c.vertex_rest.y(),
+                       c.floors[c.striking_building], c.height_ratio, c.struck_building + 1, c.edge_index + 1,
+                       c.edge_start_rest.x(), c.edge_start_rest.y(), c.edge_end_rest.x(), c.edge_end_rest.y());
+  }
   return fmt::format("B{} vertex {} ({:g}, {:g}) -> B{} edge {} ({:g}, {:g})-({:g}, {:g})",
                      c.striking_building + 1, c.vertex_index + 1, c.vertex_rest.x(), c.vertex_rest.y(),
                      c.struck_building + 1, c.edge_index + 1, c.edge_start_rest.x(),

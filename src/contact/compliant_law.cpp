@@ -31,13 +31,16 @@ double jankowski_damping_ratio(double restitution) {
 }
 
 CompliantContact::CompliantContact(ContactLaw law, double stiffness, double restitution, double approach_speed_mps,
-                                   double normal_inverse_mass_per_t)
-    : law_(law), stiffness_(stiffness) {
-  assert(law != ContactLaw::impulse && stiffness > 0.0 && approach_speed_mps > 0.0 && normal_inverse_mass_per_t > 0.0);
+                                   double normal_inverse_mass_per_t, double series_flexibility_m_per_kN)
+    : law_(law), stiffness_(stiffness), series_flexibility_(series_flexibility_m_per_kN) {
+  assert(law != ContactLaw::impulse && stiffness > 0.0 && approach_speed_mps > 0.0 && normal_inverse_mass_per_t > 0.0 &&
+         series_flexibility_m_per_kN >= 0.0);
   switch (law) {
     case ContactLaw::impulse:
     case ContactLaw::kelvin:
-      damping_ = kelvin_damping(stiffness, restitution, normal_inverse_mass_per_t);
+      // Two springs in series; the damping ratio then holds for the pair.
+      if (series_flexibility_ > 0.0) stiffness_ = 1.0 / (1.0 / stiffness + series_flexibility_);
+      damping_ = kelvin_damping(stiffness_, restitution, normal_inverse_mass_per_t);
       break;
     case ContactLaw::hertzdamp:
       damping_ = hertzdamp_normalised_damping(restitution) * stiffness / approach_speed_mps;
@@ -54,7 +57,7 @@ bool CompliantContact::acts() const { return law_ == ContactLaw::jankowski || !s
 double CompliantContact::force_kN(double overlap_m, double rate_mps) const {
   if (!acts()) return 0.0;
   if (law_ == ContactLaw::kelvin) return stiffness_ * overlap_m + damping_ * rate_mps;
-  const double overlap = std::max(overlap_m, 0.0);
+  const double overlap = own_overlap(std::max(overlap_m, 0.0));
   const double hertz = std::pow(overlap, 1.5);
   if (law_ == ContactLaw::hertzdamp) return hertz * (stiffness_ + damping_ * rate_mps);
   const bool approaching = !switched_;
@@ -64,8 +67,14 @@ double CompliantContact::force_kN(double overlap_m, double rate_mps) const {
 ForceSlopes CompliantContact::slopes(double overlap_m, double rate_mps) const {
   if (!acts()) return {};
   if (law_ == ContactLaw::kelvin) return {stiffness_, damping_};
-  const double overlap = std::max(overlap_m, 0.0);
+  const double overlap = own_overlap(std::max(overlap_m, 0.0));
   const double root = std::sqrt(overlap);
+  ForceSlopes slopes = hertz_slopes(overlap, root, rate_mps);
+  if (series_flexibility_ > 0.0) slopes.per_overlap_kN_per_m *= own_overlap_slope(overlap);
+  return slopes;
+}
+
+ForceSlopes CompliantContact::hertz_slopes(double overlap, double root, double rate_mps) const {
   if (law_ == ContactLaw::hertzdamp) {
     return {1.5 * root * (stiffness_ + damping_ * rate_mps), damping_ * overlap * root};
   }
@@ -79,6 +88,24 @@ ForceSlopes CompliantContact::slopes(double overlap_m, double rate_mps) const {
     slopes.per_rate_kNs_per_m = damping_ * std::pow(overlap, 0.25);
   }
   return slopes;
+}
+
+double CompliantContact::own_overlap(double overlap_m) const {
+  if (series_flexibility_ == 0.0 || law_ == ContactLaw::kelvin || overlap_m <= 0.0) return overlap_m;
+  // δ = s² + c s³ with s = √δ_c, c = f k: convex and increasing in s, so Newton from above (each
+  // term alone reaching δ bounds s) descends monotonically onto the root.
+  const double c = series_flexibility_ * stiffness_;
+  double s = std::min(std::sqrt(overlap_m), std::cbrt(overlap_m / c));
+  for (int i = 0; i < 100; ++i) {
+    const double step = (s * s * (1.0 + c * s) - overlap_m) / (s * (2.0 + 3.0 * c * s));
+    if (!(step > 1e-16 * s)) break;
+    s -= step;
+  }
+  return s * s;
+}
+
+double CompliantContact::own_overlap_slope(double own_overlap_m) const {
+  return 1.0 / (1.0 + 1.5 * series_flexibility_ * stiffness_ * std::sqrt(own_overlap_m));
 }
 
 double CompliantContact::first_switch(double overlap_m, double rate_mps) const {

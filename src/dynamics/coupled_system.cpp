@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <cmath>
+#include <optional>
 
 namespace pounding::dynamics {
 
@@ -88,8 +89,24 @@ contact::SlabMotion CoupledSystem::slab(ConstVectorRef y, int building, int floo
 
 contact::GapState CoupledSystem::gap(ConstVectorRef y, std::size_t index) const {
   const contact::Candidate& c = candidates_[index];
+  if (c.column) {
+    const std::optional<contact::SlabMotion> lower =
+        c.lower_floor > 0 ? std::optional(slab(y, c.striking_building, c.lower_floor)) : std::nullopt;
+    return contact::evaluate_column_gap(c, lower ? &*lower : nullptr,
+                                        slab(y, c.striking_building, c.floors[c.striking_building]),
+                                        slab(y, c.struck_building, c.floors[c.struck_building]));
+  }
   return contact::evaluate_gap(c, slab(y, c.striking_building, c.floors[c.striking_building]),
                               slab(y, c.struck_building, c.floors[c.struck_building]));
+}
+
+std::vector<CoupledSystem::RowBlock> CoupledSystem::row_blocks(const contact::Candidate& c,
+                                                               const contact::GapState& s) const {
+  std::vector<RowBlock> blocks{{floor_index(c.striking_building, c.floors[c.striking_building]), s.striking_row},
+                               {floor_index(c.struck_building, c.floors[c.struck_building]), s.struck_row}};
+  if (c.column && c.lower_floor > 0)
+    blocks.push_back({floor_index(c.striking_building, c.lower_floor), s.striking_lower_row});
+  return blocks;
 }
 
 contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
@@ -103,6 +120,11 @@ contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
 double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const {
   const contact::Candidate& c = candidates_[index];
   const contact::GapState s = gap(y, index);
+  if (c.column) {
+    double accel = s.curvature_mps2;
+    for (const RowBlock& block : row_blocks(c, s)) accel += block.row.dot(y_dot.segment<3>(dof_ + block.first));
+    return accel;
+  }
   const auto accel_of = [&](int building) {
     return y_dot.segment<3>(dof_ + floor_index(building, c.floors[building]));
   };
@@ -112,6 +134,12 @@ double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, s
 
 double CoupledSystem::gap_rate_round_off_mps(ConstVectorRef y, std::size_t index) const {
   const contact::Candidate& c = candidates_[index];
+  if (c.column) {
+    double size = 0.0;
+    for (const RowBlock& block : row_blocks(c, gap(y, index)))
+      size += block.row.cwiseAbs().dot(y.segment<3>(dof_ + block.first).cwiseAbs());
+    return 1e-15 + 1e-9 * size;
+  }
   const contact::RowVector6d row = pair_row(gap(y, index), c);
   return 1e-15 + 1e-9 * row.cwiseAbs().dot(pair_velocities(y, c.floors).cwiseAbs());
 }
@@ -139,10 +167,8 @@ void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::siz
   rows = MatrixXd::Zero(k, dof_);
   bias.resize(k);
   for (Eigen::Index r = 0; r < k; ++r) {
-    const contact::Candidate& c = candidates_[held[r]];
     const contact::GapState s = gap(y, held[r]);
-    rows.block<1, 3>(r, floor_index(c.striking_building, c.floors[c.striking_building])) = s.striking_row;
-    rows.block<1, 3>(r, floor_index(c.struck_building, c.floors[c.struck_building])) = s.struck_row;
+    for (const RowBlock& block : row_blocks(candidates_[held[r]], s)) rows.block<1, 3>(r, block.first) = block.row;
     // Drift correction g̈ = −3ġ/τ − 2g/τ²: roots −1/τ and −2/τ, distinct so that the linearised
     // held system stays diagonalisable (the exact path relies on it).
     constexpr double tau = hold_time_constant_s;
@@ -271,11 +297,8 @@ void CoupledSystem::constrained_acceleration_jacobian(ConstVectorRef y, const st
 }
 
 Eigen::RowVectorXd CoupledSystem::full_row(ConstVectorRef y, std::size_t index) const {
-  const contact::Candidate& c = candidates_[index];
-  const contact::GapState s = gap(y, index);
   Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(dof_);
-  row.segment<3>(floor_index(c.striking_building, c.floors[c.striking_building])) = s.striking_row;
-  row.segment<3>(floor_index(c.struck_building, c.floors[c.struck_building])) = s.struck_row;
+  for (const RowBlock& block : row_blocks(candidates_[index], gap(y, index))) row.segment<3>(block.first) = block.row;
   return row;
 }
 
@@ -293,12 +316,9 @@ void CoupledSystem::add_contact_force(ConstVectorRef y, std::size_t index, doubl
 Eigen::SparseMatrix<double> CoupledSystem::contact_force_rows(ConstVectorRef y, std::size_t index,
                                                              double stiffness_kN_per_m,
                                                              double damping_kNs_per_m) const {
-  const contact::Candidate& c = candidates_[index];
-  const contact::GapState s = gap(y, index);
-  std::array<std::pair<int, double>, 6> row;  // G's entries: (index in q, value)
-  for (int k = 0; k < 3; ++k) {
-    row[k] = {floor_index(c.striking_building, c.floors[c.striking_building]) + k, s.striking_row[k]};
-    row[3 + k] = {floor_index(c.struck_building, c.floors[c.struck_building]) + k, s.struck_row[k]};
+  std::vector<std::pair<int, double>> row;  // G's entries: (index in q, value)
+  for (const RowBlock& block : row_blocks(candidates_[index], gap(y, index))) {
+    for (int k = 0; k < 3; ++k) row.emplace_back(block.first + k, block.row[k]);
   }
   std::vector<Eigen::Triplet<double>> terms;
   for (const auto& [i, g_i] : row) {

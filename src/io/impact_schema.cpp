@@ -54,19 +54,20 @@ const std::vector<ImpactField>& impact_fields() {
       {"t", "s", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.t_s}; },
        "instant of the impact (a compliant law's: its onset)"},
       {"level", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.level)}; },
-       "contact level (1-based; summary.json's levels gives its floors and elevation)"},
+       "contact level (1-based; summary.json's levels gives its floors and elevation); 0 slab to column"},
       {"floors", "", {"b1", "b2"}, Type::integer,
        [](const ImpactRecord& i) { return std::vector{double(i.floors[0]), double(i.floors[1])}; },
-       "the floor of building 1 and of building 2 at that level"},
+       "the floor of building 1 and of building 2 at that level; slab to column: the slab's floor and the "
+       "column's storey"},
       {"elevation", "m", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.elevation_m}; },
-       "the level's elevation above the ground"},
+       "the level's elevation above the ground; slab to column: the striking slab's"},
       {"striking_building", "", {}, Type::integer,
        [](const ImpactRecord& i) { return std::vector{double(i.striking_building)}; },
-       "the building whose slab vertex strikes (1 or 2)"},
+       "the building whose slab vertex strikes (1 or 2); slab to column: the column's building"},
       {"vertex", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.vertex)}; },
-       "the striking vertex's 1-based number in its slab outline"},
+       "the striking vertex's 1-based number in its slab outline; 0 for a column point"},
       {"vertex_rest", "m", {"x", "y"}, Type::real, [](const ImpactRecord& i) { return pair(i.vertex_rest); },
-       "that vertex at rest (plan x, y)"},
+       "that vertex at rest (plan x, y); slab to column: the column's point on its facade"},
       {"struck_edge", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.struck_edge)}; },
        "the struck edge's 1-based number in the other slab's outline (edge n runs from vertex n to n + 1)"},
       {"point", "m", {"x", "y"}, Type::real, [](const ImpactRecord& i) { return pair(i.point); },
@@ -88,39 +89,58 @@ const std::vector<ImpactField>& impact_fields() {
       {"starts_sustained_contact", "", {}, Type::flag,
        [](const ImpactRecord& i) { return std::vector{i.starts_hold ? 1.0 : 0.0}; },
        "true (1) when the pair is held in sustained contact after it"},
+      {"column", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.column)}; },
+       "slab to column (level 0): the struck column's 1-based number in its building's list (the striking "
+       "building: the column point takes the vertex's role, the slab's edge the struck edge's); 0 slab to slab",
+       true},
+      {"height_ratio", "", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.height_ratio}; },
+       "slab to column: where the slab meets the column, as a fraction of its storey's height from the floor below",
+       true},
+      {"column_shear", "kN", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.column_shear_kN}; },
+       "slab to column: the larger end shear the peak force causes in the fixed-fixed column", true},
+      {"column_moment", "kNm", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.column_moment_kNm}; },
+       "slab to column: the largest bending moment (an end or under the load) the peak force causes in it", true},
   };
   // clang-format on
   return kFields;
 }
 
-nlohmann::ordered_json impact_json(const ImpactRecord& impact) {
-  nlohmann::ordered_json document;
+std::vector<const ImpactField*> impact_fields(bool slab_to_column) {
+  std::vector<const ImpactField*> fields;
   for (const ImpactField& field : impact_fields()) {
-    const std::vector<double> values = field.values(impact);
-    if (field.components.empty()) {
-      document[field.json_key()] = json_value(field.type, values.front());
+    if (slab_to_column || !field.slab_to_column) fields.push_back(&field);
+  }
+  return fields;
+}
+
+nlohmann::ordered_json impact_json(const ImpactRecord& impact, bool slab_to_column) {
+  nlohmann::ordered_json document;
+  for (const ImpactField* field : impact_fields(slab_to_column)) {
+    const std::vector<double> values = field->values(impact);
+    if (field->components.empty()) {
+      document[field->json_key()] = json_value(field->type, values.front());
       continue;
     }
     nlohmann::ordered_json array = nlohmann::ordered_json::array();
-    for (double value : values) array.push_back(json_value(field.type, value));
-    document[field.json_key()] = array;
+    for (double value : values) array.push_back(json_value(field->type, value));
+    document[field->json_key()] = array;
   }
   return document;
 }
 
-std::vector<std::string> impact_csv_columns() {
+std::vector<std::string> impact_csv_columns(bool slab_to_column) {
   std::vector<std::string> columns;
-  for (const ImpactField& field : impact_fields()) {
-    for (std::string& column : field.csv_columns()) columns.push_back(std::move(column));
+  for (const ImpactField* field : impact_fields(slab_to_column)) {
+    for (std::string& column : field->csv_columns()) columns.push_back(std::move(column));
   }
   return columns;
 }
 
-std::string impact_csv_row(const ImpactRecord& impact) {
+std::string impact_csv_row(const ImpactRecord& impact, bool slab_to_column) {
   std::string row;
-  for (const ImpactField& field : impact_fields()) {
-    for (double value : field.values(impact))
-      row += fmt::format("{}{}", row.empty() ? "" : ",", csv_text(field.type, value));
+  for (const ImpactField* field : impact_fields(slab_to_column)) {
+    for (double value : field->values(impact))
+      row += fmt::format("{}{}", row.empty() ? "" : ",", csv_text(field->type, value));
   }
   return row;
 }

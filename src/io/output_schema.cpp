@@ -119,6 +119,7 @@ json output_schema_json() {
   for (const ImpactField& f : impact_fields()) {
     impacts.push_back(
         {{"key", f.json_key()}, {"csv_columns", f.csv_columns()}, {"unit", f.unit}, {"description", f.description}});
+    if (f.slab_to_column) impacts.back()["only_when"] = "slabs can strike columns";
   }
   json peaks = json::array();
   for (const PeakField& f : peak_fields()) {

@@ -13,8 +13,9 @@
 
 namespace pounding::io {
 
-void write_impacts_header(std::ostream& out);
-void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out);
+/// `slab_to_column`: with the slab-to-column fields (impact_schema.hpp).
+void write_impacts_header(std::ostream& out, bool slab_to_column);
+void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out, bool slab_to_column);
 /// One header line: the columns, comma-separated.
 void write_csv_header(const std::vector<std::string>& columns, std::ostream& out);
 void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& out);

@@ -22,7 +22,45 @@ std::string where(int level, const std::array<int, 2>& floors, double elevation_
 }
 template <class Located>
 std::string where(const Located& r) {
+  if (r.level == 0) {  // slab to column: the column point's building is the striking one
+    const int columns = r.striking_building, slab = 3 - columns;
+    return fmt::format("slab to column (B{} floor {}, {:.6g} m, on B{}'s storey {})", slab, r.floors[slab - 1],
+                       r.elevation_m, columns, r.floors[columns - 1]);
+  }
   return where(r.level, r.floors, r.elevation_m);
+}
+
+/// "B1 vertex 3 strikes" or, slab to column, "B1's slab strikes B2 column 4 at 0.5 of the storey".
+std::string striker(const solvers::ImpactRecord& r) {
+  if (r.level == 0) {
+    return fmt::format("B{}'s slab strikes B{} column {} at {:.3g} of the storey height", 3 - r.striking_building,
+                       r.striking_building, r.column, r.height_ratio);
+  }
+  return fmt::format("B{} vertex {} strikes", r.striking_building, r.vertex);
+}
+
+/// Per struck column (building, column, storey): its slab-to-column impacts and the largest
+/// peak force, with the shear and moment it causes (the impact's column_demand).
+void append_column_demands(const std::vector<solvers::ImpactRecord>& impacts, std::string& text) {
+  std::map<std::array<int, 3>, std::pair<int, const solvers::ImpactRecord*>> worst;  // count, largest force
+  for (const solvers::ImpactRecord& i : impacts) {
+    if (i.level != 0) continue;
+    auto& [count, largest] = worst[{i.striking_building, i.column, i.floors[i.striking_building - 1]}];
+    ++count;
+    if (largest == nullptr || i.peak_force_kN > largest->peak_force_kN) largest = &i;
+  }
+  if (worst.empty()) return;
+  auto out = std::back_inserter(text);
+  fmt::format_to(out, "Column demands (slab to column; the fixed-fixed column under the peak force):\n");
+  for (const auto& [where, entry] : worst) {
+    const solvers::ImpactRecord& i = *entry.second;
+    fmt::format_to(
+        out,
+        "  B{} column {} storey {} at {:.3g}: {} impact{}, peak force {:.1f} kN at {:.4f} s, shear {:.1f} kN, "
+        "moment {:.1f} kN·m\n",
+        where[0], where[1], where[2], i.height_ratio, entry.first, entry.first == 1 ? "" : "s", i.peak_force_kN, i.t_s,
+        i.column_shear_kN, i.column_moment_kNm);
+  }
 }
 
 void append_contacts(const analysis::RunReport& report, std::string& text) {
@@ -32,16 +70,18 @@ void append_contacts(const analysis::RunReport& report, std::string& text) {
   for (const auto& i : r.impacts) ++by_level[i.level];
   fmt::format_to(out, "Impacts: {}", r.impacts.size());
   for (const auto& [level, count] : by_level) {
+    if (level == 0) continue;
     const contact::Level& l = report.levels.at(static_cast<std::size_t>(level - 1));
     fmt::format_to(out, "; {}: {}", where(l.index, l.floors, l.elevation_m), count);
   }
+  if (by_level.count(0)) fmt::format_to(out, "; slab to column: {}", by_level[0]);
   text += '\n';
   if (!r.impacts.empty()) {
     const auto& first = r.impacts.front();
-    fmt::format_to(
-        out, "  first at t = {:.6f} s on {} (B{} vertex {} strikes), approach {:.4f} m/s, impulse {:.2f} kN·s\n",
-        first.t_s, where(first), first.striking_building, first.vertex, first.approach_velocity_mps, first.impulse_kNs);
+    fmt::format_to(out, "  first at t = {:.6f} s on {} ({}), approach {:.4f} m/s, impulse {:.2f} kN·s\n", first.t_s,
+                   where(first), striker(first), first.approach_velocity_mps, first.impulse_kNs);
   }
+  append_column_demands(r.impacts, text);
   fmt::format_to(out, "Touches (contact without impact): {}\n", r.touches.size());
   for (const auto& t : r.touches) {
     fmt::format_to(out, "  t = {:.6f} s, {}, B{} vertex {}\n", t.t_s, where(t), t.striking_building, t.vertex);

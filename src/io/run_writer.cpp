@@ -43,18 +43,25 @@ json candidates_json(const std::vector<contact::Candidate>& candidates) {
   json list = json::array();
   for (const contact::Candidate& c : candidates) {
     list.push_back(at_level(c, {{"striking_building", c.striking_building + 1},
-                    {"vertex", c.vertex_index + 1},
-                    {"vertex_rest", point(c.vertex_rest)},
-                    {"struck_building", c.struck_building + 1},
-                    {"edge", c.edge_index + 1},
-                    {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}}));
+                                {"vertex", c.column ? 0 : c.vertex_index + 1},
+                                {"vertex_rest", point(c.vertex_rest)},
+                                {"struck_building", c.struck_building + 1},
+                                {"edge", c.edge_index + 1},
+                                {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}}));
+    if (c.column) {  // the column point (striking building's column) against the slab's edge
+      list.back().update({{"column", c.column_index + 1},
+                          {"storey", c.floors[c.striking_building]},
+                          {"storey_height_m", c.storey_height_m},
+                          {"height_ratio", c.height_ratio},
+                          {"local_flexibility_m_per_kN", c.flexibility_m_per_kN}});
+    }
   }
   return list;
 }
 
-json impacts_json(const std::vector<solvers::ImpactRecord>& impacts) {
+json impacts_json(const std::vector<solvers::ImpactRecord>& impacts, bool slab_to_column) {
   json list = json::array();
-  for (const auto& i : impacts) list.push_back(impact_json(i));
+  for (const auto& i : impacts) list.push_back(impact_json(i, slab_to_column));
   return list;
 }
 
@@ -245,7 +252,9 @@ json run_json_elastic(const analysis::RunReport& report, const Provenance& prove
   std::map<int, int> counts;
   for (const auto& i : r.impacts) ++counts[i.level];
   json by_level = json::object();
-  for (const auto& [level, count] : counts) by_level[std::to_string(level)] = count;  // lowest level first
+  for (const auto& [level, count] : counts) {
+    if (level > 0) by_level[std::to_string(level)] = count;  // lowest level first; 0 is slab to column
+  }
   json touches = json::array(), sustained = json::array();
   for (const auto& t : r.touches) {
     touches.push_back(at_level(t, {{"t_s", t.t_s}, {"striking_building", t.striking_building},
@@ -259,31 +268,34 @@ json run_json_elastic(const analysis::RunReport& report, const Provenance& prove
                                      {"max_gap_drift_m", s.max_gap_drift_m},
                                      {"impulse_kNs", s.impulse_kNs}}));
   }
-  return {{"scene", report.scene},
-          {"method", r.method},
-          {"status", solvers::to_string(r.status)},
-          {"status_detail", r.status_detail},
-          {"warnings", warnings_json(report.warnings)},
-          {"settings", settings_json(report)},
-          {"gap_m", report.gap_m},
-          {"restitution", report.restitution},
-          {"contact_law", contact_law_json(report)},
-          {"start_s", r.start_s},
-          {"end_s", r.end_s},
-          {"levels", levels_json(report.levels)},
-          {"outputs", outputs_json(r.outputs)},
-          {"history_levels", r.history.levels},
-          {"candidates", candidates_json(report.candidates)},
-          {"impact_count", r.impacts.size()},
-          {"impacts_by_level", by_level},
-          {"impacts", impacts_json(r.impacts)},
-          {"touches", touches},
-          {"sustained_contacts", sustained},
-          {"accelerations", accelerations_json(report)},
-          {"peaks", peaks_json(r.peaks, r.outputs, report.g_mps2)},
-          {"energy", energy_json(r.energy, !report.springs.empty())},
-          {"statistics", statistics_json(r.statistics, report.candidates)},
-          {"provenance", provenance_json(provenance)}};
+  const bool slab_to_column = contact::has_column_pairs(report.candidates);
+  json summary = {{"scene", report.scene},
+                  {"method", r.method},
+                  {"status", solvers::to_string(r.status)},
+                  {"status_detail", r.status_detail},
+                  {"warnings", warnings_json(report.warnings)},
+                  {"settings", settings_json(report)},
+                  {"gap_m", report.gap_m},
+                  {"restitution", report.restitution},
+                  {"contact_law", contact_law_json(report)},
+                  {"start_s", r.start_s},
+                  {"end_s", r.end_s},
+                  {"levels", levels_json(report.levels)},
+                  {"outputs", outputs_json(r.outputs)},
+                  {"history_levels", r.history.levels},
+                  {"candidates", candidates_json(report.candidates)},
+                  {"impact_count", r.impacts.size()},
+                  {"impacts_by_level", by_level}};
+  if (slab_to_column) summary["impacts_slab_to_column"] = counts.count(0) ? counts[0] : 0;
+  summary.update(json{{"impacts", impacts_json(r.impacts, slab_to_column)},
+                      {"touches", touches},
+                      {"sustained_contacts", sustained},
+                      {"accelerations", accelerations_json(report)},
+                      {"peaks", peaks_json(r.peaks, r.outputs, report.g_mps2)},
+                      {"energy", energy_json(r.energy, !report.springs.empty())},
+                      {"statistics", statistics_json(r.statistics, report.candidates)},
+                      {"provenance", provenance_json(provenance)}});
+  return summary;
 }
 
 }  // namespace
@@ -345,9 +357,13 @@ void write_yielding_csv(const analysis::RunReport& report, const std::filesystem
   write_atomically(folder / "yielding.csv", [&](std::ostream& out) { write_yielding_rows(report, out); });
 }
 
-void write_impacts_header(std::ostream& out) { write_csv_header(impact_csv_columns(), out); }
+void write_impacts_header(std::ostream& out, bool slab_to_column) {
+  write_csv_header(impact_csv_columns(slab_to_column), out);
+}
 
-void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out) { out << impact_csv_row(impact) << '\n'; }
+void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out, bool slab_to_column) {
+  out << impact_csv_row(impact, slab_to_column) << '\n';
+}
 
 void write_csv_header(const std::vector<std::string>& columns, std::ostream& out) {
   for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
@@ -400,8 +416,9 @@ void write_run(const analysis::RunReport& report, const Provenance& provenance, 
     remove_history_files(folder);
   }
   write_atomically(folder / "impacts.csv", [&](std::ostream& out) {
-    write_impacts_header(out);
-    for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out);
+    const bool slab_to_column = contact::has_column_pairs(report.candidates);
+    write_impacts_header(out, slab_to_column);
+    for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out, slab_to_column);
   });
   write_yielding_csv(report, folder);
   write_json(run_json(report, provenance), folder / "summary.json");

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "law_events.hpp"
+#include "pounding/contact/column_contact.hpp"
 #include "pounding/contact/compliant_law.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
 
@@ -119,9 +120,10 @@ void CompliantEvents::begin_contact(std::size_t i, double t, const VectorXd& y) 
   // The effective mass and approach speed at onset, held for the contact so that the damping
   // (and the Jacobian) stay smooth.
   const contact::GapState s = system_.gap(y, i);
-  open_[i].emplace(OpenContact{contact::CompliantContact(options_.law, options_.contact_stiffness, options_.restitution,
-                                                         -s.gap_rate_mps, system_.normal_inverse_mass(y, i)),
-                               impact_at(system_, t, i, s)});
+  open_[i].emplace(OpenContact{
+      contact::CompliantContact(options_.law, options_.contact_stiffness, options_.restitution, -s.gap_rate_mps,
+                                system_.normal_inverse_mass(y, i), system_.candidates()[i].flexibility_m_per_kN),
+      impact_at(system_, t, i, s)});
   open_[i]->record.peak_force_kN = std::max(0.0, force_kN(i, y));
   states_.start_acting(i);
 }
@@ -135,6 +137,12 @@ void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
   // What the contact took from the slabs (dissipated, or still in its spring at the run's end)
   // counts as impact loss, as an impulse's does.
   r.energy_lost_kJ = -open_[i]->work_kJ;
+  if (r.column > 0) {
+    const contact::Candidate& c = system_.candidates()[i];
+    const contact::ColumnDemand demand = contact::column_demand(r.peak_force_kN, c.storey_height_m, c.height_ratio);
+    r.column_shear_kN = demand.shear_kN;
+    r.column_moment_kNm = demand.moment_kNm;
+  }
   recorder_.add_impact_loss(r.energy_lost_kJ);
   result_.impacts.push_back(r);
   recorder_.stream_new_impacts(result_.impacts);

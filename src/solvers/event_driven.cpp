@@ -71,17 +71,19 @@ namespace {
 
 using dynamics::VectorXd;
 
-/// Per candidate, the components of y its gap reads: (u, v, φ) of its two floors and their rates.
+/// Per candidate, the components of y its gap reads: (u, v, φ) of its floors and their rates.
 std::vector<std::vector<int>> gap_components(const dynamics::CoupledSystem& system) {
   std::vector<std::vector<int>> components;
   for (const contact::Candidate& c : system.candidates()) {
     std::vector<int>& own = components.emplace_back();
-    for (int b = 0; b < 2; ++b) {
+    const auto add_floor = [&](int b, int floor) {
       for (int k = 0; k < 3; ++k) {
-        own.push_back(system.floor_index(b, c.floors[b]) + k);
-        own.push_back(system.dof() + system.floor_index(b, c.floors[b]) + k);
+        own.push_back(system.floor_index(b, floor) + k);
+        own.push_back(system.dof() + system.floor_index(b, floor) + k);
       }
-    }
+    };
+    for (int b = 0; b < 2; ++b) add_floor(b, c.floors[b]);
+    if (c.column && c.lower_floor > 0) add_floor(c.striking_building, c.lower_floor);  // a column point's lower floor
   }
   return components;
 }

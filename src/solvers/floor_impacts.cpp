@@ -23,8 +23,17 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
 TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
                          const contact::GapState& gap) {
   const contact::Candidate& c = system.candidates()[index];
-  return {t,     c.level,           c.floors,         c.elevation_m, c.striking_building + 1, c.vertex_index + 1,
-          index, gap.contact_point, gap.gap_rate_mps, gap.gap_m};
+  // A column point is no slab vertex: vertex 0.
+  return {t,
+          c.level,
+          c.floors,
+          c.elevation_m,
+          c.striking_building + 1,
+          c.column ? 0 : c.vertex_index + 1,
+          index,
+          gap.contact_point,
+          gap.gap_rate_mps,
+          gap.gap_m};
 }
 
 ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,
@@ -36,12 +45,16 @@ ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::siz
   r.floors = c.floors;
   r.elevation_m = c.elevation_m;
   r.striking_building = c.striking_building + 1;
-  r.vertex = c.vertex_index + 1;
+  r.vertex = c.column ? 0 : c.vertex_index + 1;  // a column point is no slab vertex
   r.struck_edge = c.edge_index + 1;
   r.candidate = index;
   r.vertex_rest = c.vertex_rest;
   r.point = gap.contact_point;
   r.approach_velocity_mps = -gap.gap_rate_mps;
+  if (c.column) {
+    r.column = static_cast<int>(c.column_index) + 1;
+    r.height_ratio = c.height_ratio;
+  }
   return r;
 }
 

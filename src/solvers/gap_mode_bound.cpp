@@ -11,12 +11,14 @@ namespace pounding::solvers {
 
 namespace {
 
-/// The gap rows of every candidate at rest (those of every small motion): for each, the
-/// building-b row over its floor's (u, v, φ) is rows[i][b], the floor's index in q_b is floors[i][b].
-struct RestRows {
-  std::vector<std::array<Eigen::RowVector3d, 2>> rows;
-  std::vector<std::array<int, 2>> floors;
+/// The gap rows of every candidate at rest (those of every small motion): per candidate, each
+/// floor its gap reads as (building, floor index in q_b, row over that floor's (u, v, φ)).
+struct RestBlock {
+  int building = 0;
+  int first = 0;
+  Eigen::RowVector3d row;
 };
+using RestRows = std::vector<std::vector<RestBlock>>;
 
 RestRows rest_rows(const dynamics::CoupledSystem& system) {
   const Eigen::VectorXd rest = Eigen::VectorXd::Zero(system.state_size());
@@ -24,11 +26,11 @@ RestRows rest_rows(const dynamics::CoupledSystem& system) {
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     const contact::Candidate& c = system.candidates()[i];
     const contact::GapState s = system.gap(rest, i);
-    std::array<Eigen::RowVector3d, 2> rows;
-    rows[c.striking_building] = s.striking_row;
-    rows[c.struck_building] = s.struck_row;
-    result.rows.push_back(rows);
-    result.floors.push_back(c.floors);
+    std::vector<RestBlock>& blocks = result.emplace_back();
+    blocks.push_back({c.striking_building, 3 * (c.floors[c.striking_building] - 1), s.striking_row});
+    blocks.push_back({c.struck_building, 3 * (c.floors[c.struck_building] - 1), s.struck_row});
+    if (c.column && c.lower_floor > 0)
+      blocks.push_back({c.striking_building, 3 * (c.lower_floor - 1), s.striking_lower_row});
   }
   return result;
 }
@@ -36,8 +38,12 @@ RestRows rest_rows(const dynamics::CoupledSystem& system) {
 /// The largest |∂g/∂η| of mode `shape` of building b over the candidates (m per unit η).
 double gap_per_unit(const RestRows& rest, int b, const Eigen::VectorXd& shape) {
   double largest = 0.0;
-  for (std::size_t i = 0; i < rest.rows.size(); ++i) {
-    largest = std::max(largest, std::abs(rest.rows[i][b].dot(shape.segment<3>(3 * (rest.floors[i][b] - 1)))));
+  for (const std::vector<RestBlock>& blocks : rest) {
+    double per_unit = 0.0;
+    for (const RestBlock& block : blocks) {
+      if (block.building == b) per_unit += block.row.dot(shape.segment<3>(block.first));
+    }
+    largest = std::max(largest, std::abs(per_unit));
   }
   return largest;
 }

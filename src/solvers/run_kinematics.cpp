@@ -19,7 +19,7 @@ void add_unique(std::vector<model::Point2>& points, const model::Point2& p) {
 std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate>& candidates, int building) {
   std::vector<model::Point2> points;
   for (const contact::Candidate& c : candidates) {
-    if (c.striking_building == building) add_unique(points, c.vertex_rest);
+    if (c.striking_building == building && !c.column) add_unique(points, c.vertex_rest);  // a column point is no corner
     if (c.struck_building == building) {
       add_unique(points, c.edge_start_rest);
       add_unique(points, c.edge_end_rest);

@@ -281,7 +281,17 @@ expect_refusal "--alpha = -0.5" run "$scene" --method hht --alpha -0.5 --out "$w
 expect_refusal "--halving" run "$scene" --method hht --halving sometimes --out "$work/bad"
 expect_refusal "--repeat" study "$scene" --repeat 0 --out "$work/bad"
 expect_refusal "building\[2\].storey_height_m = \[4.5, 3, 3" check "$work/no-levels.toml"
-expect_refusal "slab-to-column impacts are outside this model" run "$work/no-levels.toml" --out "$work/bad"
+expect_refusal "leaves out the slabs that would strike columns" run "$work/no-levels.toml" --out "$work/bad"
+# With slab-to-column contact on, the same scene has no level but its slabs strike columns: the
+# impulse law is refused naming the slab and the storey, a compliant law lists the pairs.
+grep -v '^slab_to_column' "$work/no-levels.toml" > "$work/columns.toml"
+expect_refusal "contact.law = \"impulse\": cannot resolve slab-to-column contact: B1 floor 1 (3 m)" check "$work/columns.toml"
+sed -e 's|^slab_to_column = .*|law = "kelvin"|' "$work/no-levels.toml" > "$work/columns.toml"
+"$pounding" check "$work/columns.toml" > "$work/columns-check.txt" || fail "check of slab to column exited $?"
+grep -q "B1 floor 1 (3 m) -> B2 storey 1 (0 to 4.5 m) at height ratio 0.6667: columns 1 " "$work/columns-check.txt" \
+  || fail "check does not list B1 floor 1 against B2's ground-storey columns: $(cat "$work/columns-check.txt")"
+grep -q "B2 floor 1 (4.5 m) -> B1 storey 2 (3 to 6 m) at height ratio 0.5" "$work/columns-check.txt" \
+  || fail "check does not list B2 floor 1 against B1's storey 2"
 expect_refusal "--peaks = \"speeds\": expected one of displacements, accelerations, drifts" run "$scene" --peaks drifts,speeds --out "$work/bad"
 expect_refusal "--history = never: expected on or off" run "$scene" --history never --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"

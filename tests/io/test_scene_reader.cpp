@@ -292,10 +292,31 @@ BOOST_AUTO_TEST_CASE(TargetPeriodSceneSolvesThePublishedFrameFactors) {
 
 BOOST_AUTO_TEST_CASE(SceneWithoutACommonLevelIsRefusedWithTheReason) {
   // B1 floors at 3 and 6 m; B2 on a 4.5 m ground storey then 3 m: floors at 4.5, 7.5, 10.5 m.
+  // With slab-to-column contact off nothing could touch.
   const std::string error =
-      error_of(edited("storeys = 3\nstorey_height_m = 3.0", "storeys = 3\nstorey_height_m = [4.5, 3.0, 3.0]"));
+      error_of(edited("storeys = 3\nstorey_height_m = 3.0", "storeys = 3\nstorey_height_m = [4.5, 3.0, 3.0]") +
+               "slab_to_column = \"off\"\n");
   BOOST_TEST(mentions(error, {"scene.toml", "building[2].storey_height_m", "[4.5, 3, 3]", "3, 6 m", "4.5, 7.5, 10.5 m",
-                              "slab-to-column impacts are outside this model"}));
+                              "nothing could touch", "leaves out the slabs that would strike columns"}));
+}
+
+BOOST_AUTO_TEST_CASE(SlabsBetweenFloorsNeedACompliantLawAndColumns) {
+  // A on 4.5 m storeys (floors 4.5, 9 m) against B's 3 m (3, 6, 9 m): A's floor 1 strikes B's
+  // storey-2 columns, B's floors 1 and 2 A's storey-1 and -2 columns, and 9 m is a level.
+  const std::string tall = edited("storeys = 2\nstorey_height_m = 3.0", "storeys = 2\nstorey_height_m = 4.5");
+  BOOST_TEST(
+      mentions(error_of(tall), {"scene.toml", "contact.law = \"impulse\"", "cannot resolve slab-to-column contact",
+                                "A floor 1 (4.5 m)", "storey 2", "3 such floors", "slab_to_column = \"off\""}));
+  // B's storeys are matrices: no columns to strike.
+  BOOST_TEST(mentions(error_of(tall + "law = \"kelvin\"\n"),
+                      {"building[2].storey_stiffness[2]", "is a matrix", "A floor 1 (4.5 m)", "B's storey 2"}));
+  BOOST_TEST(mentions(error_of(tall + "slab_to_column = \"maybe\"\n"),
+                      {"contact.slab_to_column = \"maybe\"", "expected \"on\" or \"off\""}));
+  // Left out, the scene is read and keeps its one level.
+  Case off(tall + "slab_to_column = \"off\"\n");
+  const pounding::analysis::Scene scene = read_scene(off.file);
+  BOOST_TEST(scene.levels().size() == 1u);
+  BOOST_TEST(scene.column_levels().empty());
 }
 
 BOOST_AUTO_TEST_CASE(LevelsFollowStoreyHeightsAndTheTolerance) {
@@ -306,7 +327,9 @@ BOOST_AUTO_TEST_CASE(LevelsFollowStoreyHeightsAndTheTolerance) {
   const auto levels = read_scene(loose.file).levels();
   BOOST_TEST_REQUIRE(levels.size() == 2u);
   BOOST_TEST((levels[1].floors == std::array<int, 2>{2, 2}));
-  Case tight(edited("storeys = 3\nstorey_height_m = 3.0", heights) + "level_tolerance_m = 1e-4\n");
+  // At 0.1 mm B's 6.0005 m floor stands between A's: slab-to-column contact, left out here.
+  Case tight(edited("storeys = 3\nstorey_height_m = 3.0", heights) +
+             "level_tolerance_m = 1e-4\nslab_to_column = \"off\"\n");
   BOOST_TEST(read_scene(tight.file).levels().size() == 1u);
 }
 

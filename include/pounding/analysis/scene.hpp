@@ -13,6 +13,7 @@
 
 #include "pounding/analysis/methods.hpp"
 #include "pounding/contact/candidates.hpp"
+#include "pounding/contact/column_contact.hpp"
 #include "pounding/excitation/ground_motion.hpp"
 #include "pounding/model/building.hpp"
 
@@ -29,6 +30,9 @@ struct ContactSettings {
   // storey height or slab thickness, so only floors the file puts at one height match.
   double level_tolerance_m = 1e-3;
   std::string law = "impulse";     // a name of contact_laws() (contact_laws.hpp)
+  /// "on": a slab between two floors of the other building meets that building's facade columns
+  /// (docs/model.md §6b); "off": such slabs are left out (only common levels touch).
+  std::string slab_to_column = "on";
   /// kelvin's spring (kN/m); unset: the law's published default. Refused for the other laws.
   std::optional<double> stiffness_kN_per_m;
   /// hertzdamp's k_h or jankowski's β (kN/m^1.5); unset: the law's default. Refused for the others.
@@ -51,6 +55,7 @@ struct ContactSettingSpec {
       member;
   bool required = false;
   std::optional<Range> range = std::nullopt;  // numbers: the values accepted
+  std::vector<std::string_view> choices{};    // text other than the law: the values accepted
   std::string_view description{};             // one line, with units
   std::string_view details{};                 // the docs' meaning column, after the description
 };
@@ -95,15 +100,18 @@ struct Scene {
   /// The floor pairs at a common elevation (within contact.level_tolerance_m), lowest first.
   /// @pre buildings valid.
   std::vector<contact::Level> levels() const;
+  /// The floors between two floors of the other building, below its roof, that meet its columns
+  /// (contact::column_levels); empty when contact.slab_to_column is "off". @pre buildings valid.
+  std::vector<contact::ColumnLevel> column_levels() const;
 
   /// Moves building 2 along x so that the clear distance becomes `gap_m`.
   /// @throws InputError (key `contact.gap_m`) if the gap lies outside [0, 10] m.
   void set_gap(double gap_m);
 
-  /// Checks each building, the contact and solver settings, and the pair: at least one level
-  /// (slab-to-column impacts are outside the model), building 2 on the +x side of building 1
-  /// facing it, the slabs not overlapping at rest, and contact.gap_m equal to the clear distance
-  /// the slab outlines show. @throws InputError naming the key and value.
+  /// Checks each building, the contact and solver settings, and the pair: at least one level or
+  /// slab-to-column floor, a compliant law and column storeys wherever slabs meet columns, building 2 on the +x side of
+  /// building 1 facing it, the slabs not overlapping at rest, and contact.gap_m equal to the clear distance the slab
+  /// outlines show. @throws InputError naming the key and value.
   void validate() const;
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 // Contact candidates: (vertex of one slab, edge of the other slab at the same level) pairs that
 // the scene can actually bring together. Everything else stays out of the root functions.
-// Slabs meet only where floors of the two buildings stand at a common elevation (a level); a
-// slab striking the other building's columns between floors is outside this model.
+// Slabs meet slab to slab where floors of the two buildings stand at a common elevation (a
+// level); a slab between two floors of the other building meets that building's facade columns
+// (column_contact.hpp), with the column point in the vertex's role.
 
 #include <array>
 #include <string>
@@ -25,7 +26,10 @@ struct Level {
 /// @pre 0 < tolerance_m < half of every storey height, so a floor meets at most one floor.
 std::vector<Level> common_levels(const std::array<std::vector<double>, 2>& elevations, double tolerance_m);
 
-/// One vertex–edge pair at one level, in rest geometry (global plan coordinates, m).
+/// One vertex–edge pair at one level, in rest geometry (global plan coordinates, m). For a
+/// slab-to-column pair (`column` true) the vertex is the facade point of a column of
+/// `striking_building` at the slab's elevation, which moves with the column's two floors, and the
+/// edge is the slab's: "striking" and "struck" name the gap's roles, not which body moves.
 struct Candidate {
   int level = 1;                    // 1-based level index: the contacts solved together
   std::array<int, 2> floors{1, 1};  // the level's floor of building 1 and of building 2
@@ -38,6 +42,16 @@ struct Candidate {
   model::Point2 edge_start_rest;  // Q1
   model::Point2 edge_end_rest;    // Q2
   model::Point2 normal_rest;      // outward unit normal of the struck edge at rest
+  // Slab to column only (level 0): the column `column_index` (0-based in its building's list)
+  // spans its storey from `lower_floor` (0: the ground) to floors[striking_building], of height
+  // `storey_height_m`; the slab meets it at `height_ratio` ξ ∈ (0, 1) up that storey, where the
+  // member's local flexibility along the normal is `flexibility_m_per_kN` (column_flexibility).
+  bool column = false;
+  int lower_floor = 0;
+  std::size_t column_index = 0;
+  double storey_height_m = 0.0;
+  double height_ratio = 0.0;
+  double flexibility_m_per_kN = 0.0;
 };
 
 /// Rest geometry of the two slab outlines (the same on every floor) and their CMs.
@@ -61,7 +75,21 @@ struct CandidateOptions {
 std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::vector<Level>& levels,
                                        const CandidateOptions& options);
 
-/// "B1 vertex 3 (0, 20) -> B2 edge 4 (0.2, 33)-(0.2, 8)" style label (1-based indices).
+/// Whether `vertex`, at rest, lies in front of the edge q1→q2 (outward unit `normal`) within
+/// options.gap_m + margin and projects onto it or within the margin beyond an end: the rule that
+/// keeps a vertex–edge pair (slab corners and column points alike).
+bool within_reach(const model::Point2& vertex, const model::Point2& q1, const model::Point2& q2,
+                  const model::Point2& normal, const CandidateOptions& options);
+/// The outward unit normal of the edge q1→q2 of a counter-clockwise outline.
+model::Point2 outward_normal(const model::Point2& q1, const model::Point2& q2);
+/// Whether some vertex of `other` lies in front of the edge from q1 with outward `normal`.
+bool faces(const model::Point2& q1, const model::Point2& normal, const model::Polygon& other);
+
+/// Whether any candidate is slab to column (the outputs then carry the column's fields).
+bool has_column_pairs(const std::vector<Candidate>& candidates);
+
+/// "B1 vertex 3 (0, 20) -> B2 edge 4 (0.2, 33)-(0.2, 8)" style label (1-based indices); for a
+/// slab-to-column pair "B2 column 4 (0.2, 13) storey 2 at 0.5 -> B1 edge 2 (0, 0)-(0, 20)".
 std::string describe(const Candidate& candidate);
 
 }  // namespace pounding::contact

@@ -42,7 +42,11 @@ struct ForceSlopes {
 ///   where F turns tensile; jankowski  F = βδ^1.5 + cδ̇ approaching (δ̇ > 0),
 ///   βδ^1.5 separating, c = 2ξ√(β√δ/W);
 /// W = G M⁻¹ Gᵀ the pair's inverse effective mass along the normal, δ̇₀ the
-/// approach speed. A released contact (kelvin, hertzdamp) exerts no force while
+/// approach speed. A struck column's local flexibility f (m/kN, slab-to-column
+/// contacts) acts in series with the law's spring: kelvin's k becomes
+/// 1/(1/k + f); the Hertz laws' δ^1.5 becomes δ_c^1.5 with δ_c the contact's own
+/// overlap, δ = δ_c + f k δ_c^1.5 (docs/model.md §6b). Their dashpots act across
+/// both springs. A released contact (kelvin, hertzdamp) exerts no force while
 /// the slabs fly apart; it acts again where its force would push. Jankowski's
 /// force is never tensile: its switch is between the approach and the
 /// restitution phase, and it acts throughout.
@@ -52,8 +56,9 @@ class CompliantContact {
   /// jankowski.
   /// @pre law ≠ impulse, stiffness > 0, restitution ∈ [0, 1] (jankowski: > 0),
   ///   approach_speed_mps > 0, normal_inverse_mass_per_t > 0.
+  ///   series_flexibility_m_per_kN ≥ 0.
   CompliantContact(ContactLaw law, double stiffness, double restitution, double approach_speed_mps,
-                   double normal_inverse_mass_per_t);
+                   double normal_inverse_mass_per_t, double series_flexibility_m_per_kN = 0.0);
 
   /// False while a kelvin or hertzdamp contact is released (its force would
   /// pull).
@@ -77,12 +82,20 @@ class CompliantContact {
  private:
   /// The switch function before any switch.
   double first_switch(double overlap_m, double rate_mps) const;
+  /// The Hertz laws' own overlap δ_c of the contact spring in series with the
+  /// column (δ itself without one, and for kelvin, whose k already includes it).
+  double own_overlap(double overlap_m) const;
+  /// dδ_c/dδ.
+  double own_overlap_slope(double own_overlap_m) const;
+  /// The Hertz laws' slopes in δ_c (= δ without a column) and δ̇.
+  ForceSlopes hertz_slopes(double own_overlap_m, double root, double rate_mps) const;
 
   ContactLaw law_;
   double stiffness_;
   /// kelvin: c (kN·s/m); hertzdamp: ξ (kN·s/m^2.5); jankowski: c/δ^(1/4)
   /// (kN·s/m^1.25).
   double damping_ = 0.0;
+  double series_flexibility_ = 0.0;  // f (m/kN)
   bool switched_ = false;
 };
 

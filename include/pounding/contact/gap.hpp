@@ -30,6 +30,9 @@ struct GapState {
   /// struck_row = −(n_x, n_y, ρ_B × n), ρ = arm from each slab's CM to the current P.
   Eigen::RowVector3d striking_row;
   Eigen::RowVector3d struck_row;
+  /// Slab to column: striking_row is over the column's upper floor, times its weight N₂, and this
+  /// over its lower floor, times N₁ (zero for the ground, which does not move).
+  Eigen::RowVector3d striking_lower_row = Eigen::RowVector3d::Zero();
   double curvature_mps2 = 0.0;        // h in g̈ = G q̈ + h (centripetal and normal-rotation terms)
 
   bool on_segment(double tolerance = kOnSegmentTolerance) const {
@@ -39,5 +42,11 @@ struct GapState {
 
 /// Evaluates the candidate for the given slab motions. No preconditions; O(1).
 GapState evaluate_gap(const Candidate& candidate, const SlabMotion& striking, const SlabMotion& struck);
+
+/// Evaluates a slab-to-column candidate: the column point P = N₁ p_lower + N₂ p_upper
+/// (column_shape at the candidate's height ratio), p the point carried by each floor's motion;
+/// `lower` null for the ground (p = the point at rest). @pre candidate.column.
+GapState evaluate_column_gap(const Candidate& candidate, const SlabMotion* lower, const SlabMotion& upper,
+                             const SlabMotion& struck);
 
 }  // namespace pounding::contact

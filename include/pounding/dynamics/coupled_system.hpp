@@ -163,6 +163,14 @@ class CoupledSystem {
 
  private:
   contact::SlabMotion slab(ConstVectorRef y, int building, int floor) const;
+  /// One floor's part of a gap's row G: the index in q of its u, and its row over (u, v, φ).
+  struct RowBlock {
+    int first = 0;
+    Eigen::RowVector3d row;
+  };
+  /// The floors candidate `c`'s row G reads in state `s`: the striking floor, the struck one and,
+  /// for a column point, the column's lower floor unless it is the ground.
+  std::vector<RowBlock> row_blocks(const contact::Candidate& c, const contact::GapState& s) const;
   /// G of candidate `index` over all n velocities.
   Eigen::RowVectorXd full_row(ConstVectorRef y, std::size_t index) const;
   /// Rows G (one per held contact, over all n velocities) and g̈'s velocity-only part.

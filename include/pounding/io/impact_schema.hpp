@@ -26,6 +26,9 @@ struct ImpactField {
   /// The field's value (a scalar) or values (one per component) for an impact.
   std::vector<double> (*values)(const solvers::ImpactRecord& impact) = nullptr;
   std::string_view description{};  // one line, for `pounding outputs` and the docs
+  /// Written only by runs with slab-to-column candidates (contact::has_column_pairs), so that
+  /// other runs' files keep their columns.
+  bool slab_to_column = false;
 
   /// The JSON key: `name_unit` for a scalar with a unit, else `name`.
   std::string json_key() const;
@@ -35,17 +38,21 @@ struct ImpactField {
 
 /// The fields in output order: t_s, level, floors, elevation_m, striking_building, vertex (the
 /// slab-outline number, 1-based), vertex_rest, struck_edge, point, approach_velocity_mps,
-/// separation_velocity_mps, impulse_kNs, energy_lost_kJ, starts_sustained_contact.
+/// separation_velocity_mps, impulse_kNs, energy_lost_kJ, starts_sustained_contact, then the
+/// slab-to-column fields column, height_ratio, column_shear_kN, column_moment_kNm.
 const std::vector<ImpactField>& impact_fields();
 
+/// The fields a run writes: without `slab_to_column`, those not marked slab_to_column.
+std::vector<const ImpactField*> impact_fields(bool slab_to_column);
+
 /// One impact as summary.json writes it, keys in field order.
-nlohmann::ordered_json impact_json(const solvers::ImpactRecord& impact);
+nlohmann::ordered_json impact_json(const solvers::ImpactRecord& impact, bool slab_to_column = false);
 
 /// impacts.csv's header columns, in field order.
-std::vector<std::string> impact_csv_columns();
+std::vector<std::string> impact_csv_columns(bool slab_to_column = false);
 
 /// One impacts.csv row (comma-separated, no newline); reals in the shortest text that reads back
 /// to the same double.
-std::string impact_csv_row(const solvers::ImpactRecord& impact);
+std::string impact_csv_row(const solvers::ImpactRecord& impact, bool slab_to_column = false);
 
 }  // namespace pounding::io

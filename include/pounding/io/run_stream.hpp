@@ -35,6 +35,9 @@ class StreamedRunFiles final : public solvers::RunSink {
   void progress(double t_s, double end_s, std::size_t impacts) override {
     if (on_progress_) on_progress_(t_s, end_s, impacts);
   }
+  /// Whether impacts.csv carries the slab-to-column fields (contact::has_column_pairs of the
+  /// run's candidates); set before the run starts.
+  void slab_to_column(bool with_fields) { slab_to_column_ = with_fields; }
   /// Passes the run's progress (RunSink::progress) to `callback` (to show it; null: to nobody).
   void on_progress(std::function<void(double t_s, double end_s, std::size_t impacts)> callback) {
     on_progress_ = std::move(callback);
@@ -58,6 +61,7 @@ class StreamedRunFiles final : public solvers::RunSink {
   std::unique_ptr<ExclusiveOutput> history_, contacts_, impacts_;
   bool opened_ = false;
   bool with_history_ = false;  // history.csv and contacts_history.csv are written
+  bool slab_to_column_ = false;
   std::function<void(double, double, std::size_t)> on_progress_;
 };
 

@@ -51,6 +51,14 @@ struct ImpactRecord {
   double duration_s = 0.0;
   double peak_force_kN = 0.0;
   bool starts_hold = false;           // the pair was then held in sustained contact
+  // Slab to column (level 0; the striking building is the column's, floors[its index] the
+  // struck storey): the column's 1-based number in its building's list, the height ratio ξ up
+  // that storey, and the end shear and largest moment the peak force causes in the fixed–fixed
+  // column (contact::column_demand). Zero for slab to slab.
+  int column = 0;
+  double height_ratio = 0.0;
+  double column_shear_kN = 0.0;
+  double column_moment_kNm = 0.0;
 };
 
 struct TouchRecord {  // contact with ġ ≥ 0: no impulse
