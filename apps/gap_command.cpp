@@ -31,12 +31,20 @@ std::string metres(double value) { return std::isfinite(value) ? fmt::format("{:
 void print_levels(const analysis::NeededGap& gap) {
   fmt::print("{:>5} {:>9} {:>8} {:>15} {:>9} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "level", "floors", "z [m]",
              "needed gap [m]", "t [s]", "d1 [m]", "d2 [m]", "ABS [m]", "SRSS [m]", "DDC [m]");
+  bool columns = false;
   for (const analysis::LevelGap& l : gap.levels) {
     const bool closes = l.candidate >= 0;
-    fmt::print("{:>5} {:>9} {:>8.2f} {:>15} {:>9} {:>10.6f} {:>10.6f} {:>10.6f} {:>10.6f} {:>10.6f}\n", l.level.index,
+    columns = columns || l.column;
+    fmt::print("{:>5} {:>9} {:>8.2f} {:>15} {:>9} {:>10.6f} {:>10.6f} {:>10.6f} {:>10.6f} {:>10.6f}\n",
+               l.column ? fmt::format("c{}", l.slab_building + 1) : fmt::format("{}", l.level.index),
                fmt::format("{}/{}", l.level.floors[0], l.level.floors[1]), l.level.elevation_m,
                closes ? fmt::format("{:.6f}", l.needed_gap_m) : "-", closes ? fmt::format("{:.4f}", l.t_s) : "-",
                l.peak_towards_m[0], l.peak_towards_m[1], l.rules.abs_m, l.rules.srss_m, l.rules.ddc_m);
+  }
+  if (columns) {
+    fmt::print(
+        "  c1, c2: a slab of B1, B2 facing the other building's columns (floors: the slab's floor and the "
+        "struck storey; d: the slab's facing vertices and the column points at its height)\n");
   }
 }
 
@@ -116,7 +124,7 @@ void print_record_rows(const analysis::RecordSetResult& set) {
       fmt::print("{:<46} FAILED: {}\n", r.record, r.message);
       continue;
     }
-    const bool closes = r.level > 0;
+    const bool closes = r.closes;
     fmt::print("{:<46} {:>7} {:>10} {:>15} {:>7} {:>8} {:>10} {:>10} {:>10}\n", r.record, cell(r.pga_g, 3),
                cell(r.duration_s, 2), closes ? cell(r.needed_gap_m) : "never",
                closes ? fmt::format("{}/{}", r.floors[0], r.floors[1]) : "-", closes ? cell(r.t_s, 3) : "-",
@@ -241,8 +249,14 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
     fmt::print("  no vertex-edge pair ever approaches: any gap prevents contact\n");
   } else {
     const contact::Candidate& pair = gap.candidates[static_cast<std::size_t>(gap.candidate)];
-    fmt::print("  {} at level {} (floors {}/{}, z = {:.2f} m), t = {:.6f} s, pair {}\n", metres(gap.needed_gap_m),
-               gap.level, pair.floors[0], pair.floors[1], pair.elevation_m, gap.t_s, contact::describe(pair));
+    const std::string where =
+        pair.column ? fmt::format("B{} floor {} facing B{}'s storey-{} columns (z = {:.2f} m)",
+                                  pair.struck_building + 1, pair.floors[pair.struck_building],
+                                  pair.striking_building + 1, pair.floors[pair.striking_building], pair.elevation_m)
+                    : fmt::format("level {} (floors {}/{}, z = {:.2f} m)", gap.level, pair.floors[0], pair.floors[1],
+                                  pair.elevation_m);
+    fmt::print("  {} at {}, t = {:.6f} s, pair {}\n", metres(gap.needed_gap_m), where, gap.t_s,
+               contact::describe(pair));
   }
   print_levels(gap);
   print_rules(gap);

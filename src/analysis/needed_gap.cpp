@@ -62,21 +62,28 @@ struct Touch {
   bool on_segment = false;
 };
 
-/// A facing vertex of one building at one level: its displacement towards the other building.
+/// A facing vertex of one building at one level (or a column point between two floors): its
+/// displacement towards the other building.
 struct FacingPoint {
   int building = 0;
   int floor = 1;
   std::size_t level_slot = 0;  // index into the level list
   model::Point2 arm_rest;      // from the CM at rest (m)
+  /// A column point: carried by `floor` with weight N₂ and by `lower_floor` (0: the ground) with
+  /// N₁ (contact::column_shape); a slab vertex: N₂ = 1, no lower floor.
+  int lower_floor = 0;
+  std::array<double, 2> weights{0.0, 1.0};
 };
 
 class FreeRun final : public solvers::OdeFunctions {
  public:
-  FreeRun(const CoupledSystem& system, double scene_gap_m, std::vector<bool> counted, std::vector<FacingPoint> points)
+  FreeRun(const CoupledSystem& system, double scene_gap_m, std::vector<bool> counted, std::vector<FacingPoint> points,
+          std::vector<std::size_t> slots)
       : system_(system),
         scene_gap_m_(scene_gap_m),
         counted_(std::move(counted)),
         points_(std::move(points)),
+        slots_(std::move(slots)),
         yields_(system.springs(), solvers::EventOptions{}.max_events_per_s) {}
 
   int state_size() const override { return system_.state_size(); }
@@ -153,21 +160,33 @@ class FreeRun final : public solvers::OdeFunctions {
 
   /// Displacement (m) of the point towards the other building, and its rate (m/s).
   std::pair<double, double> towards(const Eigen::Ref<const VectorXd>& y, const FacingPoint& p) const {
-    const int i = system_.floor_index(p.building, p.floor);
+    const auto [dx, dx_dot] = carried(y, p.building, p.floor, p.arm_rest);
     const double direction = p.building == 0 ? 1.0 : -1.0;
-    const model::Point2 arm = rotation(y[i + 2]) * p.arm_rest;
-    const double dx = y[i] + arm.x() - p.arm_rest.x();
-    const double dx_dot = y[system_.dof() + i] - y[system_.dof() + i + 2] * arm.y();
-    return {direction * dx, direction * dx_dot};
+    if (p.lower_floor == 0) return {direction * p.weights[1] * dx, direction * p.weights[1] * dx_dot};
+    const auto [lower_dx, lower_dx_dot] = carried(y, p.building, p.lower_floor, p.arm_rest);
+    return {direction * (p.weights[0] * lower_dx + p.weights[1] * dx),
+            direction * (p.weights[0] * lower_dx_dot + p.weights[1] * dx_dot)};
   }
 
   const std::vector<FacingPoint>& points() const { return points_; }
+  /// The entry of NeededGap::levels that candidate i belongs to.
+  std::size_t slot(std::size_t i) const { return slots_[i]; }
 
  private:
   const CoupledSystem& system_;
   double scene_gap_m_;
   std::vector<bool> counted_;
+  /// The x displacement (m) and its rate (m/s) of the point at `arm_rest` from the CM as `floor`
+  /// of `building` carries it.
+  std::pair<double, double> carried(const Eigen::Ref<const VectorXd>& y, int building, int floor,
+                                    const model::Point2& arm_rest) const {
+    const int i = system_.floor_index(building, floor);
+    const model::Point2 arm = rotation(y[i + 2]) * arm_rest;
+    return {y[i] + arm.x() - arm_rest.x(), y[system_.dof() + i] - y[system_.dof() + i + 2] * arm.y()};
+  }
+
   std::vector<FacingPoint> points_;
+  std::vector<std::size_t> slots_;
   solvers::YieldStates yields_;
 };
 
@@ -178,26 +197,58 @@ std::vector<bool> counted_pairs(const CoupledSystem& system) {
   return counted;
 }
 
-/// The vertices of each building that take part in a counted pair at each level (the facing edge).
-std::vector<FacingPoint> facing_points(const CoupledSystem& system, const std::vector<bool>& counted) {
-  std::vector<FacingPoint> points;
-  auto add = [&](int building, int floor, std::size_t slot, const model::Point2& rest) {
-    const model::Point2 arm = rest - system.building(building).definition.centre_of_mass;
-    for (const FacingPoint& p : points) {
-      if (p.building == building && p.level_slot == slot && (p.arm_rest - arm).norm() < 1e-12) return;
+/// The entries of NeededGap::levels: the levels, then one per slab facing columns (its slab's
+/// building and floor), in candidate order; and per candidate the index of its entry.
+std::vector<std::size_t> facade_entries(const CoupledSystem& system, std::vector<LevelGap>& entries) {
+  for (const contact::Level& level : system.levels()) entries.push_back({.level = level});
+  std::vector<std::size_t> slots;
+  for (const contact::Candidate& c : system.candidates()) {
+    const auto same = [&](const LevelGap& e) {
+      return c.column ? e.column && e.slab_building == c.struck_building && e.level.floors == c.floors
+                      : !e.column && e.level.index == c.level;
+    };
+    auto entry = std::find_if(entries.begin(), entries.end(), same);
+    if (entry == entries.end()) {  // a slab facing columns, seen first
+      entries.push_back({.level = {0, c.floors, c.elevation_m},
+                         .column = true,
+                         .slab_building = c.struck_building,
+                         .storey = c.floors[c.striking_building],
+                         .height_ratio = c.height_ratio});
+      entry = entries.end() - 1;
     }
-    points.push_back({building, floor, slot, arm});
+    slots.push_back(static_cast<std::size_t>(entry - entries.begin()));
+  }
+  for (LevelGap& entry : entries) entry.needed_gap_m = -std::numeric_limits<double>::infinity();
+  return slots;
+}
+
+/// The vertices of each building that take part in a counted pair at each entry (the facing
+/// edge), and the column points at the slabs facing columns.
+std::vector<FacingPoint> facing_points(const CoupledSystem& system, const std::vector<bool>& counted,
+                                       const std::vector<std::size_t>& slots) {
+  std::vector<FacingPoint> points;
+  auto add = [&](FacingPoint point, const model::Point2& rest) {
+    point.arm_rest = rest - system.building(point.building).definition.centre_of_mass;
+    for (const FacingPoint& p : points) {
+      if (p.building == point.building && p.level_slot == point.level_slot &&
+          (p.arm_rest - point.arm_rest).norm() < 1e-12)
+        return;
+    }
+    points.push_back(point);
   };
   for (std::size_t i = 0; i < counted.size(); ++i) {
     if (!counted[i]) continue;
     const contact::Candidate& c = system.candidates()[i];
-    const std::size_t slot =
-        static_cast<std::size_t>(std::find_if(system.levels().begin(), system.levels().end(),
-                                              [&](const contact::Level& l) { return l.index == c.level; }) -
-                                 system.levels().begin());
-    add(c.striking_building, c.floors[c.striking_building], slot, c.vertex_rest);
-    add(c.struck_building, c.floors[c.struck_building], slot, c.edge_start_rest);
-    add(c.struck_building, c.floors[c.struck_building], slot, c.edge_end_rest);
+    FacingPoint vertex{.building = c.striking_building, .floor = c.floors[c.striking_building], .level_slot = slots[i]};
+    if (c.column) {
+      const auto [lower, upper] = contact::column_shape(c.height_ratio);
+      vertex.lower_floor = c.lower_floor;
+      vertex.weights = {lower, upper};
+    }
+    add(vertex, c.vertex_rest);
+    const FacingPoint edge{.building = c.struck_building, .floor = c.floors[c.struck_building], .level_slot = slots[i]};
+    add(edge, c.edge_start_rest);
+    add(edge, c.edge_end_rest);
   }
   return points;
 }
@@ -212,13 +263,6 @@ GapMode gap_mode(const model::Building& building) {
   return {static_cast<int>(k) + 1, modes[k].period_s, ratio};
 }
 
-std::size_t level_slot(const std::vector<LevelGap>& levels, int level) {
-  for (std::size_t k = 0; k < levels.size(); ++k) {
-    if (levels[k].level.index == level) return k;
-  }
-  throw std::logic_error(fmt::format("candidate on unknown level {}", level));
-}
-
 /// Takes the pairs' touch gaps and the facing points' displacements at (t, y) into the result
 /// where they exceed what it holds: only the components in `found` (a root return), or all.
 void note_maxima(const FreeRun& run, double t, const VectorXd& y, const std::vector<bool>& counted,
@@ -228,7 +272,7 @@ void note_maxima(const FreeRun& run, double t, const VectorXd& y, const std::vec
     if (!counted[i] || (found && (*found)[i] == 0)) continue;
     if (found) ++result.extrema;
     const Touch touch = run.touch(y, i);
-    LevelGap& level = result.levels[level_slot(result.levels, result.candidates[i].level)];
+    LevelGap& level = result.levels[run.slot(i)];
     if (touch.on_segment && touch.gap_m > level.needed_gap_m) {
       level.needed_gap_m = touch.gap_m;
       level.t_s = t;
@@ -363,17 +407,13 @@ NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, co
   result.candidates = system.candidates();
   result.yielding = !system.springs().empty();
   result.counted = counted_pairs(system);
-  for (const contact::Level& level : system.levels()) {
-    LevelGap entry;
-    entry.level = level;
-    entry.needed_gap_m = -std::numeric_limits<double>::infinity();
-    result.levels.push_back(entry);
-  }
+  std::vector<std::size_t> slots = facade_entries(system, result.levels);
   for (int b = 0; b < 2; ++b) result.modes[b] = gap_mode(system.building(b));
   result.rho = cqc_correlation(result.modes[0].period_s, result.modes[0].damping_ratio, result.modes[1].period_s,
                                result.modes[1].damping_ratio);
 
-  FreeRun run(system, scene_gap_m, result.counted, facing_points(system, result.counted));
+  std::vector<FacingPoint> points = facing_points(system, result.counted, slots);
+  FreeRun run(system, scene_gap_m, result.counted, std::move(points), std::move(slots));
   std::vector<VectorXd> samples;
   integrate(system, options, run, result.counted, result, samples);
   fill_history(run, samples, result);
@@ -389,6 +429,7 @@ NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, co
       result.needed_gap_m = level.needed_gap_m;
       result.t_s = level.t_s;
       result.level = level.candidate >= 0 ? level.level.index : 0;
+      result.entry = level.candidate >= 0 ? &level - result.levels.data() : -1;
       result.candidate = level.candidate;
     }
   }
@@ -478,7 +519,7 @@ void superposed_envelope(const Scene& scene, const solvers::RunBudget& budget, A
   const NeededGap run_0 = sampled_needed_gap(along_0, scene.contact.gap_m, options, &states_0);
   note_status(run_0, all);
   note_status(sampled_needed_gap(along_90, scene.contact.gap_m, options, &states_90), all);
-  const FreeRun pairs(along_0, scene.contact.gap_m, run_0.counted, {});  // a pair's touch gap is geometry alone
+  const FreeRun pairs(along_0, scene.contact.gap_m, run_0.counted, {}, {});  // a pair's touch gap is geometry alone
   const std::size_t samples = std::min(states_0.size(), states_90.size());
   VectorXd state(along_0.state_size());
   all.method = "superposition";

@@ -16,10 +16,9 @@ namespace {
 void take_gap(RecordGap& row, const NeededGap& gap) {
   row.needed_gap_m = gap.needed_gap_m;
   row.level = gap.level;
+  row.closes = gap.entry >= 0;
   row.t_s = gap.t_s;
-  for (const LevelGap& l : gap.levels) {
-    if (l.level.index == gap.level) row.floors = l.level.floors;
-  }
+  if (row.closes) row.floors = gap.levels[static_cast<std::size_t>(gap.entry)].level.floors;
   row.rules = gap.rules;
 }
 

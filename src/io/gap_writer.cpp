@@ -20,15 +20,20 @@ json pair_json(const analysis::NeededGap& gap, long candidate) {
 json finite_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
 json level_json(const analysis::NeededGap& gap, const analysis::LevelGap& l) {
-  return {{"level", l.level.index},
-          {"floors", {l.level.floors[0], l.level.floors[1]}},
-          {"elevation_m", l.level.elevation_m},
-          {"needed_gap_m", finite_or_null(l.needed_gap_m)},
-          {"t_s", l.candidate >= 0 ? json(l.t_s) : json(nullptr)},
-          {"pair", pair_json(gap, l.candidate)},
-          {"peak_towards_m", {l.peak_towards_m[0], l.peak_towards_m[1]}},
-          {"peak_towards_t_s", {l.peak_t_s[0], l.peak_t_s[1]}},
-          {"rules", {{"abs_m", l.rules.abs_m}, {"srss_m", l.rules.srss_m}, {"ddc_m", l.rules.ddc_m}}}};
+  json located = {{"level", l.level.index}, {"floors", {l.level.floors[0], l.level.floors[1]}}};
+  if (l.column) {  // a slab facing columns: which slab, and where up the struck storey
+    located.update(
+        {{"slab_to_column",
+          {{"slab_building", l.slab_building + 1}, {"storey", l.storey}, {"height_ratio", l.height_ratio}}}});
+  }
+  located.update(json{{"elevation_m", l.level.elevation_m},
+                      {"needed_gap_m", finite_or_null(l.needed_gap_m)},
+                      {"t_s", l.candidate >= 0 ? json(l.t_s) : json(nullptr)},
+                      {"pair", pair_json(gap, l.candidate)},
+                      {"peak_towards_m", {l.peak_towards_m[0], l.peak_towards_m[1]}},
+                      {"peak_towards_t_s", {l.peak_t_s[0], l.peak_t_s[1]}},
+                      {"rules", {{"abs_m", l.rules.abs_m}, {"srss_m", l.rules.srss_m}, {"ddc_m", l.rules.ddc_m}}}});
+  return located;
 }
 
 void write_levels_csv(const analysis::NeededGap& gap, std::ostream& out) {
@@ -44,7 +49,13 @@ void write_levels_csv(const analysis::NeededGap& gap, std::ostream& out) {
 
 void write_history_csv(const analysis::NeededGap& gap, std::ostream& out) {
   out << "t_s";
-  for (const analysis::LevelGap& l : gap.levels) out << fmt::format(",touch_gap_level_{}_m", l.level.index);
+  for (const analysis::LevelGap& l : gap.levels) {
+    if (l.column) {
+      out << fmt::format(",touch_gap_B{}_f{}_columns_m", l.slab_building + 1, l.level.floors[l.slab_building]);
+    } else {
+      out << fmt::format(",touch_gap_level_{}_m", l.level.index);
+    }
+  }
   out << '\n';
   for (std::size_t k = 0; k < gap.history_t_s.size(); ++k) {
     out << fmt::format("{}", gap.history_t_s[k]);
@@ -97,7 +108,7 @@ json statistic_json(const analysis::SetStatistic& s) {
 }
 
 json record_json(const analysis::RecordGap& r) {
-  const bool governed = r.completed() && r.level > 0;
+  const bool governed = r.completed() && r.closes;
   return {{"record", r.record},
           {"source", r.source},
           {"status", r.status},
@@ -155,10 +166,7 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
   for (const analysis::RuleVerdict& v : analysis::rule_verdicts(gap)) {
     if (v.unconservative()) unconservative.push_back({{"rule", v.rule}, {"short_by_m", -v.margin_m}});
   }
-  const analysis::LevelGap* governing = nullptr;
-  for (const analysis::LevelGap& l : gap.levels) {
-    if (l.level.index == gap.level) governing = &l;
-  }
+  const analysis::LevelGap* governing = gap.entry >= 0 ? &gap.levels[static_cast<std::size_t>(gap.entry)] : nullptr;
   json document = {
       {"scene", scene},
       {"scene_gap_m", gap.scene_gap_m},

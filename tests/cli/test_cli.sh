@@ -292,6 +292,21 @@ grep -q "B1 floor 1 (3 m) -> B2 storey 1 (0 to 4.5 m) at height ratio 0.6667: co
   || fail "check does not list B1 floor 1 against B2's ground-storey columns: $(cat "$work/columns-check.txt")"
 grep -q "B2 floor 1 (4.5 m) -> B1 storey 2 (3 to 6 m) at height ratio 0.5" "$work/columns-check.txt" \
   || fail "check does not list B2 floor 1 against B1's storey 2"
+# The facade's needed gap of buildings whose slabs only strike columns: the contact-free run's
+# largest touch gap over every slab facing columns; 1e-5 m wider the run does not meet, 1e-5 m
+# narrower a slab strikes a column.
+columns_scene=$source_dir/examples/levels/ground-storey-columns.toml
+"$pounding" gap "$columns_scene" --out "$work/columns-gap" > "$work/columns-gap.txt" || fail "gap on slab to column exited $?"
+grep -q "facing B2's storey-7 columns" "$work/columns-gap.txt" || fail "gap does not name the slab facing columns: $(head -3 "$work/columns-gap.txt")"
+needed=$(/usr/bin/python3 -c "import json, sys; g = json.load(open(sys.argv[1])); assert g['levels'][0]['slab_to_column']; print(g['needed_gap_m'])" "$work/columns-gap/gap.json") \
+  || fail "gap.json of slab to column"
+for side in 1 -1; do
+  "$pounding" run "$columns_scene" --gap "$(/usr/bin/python3 -c "print($needed + $side * 1e-5)")" --out "$work/columns-side" \
+    --no-progress > "$work/columns-side.txt" || fail "run beside the needed gap exited $?"
+  count=$(/usr/bin/python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['impacts_slab_to_column'])" "$work/columns-side/summary.json")
+  if [ "$side" = 1 ]; then [ "$count" = 0 ] || fail "1e-5 m beyond the needed gap $needed m the slabs still strike ($count)"
+  else [ "$count" -gt 0 ] || fail "1e-5 m inside the needed gap $needed m no slab strikes a column"; fi
+done
 expect_refusal "--peaks = \"speeds\": expected one of displacements, accelerations, drifts" run "$scene" --peaks drifts,speeds --out "$work/bad"
 expect_refusal "--history = never: expected on or off" run "$scene" --history never --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"

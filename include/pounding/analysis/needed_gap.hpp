@@ -36,13 +36,22 @@ GapRules gap_rules(double delta1_m, double delta2_m, double rho);
 /// @pre periods and damping ratios positive.
 double cqc_correlation(double period1_s, double damping1, double period2_s, double damping2);
 
+/// One elevation where the facades can touch: a level (slab against slab), or a slab facing the
+/// other building's columns between two of its floors (`column`; level.index 0, level.floors the
+/// slab's floor and the struck storey, level.elevation_m the slab's).
 struct LevelGap {
   contact::Level level;
+  bool column = false;
+  int slab_building = 0;      // column: the slab's building (0 or 1)
+  int storey = 0;             // column: the other building's struck storey
+  double height_ratio = 0.0;  // column: where up that storey
   double needed_gap_m = 0.0;  // largest touch gap of the level's pairs; ≤ 0 if they never close
   double t_s = 0.0;           // when
   long candidate = -1;        // index into NeededGap::candidates of the governing pair (−1: none)
   /// δ of building 1 and 2: the peak displacement (m, ≥ 0) of the facing edge's vertices towards
-  /// the other building (+x for building 1, −x for building 2), rotation included, and when.
+  /// the other building (+x for building 1, −x for building 2), rotation included, and when; at
+  /// a slab facing columns, the slab's edge vertices and the column points (their cubic between
+  /// the column's floors).
   std::array<double, 2> peak_towards_m{0.0, 0.0};
   std::array<double, 2> peak_t_s{0.0, 0.0};
   GapRules rules;
@@ -103,7 +112,8 @@ struct NeededGap {
   double scene_gap_m = 0.0;
   double needed_gap_m = 0.0;  // the largest over the levels
   double t_s = 0.0;
-  int level = 0;             // 1-based level of the governing pair (0: no pair ever closes)
+  int level = 0;             // 1-based level of the governing pair (0: none, or a slab facing columns)
+  long entry = -1;           // index into `levels` of the governing pair's entry (−1: no pair ever closes)
   long candidate = -1;       // index into `candidates`
   std::vector<contact::Candidate> candidates;  // the scene's (its gap and candidate margin)
   std::vector<bool> counted;  // per candidate: false if widening the gap does not open it (b ≤ 0.1)

@@ -37,8 +37,9 @@ struct RecordGap {
   double pga_g = kNaN;            // processed peak |a_g|
   double duration_s = kNaN;       // of the processed record
   double needed_gap_m = kNaN;     // −inf if no pair ever closes
-  int level = 0;                  // governing level (0: none)
-  std::array<int, 2> floors{0, 0};  // its floors of building 1 and 2
+  int level = 0;                  // governing level (0: none, or a slab facing columns)
+  bool closes = false;            // some pair closes (NeededGap::entry ≥ 0)
+  std::array<int, 2> floors{0, 0};  // its floors of building 1 and 2 (slab to column: the slab's floor and the storey)
   double t_s = kNaN;              // when the governing pair closes most
   GapRules rules{kNaN, kNaN, kNaN};
   long steps = 0;
