@@ -360,6 +360,11 @@ PYBIND11_MODULE(_pounding, m) {
           "yielding",
           [](const Scene& s) { return s.buildings[0].hysteresis.yields() || s.buildings[1].hysteresis.yields(); },
           "Whether some building's columns yield ([building.hysteresis])")
+      .def_property_readonly(
+          "slab_to_column",
+          [](const Scene& s) { return pounding::contact::has_column_pairs(pounding::analysis::scene_candidates(s)); },
+          "Whether some slab can strike the other building's columns (docs/model.md 6b): its runs' impacts then "
+          "carry the column's fields")
       .def("with_gap", &with_gap, py::arg("gap_m"),
            "The scene with building 2 moved along x to the clear gap gap_m (m), as `run --gap`")
       .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),

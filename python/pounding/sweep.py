@@ -77,6 +77,9 @@ ALL_ANGLES = ("all_angles_needed_gap_m", "all_angles_angle_deg")
 # Written when some scene of the sweep has yielding columns: each building's largest storey
 # ductility, the energy the columns dissipated and their branch changes.
 YIELDING = ("b1_max_ductility", "b2_max_ductility", "hysteretic_kJ", "yield_events")
+# Written when some scene of the sweep has slabs that can strike columns: how many impacts were
+# slab to column, the largest shear they caused in a column and (with a capacity) its ratio.
+SLAB_TO_COLUMN = ("slab_to_column_impact_count", "max_column_shear_kN", "max_column_shear_ratio")
 TIMINGS = ("solver_time_s", "wall_time_s")
 
 
@@ -366,7 +369,9 @@ class Sweep:
 
     def columns(self):
         yielding = YIELDING if any(scene.yielding for scene in self.scenes.values()) else ()
-        return [*self.parameter_columns(), *self.setting_keys, *RESULTS, *yielding, *(NEEDED_GAP if self.needed_gap else ()),
+        columns = SLAB_TO_COLUMN if any(scene.slab_to_column for scene in self.scenes.values()) else ()
+        return [*self.parameter_columns(), *self.setting_keys, *RESULTS, *yielding, *columns,
+                *(NEEDED_GAP if self.needed_gap else ()),
                 *(ALL_ANGLES if self.all_angles else ()),
                 *TIMINGS]
 
@@ -502,6 +507,12 @@ def _summarise(result):
                 max(s["peak_ductility_x"], s["peak_ductility_y"]) for s in building["storeys"])
         row["hysteretic_kJ"] = result.yielding["hysteretic_kJ"]
         row["yield_events"] = result.yielding["yield_events"]
+    if "impacts_slab_to_column" in result.summary:
+        on_columns = [i for i in impacts if i["level"] == 0]
+        row["slab_to_column_impact_count"] = len(on_columns)
+        row["max_column_shear_kN"] = max((i["column_shear_kN"] for i in on_columns), default=0.0)
+        ratios = [i["column_shear_ratio"] for i in on_columns if i["column_shear_ratio"] is not None]
+        row["max_column_shear_ratio"] = max(ratios) if ratios else None
     return row
 
 
@@ -614,7 +625,7 @@ class Table:
 TEXT_COLUMNS = {"scene_file", "scene", "record", "record_source", "contact_law", "method", "status", "message",
                 "needed_gap_status"}
 INTEGER_COLUMNS = {"impact_count", "touch_count", "sustained_contact_count", "steps", "needed_gap_level",
-                   "yield_events"}
+                   "yield_events", "slab_to_column_impact_count"}
 
 
 def _typed(column, text):
@@ -627,7 +638,8 @@ def _typed(column, text):
         return text
     if column in INTEGER_COLUMNS:
         return int(text)
-    if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in TIMINGS or column in PARAMETERS \
+    if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in SLAB_TO_COLUMN or column in TIMINGS \
+            or column in PARAMETERS \
             or column in ALL_ANGLES or column == "direction_deg":
         return float(text)
     for kind in (int, float):

@@ -1,5 +1,6 @@
 #include "pounding/io/impact_schema.hpp"
 
+#include <cmath>
 #include <fmt/format.h>
 
 namespace pounding::io {
@@ -17,7 +18,8 @@ std::string suffixed(std::string name, std::string_view suffix) {
 
 std::string csv_text(Type type, double value) {
   switch (type) {
-    case Type::real: return fmt::format("{}", value);
+    case Type::real:
+      return std::isnan(value) ? std::string() : fmt::format("{}", value);  // NaN: not given
     case Type::integer: return fmt::format("{}", static_cast<long long>(value));
     case Type::flag: return value != 0.0 ? "1" : "0";
   }
@@ -100,6 +102,10 @@ const std::vector<ImpactField>& impact_fields() {
        "slab to column: the larger end shear the peak force causes in the fixed-fixed column", true},
       {"column_moment", "kNm", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.column_moment_kNm}; },
        "slab to column: the largest bending moment (an end or under the load) the peak force causes in it", true},
+      {"column_shear_ratio", "", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.column_shear_ratio}; },
+       "slab to column: column_shear_kN over the column building's column_shear_capacity_kN (above 1: the "
+       "column fails in shear, which this model does not follow); empty (CSV) or null (JSON) when no capacity is given",
+       true},
   };
   // clang-format on
   return kFields;

@@ -56,10 +56,15 @@ void append_column_demands(const std::vector<solvers::ImpactRecord>& impacts, st
     const solvers::ImpactRecord& i = *entry.second;
     fmt::format_to(
         out,
-        "  B{} column {} storey {} at {:.3g}: {} impact{}, peak force {:.1f} kN at {:.4f} s, shear {:.1f} kN, "
+        "  B{} column {} storey {} at {:.3g}: {} impact{}, peak force {:.1f} kN at {:.4f} s, shear {:.1f} kN{}, "
         "moment {:.1f} kN·m\n",
         where[0], where[1], where[2], i.height_ratio, entry.first, entry.first == 1 ? "" : "s", i.peak_force_kN, i.t_s,
-        i.column_shear_kN, i.column_moment_kNm);
+        i.column_shear_kN,
+        std::isnan(i.column_shear_ratio)
+            ? std::string()
+            : fmt::format(" ({:.3g} of its capacity{})", i.column_shear_ratio,
+                          i.column_shear_ratio > 1.0 ? ": EXCEEDED, the column would fail in shear" : ""),
+        i.column_moment_kNm);
   }
 }
 

@@ -375,7 +375,8 @@ std::vector<Eigen::Matrix3d> storey_matrices(TableReader& table, const toml::nod
 
 void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (const toml::node* node = table.find("storey_stiffness")) {
-    for (const char* other : {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s"}) {
+    for (const char* other :
+         {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s", "column_shear_capacity_kN"}) {
       if (table.has(other)) {
         throw table.error(*node, table.key_path("storey_stiffness"),
                           fmt::format("give either storey_stiffness or columns with {}, not both", other));
@@ -398,6 +399,7 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   }
   if (factor) b.frame_factor = table.number_of(*factor, table.key_path("frame_factor"));
   if (period) b.target_period_s = table.number_of(*period, table.key_path("target_period_s"));
+  b.column_shear_capacity_kN = table.optional_number("column_shear_capacity_kN");
 }
 
 model::HystereticLaw read_hysteresis(TableReader& table) {

@@ -21,6 +21,7 @@ std::string indexed(const char* key, std::size_t index) { return fmt::format("{}
 constexpr double kMaxPlanCoordinate_m = 10'000.0;
 constexpr Range kPolarMoment{0.1, 1e14, "t·m²"};
 constexpr Range kYoungsModulus{1e6, 1e9, "kPa"};
+constexpr Range kShearCapacity{0.0, 1e6, "kN", true};
 constexpr Range kFrameFactor{1e-4, 10.0, "", true};
 constexpr Range kTargetPeriod{0.02, 20.0, "s"};
 constexpr double kMaxStoreyStiffness = 1e16;  // torsional entries reach k·r², 1e12 kN/m · (100 m)²
@@ -127,6 +128,8 @@ void validate_columns(const BuildingDefinition& b) {
   }
   refuse_repeated_columns(b.columns);
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
+  if (b.column_shear_capacity_kN)
+    require_range("column_shear_capacity_kN", *b.column_shear_capacity_kN, kShearCapacity);
   if (b.target_period_s) {
     require_range("target_period_s", *b.target_period_s, kTargetPeriod);
   } else {

@@ -142,6 +142,8 @@ void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
     const contact::ColumnDemand demand = contact::column_demand(r.peak_force_kN, c.storey_height_m, c.height_ratio);
     r.column_shear_kN = demand.shear_kN;
     r.column_moment_kNm = demand.moment_kNm;
+    if (const auto capacity = system_.building(c.striking_building).definition.column_shear_capacity_kN)
+      r.column_shear_ratio = demand.shear_kN / *capacity;
   }
   recorder_.add_impact_loss(r.energy_lost_kJ);
   result_.impacts.push_back(r);

@@ -292,6 +292,17 @@ grep -q "B1 floor 1 (3 m) -> B2 storey 1 (0 to 4.5 m) at height ratio 0.6667: co
   || fail "check does not list B1 floor 1 against B2's ground-storey columns: $(cat "$work/columns-check.txt")"
 grep -q "B2 floor 1 (4.5 m) -> B1 storey 2 (3 to 6 m) at height ratio 0.5" "$work/columns-check.txt" \
   || fail "check does not list B2 floor 1 against B1's storey 2"
+# A shear capacity on both buildings' columns: each slab-to-column impact's shear over it, and
+# the report flags the columns it exceeds.
+sed -e 's|^E_kPa = 3.15e7|E_kPa = 3.15e7\ncolumn_shear_capacity_kN = 900.0|' \
+    -e "s|\.\./records/|$source_dir/examples/records/|" "$source_dir/examples/levels/ground-storey-columns.toml" > "$work/capacity.toml"
+"$pounding" run "$work/capacity.toml" --out "$work/capacity" --no-progress > "$work/capacity.txt" || fail "run with a shear capacity exited $?"
+grep -q "of its capacity: EXCEEDED, the column would fail in shear" "$work/capacity.txt" || fail "the report does not flag a shear demand above the capacity"
+/usr/bin/python3 - "$work/capacity/impacts.csv" <<'PY' || fail "column_shear_ratio is not the shear over the capacity"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert rows and all(abs(float(r["column_shear_ratio"]) - float(r["column_shear_kN"]) / 900.0) <= 1e-15 * float(r["column_shear_ratio"]) + 1e-300 for r in rows), rows[0]
+PY
 # The facade's needed gap of buildings whose slabs only strike columns: the contact-free run's
 # largest touch gap over every slab facing columns; 1e-5 m wider the run does not meet, 1e-5 m
 # narrower a slab strikes a column.

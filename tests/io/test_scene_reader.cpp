@@ -312,6 +312,11 @@ BOOST_AUTO_TEST_CASE(SlabsBetweenFloorsNeedACompliantLawAndColumns) {
                       {"building[2].storey_stiffness[2]", "is a matrix", "A floor 1 (4.5 m)", "B's storey 2"}));
   BOOST_TEST(mentions(error_of(tall + "slab_to_column = \"maybe\"\n"),
                       {"contact.slab_to_column = \"maybe\"", "expected \"on\" or \"off\""}));
+  // A shear capacity is a positive force, and only columns have one.
+  BOOST_TEST(mentions(error_of(edited("frame_factor = 1.0\n", "frame_factor = 1.0\ncolumn_shear_capacity_kN = -5.0\n")),
+                      {"building[1].column_shear_capacity_kN = -5", "kN"}));
+  BOOST_TEST(mentions(error_of(edited("storey_stiffness = ", "column_shear_capacity_kN = 500.0\nstorey_stiffness = ")),
+                      {"storey_stiffness", "column_shear_capacity_kN", "not both"}));
   // Left out, the scene is read and keeps its one level.
   Case off(tall + "slab_to_column = \"off\"\n");
   const pounding::analysis::Scene scene = read_scene(off.file);

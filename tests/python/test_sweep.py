@@ -335,6 +335,20 @@ def test_yielding_scenes_add_their_columns(folder, serial, tmp_path):
     assert row["yield_events"] == run.yielding["yield_events"] > 0
 
 
+def test_slab_to_column_scenes_add_their_columns(serial, tmp_path):
+    """A sweep over a scene whose slabs strike columns writes how many impacts did and the largest
+    column shear, as the run's impacts give them; without a capacity the ratio is empty."""
+    assert not set(sweeps.SLAB_TO_COLUMN) & set(serial.rows[0])
+    scene = SOURCE / "examples" / "levels" / "ground-storey-columns.toml"
+    path = tmp_path / "sweep.toml"
+    path.write_text(f'scenes = ["{scene}"]\ngaps_m = [0.2]\n')
+    row = pounding.sweep(path, out=tmp_path / "out", workers=0, progress=False).rows[0]
+    run = pounding.run(pounding.load_scene(scene))
+    assert row["slab_to_column_impact_count"] == run.summary["impacts_slab_to_column"] == len(run.impacts) > 0
+    assert row["max_column_shear_kN"] == max(i["column_shear_kN"] for i in run.impacts)
+    assert row["max_column_shear_ratio"] is None
+
+
 def test_directions_cross_the_records(folder, tmp_path):
     """directions_deg crosses every record with every angle: each row is the run, and its needed gap
     the needed gap, of the scene turned to that angle (Scene.with_direction, as --direction-deg)."""

@@ -111,6 +111,9 @@ struct BuildingDefinition {
   double E_kPa = 0.0;                          // Young's modulus of the columns
   double frame_factor = 1.0;                   // ignored when target_period_s is set
   std::optional<double> target_period_s;       // solve the frame factor for this T₁ (s)
+  /// Each column's shear capacity (kN): slab-to-column impacts report their shear demand against
+  /// it (docs/model.md §6b). Unset: no ratio.
+  std::optional<double> column_shear_capacity_kN;
   // ... or given directly: one 3×3 matrix per storey about the CM (kN/m, kN, kN·m/rad).
   std::vector<Eigen::Matrix3d> storey_stiffness;
 

@@ -59,6 +59,8 @@ struct ImpactRecord {
   double height_ratio = 0.0;
   double column_shear_kN = 0.0;
   double column_moment_kNm = 0.0;
+  /// column_shear_kN over the column building's column_shear_capacity_kN; NaN when it gives none.
+  double column_shear_ratio = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct TouchRecord {  // contact with ġ ≥ 0: no impulse
