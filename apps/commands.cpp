@@ -367,6 +367,7 @@ int run_modes(const ModesCommand& command) {
 int run_check(const CheckCommand& command) {
   const analysis::Scene scene = io::read_scene(
       command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
+  analysis::require_column_contact_law(scene);
   const auto buildings = analysis::summarise_buildings(scene);
   const dynamics::CoupledSystem system = analysis::build_system(scene);
   const excitation::GroundMotion& motion = system.ground_motion();

@@ -431,13 +431,20 @@ class GapResult:
         self.angles_array = _np.array(gap.angles_table()) if self.all_angles else None
 
     def history_frame(self):
-        """gap_history.csv as a pandas DataFrame indexed by t_s, a column touch_gap_level_<n>_m a level."""
-        columns = {f"touch_gap_level_{level['level']}_m": self.history_touch_gap_m[:, index]
-                   for index, level in enumerate(self.levels)}
+        """gap_history.csv as a pandas DataFrame indexed by t_s, a column touch_gap_level_<n>_m a level
+        (touch_gap_B<b>_f<floor>_columns_m a slab facing the other building's columns)."""
+        def name(level):
+            column = level.get("slab_to_column")
+            if column is None:
+                return f"touch_gap_level_{level['level']}_m"
+            return f"touch_gap_B{column['slab_building']}_f{level['floors'][column['slab_building'] - 1]}_columns_m"
+        columns = {name(level): self.history_touch_gap_m[:, index] for index, level in enumerate(self.levels)}
         return _pandas().DataFrame(columns, index=_pandas().Index(self.history_t_s, name="t_s"))
 
     def __repr__(self):
-        return f"<pounding.GapResult needed gap {self.needed_gap_m} m at level {self.level}, t = {self.t_s} s>"
+        where = (f"level {self.level}" if self.level else f"floors {self.floor} (a slab facing columns)" if self.floor
+                 else "no pair (none closes)")
+        return f"<pounding.GapResult needed gap {self.needed_gap_m} m at {where}, t = {self.t_s} s>"
 
 
 def ground_motion(scene):

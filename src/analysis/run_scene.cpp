@@ -1,5 +1,6 @@
 #include "pounding/analysis/run_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <fmt/format.h>
@@ -17,11 +18,10 @@ namespace pounding::analysis {
 std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
   contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
                                  {scene.buildings[0].centre_of_mass, scene.buildings[1].centre_of_mass}};
-  const contact::CandidateOptions options{.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m};
-  std::vector<contact::Candidate> candidates = contact::find_candidates(geometry, scene.levels(), options);
+  std::vector<contact::Candidate> candidates = contact::find_candidates(
+      geometry, scene.levels(), {.margin_m = scene.contact.candidate_margin_m, .gap_m = scene.contact.gap_m});
   // Slab to column after slab to slab, so that a scene without them keeps its candidates' numbers.
-  const std::vector<contact::Candidate> columns =
-      contact::find_column_candidates({&scene.buildings[0], &scene.buildings[1]}, scene.column_levels(), options);
+  const std::vector<contact::Candidate> columns = scene.column_candidates();
   candidates.insert(candidates.end(), columns.begin(), columns.end());
   return candidates;
 }
@@ -218,6 +218,20 @@ std::vector<RunWarning> scene_warnings(const Scene& scene) {
       break;  // once per building
     }
   }
+  const std::vector<contact::Candidate> columns = scene.column_candidates();
+  for (const contact::ColumnLevel& level : scene.column_levels()) {
+    const auto strikes = [&](const contact::Candidate& c) {
+      return c.struck_building == level.slab_building && c.floors[level.slab_building] == level.slab_floor;
+    };
+    if (std::any_of(columns.begin(), columns.end(), strikes)) continue;
+    const std::string& slab = scene.buildings[static_cast<std::size_t>(level.slab_building)].name;
+    const std::string& other = scene.buildings[static_cast<std::size_t>(1 - level.slab_building)].name;
+    warnings.push_back({"slab_misses_columns",
+                        fmt::format("{} floor {} ({:.6g} m) stands between floors of {} but no facade column of {}'s "
+                                    "storey {} is within reach: that slab meets nothing there (beams and infill walls "
+                                    "are not modelled)",
+                                    slab, level.slab_floor, level.elevation_m, other, other, level.storey)});
+  }
   return warnings;
 }
 
@@ -345,6 +359,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   } catch (const InputError& error) {
     throw error.in_context(scene.file.string());
   }
+  require_column_contact_law(scene);
   limits.validate();
   const dynamics::CoupledSystem system = build_system(scene);
   check_work(estimate_work(scene, system), limits);

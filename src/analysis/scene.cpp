@@ -166,7 +166,7 @@ void validate_levels(const Scene& scene) {
       }
     }
   }
-  if (!scene.levels().empty() || !scene.column_levels().empty()) return;
+  if (!scene.levels().empty() || !scene.column_candidates().empty()) return;
   const auto elevations = [&](std::size_t b) { return model::floor_elevations(scene.buildings[b]); };
   const bool columns_off = scene.contact.slab_to_column == "off";
   throw InputError(building_key(1) + ".storey_height_m",
@@ -177,28 +177,16 @@ void validate_levels(const Scene& scene) {
                                fmt::join(elevations(0), ", "), fmt::join(elevations(1), ", "), tolerance,
                                columns_off ? ", and contact.slab_to_column = \"off\" leaves out the slabs that "
                                              "would strike columns"
-                                           : ""));
+                               : scene.column_levels().empty()
+                                   ? ""
+                                   : ", and no facade column stands within reach of a slab between floors (a column "
+                                     "counts when its centre lies within half its section of a facing slab edge)"));
 }
 
-/// Where slabs meet columns: a compliant law (an impulse would need the column rigid and its
-/// floors' shares solved together, which the impact module does not do), and column storeys
-/// (a storey given as a matrix has no columns to strike).
-void validate_column_contacts(const Scene& scene) {
-  const std::vector<contact::ColumnLevel> levels = scene.column_levels();
-  if (levels.empty()) return;
-  const contact::ColumnLevel& first = levels.front();
-  const int columns = 1 - first.slab_building;
-  if (contact_law_info(scene.contact.law).law == contact::ContactLaw::impulse) {
-    throw InputError(
-        "contact.law", fmt::format("\"{}\"", scene.contact.law),
-        fmt::format("cannot resolve slab-to-column contact: {} floor {} ({:.6g} m) stands between floors of {} and "
-                    "would strike the columns of its storey {} (and {} such floor{} in all). Use a compliant law "
-                    "(kelvin, hertzdamp or jankowski), whose force the column's two floors share, or set "
-                    "contact.slab_to_column = \"off\" to leave such contacts out",
-                    scene.buildings[first.slab_building].name, first.slab_floor, first.elevation_m,
-                    scene.buildings[columns].name, first.storey, levels.size(), levels.size() == 1 ? "" : "s"));
-  }
-  for (const contact::ColumnLevel& level : levels) {
+/// Where slabs meet columns, column storeys: a storey given as a matrix has no columns to strike.
+/// (The law is checked when a run starts, require_column_contact_law, after the overrides.)
+void validate_column_storeys(const Scene& scene) {
+  for (const contact::ColumnLevel& level : scene.column_levels()) {
     const std::size_t b = static_cast<std::size_t>(1 - level.slab_building);
     if (scene.buildings[b].uses_columns()) continue;
     throw InputError(fmt::format("{}.storey_stiffness[{}]", building_key(b), level.storey), "",
@@ -329,6 +317,27 @@ std::vector<contact::Level> Scene::levels() const {
                                 contact.level_tolerance_m);
 }
 
+void require_column_contact_law(const Scene& scene) {
+  const std::vector<contact::ColumnLevel> levels = scene.column_levels();
+  if (levels.empty() || contact_law_info(scene.contact.law).law != contact::ContactLaw::impulse) return;
+  const contact::ColumnLevel& first = levels.front();
+  throw InputError(
+      "contact.law", fmt::format("\"{}\"", scene.contact.law),
+      fmt::format("cannot resolve slab-to-column contact: {} floor {} ({:.6g} m) stands between floors of {} and would "
+                  "strike the columns of its storey {} (and {} such floor{} in all). Use a compliant law (kelvin, "
+                  "hertzdamp or jankowski), whose force the column's two floors share, or set "
+                  "contact.slab_to_column = \"off\" to leave such contacts out",
+                  scene.buildings[first.slab_building].name, first.slab_floor, first.elevation_m,
+                  scene.buildings[1 - first.slab_building].name, first.storey, levels.size(),
+                  levels.size() == 1 ? "" : "s"),
+      scene.file.string());
+}
+
+std::vector<contact::Candidate> Scene::column_candidates() const {
+  return contact::find_column_candidates({&buildings[0], &buildings[1]}, column_levels(),
+                                         {.margin_m = contact.candidate_margin_m, .gap_m = contact.gap_m});
+}
+
 std::vector<contact::ColumnLevel> Scene::column_levels() const {
   if (contact.slab_to_column == "off") return {};
   return contact::column_levels({model::floor_elevations(buildings[0]), model::floor_elevations(buildings[1])},
@@ -348,7 +357,7 @@ void Scene::validate() const {
     excitation.validate();
     validate_contact(contact);
     validate_levels(*this);
-    validate_column_contacts(*this);
+    validate_column_storeys(*this);
     solver.validate();
     validate_output(output, levels().size());
     validate_floor_history(*this);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace pounding::contact {
 
@@ -54,7 +55,10 @@ std::vector<FacadeColumn> facade_columns(const model::BuildingDefinition& own, c
   const model::Polygon& slab = own.slab;
   for (std::size_t k = 0; k < own.columns.size(); ++k) {
     const model::Column& column = own.columns[k];
-    const double reach = std::max(column.b_m, column.h_m) / 2.0;
+    // The nearest facing edge within half the larger section side: a corner column inset from
+    // both faces belongs to the face it is nearer (on the corner, either gives the corner).
+    double nearest = std::max(column.b_m, column.h_m) / 2.0;
+    std::optional<Point2> point;
     for (std::size_t e = 0; e < slab.size(); ++e) {
       const Point2& q1 = slab.vertex(e);
       const Point2& q2 = slab.edge_end(e);
@@ -62,10 +66,12 @@ std::vector<FacadeColumn> facade_columns(const model::BuildingDefinition& own, c
       if (!faces(q1, normal, other)) continue;
       const Point2 edge = q2 - q1;
       const double along = (column.position_m - q1).dot(edge) / edge.squaredNorm();
-      if (std::abs((column.position_m - q1).dot(normal)) > reach || along < 0.0 || along > 1.0) continue;
-      facade.push_back({k, q1 + along * edge});
-      break;  // one point per column: a corner column projects onto the corner from either edge
+      const double distance = std::abs((column.position_m - q1).dot(normal));
+      if (distance > nearest || along < 0.0 || along > 1.0) continue;
+      nearest = distance;
+      point = q1 + along * edge;
     }
+    if (point) facade.push_back({k, *point});
   }
   return facade;
 }

@@ -100,12 +100,17 @@ contact::GapState CoupledSystem::gap(ConstVectorRef y, std::size_t index) const 
                               slab(y, c.struck_building, c.floors[c.struck_building]));
 }
 
-std::vector<CoupledSystem::RowBlock> CoupledSystem::row_blocks(const contact::Candidate& c,
-                                                               const contact::GapState& s) const {
-  std::vector<RowBlock> blocks{{floor_index(c.striking_building, c.floors[c.striking_building]), s.striking_row},
-                               {floor_index(c.struck_building, c.floors[c.struck_building]), s.struck_row}};
-  if (c.column && c.lower_floor > 0)
-    blocks.push_back({floor_index(c.striking_building, c.lower_floor), s.striking_lower_row});
+CoupledSystem::RowBlocks CoupledSystem::row_blocks(const contact::Candidate& c, const contact::GapState& s) const {
+  const auto block = [&](int building, int floor, const Eigen::RowVector3d& row) {
+    return RowBlock{building, floor, floor_index(building, floor), row};
+  };
+  RowBlocks blocks;
+  blocks.blocks[0] = block(c.striking_building, c.floors[c.striking_building], s.striking_row);
+  blocks.blocks[1] = block(c.struck_building, c.floors[c.struck_building], s.struck_row);
+  if (c.column && c.lower_floor > 0) {
+    blocks.blocks[2] = block(c.striking_building, c.lower_floor, s.striking_lower_row);
+    blocks.count = 3;
+  }
   return blocks;
 }
 

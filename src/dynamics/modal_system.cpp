@@ -111,9 +111,11 @@ VectorXd ModalSystem::atol(const VectorXd& physical_atol) const {
   VectorXd result(state_size());
   for (int b = 0; b < 2; ++b) {
     std::set<int> floors;
-    for (const contact::Candidate& c : system_.candidates()) {
-      floors.insert(c.floors[b]);
-      if (c.column && c.lower_floor > 0 && c.striking_building == b) floors.insert(c.lower_floor);
+    const VectorXd rest = VectorXd::Zero(system_.state_size());
+    for (std::size_t i = 0; i < system_.candidates().size(); ++i) {
+      for (const auto& block : system_.row_blocks(system_.candidates()[i], system_.gap(rest, i))) {
+        if (block.building == b) floors.insert(block.floor);
+      }
     }
     if (floors.empty()) {
       for (int floor = 1; floor <= system_.building(b).storeys(); ++floor) floors.insert(floor);

@@ -74,16 +74,15 @@ using dynamics::VectorXd;
 /// Per candidate, the components of y its gap reads: (u, v, φ) of its floors and their rates.
 std::vector<std::vector<int>> gap_components(const dynamics::CoupledSystem& system) {
   std::vector<std::vector<int>> components;
-  for (const contact::Candidate& c : system.candidates()) {
+  const VectorXd rest = VectorXd::Zero(system.state_size());
+  for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     std::vector<int>& own = components.emplace_back();
-    const auto add_floor = [&](int b, int floor) {
+    for (const auto& block : system.row_blocks(system.candidates()[i], system.gap(rest, i))) {
       for (int k = 0; k < 3; ++k) {
-        own.push_back(system.floor_index(b, floor) + k);
-        own.push_back(system.dof() + system.floor_index(b, floor) + k);
+        own.push_back(block.first + k);
+        own.push_back(system.dof() + block.first + k);
       }
-    };
-    for (int b = 0; b < 2; ++b) add_floor(b, c.floors[b]);
-    if (c.column && c.lower_floor > 0) add_floor(c.striking_building, c.lower_floor);  // a column point's lower floor
+    }
   }
   return components;
 }
@@ -534,6 +533,10 @@ RunResult run_event_driven(const dynamics::CoupledSystem& system, const EventOpt
   if (options.initial_state.size() != 0 && options.initial_state.size() != system.state_size()) {
     throw InputError("initial_state", std::to_string(options.initial_state.size()) + " values",
                      "needs one value per state (" + std::to_string(system.state_size()) + ")");
+  }
+  // The impact module solves impulses floor pair by floor pair; a column point reads three floors.
+  if (options.law == contact::ContactLaw::impulse && contact::has_column_pairs(system.candidates())) {
+    throw InputError("law", "impulse", "cannot resolve slab-to-column contacts: they need a compliant law");
   }
   EventDrivenRun run(system, options);
   return run.run(make_integrator, method);

@@ -24,13 +24,9 @@ RestRows rest_rows(const dynamics::CoupledSystem& system) {
   const Eigen::VectorXd rest = Eigen::VectorXd::Zero(system.state_size());
   RestRows result;
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
-    const contact::Candidate& c = system.candidates()[i];
-    const contact::GapState s = system.gap(rest, i);
     std::vector<RestBlock>& blocks = result.emplace_back();
-    blocks.push_back({c.striking_building, 3 * (c.floors[c.striking_building] - 1), s.striking_row});
-    blocks.push_back({c.struck_building, 3 * (c.floors[c.struck_building] - 1), s.struck_row});
-    if (c.column && c.lower_floor > 0)
-      blocks.push_back({c.striking_building, 3 * (c.lower_floor - 1), s.striking_lower_row});
+    for (const auto& block : system.row_blocks(system.candidates()[i], system.gap(rest, i)))
+      blocks.push_back({block.building, 3 * (block.floor - 1), block.row});
   }
   return result;
 }

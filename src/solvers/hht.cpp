@@ -472,6 +472,9 @@ RunResult run_hht(const dynamics::CoupledSystem& system, const HhtOptions& optio
     throw InputError("initial_state", std::to_string(options.initial_state.size()) + " values",
                      "needs one value per state (" + std::to_string(system.state_size()) + ")");
   }
+  if (contact::has_column_pairs(system.candidates())) {  // HHT resolves impulses floor pair by floor pair
+    throw InputError("method", "hht", "cannot resolve slab-to-column contacts: they need a compliant law");
+  }
   HhtRun run(system, options);
   return run.run(method);
 }

@@ -284,8 +284,13 @@ expect_refusal "building\[2\].storey_height_m = \[4.5, 3, 3" check "$work/no-lev
 expect_refusal "leaves out the slabs that would strike columns" run "$work/no-levels.toml" --out "$work/bad"
 # With slab-to-column contact on, the same scene has no level but its slabs strike columns: the
 # impulse law is refused naming the slab and the storey, a compliant law lists the pairs.
-grep -v '^slab_to_column' "$work/no-levels.toml" > "$work/columns.toml"
-expect_refusal "contact.law = \"impulse\": cannot resolve slab-to-column contact: B1 floor 1 (3 m)" check "$work/columns.toml"
+grep -v '^slab_to_column' "$work/no-levels.toml" > "$work/columns-impulse.toml"
+expect_refusal "contact.law = \"impulse\": cannot resolve slab-to-column contact: B1 floor 1 (3 m)" check "$work/columns-impulse.toml"
+expect_refusal "\-\-contact-law = \"impulse\": cannot resolve slab-to-column contact" run "$work/columns-impulse.toml" \
+  --contact-law impulse --out "$work/bad"
+# The law is checked after the overrides: --contact-law mends the file.
+"$pounding" run "$work/columns-impulse.toml" --contact-law kelvin --out "$work/columns-mended" --no-progress \
+  > "$work/columns-mended.txt" || fail "--contact-law kelvin did not mend an impulse scene whose slabs strike columns"
 sed -e 's|^slab_to_column = .*|law = "kelvin"|' "$work/no-levels.toml" > "$work/columns.toml"
 "$pounding" check "$work/columns.toml" > "$work/columns-check.txt" || fail "check of slab to column exited $?"
 grep -q "B1 floor 1 (3 m) -> B2 storey 1 (0 to 4.5 m) at height ratio 0.6667: columns 1 " "$work/columns-check.txt" \

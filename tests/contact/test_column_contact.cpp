@@ -247,3 +247,18 @@ BOOST_AUTO_TEST_CASE(DampedSlabAgainstColumnReboundsAtTheLawsRestitution) {
   const double lost = 0.5 * (v0 * v0 - std::pow(release.rebound * v0, 2)) / w;
   BOOST_TEST(r.impacts[0].energy_lost_kJ == lost, tt::tolerance(1e-5));
 }
+
+BOOST_AUTO_TEST_CASE(ACornerColumnBelongsToItsNearerFace) {
+  // The paper's B2 faces B1 with its left edge (x = 0.2) and, below B1's slab, its bottom edge
+  // (y = 8). A 0.5 m column inset 0.2 m from the left face and 0.3 m from the bottom one stands
+  // on the left face: its contact point is (0.2, 8.3), not the bottom edge's (0.4, 8).
+  model::BuildingDefinition b2;
+  b2.slab = model::Polygon({{0.2, 8}, {28.2, 8}, {28.2, 33}, {0.2, 33}});
+  b2.columns = {{{0.4, 8.3}, 0.5, 0.5}, {{14.2, 33.0}, 0.5, 0.5}};
+  const model::Polygon b1({{-24, 0}, {0, 0}, {0, 20}, {-24, 20}});
+  const std::vector<contact::FacadeColumn> facade = contact::facade_columns(b2, b1);
+  BOOST_TEST_REQUIRE(facade.size() == 1u);  // the column at the top edge faces nothing
+  BOOST_TEST(facade[0].column == 0u);
+  BOOST_TEST(facade[0].point.x() == 0.2, tt::tolerance(1e-15));
+  BOOST_TEST(facade[0].point.y() == 8.3, tt::tolerance(1e-15));
+}

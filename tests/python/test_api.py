@@ -222,6 +222,16 @@ def test_slab_to_column_impacts_carry_the_column_and_its_demands():
         assert impact["column_moment_kNm"] == pytest.approx(moment, rel=1e-12)
 
 
+def test_needed_gap_covers_the_slabs_facing_columns():
+    """Without a common level every entry of the needed gap is a slab facing columns; the needed
+    gap is the largest of theirs, named by its floors (level 0)."""
+    gap = pounding.needed_gap(pounding.load_scene(SOURCE / "examples" / "levels" / "ground-storey-columns.toml"))
+    assert len(gap.levels) == 13 and all(level["level"] == 0 and level["slab_to_column"] for level in gap.levels)
+    assert gap.needed_gap_m == max(level["needed_gap_m"] for level in gap.levels)
+    assert gap.level == 0 and gap.floor == [7, 7] and "facing columns" in repr(gap)
+    assert gap.history_touch_gap_m.shape[1] == 13
+
+
 def test_a_pair_of_components_from_python_runs_as_the_scene_would():
     """record2 / record2_column make a pair as --record2 does; a new record alone drops the pair."""
     pair_scene = pounding.load_scene(SOURCE / "examples" / "beyond-paper" / "two-components.toml")

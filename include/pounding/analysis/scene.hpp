@@ -103,6 +103,9 @@ struct Scene {
   /// The floors between two floors of the other building, below its roof, that meet its columns
   /// (contact::column_levels); empty when contact.slab_to_column is "off". @pre buildings valid.
   std::vector<contact::ColumnLevel> column_levels() const;
+  /// The slab-to-column candidates on column_levels() (contact::find_column_candidates with the
+  /// scene's gap and candidate margin). @pre buildings valid.
+  std::vector<contact::Candidate> column_candidates() const;
 
   /// Moves building 2 along x so that the clear distance becomes `gap_m`.
   /// @throws InputError (key `contact.gap_m`) if the gap lies outside [0, 10] m.
@@ -114,5 +117,12 @@ struct Scene {
   /// outlines show. @throws InputError naming the key and value.
   void validate() const;
 };
+
+/// Slabs that strike columns need a compliant law: an impulse would need the column rigid and its
+/// two floors' shares solved with the slab's, which the impact module (floor pair by floor pair)
+/// does not do. Checked when a run starts (run_scene, `check`), after the command line's or
+/// Python's overrides; not by Scene::validate(), so that `--contact-law` can mend a file.
+/// @throws InputError(`contact.law`) naming the first such slab and its storey.
+void require_column_contact_law(const Scene& scene);
 
 }  // namespace pounding::analysis

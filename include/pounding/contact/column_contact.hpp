@@ -61,8 +61,8 @@ struct FacadeColumn {
 };
 
 /// The columns of `own` whose centre lies within half its larger section side of an edge of
-/// `own`'s slab that faces `other`'s slab, projecting onto that edge; one point per column (a
-/// corner column on two facing edges projects onto the corner from both).
+/// `own`'s slab that faces `other`'s slab, projecting onto that edge; one point per column, on
+/// the nearest such edge (a corner column on two facing edges belongs to the nearer face).
 std::vector<FacadeColumn> facade_columns(const model::BuildingDefinition& own, const model::Polygon& other);
 
 /// The slab-to-column candidates: on each column level, every facade column point of the column

@@ -85,6 +85,23 @@ class CoupledSystem {
 
   /// Gap state of candidate `index` in state y.
   contact::GapState gap(ConstVectorRef y, std::size_t index) const;
+  /// One floor's part of a gap's row G: the floor (building 0 or 1, 1-based floor), the index in q
+  /// of its u, and its row over (u, v, φ).
+  struct RowBlock {
+    int building = 0;
+    int floor = 1;
+    int first = 0;
+    Eigen::RowVector3d row;
+  };
+  /// The floors candidate `c`'s row G reads, with their rows in gap state `s`: the striking floor,
+  /// the struck one and, for a column point, the column's lower floor unless it is the ground.
+  struct RowBlocks {
+    std::array<RowBlock, 3> blocks;
+    int count = 2;
+    const RowBlock* begin() const { return blocks.data(); }
+    const RowBlock* end() const { return blocks.data() + count; }
+  };
+  RowBlocks row_blocks(const contact::Candidate& c, const contact::GapState& s) const;
   /// g̈ (m/s²) of candidate `index` in state y moving with ẏ = y_dot: G q̈ + h.
   double gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const;
   /// The round-off of candidate `index`'s gap rate in state y (m/s): ġ is a difference of terms
@@ -163,14 +180,6 @@ class CoupledSystem {
 
  private:
   contact::SlabMotion slab(ConstVectorRef y, int building, int floor) const;
-  /// One floor's part of a gap's row G: the index in q of its u, and its row over (u, v, φ).
-  struct RowBlock {
-    int first = 0;
-    Eigen::RowVector3d row;
-  };
-  /// The floors candidate `c`'s row G reads in state `s`: the striking floor, the struck one and,
-  /// for a column point, the column's lower floor unless it is the ground.
-  std::vector<RowBlock> row_blocks(const contact::Candidate& c, const contact::GapState& s) const;
   /// G of candidate `index` over all n velocities.
   Eigen::RowVectorXd full_row(ConstVectorRef y, std::size_t index) const;
   /// Rows G (one per held contact, over all n velocities) and g̈'s velocity-only part.
