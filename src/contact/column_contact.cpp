@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 namespace pounding::contact {
 
@@ -55,10 +54,8 @@ std::vector<FacadeColumn> facade_columns(const model::BuildingDefinition& own, c
   const model::Polygon& slab = own.slab;
   for (std::size_t k = 0; k < own.columns.size(); ++k) {
     const model::Column& column = own.columns[k];
-    // The nearest facing edge within half the larger section side: a corner column inset from
-    // both faces belongs to the face it is nearer (on the corner, either gives the corner).
-    double nearest = std::max(column.b_m, column.h_m) / 2.0;
-    std::optional<Point2> point;
+    const double reach = std::max(column.b_m, column.h_m) / 2.0;
+    const std::size_t first = facade.size();
     for (std::size_t e = 0; e < slab.size(); ++e) {
       const Point2& q1 = slab.vertex(e);
       const Point2& q2 = slab.edge_end(e);
@@ -66,12 +63,15 @@ std::vector<FacadeColumn> facade_columns(const model::BuildingDefinition& own, c
       if (!faces(q1, normal, other)) continue;
       const Point2 edge = q2 - q1;
       const double along = (column.position_m - q1).dot(edge) / edge.squaredNorm();
-      const double distance = std::abs((column.position_m - q1).dot(normal));
-      if (distance > nearest || along < 0.0 || along > 1.0) continue;
-      nearest = distance;
-      point = q1 + along * edge;
+      if (std::abs((column.position_m - q1).dot(normal)) > reach || along < 0.0 || along > 1.0) continue;
+      // A column near a corner stands on both faces: a point on each, once if they coincide (a
+      // column centred on the corner projects onto the corner from either edge).
+      const Point2 point = q1 + along * edge;
+      const auto same = [&](const FacadeColumn& f) { return (f.point - point).norm() <= 1e-9; };
+      if (std::none_of(facade.begin() + static_cast<std::ptrdiff_t>(first), facade.end(), same)) {
+        facade.push_back({k, point});
+      }
     }
-    if (point) facade.push_back({k, *point});
   }
   return facade;
 }

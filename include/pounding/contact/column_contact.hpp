@@ -52,7 +52,7 @@ struct ColumnLevel {
 /// floor elevations (ascending, m). @pre 0 < tolerance_m < half of every storey height.
 std::vector<ColumnLevel> column_levels(const std::array<std::vector<double>, 2>& elevations, double tolerance_m);
 
-/// A column on the facade of its building that faces the other building: the column (0-based in
+/// A column on a facade of its building that faces the other building: the column (0-based in
 /// its list) and its contact point, its centre projected onto that slab edge (the column is taken
 /// flush with the facade).
 struct FacadeColumn {
@@ -61,8 +61,8 @@ struct FacadeColumn {
 };
 
 /// The columns of `own` whose centre lies within half its larger section side of an edge of
-/// `own`'s slab that faces `other`'s slab, projecting onto that edge; one point per column, on
-/// the nearest such edge (a corner column on two facing edges belongs to the nearer face).
+/// `own`'s slab that faces `other`'s slab, projecting onto that edge: one point per such edge (a
+/// column near a corner stands on both faces; a column centred on the corner gives it once).
 std::vector<FacadeColumn> facade_columns(const model::BuildingDefinition& own, const model::Polygon& other);
 
 /// The slab-to-column candidates: on each column level, every facade column point of the column
