@@ -51,6 +51,8 @@ GapState evaluate_gap(const Candidate& c, const SlabMotion& a, const SlabMotion&
   return s;
 }
 
+// The edge side repeats evaluate_gap's lines rather than sharing a helper with it: regrouping
+// evaluate_gap's sums would change its last bits, and so every slab-to-slab output.
 GapState evaluate_column_gap(const Candidate& c, const SlabMotion* lower, const SlabMotion& upper,
                              const SlabMotion& b) {
   const auto [weight_lower, weight_upper] = column_shape(c.height_ratio);
