@@ -188,6 +188,10 @@ def draw_inset(axis, t, gaps, sequence, window):
 def plot(folder: Path, level, compare, inset_window, out):
     summary, columns = read_run(folder)
     written = summary["history_levels"]
+    if not written:  # no common level: every contact is slab to column (docs/model.md 6b)
+        sys.exit(f"error: {folder}/history.csv holds no level: plot_run draws the slabs of a level, and this "
+                 "scene's slabs meet only columns (its floors' histories are in history.csv, its impacts in "
+                 "impacts.csv)")
     level = level or written[-1]
     if level not in written:
         sys.exit(f"error: --level {level}: history.csv holds levels {written}")
