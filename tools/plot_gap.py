@@ -44,7 +44,8 @@ def main():
     if not summary_file.is_file():
         sys.exit(f"error: {summary_file} not found (is {args.folder} the output folder of `pounding gap`?)")
     summary = json.load(summary_file.open())
-    levels = list(csv.DictReader((args.folder / "gap.csv").open()))
+    # By elevation: gap.csv lists the levels, then the slabs facing columns (level 0).
+    levels = sorted(csv.DictReader((args.folder / "gap.csv").open()), key=lambda r: float(r["elevation_m"]))
     history = list(csv.DictReader((args.folder / "gap_history.csv").open()))
     curve_file = args.folder / "gap_curve.csv"
     curve = list(csv.DictReader(curve_file.open())) if curve_file.is_file() else []
@@ -60,7 +61,7 @@ def main():
     for key, label, style in (("abs_m", "ABS", "r--s"), ("srss_m", "SRSS", "b--^"), ("ddc_m", "DDC", "g--v")):
         profile.plot([float(r[key]) for r in levels], z, style, label=label)
     profile.set_xlabel("gap [m]")
-    profile.set_ylabel("level elevation [m]")
+    profile.set_ylabel("elevation (levels and slabs facing columns) [m]")
     profile.set_title(f"{summary['scene']}: needed gap {summary['needed_gap_m']:.4f} m")
     profile.grid(alpha=0.3)
     profile.legend()
