@@ -94,10 +94,12 @@ void print_all_angles(const analysis::NeededGap& gap) {
              all.status == solvers::RunStatus::completed
                  ? ""
                  : fmt::format("; a run stopped ({}): lower bounds", solvers::to_string(all.status)));
-  fmt::print(
-      "  largest: {} with the record along {:.2f} deg (level {}, t = {:.6f} s), refined by full runs to "
-      "{:g} deg\n",
-      metres(all.worst.needed_gap_m), all.worst.angle_deg, all.worst_level, all.worst_t_s, all.refine_tolerance_deg);
+  // Level 0 with a governing pair: a slab facing columns (its pair names the column and the slab).
+  const std::string where = all.worst_level > 0 || all.worst_candidate < 0
+                                ? fmt::format("level {}", all.worst_level)
+                                : contact::describe(gap.candidates[static_cast<std::size_t>(all.worst_candidate)]);
+  fmt::print("  largest: {} with the record along {:.2f} deg ({}, t = {:.6f} s), refined by full runs to {:g} deg\n",
+             metres(all.worst.needed_gap_m), all.worst.angle_deg, where, all.worst_t_s, all.refine_tolerance_deg);
   fmt::print("  the envelope's largest: {} at {:g} deg; at the record's own {:g} deg: {}\n",
              metres(all.estimate.needed_gap_m), all.estimate.angle_deg, all.record_angle_deg, metres(gap.needed_gap_m));
 }
