@@ -121,10 +121,8 @@ void validate_contact(const ContactSettings& contact) {
     if (const auto* number = std::get_if<double ContactSettings::*>(&spec.member)) {
       require_range("contact." + std::string(spec.key), contact.**number, *spec.range);
     }
-  }
-  for (const ContactSettingSpec& spec : contact_specs()) {
     const auto* text = std::get_if<std::string ContactSettings::*>(&spec.member);
-    if (text == nullptr || spec.choices.empty()) continue;
+    if (text == nullptr || spec.choices.empty()) continue;  // the law is checked by name below
     const std::string& value = contact.**text;
     if (std::find(spec.choices.begin(), spec.choices.end(), value) == spec.choices.end()) {
       throw InputError("contact." + std::string(spec.key), fmt::format("\"{}\"", value),

@@ -43,7 +43,7 @@ json candidates_json(const std::vector<contact::Candidate>& candidates) {
   json list = json::array();
   for (const contact::Candidate& c : candidates) {
     list.push_back(at_level(c, {{"striking_building", c.striking_building + 1},
-                                {"vertex", c.column ? 0 : c.vertex_index + 1},
+                                {"vertex", contact::vertex_number(c)},
                                 {"vertex_rest", point(c.vertex_rest)},
                                 {"struck_building", c.struck_building + 1},
                                 {"edge", c.edge_index + 1},

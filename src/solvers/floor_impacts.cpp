@@ -23,17 +23,8 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
 TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
                          const contact::GapState& gap) {
   const contact::Candidate& c = system.candidates()[index];
-  // A column point is no slab vertex: vertex 0.
-  return {t,
-          c.level,
-          c.floors,
-          c.elevation_m,
-          c.striking_building + 1,
-          c.column ? 0 : c.vertex_index + 1,
-          index,
-          gap.contact_point,
-          gap.gap_rate_mps,
-          gap.gap_m};
+  return {t,     c.level,           c.floors,         c.elevation_m, c.striking_building + 1, contact::vertex_number(c),
+          index, gap.contact_point, gap.gap_rate_mps, gap.gap_m};
 }
 
 ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,
@@ -45,7 +36,7 @@ ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::siz
   r.floors = c.floors;
   r.elevation_m = c.elevation_m;
   r.striking_building = c.striking_building + 1;
-  r.vertex = c.column ? 0 : c.vertex_index + 1;  // a column point is no slab vertex
+  r.vertex = contact::vertex_number(c);
   r.struck_edge = c.edge_index + 1;
   r.candidate = index;
   r.vertex_rest = c.vertex_rest;

@@ -101,7 +101,7 @@ void Recorder::append_row(const Instant& at) {
                         .candidate = f.candidate,
                         .level = c.level,
                         .striking_building = c.striking_building + 1,
-                        .vertex = c.column ? 0 : c.vertex_index + 1,  // a column point is no slab vertex
+                        .vertex = contact::vertex_number(c),
                         .struck_edge = c.edge_index + 1,
                         .gap_m = gap.gap_m,
                         .gap_rate_mps = gap.gap_rate_mps,

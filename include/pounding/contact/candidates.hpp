@@ -85,6 +85,10 @@ model::Point2 outward_normal(const model::Point2& q1, const model::Point2& q2);
 /// Whether some vertex of `other` lies in front of the edge from q1 with outward `normal`.
 bool faces(const model::Point2& q1, const model::Point2& normal, const model::Polygon& other);
 
+/// The striking vertex's 1-based number in its slab outline, as outputs name it; 0 for a column
+/// point, which is no slab vertex.
+inline std::size_t vertex_number(const Candidate& c) { return c.column ? 0 : c.vertex_index + 1; }
+
 /// Whether any candidate is slab to column (the outputs then carry the column's fields).
 bool has_column_pairs(const std::vector<Candidate>& candidates);
 
