@@ -77,8 +77,35 @@ void print_column_levels(const analysis::Scene& scene, const std::vector<contact
   }
 }
 
+/// A row: each neighbouring pair with its gap, levels and candidates.
+void print_row(const analysis::Scene& scene) {
+  const std::vector<analysis::BuildingPair> pairs = scene.pairs();
+  const std::vector<contact::Candidate> candidates = analysis::scene_candidates(scene);
+  fmt::print("Row of {} buildings: {} neighbouring pair(s) (slabs at most contact.candidate_margin_m = {} m apart)\n",
+             scene.buildings.size(), pairs.size(), scene.contact.candidate_margin_m);
+  const std::vector<contact::Level> levels = scene.levels();
+  for (const analysis::BuildingPair& pair : pairs) {
+    const std::string& first = scene.buildings[static_cast<std::size_t>(pair.first)].name;
+    const std::string& second = scene.buildings[static_cast<std::size_t>(pair.second)].name;
+    std::vector<std::string> at;
+    for (const contact::Level& l : levels) {
+      if (l.pair == std::array{pair.first, pair.second})
+        at.push_back(fmt::format("{} ({}/{}, {:.6g} m)", l.index, l.floors[0], l.floors[1], l.elevation_m));
+    }
+    const auto in_pair = [&](const contact::Candidate& c) { return c.pair == std::array{pair.first, pair.second}; };
+    const auto count = std::count_if(candidates.begin(), candidates.end(), in_pair);
+    const auto columns = std::count_if(candidates.begin(), candidates.end(),
+                                       [&](const contact::Candidate& c) { return in_pair(c) && c.column; });
+    fmt::print("  {}:{}: gap {} m (B{} moves away along ({:.6g}, {:.6g})); levels {}; {} candidates{}\n", first, second,
+               pair.gap_m, pair.second + 1, pair.direction.x(), pair.direction.y(),
+               at.empty() ? std::string("none") : fmt::format("{}", fmt::join(at, ", ")), count,
+               columns > 0 ? fmt::format(" ({} slab to column)", columns) : std::string());
+  }
+}
+
 /// The floor pairs that can touch, with both elevations, and the floors at no level.
 void print_levels(const analysis::Scene& scene) {
+  if (scene.is_row()) return print_row(scene);
   const std::vector<contact::Level> levels = scene.levels();
   const std::array<std::vector<double>, 2> z{model::floor_elevations(scene.buildings[0]),
                                              model::floor_elevations(scene.buildings[1])};
@@ -226,7 +253,7 @@ analysis::RunLimits run_limits(const RunCommand& command) {
 }
 
 int run_run(const RunCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m,
+  analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps,
                                                          .restitution = command.restitution,
                                                          .contact_law = command.contact_law,
                                                          .contact_stiffness = command.contact_stiffness,
@@ -258,7 +285,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
     limits.validate();
     created = io::require_writable_folder(folder, "--out");  // before the run, not after an hour of it
     provenance = io::make_provenance(scene, command_line);
-    files.slab_to_column(contact::has_column_pairs(analysis::scene_candidates(scene)));
+    files.impact_fields(io::impact_field_set(analysis::scene_candidates(scene)));
     const InterruptRequests interrupts;
     report = analysis::run_scene(scene, limits, &files);
   } catch (const InputError& error) {
@@ -280,7 +307,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
 }
 
 int run_study(const StudyCommand& command, const std::string& command_line) {
-  const analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m});
+  const analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps});
   analysis::StudyOptions options;
   options.repeat = command.repeat;
   options.quick = command.quick;
@@ -366,8 +393,8 @@ int run_modes(const ModesCommand& command) {
 
 int run_check(const CheckCommand& command) {
   const analysis::Scene scene = io::read_scene(
-      command.scene, {.gap_m = command.gap_m, .restitution = command.restitution, .record = command.record});
-  analysis::require_column_contact_law(scene);
+      command.scene, {.gaps = command.gaps, .restitution = command.restitution, .record = command.record});
+  analysis::require_compliant_law_where_needed(scene);
   const auto buildings = analysis::summarise_buildings(scene);
   const dynamics::CoupledSystem system = analysis::build_system(scene);
   const excitation::GroundMotion& motion = system.ground_motion();
@@ -413,7 +440,9 @@ int run_check(const CheckCommand& command) {
                               : fmt::format(", law {} (stiffness {} {})", scene.contact.law,
                                             scene.contact.used_stiffness(),
                                             analysis::contact_law_info(scene.contact.law).stiffness_unit);
-  fmt::print("Contact: gap {} m, restitution k = {}{}\n", scene.contact.gap_m, scene.contact.restitution, law);
+  fmt::print("Contact: {}, restitution k = {}{}\n",
+             scene.is_row() ? std::string("gaps per pair (above)") : fmt::format("gap {} m", scene.contact.gap_m),
+             scene.contact.restitution, law);
   const auto candidates = analysis::scene_candidates(scene);
   const auto column_pairs = std::count_if(candidates.begin(), candidates.end(), [](const auto& c) { return c.column; });
   if (column_pairs == 0) {

@@ -40,14 +40,14 @@ struct LawsCommand {
 
 struct CheckCommand {
   std::string scene;
-  std::optional<double> gap_m;
+  std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
   std::optional<double> restitution;
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
 };
 
 struct RunCommand {
   std::string scene;
-  std::optional<double> gap_m;
+  std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
   std::optional<double> restitution;
   std::optional<std::string> contact_law;
   std::optional<double> contact_stiffness;  // in the law's unit (contact_laws.hpp)
@@ -68,7 +68,7 @@ struct RunCommand {
 
 struct StudyCommand {
   std::string scene;
-  std::optional<double> gap_m;
+  std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
   int repeat = 3;
   bool quick = false;   // a short ladder (for smoke tests)
   std::string out_dir;  // empty: out/<scene name>-study
@@ -76,7 +76,7 @@ struct StudyCommand {
 
 struct GapCommand {
   std::string scene;
-  std::optional<double> gap_m;
+  std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
   std::optional<double> rtol;
   std::optional<double> atol;
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
@@ -106,7 +106,7 @@ struct SpectrumCommand {
 
 struct PlanCommand {
   std::string scene;
-  std::optional<double> gap_m;  // --gap: building 2 moved along x
+  std::vector<std::string> gaps;  // --gap: building 2 moved along x, or a row's pair NAME:NAME=m
   std::string out_dir;          // empty: out/<scene name>-plan
   bool no_plot = false;         // skip plan.png (drawn by tools/plot_plan.py)
 };

@@ -219,7 +219,7 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
 }  // namespace
 
 int run_gap(const GapCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m, .record = command.record});
+  analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps, .record = command.record});
   if (command.rtol) scene.solver.rtol = *command.rtol;
   if (command.atol) scene.solver.atol = *command.atol;
   try {
@@ -253,8 +253,8 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
     const contact::Candidate& pair = gap.candidates[static_cast<std::size_t>(gap.candidate)];
     const std::string where =
         pair.column ? fmt::format("B{} floor {} facing B{}'s storey-{} columns (z = {:.2f} m)",
-                                  pair.struck_building + 1, pair.floors[pair.struck_building],
-                                  pair.striking_building + 1, pair.floors[pair.striking_building], pair.elevation_m)
+                                  pair.struck_building + 1, pair.floor_of(pair.struck_building),
+                                  pair.striking_building + 1, pair.floor_of(pair.striking_building), pair.elevation_m)
                     : fmt::format("level {} (floors {}/{}, z = {:.2f} m)", gap.level, pair.floors[0], pair.floors[1],
                                   pair.elevation_m);
     fmt::print("  {} at {}, t = {:.6f} s, pair {}\n", metres(gap.needed_gap_m), where, gap.t_s,

@@ -22,6 +22,16 @@ void add_scene_argument(CLI::App& command, std::string& scene) {
   command.add_option("scene", scene, "Scene file (TOML)")->required();
 }
 
+/// `--gap`, once per pair: a gap in m (two buildings: building 2 moves along x), or NAME:NAME=m
+/// for a neighbouring pair of a row (io::SceneOverrides::gaps).
+void add_gap_option(CLI::App& command, std::vector<std::string>& gaps) {
+  command
+      .add_option("--gap", gaps,
+                  "Clear gap (m): moves building 2 along x. A row: NAME:NAME=m, one --gap per pair (the pair's "
+                  "second building moves, with its neighbours beyond)")
+      ->allow_extra_args(false);
+}
+
 /// A run's folder and, for a scene built in code or changed since, its scene file (animate, report).
 void add_run_folder_arguments(CLI::App& command, std::string& run_dir, std::string& scene) {
   command.add_option("run_dir", run_dir, "Folder of a run (pounding run --out)")->required();
@@ -165,14 +175,14 @@ int main(int argc, char** argv) {
   pounding::cli::CheckCommand check;
   CLI::App* check_app = app.add_subcommand("check", "Validate a scene and print what it describes");
   add_scene_argument(*check_app, check.scene);
-  check_app->add_option("--gap", check.gap_m, "Clear gap (m); moves building 2 along x");
+  add_gap_option(*check_app, check.gaps);
   check_app->add_option("--restitution", check.restitution, "Coefficient of restitution k in [0, 1]");
   add_record_options(*check_app, check.record);
 
   pounding::cli::RunCommand run;
   CLI::App* run_app = app.add_subcommand("run", "Time-history analysis with event-driven contact");
   add_scene_argument(*run_app, run.scene);
-  run_app->add_option("--gap", run.gap_m, "Clear gap (m); moves building 2 along x");
+  add_gap_option(*run_app, run.gaps);
   run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
   run_app->add_option("--contact-law", run.contact_law, pounding::analysis::contact_laws_help());
   run_app->add_option("--contact-stiffness", run.contact_stiffness, pounding::analysis::contact_stiffness_help());
@@ -214,7 +224,7 @@ int main(int argc, char** argv) {
   CLI::App* study_app =
       app.add_subcommand("study", "Error against run time of every solution path, measured against the exact path");
   add_scene_argument(*study_app, study.scene);
-  study_app->add_option("--gap", study.gap_m, "Clear gap (m); moves building 2 along x");
+  add_gap_option(*study_app, study.gaps);
   study_app->add_option("--repeat", study.repeat, "Timed runs per setting; the median is reported")
       ->capture_default_str()->check(CLI::Range(1, kMaxStudyRepeats));
   study_app->add_flag("--quick", study.quick, "A short ladder: rtol 1e-6 and 1e-8, dt 0.05 and 0.01 s");
@@ -224,7 +234,7 @@ int main(int argc, char** argv) {
   CLI::App* gap_app =
       app.add_subcommand("gap", "The clear gap that prevents pounding, from one contact-free run, and the code rules");
   add_scene_argument(*gap_app, gap.scene);
-  gap_app->add_option("--gap", gap.gap_m, "Clear gap of the scene (m); moves building 2 along x");
+  add_gap_option(*gap_app, gap.gaps);
   gap_app->add_option("--rtol", gap.rtol, "Relative tolerance of the run (default: the scene's)");
   gap_app->add_option("--atol", gap.atol, "Absolute tolerance of the run, m and rad (default: the scene's)");
   add_record_options(*gap_app, gap.record);
@@ -290,7 +300,7 @@ int main(int argc, char** argv) {
       "The scene's plan and elevation before any run: slabs, columns, centres of mass and of stiffness, the "
       "levels where floors meet and the contact candidates (plan.json; plan.png by tools/plot_plan.py)");
   plan_app->add_option("scene", plan.scene, "Scene file (TOML)")->required();
-  plan_app->add_option("--gap", plan.gap_m, "Clear gap (m); moves building 2 along x");
+  add_gap_option(*plan_app, plan.gaps);
   plan_app->add_option("--out", plan.out_dir, "Output folder (default out/<scene name>-plan)");
   plan_app->add_flag("--no-plot", plan.no_plot, "Do not draw plan.png");
 

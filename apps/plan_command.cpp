@@ -116,7 +116,7 @@ int run_compare(const CompareCommand& command) {
 }
 
 int run_plan(const PlanCommand& command, const std::string& command_line) {
-  const analysis::Scene scene = io::read_scene(command.scene, {.gap_m = command.gap_m});
+  const analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps});
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-plan") : command.out_dir;
   io::require_writable_folder(folder, "--out");
   const analysis::ScenePlan plan = analysis::scene_plan(scene);

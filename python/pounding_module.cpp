@@ -176,28 +176,31 @@ Run run(Scene scene, const std::optional<std::string>& method, const py::dict& s
   return result;
 }
 
-/// Whether the run's impacts carry the slab-to-column fields (impact_schema.hpp).
-bool slab_to_column(const Run& run) { return pounding::contact::has_column_pairs(run.report.candidates); }
+/// Which of the fields marked for some scenes only the run's impacts carry (impact_schema.hpp).
+pounding::io::ImpactFieldSet impact_fields(const Run& run) {
+  return pounding::io::impact_field_set(run.report.candidates);
+}
 
 py::array_t<double> impact_table(const Run& run) {
   const auto& impacts = run.report.result.impacts;
   std::vector<std::vector<double>> rows;
   for (const auto& impact : impacts) {
     std::vector<double>& row = rows.emplace_back();
-    for (const pounding::io::ImpactField* field : pounding::io::impact_fields(slab_to_column(run))) {
+    for (const pounding::io::ImpactField* field : pounding::io::impact_fields(impact_fields(run))) {
       const std::vector<double> values = field->values(impact);
       row.insert(row.end(), values.begin(), values.end());
     }
   }
-  return matrix(rows.size(), pounding::io::impact_csv_columns(slab_to_column(run)).size(),
+  return matrix(rows.size(), pounding::io::impact_csv_columns(impact_fields(run)).size(),
                 [&](std::size_t r, std::size_t c) { return rows[r][c]; });
 }
 
 /// impacts.csv's columns with their types ("real", "integer", "flag").
-/// `slab_to_column`: with the slab-to-column fields.
-std::vector<std::pair<std::string, std::string>> impact_columns(bool slab_to_column) {
+/// `slab_to_column`, `row`: with the slab-to-column fields, the row fields.
+std::vector<std::pair<std::string, std::string>> impact_columns(bool slab_to_column, bool row) {
   std::vector<std::pair<std::string, std::string>> columns;
-  for (const pounding::io::ImpactField* field : pounding::io::impact_fields(slab_to_column)) {
+  for (const pounding::io::ImpactField* field :
+       pounding::io::impact_fields({.slab_to_column = slab_to_column, .row = row})) {
     using Type = pounding::io::ImpactField::Type;
     const char* type = field->type == Type::real ? "real" : field->type == Type::integer ? "integer" : "flag";
     for (const std::string& column : field->csv_columns()) columns.emplace_back(column, type);
@@ -327,7 +330,7 @@ PYBIND11_MODULE(_pounding, m) {
     for (const auto& method : pounding::analysis::methods()) names.emplace_back(method.name);
     return names;
   });
-  m.def("impact_columns", &impact_columns, py::arg("slab_to_column") = false);
+  m.def("impact_columns", &impact_columns, py::arg("slab_to_column") = false, py::arg("row") = false);
 
   py::class_<Scene>(m, "Scene",
                     "A scene read and checked by pounding.load_scene(); its with_* methods return changed copies")
@@ -502,7 +505,11 @@ PYBIND11_MODULE(_pounding, m) {
       .def("full_report", [](const Run& r) { return pounding::io::full_report(r.report); })
       .def("brief_report", [](const Run& r) { return pounding::io::brief_report(r.report); })
       .def("impact_table", &impact_table)
-      .def("slab_to_column", &slab_to_column)
+      .def("impact_fields",
+           [](const Run& r) {
+             const pounding::io::ImpactFieldSet set = impact_fields(r);
+             return std::pair{set.slab_to_column, set.row};
+           })
       .def("history_columns", [](const Run& r) { return r.report.result.history.columns; })
       .def("history_table", &history_table)
       .def("contact_force_columns", [](const Run&) { return kContactForceColumns; })

@@ -323,7 +323,7 @@ class RunResult:
     @property
     def impacts_array(self):
         if self._impacts_array is None:
-            columns = _pounding.impact_columns(self._run.slab_to_column())
+            columns = _pounding.impact_columns(*self._run.impact_fields())
             table = self._run.impact_table()
             array = _np.zeros(len(table), dtype=[(name, _IMPACT_DTYPES[kind]) for name, kind in columns])
             for index, (name, kind) in enumerate(columns):

@@ -468,8 +468,7 @@ std::string describe_used_settings(const UsedSettings& used) {
     std::string part = fmt::format("{} {}", entry.key, text_of(entry.value));
     if (entry.key == "atol" && used.atol_components) {
       const ComponentAtol& c = *used.atol_components;
-      part += fmt::format(" m (phi {:.3g}/{:.3g} rad, rates x {:.3g}/s)", c.rotation_rad[0], c.rotation_rad[1],
-                          c.rate_per_s);
+      part += fmt::format(" m (phi {:.3g} rad, rates x {:.3g}/s)", fmt::join(c.rotation_rad, "/"), c.rate_per_s);
     }
     parts.push_back(std::move(part));
   }
@@ -538,12 +537,12 @@ ComponentAtol component_atol(const dynamics::CoupledSystem& system, double atol_
   ComponentAtol result;
   result.displacement_m = atol_m;
   double lowest_omega = std::numeric_limits<double>::infinity();
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system.building_count(); ++b) {
     const model::BuildingDefinition& d = system.building(b).definition;
     double farthest_m = 0.0;
     for (const model::Point2& corner : d.slab.vertices())
       farthest_m = std::max(farthest_m, (corner - d.centre_of_mass).norm());
-    result.rotation_rad[static_cast<std::size_t>(b)] = atol_m / farthest_m;
+    result.rotation_rad.push_back(atol_m / farthest_m);
     lowest_omega = std::min(lowest_omega, system.building(b).modes.front().omega_rad_s);
   }
   result.rate_per_s = lowest_omega;
@@ -553,7 +552,7 @@ ComponentAtol component_atol(const dynamics::CoupledSystem& system, double atol_
 Eigen::VectorXd ComponentAtol::vector(const dynamics::CoupledSystem& system) const {
   const int n = system.dof();
   Eigen::VectorXd atol(system.state_size());
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system.building_count(); ++b) {
     for (int floor = 1; floor <= system.building(b).storeys(); ++floor) {
       const int i = system.floor_index(b, floor);
       atol.segment<3>(i) << displacement_m, displacement_m, rotation_rad[static_cast<std::size_t>(b)];

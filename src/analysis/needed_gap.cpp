@@ -212,7 +212,7 @@ std::vector<std::size_t> facade_entries(const CoupledSystem& system, std::vector
       entries.push_back({.level = {0, c.floors, c.elevation_m},
                          .column = true,
                          .slab_building = c.struck_building,
-                         .storey = c.floors[c.striking_building],
+                         .storey = c.floor_of(c.striking_building),
                          .height_ratio = c.height_ratio});
       entry = entries.end() - 1;
     }
@@ -239,14 +239,16 @@ std::vector<FacingPoint> facing_points(const CoupledSystem& system, const std::v
   for (std::size_t i = 0; i < counted.size(); ++i) {
     if (!counted[i]) continue;
     const contact::Candidate& c = system.candidates()[i];
-    FacingPoint vertex{.building = c.striking_building, .floor = c.floors[c.striking_building], .level_slot = slots[i]};
+    FacingPoint vertex{
+        .building = c.striking_building, .floor = c.floor_of(c.striking_building), .level_slot = slots[i]};
     if (c.column) {
       const auto [lower, upper] = contact::column_shape(c.height_ratio);
       vertex.lower_floor = c.lower_floor;
       vertex.weights = {lower, upper};
     }
     add(vertex, c.vertex_rest);
-    const FacingPoint edge{.building = c.struck_building, .floor = c.floors[c.struck_building], .level_slot = slots[i]};
+    const FacingPoint edge{
+        .building = c.struck_building, .floor = c.floor_of(c.struck_building), .level_slot = slots[i]};
     add(edge, c.edge_start_rest);
     add(edge, c.edge_end_rest);
   }

@@ -16,6 +16,20 @@
 namespace pounding::analysis {
 
 std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
+  if (scene.is_row()) {
+    // Pair by pair, each pair's slab-to-slab candidates and then its slab-to-column ones, the
+    // levels numbered on as Scene::levels() numbers them.
+    std::vector<contact::Candidate> candidates;
+    int level_offset = 0;
+    for (const BuildingPair& pair : scene.pairs()) {
+      const Scene two = scene.pair_scene(pair);
+      std::vector<contact::Candidate> found = scene_candidates(two);
+      contact::place_in_pair(found, {pair.first, pair.second}, level_offset);
+      candidates.insert(candidates.end(), found.begin(), found.end());
+      level_offset += static_cast<int>(two.levels().size());
+    }
+    return candidates;
+  }
   contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
                                  {scene.buildings[0].centre_of_mass, scene.buildings[1].centre_of_mass}};
   std::vector<contact::Candidate> candidates = contact::find_candidates(
@@ -57,18 +71,17 @@ namespace {
 
 /// `spec` with a spectral scaling at a building's first period (…@B1, …@B2, …@T1: the longer)
 /// given that period from `first_periods_s` (each building's longest).
-excitation::ExcitationSpec with_sa_period(excitation::ExcitationSpec spec,
-                                          const std::array<double, 2>& first_periods_s) {
+excitation::ExcitationSpec with_sa_period(excitation::ExcitationSpec spec, const std::vector<double>& first_periods_s) {
   if (!spec.scale_to_sa || spec.scale_to_sa->building == 0) return spec;
   const int building = spec.scale_to_sa->building;
-  spec.scale_to_sa->period_s = building == 3 ? std::max(first_periods_s[0], first_periods_s[1])
+  spec.scale_to_sa->period_s = building == 3 ? *std::max_element(first_periods_s.begin(), first_periods_s.end())
                                              : first_periods_s[static_cast<std::size_t>(building - 1)];
   return spec;
 }
 
-std::array<model::Building, 2> scene_buildings(const Scene& scene) {
-  std::array<model::Building, 2> buildings;
-  for (std::size_t b = 0; b < 2; ++b) {
+std::vector<model::Building> scene_buildings(const Scene& scene) {
+  std::vector<model::Building> buildings(scene.buildings.size());
+  for (std::size_t b = 0; b < buildings.size(); ++b) {
     try {
       buildings[b] = model::make_building(scene.buildings[b]);
     } catch (const InputError& error) {
@@ -78,8 +91,10 @@ std::array<model::Building, 2> scene_buildings(const Scene& scene) {
   return buildings;
 }
 
-std::array<double, 2> first_periods_s(const std::array<model::Building, 2>& buildings) {
-  return {buildings[0].modes.front().period_s, buildings[1].modes.front().period_s};
+std::vector<double> first_periods_s(const std::vector<model::Building>& buildings) {
+  std::vector<double> periods;
+  for (const model::Building& building : buildings) periods.push_back(building.modes.front().period_s);
+  return periods;
 }
 
 /// The record (or pair) `spec` describes, its errors with the scene's file and the keys that chose
@@ -109,7 +124,7 @@ excitation::GroundMotion scene_ground_motion(const Scene& scene) {
 }
 
 dynamics::CoupledSystem build_system(const Scene& scene, bool contact) {
-  std::array<model::Building, 2> buildings = scene_buildings(scene);
+  std::vector<model::Building> buildings = scene_buildings(scene);
   // A spectral scaling at a building's period takes it from the buildings just assembled.
   excitation::GroundMotion motion =
       load_scene_record(scene, with_sa_period(scene.excitation, first_periods_s(buildings)));
@@ -159,7 +174,7 @@ solvers::EventOptions event_options(const Scene& scene, const UsedSettings& used
 /// the static response. @throws InputError naming solver.modes_cutoff_hz.
 void check_modes_kept(const Scene& scene, const UsedSettings& used, const dynamics::CoupledSystem& system) {
   if (used.modes_cutoff_hz == 0.0) return;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system.building_count(); ++b) {
     const double first_hz = system.building(b).modes.front().omega_rad_s / (2.0 * std::numbers::pi);
     if (first_hz < used.modes_cutoff_hz) continue;
     throw InputError("solver.modes_cutoff_hz", format_value(used.modes_cutoff_hz),
@@ -359,7 +374,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   } catch (const InputError& error) {
     throw error.in_context(scene.file.string());
   }
-  require_column_contact_law(scene);
+  require_compliant_law_where_needed(scene);
   limits.validate();
   const dynamics::CoupledSystem system = build_system(scene);
   check_work(estimate_work(scene, system), limits);
@@ -369,14 +384,18 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.contact_law = law.name;
+  if (scene.is_row()) {
+    report.pairs = scene.pairs();
+    for (const model::BuildingDefinition& b : scene.buildings) report.building_names.push_back(b.name);
+  }
   report.g_mps2 = scene.excitation.g_mps2;
   report.contact_stiffness = scene.contact.used_stiffness();
   report.contact_damping = contact_damping(law, scene.contact.restitution);
   report.warnings = scene_warnings(scene);
   report.springs = system.springs().all();
   if (scene.excitation.scale_to_sa) {
-    const std::array<double, 2> periods{system.building(0).modes.front().period_s,
-                                        system.building(1).modes.front().period_s};
+    std::vector<double> periods;
+    for (int b = 0; b < system.building_count(); ++b) periods.push_back(system.building(b).modes.front().period_s);
     const excitation::SaScaling sa = *with_sa_period(scene.excitation, periods).scale_to_sa;
     report.spectral_scaling = SpectralScaling{.asked = sa.text,
                                               .target_g = sa.target_g,

@@ -116,6 +116,20 @@ void validate_gap(const std::string& key, double gap_m) { require_range(key, gap
 
 std::string building_key(std::size_t index) { return fmt::format("building[{}]", index + 1); }
 
+/// "B1 and B2", "B1, B2 and B3".
+std::string building_names(const Scene& scene) {
+  std::string names;
+  for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
+    names += (b == 0 ? "" : b + 1 == scene.buildings.size() ? " and " : ", ") + scene.buildings[b].name;
+  }
+  return names;
+}
+
+/// "contact.gaps.\"A:B\"", the key of a row's pair gap.
+std::string pair_gap_key(const std::string& first, const std::string& second) {
+  return fmt::format("contact.gaps.\"{}:{}\"", first, second);
+}
+
 void validate_contact(const ContactSettings& contact) {
   for (const ContactSettingSpec& spec : contact_specs()) {
     if (const auto* number = std::get_if<double ContactSettings::*>(&spec.member)) {
@@ -154,7 +168,7 @@ void validate_contact(const ContactSettings& contact) {
 void validate_levels(const Scene& scene) {
   // Below half a storey height a floor can meet at most one floor of the other building.
   const double tolerance = scene.contact.level_tolerance_m;
-  for (std::size_t b = 0; b < 2; ++b) {
+  for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
     const std::vector<double>& heights = scene.buildings[b].storey_height_m;
     for (std::size_t s = 0; s < heights.size(); ++s) {
       if (!(tolerance < heights[s] / 2.0)) {
@@ -164,7 +178,7 @@ void validate_levels(const Scene& scene) {
       }
     }
   }
-  if (!scene.levels().empty() || !scene.column_candidates().empty()) return;
+  if (scene.is_row() || !scene.levels().empty() || !scene.column_candidates().empty()) return;
   const auto elevations = [&](std::size_t b) { return model::floor_elevations(scene.buildings[b]); };
   const bool columns_off = scene.contact.slab_to_column == "off";
   throw InputError(building_key(1) + ".storey_height_m",
@@ -182,8 +196,12 @@ void validate_levels(const Scene& scene) {
 }
 
 /// Where slabs meet columns, column storeys: a storey given as a matrix has no columns to strike.
-/// (The law is checked when a run starts, require_column_contact_law, after the overrides.)
+/// (The law is checked when a run starts, require_compliant_law_where_needed, after the overrides.)
 void validate_column_storeys(const Scene& scene) {
+  if (scene.is_row()) {
+    for (const BuildingPair& pair : scene.pairs()) validate_column_storeys(scene.pair_scene(pair));
+    return;
+  }
   for (const contact::ColumnLevel& level : scene.column_levels()) {
     const std::size_t b = static_cast<std::size_t>(1 - level.slab_building);
     if (scene.buildings[b].uses_columns()) continue;
@@ -204,9 +222,7 @@ void validate_floor_history(const Scene& scene) {
                                        [&](const model::BuildingDefinition& b) { return b.name == name; });
     const std::string key = fmt::format("output.floor_history.{}", name);
     if (building == scene.buildings.end()) {
-      throw InputError(key, "",
-                       fmt::format("names no building (the buildings are {} and {})", scene.buildings[0].name,
-                                   scene.buildings[1].name));
+      throw InputError(key, "", fmt::format("names no building (the buildings are {})", building_names(scene)));
     }
     std::set<int> seen;
     for (std::size_t i = 0; i < floors.size(); ++i) {
@@ -270,6 +286,50 @@ void validate_pair(const Scene& scene) {
   }
 }
 
+/// A row: distinct names, no two slabs overlapping at rest, a neighbouring pair, the stated gaps
+/// those of neighbouring pairs and equal to the outlines', no contact.gap_m (checked by the reader).
+void validate_row(const Scene& scene) {
+  for (std::size_t i = 0; i < scene.buildings.size(); ++i) {
+    for (std::size_t j = i + 1; j < scene.buildings.size(); ++j) {
+      if (scene.buildings[i].name == scene.buildings[j].name) {
+        throw InputError(building_key(j) + ".name", fmt::format("\"{}\"", scene.buildings[j].name),
+                         fmt::format("is also {}'s: the buildings of a row need distinct names (gaps and outputs "
+                                     "name them)",
+                                     building_key(i)));
+      }
+      if (model::interiors_overlap(scene.buildings[i].slab, scene.buildings[j].slab)) {
+        throw InputError(building_key(j) + ".slab", "",
+                         fmt::format("overlaps the slab of {} at rest", scene.buildings[i].name));
+      }
+    }
+  }
+  const std::vector<BuildingPair> pairs = scene.pairs();
+  if (pairs.empty()) {
+    throw InputError("contact.candidate_margin_m", format_value(scene.contact.candidate_margin_m),
+                     fmt::format("is the farthest two buildings of a row may stand apart to touch, and no two of {} "
+                                 "stand that close: nothing could touch",
+                                 building_names(scene)));
+  }
+  for (const PairGap& stated : scene.contact.gaps) {
+    const std::string key = pair_gap_key(stated.first, stated.second);
+    const int a = scene.building_index(stated.first, key), b = scene.building_index(stated.second, key);
+    const auto pair = std::find_if(pairs.begin(), pairs.end(), [&](const BuildingPair& p) {
+      return (p.first == a && p.second == b) || (p.first == b && p.second == a);
+    });
+    if (pair == pairs.end()) {
+      const double distance = model::clearance(scene.buildings[a].slab, scene.buildings[b].slab).distance_m;
+      throw InputError(key, format_value(stated.gap_m),
+                       fmt::format("names no neighbouring pair: the slabs stand {} m apart, farther than "
+                                   "contact.candidate_margin_m = {} m",
+                                   distance, scene.contact.candidate_margin_m));
+    }
+    if (std::abs(pair->gap_m - stated.gap_m) > kGapTolerance_m) {
+      throw InputError(key, format_value(stated.gap_m),
+                       fmt::format("disagrees with the slab outlines, whose clear distance is {} m", pair->gap_m));
+    }
+  }
+}
+
 }  // namespace
 
 solvers::OutputSelection OutputSettings::selection() const {
@@ -301,6 +361,12 @@ void ContactSettings::set_stiffness(double value) {
 }
 
 void Scene::set_gap(double gap_m) {
+  if (is_row()) {
+    throw InputError("contact.gap_m", format_value(gap_m),
+                     fmt::format("is one gap, and the {} buildings of a row have one per neighbouring pair: name "
+                                 "the pair (--gap {}:{}={})",
+                                 buildings.size(), buildings[0].name, buildings[1].name, gap_m));
+  }
   validate_gap("contact.gap_m", gap_m);
   const model::Point2 shift(gap_m - contact.gap_m, 0.0);
   model::BuildingDefinition& right = buildings[1];
@@ -310,14 +376,122 @@ void Scene::set_gap(double gap_m) {
   contact.gap_m = gap_m;
 }
 
+std::vector<BuildingPair> Scene::pairs() const {
+  if (!is_row()) return {BuildingPair{.first = 0, .second = 1, .gap_m = contact.gap_m}};
+  std::vector<BuildingPair> pairs;
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    for (std::size_t j = i + 1; j < buildings.size(); ++j) {
+      const model::Clearance apart = model::clearance(buildings[i].slab, buildings[j].slab);
+      if (apart.distance_m > contact.candidate_margin_m) continue;
+      pairs.push_back({static_cast<int>(i), static_cast<int>(j), apart.distance_m, apart.direction});
+    }
+  }
+  return pairs;
+}
+
+Scene Scene::pair_scene(const BuildingPair& pair) const {
+  Scene two = *this;
+  two.buildings = {buildings[static_cast<std::size_t>(pair.first)], buildings[static_cast<std::size_t>(pair.second)]};
+  two.contact.gap_m = pair.gap_m;
+  two.contact.gaps.clear();
+  return two;
+}
+
+int Scene::building_index(const std::string& building_name, const std::string& key) const {
+  for (std::size_t b = 0; b < buildings.size(); ++b) {
+    if (buildings[b].name == building_name) return static_cast<int>(b);
+  }
+  throw InputError(key, fmt::format("\"{}\"", building_name),
+                   fmt::format("names no building (the buildings are {})", building_names(*this)));
+}
+
+void Scene::set_pair_gap(const std::string& first, const std::string& second, double gap_m) {
+  const std::string key = pair_gap_key(first, second);
+  const int a = building_index(first, key), b = building_index(second, key);
+  if (!is_row()) {
+    if (a == b) throw InputError(key, format_value(gap_m), "names one building twice");
+    set_gap(gap_m);
+    return;
+  }
+  validate_gap(key, gap_m);
+  const std::vector<BuildingPair> neighbours = pairs();
+  const auto pair = std::find_if(neighbours.begin(), neighbours.end(), [&](const BuildingPair& p) {
+    return (p.first == a && p.second == b) || (p.first == b && p.second == a);
+  });
+  if (pair == neighbours.end()) throw InputError(key, format_value(gap_m), "names no neighbouring pair");
+  // The buildings on the second's side: reachable from it through neighbouring pairs but this one.
+  std::vector<bool> moves(buildings.size(), false);
+  std::vector<int> stack{pair->second};
+  moves[static_cast<std::size_t>(pair->second)] = true;
+  while (!stack.empty()) {
+    const int from = stack.back();
+    stack.pop_back();
+    for (const BuildingPair& p : neighbours) {
+      if (&p == &*pair || (p.first != from && p.second != from)) continue;
+      const int to = p.first == from ? p.second : p.first;
+      if (to == pair->first) {
+        throw InputError(key, format_value(gap_m),
+                         "lies on a ring of neighbouring pairs (moving one of the two would move the other): move "
+                         "the buildings in the file instead");
+      }
+      if (!moves[static_cast<std::size_t>(to)]) {
+        moves[static_cast<std::size_t>(to)] = true;
+        stack.push_back(to);
+      }
+    }
+  }
+  const model::Point2 shift = (gap_m - pair->gap_m) * pair->direction;
+  for (std::size_t i = 0; i < buildings.size(); ++i) {
+    if (!moves[i]) continue;
+    model::BuildingDefinition& moved = buildings[i];
+    moved.slab = moved.slab.translated(shift);
+    moved.centre_of_mass += shift;
+    for (model::Column& column : moved.columns) column.position_m += shift;
+  }
+  const double reached = model::clearance(buildings[static_cast<std::size_t>(pair->first)].slab,
+                                          buildings[static_cast<std::size_t>(pair->second)].slab)
+                             .distance_m;
+  if (std::abs(reached - gap_m) > kGapTolerance_m) {
+    throw InputError(key, format_value(gap_m),
+                     fmt::format("cannot be set by moving {} along one direction (the move gives {} m): move the "
+                                 "buildings in the file instead",
+                                 buildings[static_cast<std::size_t>(pair->second)].name, reached));
+  }
+  for (PairGap& stated : contact.gaps) {
+    const int sa = building_index(stated.first, key), sb = building_index(stated.second, key);
+    if ((sa == a && sb == b) || (sa == b && sb == a)) stated.gap_m = gap_m;
+  }
+}
+
 std::vector<contact::Level> Scene::levels() const {
+  if (is_row()) {
+    std::vector<contact::Level> levels;
+    for (const BuildingPair& pair : pairs()) {
+      for (contact::Level level : pair_scene(pair).levels()) {
+        level.index = static_cast<int>(levels.size()) + 1;
+        level.pair = {pair.first, pair.second};
+        levels.push_back(level);
+      }
+    }
+    return levels;
+  }
   return contact::common_levels({model::floor_elevations(buildings[0]), model::floor_elevations(buildings[1])},
                                 contact.level_tolerance_m);
 }
 
-void require_column_contact_law(const Scene& scene) {
+void require_compliant_law_where_needed(const Scene& scene) {
+  if (contact_law_info(scene.contact.law).law != contact::ContactLaw::impulse) return;
+  if (scene.is_row()) {
+    throw InputError("contact.law", fmt::format("\"{}\"", scene.contact.law),
+                     fmt::format("cannot resolve a row of {} buildings: a slab struck from both sides at once needs "
+                                 "one impact problem over both neighbours, which the impact module (floor pair by "
+                                 "floor pair) does not solve yet. Use a compliant law (kelvin, hertzdamp or "
+                                 "jankowski), whose forces act on every slab together",
+                                 scene.buildings.size()),
+                     scene.file.string());
+  }
   const std::vector<contact::ColumnLevel> levels = scene.column_levels();
-  if (levels.empty() || contact_law_info(scene.contact.law).law != contact::ContactLaw::impulse) return;
+  if (levels.empty()) return;
   const contact::ColumnLevel& first = levels.front();
   throw InputError(
       "contact.law", fmt::format("\"{}\"", scene.contact.law),
@@ -332,12 +506,21 @@ void require_column_contact_law(const Scene& scene) {
 }
 
 std::vector<contact::Candidate> Scene::column_candidates() const {
+  if (is_row()) {
+    std::vector<contact::Candidate> candidates;
+    for (const BuildingPair& pair : pairs()) {
+      std::vector<contact::Candidate> found = pair_scene(pair).column_candidates();
+      contact::place_in_pair(found, {pair.first, pair.second}, 0);
+      candidates.insert(candidates.end(), found.begin(), found.end());
+    }
+    return candidates;
+  }
   return contact::find_column_candidates({&buildings[0], &buildings[1]}, column_levels(),
                                          {.margin_m = contact.candidate_margin_m, .gap_m = contact.gap_m});
 }
 
 std::vector<contact::ColumnLevel> Scene::column_levels() const {
-  if (contact.slab_to_column == "off") return {};
+  if (contact.slab_to_column == "off" || is_row()) return {};
   return contact::column_levels({model::floor_elevations(buildings[0]), model::floor_elevations(buildings[1])},
                                 contact.level_tolerance_m);
 }
@@ -359,7 +542,7 @@ void Scene::validate() const {
     solver.validate();
     validate_output(output, levels().size());
     validate_floor_history(*this);
-    validate_pair(*this);
+    is_row() ? validate_row(*this) : validate_pair(*this);
   } catch (const InputError& error) {
     throw error.in_context(file.string());
   }
@@ -368,7 +551,7 @@ void Scene::validate() const {
 std::vector<std::array<int, 2>> Scene::history_other_floors() const {
   std::vector<std::array<int, 2>> floors;
   for (const auto& [name, listed] : output.floor_history) {
-    const int b = buildings[0].name == name ? 0 : 1;
+    const int b = building_index(name, "output.floor_history." + name);
     for (int floor : listed) floors.push_back({b, floor});
   }
   return floors;

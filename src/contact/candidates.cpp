@@ -86,6 +86,15 @@ std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::
   return candidates;
 }
 
+void place_in_pair(std::vector<Candidate>& candidates, const std::array<int, 2>& pair, int level_offset) {
+  for (Candidate& c : candidates) {
+    c.pair = pair;
+    c.striking_building = pair[static_cast<std::size_t>(c.striking_building)];
+    c.struck_building = pair[static_cast<std::size_t>(c.struck_building)];
+    if (c.level > 0) c.level += level_offset;
+  }
+}
+
 bool has_column_pairs(const std::vector<Candidate>& candidates) {
   return std::any_of(candidates.begin(), candidates.end(), [](const Candidate& c) { return c.column; });
 }
@@ -94,7 +103,7 @@ std::string describe(const Candidate& c) {
   if (c.column) {
     return fmt::format("B{} column {} ({:g}, {:g}) storey {} at {:.4g} -> B{} edge {} ({:g}, {:g})-({:g}, {:g})",
                        c.striking_building + 1, c.column_index + 1, c.vertex_rest.x(), c.vertex_rest.y(),
-                       c.floors[c.striking_building], c.height_ratio, c.struck_building + 1, c.edge_index + 1,
+                       c.floor_of(c.striking_building), c.height_ratio, c.struck_building + 1, c.edge_index + 1,
                        c.edge_start_rest.x(), c.edge_start_rest.y(), c.edge_end_rest.x(), c.edge_end_rest.y());
   }
   return fmt::format("B{} vertex {} ({:g}, {:g}) -> B{} edge {} ({:g}, {:g})-({:g}, {:g})",

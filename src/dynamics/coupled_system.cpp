@@ -6,23 +6,22 @@
 
 namespace pounding::dynamics {
 
-CoupledSystem::CoupledSystem(std::array<model::Building, 2> buildings,
-                             excitation::GroundMotion ground_motion,
-                             std::vector<contact::Level> levels,
-                             std::vector<contact::Candidate> candidates)
+CoupledSystem::CoupledSystem(std::vector<model::Building> buildings, excitation::GroundMotion ground_motion,
+                             std::vector<contact::Level> levels, std::vector<contact::Candidate> candidates)
     : buildings_(std::move(buildings)),
       ground_motion_(std::move(ground_motion)),
       levels_(std::move(levels)),
       candidates_(std::move(candidates)) {
-  const int n1 = buildings_[0].dof(), n2 = buildings_[1].dof();
-  dof_ = n1 + n2;
-  offset_ = {0, n1};
+  for (const model::Building& building : buildings_) {
+    offset_.push_back(dof_);
+    dof_ += building.dof();
+  }
   mass_.resize(dof_);
-  mass_ << buildings_[0].mass_diagonal, buildings_[1].mass_diagonal;
   stiffness_ = MatrixXd::Zero(dof_, dof_);
   damping_ = MatrixXd::Zero(dof_, dof_);
-  for (int b = 0; b < 2; ++b) {
+  for (std::size_t b = 0; b < buildings_.size(); ++b) {
     const int size = buildings_[b].dof();
+    mass_.segment(offset_[b], size) = buildings_[b].mass_diagonal;
     stiffness_.block(offset_[b], offset_[b], size, size) = buildings_[b].stiffness;
     damping_.block(offset_[b], offset_[b], size, size) = buildings_[b].damping;
   }
@@ -93,11 +92,11 @@ contact::GapState CoupledSystem::gap(ConstVectorRef y, std::size_t index) const 
     const std::optional<contact::SlabMotion> lower =
         c.lower_floor > 0 ? std::optional(slab(y, c.striking_building, c.lower_floor)) : std::nullopt;
     return contact::evaluate_column_gap(c, lower ? &*lower : nullptr,
-                                        slab(y, c.striking_building, c.floors[c.striking_building]),
-                                        slab(y, c.struck_building, c.floors[c.struck_building]));
+                                        slab(y, c.striking_building, c.floor_of(c.striking_building)),
+                                        slab(y, c.struck_building, c.floor_of(c.struck_building)));
   }
-  return contact::evaluate_gap(c, slab(y, c.striking_building, c.floors[c.striking_building]),
-                              slab(y, c.struck_building, c.floors[c.struck_building]));
+  return contact::evaluate_gap(c, slab(y, c.striking_building, c.floor_of(c.striking_building)),
+                               slab(y, c.struck_building, c.floor_of(c.struck_building)));
 }
 
 CoupledSystem::RowBlocks CoupledSystem::row_blocks(const contact::Candidate& c, const contact::GapState& s) const {
@@ -105,8 +104,8 @@ CoupledSystem::RowBlocks CoupledSystem::row_blocks(const contact::Candidate& c, 
     return RowBlock{building, floor, floor_index(building, floor), row};
   };
   RowBlocks blocks;
-  blocks.blocks[0] = block(c.striking_building, c.floors[c.striking_building], s.striking_row);
-  blocks.blocks[1] = block(c.struck_building, c.floors[c.struck_building], s.struck_row);
+  blocks.blocks[0] = block(c.striking_building, c.floor_of(c.striking_building), s.striking_row);
+  blocks.blocks[1] = block(c.struck_building, c.floor_of(c.struck_building), s.struck_row);
   if (c.column && c.lower_floor > 0) {
     blocks.blocks[2] = block(c.striking_building, c.lower_floor, s.striking_lower_row);
     blocks.count = 3;
@@ -116,9 +115,10 @@ CoupledSystem::RowBlocks CoupledSystem::row_blocks(const contact::Candidate& c, 
 
 contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
                                              const contact::Candidate& c) const {
+  const auto side = [&](int building) { return building == c.pair[0] ? 0 : 3; };
   contact::RowVector6d row;
-  row.segment<3>(3 * c.striking_building) = state.striking_row;
-  row.segment<3>(3 * c.struck_building) = state.struck_row;
+  row.segment<3>(side(c.striking_building)) = state.striking_row;
+  row.segment<3>(side(c.struck_building)) = state.struck_row;
   return row;
 }
 
@@ -131,7 +131,7 @@ double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, s
     return accel;
   }
   const auto accel_of = [&](int building) {
-    return y_dot.segment<3>(dof_ + floor_index(building, c.floors[building]));
+    return y_dot.segment<3>(dof_ + floor_index(building, c.floor_of(building)));
   };
   return s.striking_row.dot(accel_of(c.striking_building)) + s.struck_row.dot(accel_of(c.struck_building)) +
          s.curvature_mps2;
@@ -146,23 +146,24 @@ double CoupledSystem::gap_rate_round_off_mps(ConstVectorRef y, std::size_t index
     return 1e-15 + 1e-9 * size;
   }
   const contact::RowVector6d row = pair_row(gap(y, index), c);
-  return 1e-15 + 1e-9 * row.cwiseAbs().dot(pair_velocities(y, c.floors).cwiseAbs());
+  return 1e-15 + 1e-9 * row.cwiseAbs().dot(pair_velocities(y, {c.pair, c.floors}).cwiseAbs());
 }
 
-contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, const std::array<int, 2>& floors) const {
+contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, const SlabPair& slabs) const {
   contact::Vector6d v;
-  v << y.segment<3>(dof_ + floor_index(0, floors[0])), y.segment<3>(dof_ + floor_index(1, floors[1]));
+  v << y.segment<3>(dof_ + floor_index(slabs.pair[0], slabs.floors[0])),
+      y.segment<3>(dof_ + floor_index(slabs.pair[1], slabs.floors[1]));
   return v;
 }
 
-void CoupledSystem::add_pair_velocities(Eigen::Ref<VectorXd> y, const std::array<int, 2>& floors,
+void CoupledSystem::add_pair_velocities(Eigen::Ref<VectorXd> y, const SlabPair& slabs,
                                         const contact::Vector6d& change) const {
-  y.segment<3>(dof_ + floor_index(0, floors[0])) += change.head<3>();
-  y.segment<3>(dof_ + floor_index(1, floors[1])) += change.tail<3>();
+  y.segment<3>(dof_ + floor_index(slabs.pair[0], slabs.floors[0])) += change.head<3>();
+  y.segment<3>(dof_ + floor_index(slabs.pair[1], slabs.floors[1])) += change.tail<3>();
 }
 
-contact::Vector6d CoupledSystem::pair_inverse_mass(const std::array<int, 2>& floors) const {
-  const int i = floor_index(0, floors[0]), j = floor_index(1, floors[1]);
+contact::Vector6d CoupledSystem::pair_inverse_mass(const SlabPair& slabs) const {
+  const int i = floor_index(slabs.pair[0], slabs.floors[0]), j = floor_index(slabs.pair[1], slabs.floors[1]);
   return contact::inverse_mass(mass_[i], mass_[i + 2], mass_[j], mass_[j + 2]);
 }
 

@@ -22,7 +22,9 @@ ModalSystem::ModalSystem(const CoupledSystem& system) : system_(system) {
   participation_.resize(n, system.ground_motion().component_count());
   shape_full_ = MatrixXd::Zero(n, n);
   inverse_full_ = MatrixXd::Zero(n, n);
-  for (int b = 0; b < 2; ++b) {
+  shapes_.resize(static_cast<std::size_t>(system.building_count()));
+  inverse_.resize(shapes_.size());
+  for (int b = 0; b < system_.building_count(); ++b) {
     const model::Building& building = system.building(b);
     const int offset = system.floor_index(b, 1), size = building.dof();
     const std::vector<model::Mode>& modes = building.modes;
@@ -69,7 +71,7 @@ void ModalSystem::to_physical(ConstVectorRef z, Eigen::Ref<VectorXd> y) const {
   // Two products per building rather than one with two columns: Eigen's matrix-matrix kernel
   // packs Φ at every call, 2-3 times slower here (measured, 21 to 180 modes).
   const int n = dof();
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const Eigen::Index offset = system_.floor_index(b, 1), size = shapes_[b].rows();
     y.segment(offset, size).noalias() = shapes_[b] * z.segment(offset, size);
     y.segment(n + offset, size).noalias() = shapes_[b] * z.segment(n + offset, size);
@@ -78,7 +80,7 @@ void ModalSystem::to_physical(ConstVectorRef z, Eigen::Ref<VectorXd> y) const {
 
 void ModalSystem::to_modal(ConstVectorRef y, Eigen::Ref<VectorXd> z) const {
   const int n = dof();
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const Eigen::Index offset = system_.floor_index(b, 1), size = inverse_[b].rows();
     z.segment(offset, size).noalias() = inverse_[b] * y.segment(offset, size);
     z.segment(n + offset, size).noalias() = inverse_[b] * y.segment(n + offset, size);
@@ -109,7 +111,7 @@ void ModalSystem::jacobian_to_modal(const MatrixXd& physical, Eigen::Ref<MatrixX
 VectorXd ModalSystem::atol(const VectorXd& physical_atol) const {
   const int n = dof();
   VectorXd result(state_size());
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     std::set<int> floors;
     const VectorXd rest = VectorXd::Zero(system_.state_size());
     for (std::size_t i = 0; i < system_.candidates().size(); ++i) {

@@ -61,9 +61,10 @@ double bouc_wen_factor(const BoucWenShape& shape, double z, double drift_rate) {
 
 }  // namespace
 
-YieldingSprings::YieldingSprings(const std::array<model::Building, 2>& buildings, const std::array<int, 2>& offsets)
-    : dof_(offsets[1] + buildings[1].dof()) {
-  for (int b = 0; b < 2; ++b) add_building_springs(buildings[b], b, offsets[b], springs_);
+YieldingSprings::YieldingSprings(const std::vector<model::Building>& buildings, const std::vector<int>& offsets)
+    : dof_(offsets.back() + buildings.back().dof()) {
+  for (std::size_t b = 0; b < buildings.size(); ++b)
+    add_building_springs(buildings[b], static_cast<int>(b), offsets[b], springs_);
   for (YieldingSpring& spring : springs_) {
     if (spring.bouc_wen) spring.z_index = 2 * dof_ + smooth_count_++;
   }

@@ -1,5 +1,6 @@
 #include "pounding/io/impact_schema.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -65,7 +66,13 @@ const std::vector<ImpactField>& impact_fields() {
        "the level's elevation above the ground; slab to column: the striking slab's"},
       {"striking_building", "", {}, Type::integer,
        [](const ImpactRecord& i) { return std::vector{double(i.striking_building)}; },
-       "the building whose slab vertex strikes (1 or 2); slab to column: the column's building"},
+       "the building whose slab vertex strikes (1 or 2; a row: 1-based in the scene); slab to column: the column's "
+       "building"},
+      {"struck_building", "", {}, Type::integer,
+       [](const ImpactRecord& i) { return std::vector{double(solvers::struck_building(i))}; },
+       "rows: the other building of the pair (1-based), whose edge is struck; `floors` are those of the pair's "
+       "lower-numbered building and of its higher-numbered one",
+       false, true},
       {"vertex", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.vertex)}; },
        "the striking vertex's 1-based number in its slab outline; 0 for a column point"},
       {"vertex_rest", "m", {"x", "y"}, Type::real, [](const ImpactRecord& i) { return pair(i.vertex_rest); },
@@ -111,17 +118,24 @@ const std::vector<ImpactField>& impact_fields() {
   return kFields;
 }
 
-std::vector<const ImpactField*> impact_fields(bool slab_to_column) {
+ImpactFieldSet impact_field_set(const std::vector<contact::Candidate>& candidates) {
+  const bool row = std::any_of(candidates.begin(), candidates.end(), [](const contact::Candidate& c) {
+    return c.pair != std::array{0, 1};
+  });
+  return {.slab_to_column = contact::has_column_pairs(candidates), .row = row};
+}
+
+std::vector<const ImpactField*> impact_fields(ImpactFieldSet set) {
   std::vector<const ImpactField*> fields;
   for (const ImpactField& field : impact_fields()) {
-    if (slab_to_column || !field.slab_to_column) fields.push_back(&field);
+    if ((set.slab_to_column || !field.slab_to_column) && (set.row || !field.row)) fields.push_back(&field);
   }
   return fields;
 }
 
-nlohmann::ordered_json impact_json(const ImpactRecord& impact, bool slab_to_column) {
+nlohmann::ordered_json impact_json(const ImpactRecord& impact, ImpactFieldSet set) {
   nlohmann::ordered_json document;
-  for (const ImpactField* field : impact_fields(slab_to_column)) {
+  for (const ImpactField* field : impact_fields(set)) {
     const std::vector<double> values = field->values(impact);
     if (field->components.empty()) {
       document[field->json_key()] = json_value(field->type, values.front());
@@ -134,17 +148,17 @@ nlohmann::ordered_json impact_json(const ImpactRecord& impact, bool slab_to_colu
   return document;
 }
 
-std::vector<std::string> impact_csv_columns(bool slab_to_column) {
+std::vector<std::string> impact_csv_columns(ImpactFieldSet set) {
   std::vector<std::string> columns;
-  for (const ImpactField* field : impact_fields(slab_to_column)) {
+  for (const ImpactField* field : impact_fields(set)) {
     for (std::string& column : field->csv_columns()) columns.push_back(std::move(column));
   }
   return columns;
 }
 
-std::string impact_csv_row(const ImpactRecord& impact, bool slab_to_column) {
+std::string impact_csv_row(const ImpactRecord& impact, ImpactFieldSet set) {
   std::string row;
-  for (const ImpactField* field : impact_fields(slab_to_column)) {
+  for (const ImpactField* field : impact_fields(set)) {
     for (double value : field->values(impact))
       row += fmt::format("{}{}", row.empty() ? "" : ",", csv_text(field->type, value));
   }

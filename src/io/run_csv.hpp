@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "pounding/io/impact_schema.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::io {
 
-/// `slab_to_column`: with the slab-to-column fields (impact_schema.hpp).
-void write_impacts_header(std::ostream& out, bool slab_to_column);
-void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out, bool slab_to_column);
+/// `fields`: which of the fields marked for some scenes only to write (impact_schema.hpp).
+void write_impacts_header(std::ostream& out, ImpactFieldSet fields);
+void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out, ImpactFieldSet fields);
 /// One header line: the columns, comma-separated.
 void write_csv_header(const std::vector<std::string>& columns, std::ostream& out);
 void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& out);

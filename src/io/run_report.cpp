@@ -1,6 +1,7 @@
 #include "pounding/io/run_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <cmath>
@@ -13,27 +14,40 @@
 namespace pounding::io {
 namespace {
 
+/// "gap 0.2 m", or a row's "gaps B1:B2 0.2 m, B2:B3 0.1 m".
+std::string gaps_text(const analysis::RunReport& report) {
+  if (report.pairs.empty()) return fmt::format("gap {} m", report.gap_m);
+  std::vector<std::string> gaps;
+  for (const analysis::BuildingPair& p : report.pairs) {
+    gaps.push_back(fmt::format("{}:{} {:.6g} m", report.building_names.at(static_cast<std::size_t>(p.first)),
+                               report.building_names.at(static_cast<std::size_t>(p.second)), p.gap_m));
+  }
+  return fmt::format("gaps {}", fmt::join(gaps, ", "));
+}
+
 /// A fixed-step run (hht): its statistics and energy balance have their own terms.
 bool fixed_step(const analysis::RunReport& report) { return report.used.method && !report.used.method->event_driven; }
 
-/// "level 3 (B1 floor 3, B2 floor 2, 9 m)": where a contact is.
-std::string where(int level, const std::array<int, 2>& floors, double elevation_m) {
-  return fmt::format("level {} (B1 floor {}, B2 floor {}, {:.6g} m)", level, floors[0], floors[1], elevation_m);
+/// "level 3 (B1 floor 3, B2 floor 2, 9 m)": where a contact is; `buildings` the pair (1-based).
+std::string where(int level, const std::array<int, 2>& floors, double elevation_m,
+                  const std::array<int, 2>& buildings = {1, 2}) {
+  return fmt::format("level {} (B{} floor {}, B{} floor {}, {:.6g} m)", level, buildings[0], floors[0], buildings[1],
+                     floors[1], elevation_m);
 }
 template <class Located>
 std::string where(const Located& r) {
   if (r.level == 0) {  // slab to column: the column point's building is the striking one
-    const int columns = r.striking_building, slab = 3 - columns;
-    return fmt::format("slab to column (B{} floor {}, {:.6g} m, on B{}'s storey {})", slab, r.floors[slab - 1],
-                       r.elevation_m, columns, r.floors[columns - 1]);
+    const int columns = r.striking_building, slab = solvers::struck_building(r);
+    return fmt::format("slab to column (B{} floor {}, {:.6g} m, on B{}'s storey {})", slab, solvers::floor_of(r, slab),
+                       r.elevation_m, columns, solvers::floor_of(r, columns));
   }
-  return where(r.level, r.floors, r.elevation_m);
+  return where(r.level, r.floors, r.elevation_m, r.buildings);
 }
 
 /// "B1 vertex 3 strikes" or, slab to column, "B1's slab strikes B2 column 4 at 0.5 of the storey".
 std::string striker(const solvers::ImpactRecord& r) {
   if (r.level == 0) {
-    return fmt::format("B{}'s slab strikes B{} column {} at {:.3g} of the storey height", 3 - r.striking_building,
+    return fmt::format("B{}'s slab strikes B{} column {} at {:.3g} of the storey height", solvers::struck_building(r),
                        r.striking_building, r.column, r.height_ratio);
   }
   return fmt::format("B{} vertex {} strikes", r.striking_building, r.vertex);
@@ -45,7 +59,7 @@ void append_column_demands(const std::vector<solvers::ImpactRecord>& impacts, st
   std::map<std::array<int, 3>, std::pair<int, const solvers::ImpactRecord*>> worst;  // count, largest force
   for (const solvers::ImpactRecord& i : impacts) {
     if (i.level != 0) continue;
-    auto& [count, largest] = worst[{i.striking_building, i.column, i.floors[i.striking_building - 1]}];
+    auto& [count, largest] = worst[{i.striking_building, i.column, solvers::floor_of(i, i.striking_building)}];
     ++count;
     if (largest == nullptr || i.peak_force_kN > largest->peak_force_kN) largest = &i;
   }
@@ -77,7 +91,7 @@ void append_contacts(const analysis::RunReport& report, std::string& text) {
   for (const auto& [level, count] : by_level) {
     if (level == 0) continue;
     const contact::Level& l = report.levels.at(static_cast<std::size_t>(level - 1));
-    fmt::format_to(out, "; {}: {}", where(l.index, l.floors, l.elevation_m), count);
+    fmt::format_to(out, "; {}: {}", where(l.index, l.floors, l.elevation_m, {l.pair[0] + 1, l.pair[1] + 1}), count);
   }
   if (by_level.count(0)) fmt::format_to(out, "; slab to column: {}", by_level[0]);
   text += '\n';
@@ -174,10 +188,18 @@ void append_pounding_demand(const analysis::RunReport& report, std::string& text
 void append_response(const analysis::RunReport& report, std::string& text) {
   const solvers::RunResult& r = report.result;
   auto out = std::back_inserter(text);
-  // The top level is where the buildings pound hardest; each building's own floor there.
+  // The top level is where the buildings pound hardest; each building's own floor there (a row:
+  // its highest floor at a level).
   for (std::size_t b = 0; b < r.peaks.size() && !report.levels.empty() && r.outputs.displacement_peaks; ++b) {
+    int top_floor = 0;
+    for (const contact::Level& l : report.levels) {
+      for (int side = 0; side < 2; ++side) {
+        if (l.pair[side] == static_cast<int>(b)) top_floor = std::max(top_floor, l.floors[side]);
+      }
+    }
+    if (top_floor == 0) continue;  // a row's building at no level
     const auto& building = r.peaks[b];
-    const auto& top = building.floors.at(static_cast<std::size_t>(report.levels.back().floors[b] - 1));
+    const auto& top = building.floors.at(static_cast<std::size_t>(top_floor - 1));
     fmt::format_to(
         out, "Peaks {} floor {}: |u| {:.2f} cm at {:.3f} s, |v| {:.2f} cm at {:.3f} s, |φ| {:.3e} rad at {:.3f} s\n",
         building.name, top.floor, 100 * std::abs(top.u_m.value), top.u_m.t_s, 100 * std::abs(top.v_m.value),
@@ -255,8 +277,8 @@ std::string full_report(const analysis::RunReport& report) {
                                             info.damping_key == "damping_ratio" ? "xi" : "xi v0/k_h",
                                             report.contact_damping);
   std::string text =
-      fmt::format("Run '{}' with {} ({}), gap {} m, k = {}{}: {}{}\n", report.scene, r.method,
-                  method_settings_text(report), report.gap_m, report.restitution, law, solvers::to_string(r.status),
+      fmt::format("Run '{}' with {} ({}), {}, k = {}{}: {}{}\n", report.scene, r.method, method_settings_text(report),
+                  gaps_text(report), report.restitution, law, solvers::to_string(r.status),
                   r.status_detail.empty() ? "" : " (" + r.status_detail + ")");
   append_contacts(report, text);
   append_response(report, text);

@@ -36,7 +36,7 @@ void StreamedRunFiles::history_columns(const std::vector<std::string>& columns) 
   }
   impacts_ = std::make_unique<ExclusiveOutput>(partial("impacts.csv"));
   opened_ = true;
-  write_impacts_header(impacts_->stream(), slab_to_column_);
+  write_impacts_header(impacts_->stream(), fields_);
   impacts_->stream().flush();
   last_flush_ = std::chrono::steady_clock::now();
 }
@@ -51,7 +51,7 @@ void StreamedRunFiles::contact_force(const solvers::ContactForceSample& sample) 
 }
 
 void StreamedRunFiles::impact(const solvers::ImpactRecord& impact) {
-  write_impact_row(impact, impacts_->stream(), slab_to_column_);
+  write_impact_row(impact, impacts_->stream(), fields_);
   impacts_->stream().flush();  // impacts are few and the run's main result: none waits in a buffer
 }
 

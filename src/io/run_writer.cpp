@@ -1,5 +1,6 @@
 #include "pounding/io/run_writer.hpp"
 
+#include <algorithm>
 #include <fmt/compile.h>
 #include <fmt/format.h>
 #include <array>
@@ -24,33 +25,60 @@ json point(const model::Point2& p) { return json::array({p.x(), p.y()}); }
 
 /// Where the contact is (its level, the floor of each building there, building 1's first, and
 /// the level's elevation), then `fields`. Candidates and every contact record carry these three.
+/// A row's: `buildings`, the pair (1-based) whose floors `floors` are, after them.
 template <class Located>
-json at_level(const Located& where, const json& fields) {
+json at_level(const Located& where, const json& fields, bool row = false) {
   json located = {{"level", where.level}, {"floors", where.floors}, {"elevation_m", where.elevation_m}};
+  if constexpr (requires { where.buildings; }) {
+    if (row) located["buildings"] = where.buildings;
+  } else {
+    if (row) located["buildings"] = {where.pair[0] + 1, where.pair[1] + 1};
+  }
   located.update(fields);
   return located;
 }
 
-json levels_json(const std::vector<contact::Level>& levels) {
+json levels_json(const std::vector<contact::Level>& levels, bool row) {
   json list = json::array();
   for (const contact::Level& l : levels) {
     list.push_back({{"level", l.index}, {"floors", l.floors}, {"elevation_m", l.elevation_m}});
+    if (row) list.back()["buildings"] = {l.pair[0] + 1, l.pair[1] + 1};
   }
   return list;
 }
 
-json candidates_json(const std::vector<contact::Candidate>& candidates) {
+/// A row's neighbouring pairs: buildings (1-based), names, gap, and the impacts between them.
+json pairs_json(const analysis::RunReport& report) {
+  json list = json::array();
+  for (const analysis::BuildingPair& p : report.pairs) {
+    const std::array<int, 2> buildings{p.first + 1, p.second + 1};
+    const auto impacts = std::count_if(report.result.impacts.begin(), report.result.impacts.end(),
+                                       [&](const solvers::ImpactRecord& i) { return i.buildings == buildings; });
+    list.push_back({{"buildings", buildings},
+                    {"names",
+                     {report.building_names.at(static_cast<std::size_t>(p.first)),
+                      report.building_names.at(static_cast<std::size_t>(p.second))}},
+                    {"gap_m", p.gap_m},
+                    {"direction", point(p.direction)},
+                    {"impacts", impacts}});
+  }
+  return list;
+}
+
+json candidates_json(const std::vector<contact::Candidate>& candidates, bool row) {
   json list = json::array();
   for (const contact::Candidate& c : candidates) {
-    list.push_back(at_level(c, {{"striking_building", c.striking_building + 1},
-                                {"vertex", contact::vertex_number(c)},
-                                {"vertex_rest", point(c.vertex_rest)},
-                                {"struck_building", c.struck_building + 1},
-                                {"edge", c.edge_index + 1},
-                                {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}}));
+    list.push_back(at_level(c,
+                            {{"striking_building", c.striking_building + 1},
+                             {"vertex", contact::vertex_number(c)},
+                             {"vertex_rest", point(c.vertex_rest)},
+                             {"struck_building", c.struck_building + 1},
+                             {"edge", c.edge_index + 1},
+                             {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}},
+                            row));
     if (c.column) {  // the column point (striking building's column) against the slab's edge
       list.back().update({{"column", c.column_index + 1},
-                          {"storey", c.floors[c.striking_building]},
+                          {"storey", c.floor_of(c.striking_building)},
                           {"storey_height_m", c.storey_height_m},
                           {"height_ratio", c.height_ratio},
                           {"local_flexibility_m_per_kN", c.flexibility_m_per_kN}});
@@ -59,9 +87,9 @@ json candidates_json(const std::vector<contact::Candidate>& candidates) {
   return list;
 }
 
-json impacts_json(const std::vector<solvers::ImpactRecord>& impacts, bool slab_to_column) {
+json impacts_json(const std::vector<solvers::ImpactRecord>& impacts, ImpactFieldSet fields) {
   json list = json::array();
-  for (const auto& i : impacts) list.push_back(impact_json(i, slab_to_column));
+  for (const auto& i : impacts) list.push_back(impact_json(i, fields));
   return list;
 }
 
@@ -255,39 +283,58 @@ json run_json_elastic(const analysis::RunReport& report, const Provenance& prove
   for (const auto& [level, count] : counts) {
     if (level > 0) by_level[std::to_string(level)] = count;  // lowest level first; 0 is slab to column
   }
+  const bool row = !report.pairs.empty();
   json touches = json::array(), sustained = json::array();
   for (const auto& t : r.touches) {
-    touches.push_back(at_level(t, {{"t_s", t.t_s}, {"striking_building", t.striking_building},
-                                   {"vertex", t.vertex}, {"point", point(t.point)}, {"gap_rate_mps", t.gap_rate_mps},
-                                   {"gap_m", t.gap_m}}));
+    touches.push_back(at_level(t,
+                               {{"t_s", t.t_s},
+                                {"striking_building", t.striking_building},
+                                {"vertex", t.vertex},
+                                {"point", point(t.point)},
+                                {"gap_rate_mps", t.gap_rate_mps},
+                                {"gap_m", t.gap_m}},
+                               row));
   }
   for (const auto& s : r.sustained_contacts) {
-    sustained.push_back(at_level(s, {{"striking_building", s.striking_building}, {"vertex", s.vertex},
-                                     {"start_s", s.start_s}, {"release_s", s.release_s},
-                                     {"release_reason", s.release_reason}, {"max_force_kN", s.max_force_kN},
-                                     {"max_gap_drift_m", s.max_gap_drift_m},
-                                     {"impulse_kNs", s.impulse_kNs}}));
+    sustained.push_back(at_level(s,
+                                 {{"striking_building", s.striking_building},
+                                  {"vertex", s.vertex},
+                                  {"start_s", s.start_s},
+                                  {"release_s", s.release_s},
+                                  {"release_reason", s.release_reason},
+                                  {"max_force_kN", s.max_force_kN},
+                                  {"max_gap_drift_m", s.max_gap_drift_m},
+                                  {"impulse_kNs", s.impulse_kNs}},
+                                 row));
   }
-  const bool slab_to_column = contact::has_column_pairs(report.candidates);
+  const ImpactFieldSet fields = impact_field_set(report.candidates);
   json summary = {{"scene", report.scene},
                   {"method", r.method},
                   {"status", solvers::to_string(r.status)},
                   {"status_detail", r.status_detail},
                   {"warnings", warnings_json(report.warnings)},
                   {"settings", settings_json(report)},
-                  {"gap_m", report.gap_m},
+                  {"gap_m", row ? json(nullptr) : json(report.gap_m)},
                   {"restitution", report.restitution},
                   {"contact_law", contact_law_json(report)},
                   {"start_s", r.start_s},
                   {"end_s", r.end_s},
-                  {"levels", levels_json(report.levels)},
+                  {"levels", levels_json(report.levels, row)},
                   {"outputs", outputs_json(r.outputs)},
                   {"history_levels", r.history.levels},
-                  {"candidates", candidates_json(report.candidates)},
+                  {"candidates", candidates_json(report.candidates, row)},
                   {"impact_count", r.impacts.size()},
                   {"impacts_by_level", by_level}};
-  if (slab_to_column) summary["impacts_slab_to_column"] = counts.count(0) ? counts[0] : 0;
-  summary.update(json{{"impacts", impacts_json(r.impacts, slab_to_column)},
+  if (row) {
+    summary["pairs"] = pairs_json(report);
+    json by_pair = json::object();
+    for (const json& pair : summary["pairs"])
+      by_pair[fmt::format("{}:{}", pair["names"][0].get<std::string>(), pair["names"][1].get<std::string>())] =
+          pair["impacts"];
+    summary["impacts_by_pair"] = by_pair;
+  }
+  if (fields.slab_to_column) summary["impacts_slab_to_column"] = counts.count(0) ? counts[0] : 0;
+  summary.update(json{{"impacts", impacts_json(r.impacts, fields)},
                       {"touches", touches},
                       {"sustained_contacts", sustained},
                       {"accelerations", accelerations_json(report)},
@@ -357,12 +404,12 @@ void write_yielding_csv(const analysis::RunReport& report, const std::filesystem
   write_atomically(folder / "yielding.csv", [&](std::ostream& out) { write_yielding_rows(report, out); });
 }
 
-void write_impacts_header(std::ostream& out, bool slab_to_column) {
-  write_csv_header(impact_csv_columns(slab_to_column), out);
+void write_impacts_header(std::ostream& out, ImpactFieldSet fields) {
+  write_csv_header(impact_csv_columns(fields), out);
 }
 
-void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out, bool slab_to_column) {
-  out << impact_csv_row(impact, slab_to_column) << '\n';
+void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out, ImpactFieldSet fields) {
+  out << impact_csv_row(impact, fields) << '\n';
 }
 
 void write_csv_header(const std::vector<std::string>& columns, std::ostream& out) {
@@ -416,9 +463,9 @@ void write_run(const analysis::RunReport& report, const Provenance& provenance, 
     remove_history_files(folder);
   }
   write_atomically(folder / "impacts.csv", [&](std::ostream& out) {
-    const bool slab_to_column = contact::has_column_pairs(report.candidates);
-    write_impacts_header(out, slab_to_column);
-    for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out, slab_to_column);
+    const ImpactFieldSet fields = impact_field_set(report.candidates);
+    write_impacts_header(out, fields);
+    for (const solvers::ImpactRecord& impact : r.impacts) write_impact_row(impact, out, fields);
   });
   write_yielding_csv(report, folder);
   write_json(run_json(report, provenance), folder / "summary.json");

@@ -638,6 +638,35 @@ analysis::OutputSettings read_output(std::optional<TableReader> table) {
   return output;
 }
 
+/// [contact.gaps] of a row ("NAME:NAME" = m), and no contact.gap_m there; neither for two buildings.
+void read_pair_gaps(TableReader& contact, analysis::Scene& scene) {
+  if (scene.is_row()) {
+    if (const toml::node* gap = contact.find("gap_m")) {
+      throw contact.error(*gap, contact.key_path("gap_m"),
+                          fmt::format("is one gap, and the {} buildings of a row stand apart per neighbouring pair: "
+                                      "the outlines give each pair's gap; state them in [contact.gaps] "
+                                      "(\"{}:{}\" = ...) to have them checked",
+                                      scene.buildings.size(), scene.buildings[0].name, scene.buildings[1].name));
+    }
+  }
+  std::optional<TableReader> gaps = contact.optional_subtable("gaps");
+  if (!gaps) return;
+  if (!scene.is_row()) {
+    throw InputError(contact.key_path("gaps"), "",
+                     "is for rows of three or more buildings; two buildings take contact.gap_m", contact.file());
+  }
+  for (const std::string& key : gaps->unasked_keys()) {
+    const std::size_t colon = key.find(':');
+    const double gap_m = gaps->number(key);
+    if (colon == std::string::npos || colon == 0 || colon + 1 == key.size()) {
+      throw InputError(gaps->key_path(key), fmt::format("{}", gap_m),
+                       "expected a key \"NAME:NAME\" naming two buildings", contact.file());
+    }
+    scene.contact.gaps.push_back({key.substr(0, colon), key.substr(colon + 1), gap_m});
+  }
+  gaps->finish();
+}
+
 analysis::Scene read_document(const toml::table& document, const std::filesystem::path& path) {
   TableReader root(document, "", path.string());
   analysis::Scene scene;
@@ -647,12 +676,14 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
 
   const toml::node& buildings_node = root.require("building");
   const toml::array* buildings = buildings_node.as_array();
-  if (!buildings || buildings->size() != 2 || !buildings->is_array_of_tables()) {
-    throw root.error(buildings_node, "building", "expected exactly two [[building]] tables");
+  if (!buildings || buildings->size() < 2 || !buildings->is_array_of_tables()) {
+    throw root.error(buildings_node, "building",
+                     "expected two or more [[building]] tables (two: a pair; more: a row, gaps per pair)");
   }
-  for (std::size_t i = 0; i < 2; ++i) {
-    scene.buildings[i] = read_building(
-        TableReader(*(*buildings)[i].as_table(), fmt::format("building[{}]", i + 1), path.string()));
+  scene.buildings.clear();
+  for (std::size_t i = 0; i < buildings->size(); ++i) {
+    scene.buildings.push_back(
+        read_building(TableReader(*(*buildings)[i].as_table(), fmt::format("building[{}]", i + 1), path.string())));
   }
   scene.excitation = read_excitation(root.subtable("excitation"), path.parent_path());
   for (model::BuildingDefinition& b : scene.buildings) b.g_mps2 = scene.excitation.g_mps2;  // for P-Δ
@@ -665,13 +696,15 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
           if constexpr (std::is_same_v<T, std::string>) {
             value = contact.optional_string(spec.key).value_or(value);
           } else if constexpr (std::is_same_v<T, double>) {
-            value = spec.required ? contact.number(spec.key) : contact.number_or(spec.key, value);
+            value = spec.required && !(scene.is_row() && spec.key == "gap_m") ? contact.number(spec.key)
+                                                                              : contact.number_or(spec.key, value);
           } else {
             value = contact.optional_number(spec.key);
           }
         },
         spec.member);
   }
+  read_pair_gaps(contact, scene);
   contact.finish();
   scene.solver = read_solver(root.optional_subtable("solver"));
   scene.output = read_output(root.optional_subtable("output"));
@@ -740,6 +773,29 @@ void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice
   }
 }
 
+/// One `--gap`: "0.1" (two buildings) or "B1:B2=0.1".
+void apply_gap_text(analysis::Scene& scene, const std::string& text) {
+  const std::size_t equals = text.find('=');
+  const std::string number = equals == std::string::npos ? text : text.substr(equals + 1);
+  double gap_m = 0.0;
+  std::size_t used = 0;
+  try {
+    gap_m = std::stod(number, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != number.size()) {
+    throw InputError("--gap", text, "expected a gap in m, or NAME:NAME=m for a pair of a row (e.g. B1:B2=0.1)");
+  }
+  if (equals == std::string::npos) return scene.set_gap(gap_m);
+  const std::string names = text.substr(0, equals);
+  const std::size_t colon = names.find(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == names.size()) {
+    throw InputError("--gap", text, "expected NAME:NAME=m, two building names and the pair's gap (e.g. B1:B2=0.1)");
+  }
+  scene.set_pair_gap(names.substr(0, colon), names.substr(colon + 1), gap_m);
+}
+
 }  // namespace
 
 analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& file,
@@ -758,6 +814,7 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
     }
   };
   if (overrides.gap_m) apply_option("--gap", [&] { scene.set_gap(*overrides.gap_m); });
+  for (const std::string& text : overrides.gaps) apply_option("--gap", [&] { apply_gap_text(scene, text); });
   if (overrides.restitution) {
     apply_option("--restitution", [&] { scene.contact.restitution = *overrides.restitution; });
   }

@@ -176,4 +176,31 @@ std::optional<double> horizontal_clearance(const Polygon& left, const Polygon& r
   return best;
 }
 
+namespace {
+
+/// The vertices of `points` nearest to the edges of counter-clockwise `edges`: updates `best`
+/// with the distance and `sign` times the edge's outward normal.
+void nearest_to_edges(const Polygon& points, const Polygon& edges, double sign, Clearance& best) {
+  const std::vector<Point2>& q = edges.vertices();
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const Point2 q1 = q[i], q2 = q[(i + 1) % q.size()];
+    const Point2 along = q2 - q1;
+    const Point2 normal = Point2(along.y(), -along.x()).normalized();
+    for (const Point2& p : points.vertices()) {
+      const double s = std::clamp((p - q1).dot(along) / along.squaredNorm(), 0.0, 1.0);
+      const double distance = (p - (q1 + s * along)).norm();
+      if (distance < best.distance_m) best = {distance, sign * normal};
+    }
+  }
+}
+
+}  // namespace
+
+Clearance clearance(const Polygon& a, const Polygon& b) {
+  Clearance best{std::numeric_limits<double>::infinity(), Point2::UnitX()};
+  nearest_to_edges(b, a, +1.0, best);  // a's edge nearest to a vertex of b: b moves out along its normal
+  nearest_to_edges(a, b, -1.0, best);
+  return best;
+}
+
 }  // namespace pounding::model

@@ -190,7 +190,7 @@ class EventDrivenRun final : public OdeFunctions {
   bool drops_modes() const {
     const double cutoff_hz = options_.modes_cutoff_hz;
     if (cutoff_hz == 0.0) return false;
-    for (int b = 0; b < 2; ++b) {
+    for (int b = 0; b < system_.building_count(); ++b) {
       if (system_.building(b).modes.back().omega_rad_s / (2.0 * std::numbers::pi) >= cutoff_hz) return true;
     }
     return false;

@@ -7,7 +7,8 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
                                     const std::function<bool(std::size_t, const contact::GapState&)>& take) {
   FloorContacts contacts;
   contacts.level = level;
-  contacts.floors = system.levels().at(static_cast<std::size_t>(level - 1)).floors;
+  const contact::Level& on = system.levels().at(static_cast<std::size_t>(level - 1));
+  contacts.slabs = {on.pair, on.floors};
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     const contact::Candidate& c = system.candidates()[i];
     if (c.level != level) continue;
@@ -23,8 +24,17 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
 TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
                          const contact::GapState& gap) {
   const contact::Candidate& c = system.candidates()[index];
-  return {t,     c.level,           c.floors,         c.elevation_m, c.striking_building + 1, contact::vertex_number(c),
-          index, gap.contact_point, gap.gap_rate_mps, gap.gap_m};
+  return {t,
+          c.level,
+          c.floors,
+          c.elevation_m,
+          c.striking_building + 1,
+          contact::vertex_number(c),
+          index,
+          gap.contact_point,
+          gap.gap_rate_mps,
+          gap.gap_m,
+          {c.pair[0] + 1, c.pair[1] + 1}};
 }
 
 ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,
@@ -36,6 +46,7 @@ ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::siz
   r.floors = c.floors;
   r.elevation_m = c.elevation_m;
   r.striking_building = c.striking_building + 1;
+  r.buildings = {c.pair[0] + 1, c.pair[1] + 1};
   r.vertex = contact::vertex_number(c);
   r.struck_edge = c.edge_index + 1;
   r.candidate = index;
@@ -51,8 +62,8 @@ ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::siz
 
 contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
                                         const FloorContacts& contacts) {
-  contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.floors));
-  system.add_pair_velocities(y, contacts.floors, solution.velocity_change);
+  contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.slabs));
+  system.add_pair_velocities(y, contacts.slabs, solution.velocity_change);
   return solution;
 }
 
@@ -61,7 +72,7 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
                             const std::vector<bool>& holds, const std::vector<bool>& were_held,
                             RunResult& result) {
-  const std::array<int, 2>& floors = contacts.floors;
+  const dynamics::CoupledSystem::SlabPair& floors = contacts.slabs;
   const contact::Vector6d v_after = system.pair_velocities(y_after, floors);
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];

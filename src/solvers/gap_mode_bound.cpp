@@ -66,7 +66,7 @@ GapModeBound::GapModeBound(const dynamics::CoupledSystem& system, double resolut
   const excitation::GroundMotion& motion = system.ground_motion();
   const RestRows rest = rest_rows(system);
   double longest_period_s = 0.0;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system.building_count(); ++b) {
     const model::Building& building = system.building(b);
     const int offset = system.floor_index(b, 1);
     const Eigen::VectorXd& mass = building.mass_diagonal;

@@ -120,6 +120,7 @@ void ImpulseEvents::hold(std::size_t i, double t) {
   record.floors = c.floors;
   record.elevation_m = c.elevation_m;
   record.striking_building = c.striking_building + 1;
+  record.buildings = {c.pair[0] + 1, c.pair[1] + 1};
   record.vertex = c.vertex_index + 1;
   record.candidate = i;
   record.start_s = t;
@@ -189,7 +190,7 @@ std::vector<bool> ImpulseEvents::settle_floor(double t, VectorXd& y, FloorContac
     for (std::size_t k = 0; k < n; ++k) contacts.rows[k].restitution = holding[k] ? 0.0 : options_.restitution;
     y_after = y;
     solution = apply_impulses(system_, y_after, contacts);
-    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.floors);
+    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.slabs);
 
     std::vector<std::size_t> trial;  // held elsewhere, plus this floor's slow separations
     for (std::size_t i : states_.held()) {
@@ -233,14 +234,14 @@ void ImpulseEvents::stick(const FloorContacts& contacts, const std::vector<bool>
   }
   if (held.empty()) return;
   const Eigen::Index m = static_cast<Eigen::Index>(held.size());
-  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(contacts.floors);
-  const contact::Vector6d velocities = system_.pair_velocities(y, contacts.floors);
+  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(contacts.slabs);
+  const contact::Vector6d velocities = system_.pair_velocities(y, contacts.slabs);
   Eigen::MatrixXd rows(m, 6);
   for (Eigen::Index r = 0; r < m; ++r) rows.row(r) = contacts.rows[held[static_cast<std::size_t>(r)]].jacobian;
   const Eigen::MatrixXd w = rows * inverse_mass.asDiagonal() * rows.transpose();
   const VectorXd impulses = w.completeOrthogonalDecomposition().solve(-(rows * velocities));
   const contact::Vector6d change = inverse_mass.cwiseProduct(rows.transpose() * impulses);
-  system_.add_pair_velocities(y, contacts.floors, change);
+  system_.add_pair_velocities(y, contacts.slabs, change);
   solution.velocity_change += change;
   for (Eigen::Index r = 0; r < m; ++r) solution.impulses_kNs[held[static_cast<std::size_t>(r)]] += impulses[r];
 }

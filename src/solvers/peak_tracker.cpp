@@ -35,7 +35,8 @@ PeakTracker::PeakTracker(const RunKinematics& kinematics, const OutputSelection&
     : kinematics_(kinematics), system_(kinematics.system()), outputs_(outputs) {
   const dynamics::CoupledSystem& system = system_;
   const int n = system.dof();
-  for (int b = 0; b < 2; ++b) {
+  components_.resize(static_cast<std::size_t>(system.building_count()));
+  for (int b = 0; b < system_.building_count(); ++b) {
     BuildingPeaks peaks;
     peaks.name = system.building(b).definition.name;
     // Outputs name a vertex by its number in the slab outline, as impacts and candidates do.
@@ -73,7 +74,7 @@ void PeakTracker::locate(double t_a, double t_b, Instant& start, Instant& end, c
 void PeakTracker::update(const Instant& at) {
   const double t = *at.t_s;
   const dynamics::VectorXd& y = at.y;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const model::Point2 centre = system_.building(b).definition.centre_of_mass;
     for (FloorPeaks& floor : peaks_[b].floors) {
       const int i = system_.floor_index(b, floor.floor);
@@ -138,7 +139,7 @@ void PeakTracker::locate_accelerations(double t_a, double t_b, Instant& start, I
   }
   end.rate_known = free;
   const dynamics::VectorXd &rate_a = start.accel_rate, &rate_b = end.accel_rate;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     for (FloorPeaks& floor : peaks_[b].floors) {
       const int i = system_.floor_index(b, floor.floor);
       Peak* peaks[3] = {&floor.ax_abs_mps2, &floor.ay_abs_mps2, &floor.phi_ddot_radps2};
@@ -191,7 +192,7 @@ void PeakTracker::locate_displacements(double t_a, double t_b, const Instant& st
   auto reading = [&](const std::vector<int>& indices) {
     return [&](double t) -> const dynamics::VectorXd& { return read_components(t, indices, at, components_at); };
   };
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const model::Point2 centre = system_.building(b).definition.centre_of_mass;
     for (std::size_t f = 0; f < peaks_[b].floors.size(); ++f) {
       FloorPeaks& floor = peaks_[b].floors[f];
@@ -220,7 +221,7 @@ void PeakTracker::locate_displacements(double t_a, double t_b, const Instant& st
 void PeakTracker::locate_drifts(double t_a, double t_b, const Instant& start, const Instant& end, const StateAt& at,
                                 const ComponentsAt& components_at) {
   const Drifts &d_a = start.drifts, &d_b = end.drifts;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     for (std::size_t f = 0; f < peaks_[b].floors.size(); ++f) {
       FloorPeaks& floor = peaks_[b].floors[f];
       const std::vector<int>& indices = components_[b][f].drift;

@@ -29,12 +29,13 @@ std::vector<contact::Level> chosen_levels(const dynamics::CoupledSystem& system,
 /// Every slab `slabs` selects, {building, floor}, in column order.
 std::vector<std::array<int, 2>> chosen_slabs(const dynamics::CoupledSystem& system, const HistorySlabs& slabs) {
   std::vector<std::array<int, 2>> chosen;
-  for (const contact::Level& level : chosen_levels(system, slabs.levels)) {
-    for (int b = 0; b < 2; ++b) chosen.push_back({b, level.floors[b]});
-  }
-  for (const std::array<int, 2>& slab : slabs.other_floors) {
+  const auto add = [&](const std::array<int, 2>& slab) {
     if (std::find(chosen.begin(), chosen.end(), slab) == chosen.end()) chosen.push_back(slab);
+  };
+  for (const contact::Level& level : chosen_levels(system, slabs.levels)) {
+    for (int side = 0; side < 2; ++side) add({level.pair[side], level.floors[side]});  // a row's slab once
   }
+  for (const std::array<int, 2>& slab : slabs.other_floors) add(slab);
   return chosen;
 }
 
@@ -42,10 +43,10 @@ std::vector<std::array<int, 2>> chosen_slabs(const dynamics::CoupledSystem& syst
 
 std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const HistorySlabs& slabs) {
   std::vector<std::string> columns{"t_s"};
-  std::array<std::vector<int>, 2> numbers;
-  for (int b = 0; b < 2; ++b) {
+  std::vector<std::vector<int>> numbers;
+  for (int b = 0; b < system.building_count(); ++b) {
     std::vector<model::Point2> vertices = contact_vertices(system.candidates(), b);
-    numbers[b] = outline_numbers(system.building(b).definition.slab, vertices);
+    numbers.push_back(outline_numbers(system.building(b).definition.slab, vertices));
   }
   for (const std::array<int, 2>& slab : chosen_slabs(system, slabs)) {
     const int b = slab[0];  // not a structured binding: the lambda below captures it (clang < 16 cannot)

@@ -42,16 +42,18 @@ std::vector<int> outline_numbers(const model::Polygon& slab, std::vector<model::
 
 RunKinematics::RunKinematics(const dynamics::CoupledSystem& system, RecordedDynamics dynamics)
     : system_(system), dynamics_(std::move(dynamics)) {
-  drift_offset_ = {0, drift_slots(0) * static_cast<std::size_t>(system.building(0).storeys()), 0};
-  drift_offset_[2] = drift_offset_[1] + drift_slots(1) * static_cast<std::size_t>(system.building(1).storeys());
-  for (int b = 0; b < 2; ++b) {
-    vertices_[b] = solvers::contact_vertices(system.candidates(), b);
-    vertex_numbers_[b] = outline_numbers(system.building(b).definition.slab, vertices_[b]);
+  const int buildings = system.building_count();
+  drift_offset_ = {0};
+  std::size_t points = 0;
+  for (int b = 0; b < buildings; ++b) {
+    drift_offset_.push_back(drift_offset_.back() +
+                            drift_slots(b) * static_cast<std::size_t>(system.building(b).storeys()));
+    vertices_.push_back(solvers::contact_vertices(system.candidates(), b));
+    vertex_numbers_.push_back(outline_numbers(system.building(b).definition.slab, vertices_.back()));
+    points = std::max(points, 1 + system.building(b).definition.slab.size());
   }
   y_dot_.resize(system.state_size());
   y_ddot_.resize(system.state_size());
-  const std::size_t points =
-      1 + std::max(system.building(0).definition.slab.size(), system.building(1).definition.slab.size());
   below_.resize(points);
   below_rate_.resize(points);
 }
@@ -63,10 +65,10 @@ std::size_t RunKinematics::drift_index(int b, int floor, std::size_t slot) const
 std::size_t RunKinematics::drift_slots(int b) const { return 2 * (system_.building(b).definition.slab.size() + 1); }
 
 void RunKinematics::storey_drifts(const dynamics::VectorXd& y, Drifts& d) const {
-  d.value.resize(static_cast<Eigen::Index>(drift_offset_[2]));
-  d.rate.resize(static_cast<Eigen::Index>(drift_offset_[2]));
+  d.value.resize(static_cast<Eigen::Index>(drift_offset_.back()));
+  d.rate.resize(static_cast<Eigen::Index>(drift_offset_.back()));
   const int n = system_.dof();
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const model::BuildingDefinition& def = system_.building(b).definition;
     const std::size_t points = def.slab.size() + 1;  // the CM, then the corners
     // Each floor's point motions once (one sin/cos per floor), then differences of floors.

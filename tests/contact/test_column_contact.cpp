@@ -179,7 +179,7 @@ struct SlabAgainstColumn {
     const double kx = m_lower * std::pow(2 * kPi / 1e4, 2);
     b.storey_stiffness.assign(2, Eigen::Vector3d(kx, 2 * kx, 3 * kx * b.polar_moment_tm2[0] / m_lower).asDiagonal());
     b.damping = {0.0, {1, 3}};
-    std::array<model::Building, 2> buildings{slab_building("A", left, {m_a, 1e4, 0.0}), model::make_building(b)};
+    std::vector<model::Building> buildings{slab_building("A", left, {m_a, 1e4, 0.0}), model::make_building(b)};
     contact::Candidate c{0,       {1, storey}, 3.0 * (storey - 1) + 3.0 * xi, 1, 0, 0, 1, {gap, 5.0}, {0, 0},
                          {0, 10}, {1, 0}};
     c.column = true;

@@ -53,7 +53,7 @@ model::Building building(const char* name, const model::Polygon& slab, const mod
 dynamics::CoupledSystem touching_slabs() {
   const model::Polygon left = box(-10, 0, 0, 10), right = box(0, 1, 8, 7);
   const model::Point2 left_cm(-5.5, 4.6), right_cm(4.4, 4.3);
-  std::array<model::Building, 2> buildings{building("A", left, left_cm, 100.0), building("B", right, right_cm, 60.0)};
+  std::vector<model::Building> buildings{building("A", left, left_cm, 100.0), building("B", right, right_cm, 60.0)};
   const std::vector<contact::Level> levels{{.index = 1, .floors = {1, 1}, .elevation_m = 3.0},
                                            {.index = 2, .floors = {2, 2}, .elevation_m = 6.0}};
   auto candidates =

@@ -312,14 +312,14 @@ BOOST_AUTO_TEST_CASE(SlabsBetweenFloorsNeedACompliantLawAndColumns) {
                   "E_kPa = 3.0e7\nframe_factor = 1.0\ncolumns = [[0.1, 2.0, 0.4, 0.4], [0.1, 10.0, 0.4, 0.4]]");
   Case impulse(columns);
   try {
-    pounding::analysis::require_column_contact_law(read_scene(impulse.file));
+    pounding::analysis::require_compliant_law_where_needed(read_scene(impulse.file));
     BOOST_ERROR("the impulse law was not refused");
   } catch (const InputError& error) {
     BOOST_TEST(
         mentions(error.what(), {"scene.toml", "contact.law = \"impulse\"", "cannot resolve slab-to-column contact",
                                 "A floor 1 (4.5 m)", "storey 2", "3 such floors", "slab_to_column = \"off\""}));
   }
-  pounding::analysis::require_column_contact_law(read_scene(Case(columns + "law = \"kelvin\"\n").file));
+  pounding::analysis::require_compliant_law_where_needed(read_scene(Case(columns + "law = \"kelvin\"\n").file));
   // B's storeys are matrices: no columns to strike.
   BOOST_TEST(mentions(error_of(tall + "law = \"kelvin\"\n"),
                       {"building[2].storey_stiffness[2]", "is a matrix", "A floor 1 (4.5 m)", "B's storey 2"}));

@@ -56,7 +56,7 @@ model::Building column_building(const char* name, double x_centre, const model::
 
 /// Building 1 yields; building 2 stays elastic 20 m away (no contact candidates).
 dynamics::CoupledSystem system_of(const model::HystereticLaw& law, double duration_s, bool p_delta = false) {
-  std::array<model::Building, 2> buildings{column_building("A", 0.0, law, p_delta), column_building("B", 40.0, {})};
+  std::vector<model::Building> buildings{column_building("A", 0.0, law, p_delta), column_building("B", 40.0, {})};
   excitation::GroundMotion quiet({0.0, duration_s}, {0.0, 0.0}, 0.0);
   return dynamics::CoupledSystem(std::move(buildings), std::move(quiet), {}, {});
 }

@@ -53,7 +53,7 @@ inline model::Polygon diamond(double x_left) {
 inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab,
                                          const SlabSpec& right, double gap_m, excitation::GroundMotion motion) {
   const model::Polygon left_slab = box(-10, 0, 0, 10);
-  std::array<model::Building, 2> buildings{slab_building("A", left_slab, left), slab_building("B", right_slab, right)};
+  std::vector<model::Building> buildings{slab_building("A", left_slab, left), slab_building("B", right_slab, right)};
   contact::PairGeometry geometry{{left_slab, right_slab}, {left_slab.centroid(), right_slab.centroid()}};
   const std::vector<contact::Level> levels{{.index = 1, .floors = {1, 1}, .elevation_m = 3.0}};
   auto candidates = contact::find_candidates(geometry, levels, {.margin_m = 1.0, .gap_m = gap_m});

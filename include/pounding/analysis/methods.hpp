@@ -126,7 +126,7 @@ struct SolverSettings {
 ///              within atol for every mode.
 struct ComponentAtol {
   double displacement_m = 0.0;
-  std::array<double, 2> rotation_rad{};  // per building
+  std::vector<double> rotation_rad;      // per building
   double rate_per_s = 0.0;               // ω₁ (rad/s)
   /// The vector over the state (q, q̇) of `system`.
   Eigen::VectorXd vector(const dynamics::CoupledSystem& system) const;

@@ -103,6 +103,10 @@ struct RunReport {
   /// The yielding column springs (result.springs in the same order); empty if all stay elastic.
   std::vector<dynamics::YieldingSpring> springs = {};
   std::optional<SpectralScaling> spectral_scaling = std::nullopt;  // with excitation.scale_to_sa
+  /// A row: its neighbouring pairs (Scene::pairs) and building names; empty for two buildings,
+  /// whose outputs name no pair.
+  std::vector<BuildingPair> pairs = {};
+  std::vector<std::string> building_names = {};
 };
 
 /// One storey of a building whose columns yield, over a run: its springs' largest ductility in x

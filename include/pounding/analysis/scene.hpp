@@ -19,8 +19,17 @@
 
 namespace pounding::analysis {
 
+/// A row's stated gap of one neighbouring pair ([contact.gaps] "NAME:NAME" = gap_m).
+struct PairGap {
+  std::string first, second;  // building names, as the key gives them
+  double gap_m = 0.0;
+};
+
 struct ContactSettings {
-  double gap_m = 0.0;              // clear distance along x between the facing sides at rest (m)
+  double gap_m = 0.0;  // two buildings: clear distance along x between the facing sides at rest (m)
+  /// A row (three or more buildings): the neighbouring pairs' gaps as the file states them, each
+  /// checked against the outlines (which decide the gaps); optional, any subset of the pairs.
+  std::vector<PairGap> gaps;
   double restitution = 0.5;        // Newton coefficient k ∈ [0, 1]
   double candidate_margin_m = 1.0; // reach of the candidate search beyond gap and edge ends (m)
   double hold_velocity_mps = 1e-3; // sticking threshold: slower separations of pressed pairs are held
@@ -86,43 +95,79 @@ struct OutputSettings {
   solvers::OutputSelection selection() const;
 };
 
+/// Two buildings whose slabs can touch: `first` < `second` (0-based in the scene), standing
+/// `gap_m` apart at rest (the shortest distance between their outlines; two buildings: the clear
+/// distance along x), `direction` the unit plan direction in which `second` moves away from `first`.
+struct BuildingPair {
+  int first = 0;
+  int second = 1;
+  double gap_m = 0.0;
+  model::Point2 direction = model::Point2::UnitX();
+};
+
 struct Scene {
   std::string name;
   std::filesystem::path file;  // where it was read from; empty for scenes built in code
-  std::array<model::BuildingDefinition, 2> buildings;  // building 1 on the −x side
+  /// Two or more. Two: building 1 on the −x side, `contact.gap_m` apart. More (a row): any plan
+  /// arrangement, the pairs standing within contact.candidate_margin_m of each other neighbours.
+  std::vector<model::BuildingDefinition> buildings = std::vector<model::BuildingDefinition>(2);
   excitation::ExcitationSpec excitation;
   ContactSettings contact;
   SolverSettings solver;  // as given (methods.hpp)
   OutputSettings output;
 
-  /// output.floor_history as {building (0 or 1), floor}. @pre valid.
+  bool is_row() const { return buildings.size() > 2; }
+  /// The neighbouring pairs, in order of (first, second). Two buildings: the one pair, its gap
+  /// contact.gap_m. A row: every pair whose outlines stand at most contact.candidate_margin_m
+  /// apart (farther pairs cannot touch within the candidate search's reach), its gap read from the
+  /// outlines. @pre buildings' slabs valid and not overlapping.
+  std::vector<BuildingPair> pairs() const;
+  /// The two-building scene of `pair`: its two buildings (first, second), contact.gap_m its gap,
+  /// the rest of this scene's settings. Rows find levels and candidates pair by pair through it.
+  Scene pair_scene(const BuildingPair& pair) const;
+  /// A building's index by name. @throws InputError(`key`) naming the buildings when none has it.
+  int building_index(const std::string& building_name, const std::string& key) const;
+
+  /// output.floor_history as {building (0-based), floor}. @pre valid.
   std::vector<std::array<int, 2>> history_other_floors() const;
-  /// The floor pairs at a common elevation (within contact.level_tolerance_m), lowest first.
-  /// @pre buildings valid.
+  /// The floor pairs at a common elevation (within contact.level_tolerance_m), lowest first; a
+  /// row: pair by pair (pairs()), numbered on. @pre buildings valid.
   std::vector<contact::Level> levels() const;
   /// The floors between two floors of the other building, below its roof, that meet its columns
-  /// (contact::column_levels); empty when contact.slab_to_column is "off". @pre buildings valid.
+  /// (contact::column_levels); empty when contact.slab_to_column is "off". Building indices 0 and
+  /// 1 of the pair: @pre two buildings (a row: of each pair_scene()), valid.
   std::vector<contact::ColumnLevel> column_levels() const;
-  /// The slab-to-column candidates on column_levels() (contact::find_column_candidates with the
-  /// scene's gap and candidate margin). @pre buildings valid.
+  /// The slab-to-column candidates (contact::find_column_candidates with each pair's gap and the
+  /// candidate margin), pair by pair. @pre buildings valid.
   std::vector<contact::Candidate> column_candidates() const;
 
   /// Moves building 2 along x so that the clear distance becomes `gap_m`.
-  /// @throws InputError (key `contact.gap_m`) if the gap lies outside [0, 10] m.
+  /// @throws InputError (key `contact.gap_m`) if the gap lies outside [0, 10] m, or for a row.
   void set_gap(double gap_m);
+  /// Sets the gap of the neighbouring pair of the buildings named `first` and `second` (any
+  /// order): moves the pair's second building along the pair's direction, with every building
+  /// that neighbours it on the far side (reachable from it through neighbouring pairs without
+  /// this one); the others stay. Two buildings: set_gap. @throws InputError (key
+  /// `contact.gaps."A:B"`) for unknown names, a pair that is no neighbouring pair, a gap outside
+  /// [0, 10] m, a pair on a ring of neighbours (moving one side would move the other), or a move
+  /// that does not give the gap (the pair's nearest points are not along one direction).
+  void set_pair_gap(const std::string& first, const std::string& second, double gap_m);
 
   /// Checks each building, the contact and solver settings, and the pair: at least one level or
   /// slab-to-column floor, a compliant law and column storeys wherever slabs meet columns, building 2 on the +x side of
   /// building 1 facing it, the slabs not overlapping at rest, and contact.gap_m equal to the clear distance the slab
-  /// outlines show. @throws InputError naming the key and value.
+  /// outlines show. A row: no two slabs overlapping at rest, names distinct, at least one neighbouring pair,
+  /// each pair as above (levels, column storeys) except the side, contact.gaps matching the outlines, no gap_m.
+  /// @throws InputError naming the key and value.
   void validate() const;
 };
 
-/// Slabs that strike columns need a compliant law: an impulse would need the column rigid and its
-/// two floors' shares solved with the slab's, which the impact module (floor pair by floor pair)
-/// does not do. Checked when a run starts (run_scene, `check`), after the command line's or
-/// Python's overrides; not by Scene::validate(), so that `--contact-law` can mend a file.
-/// @throws InputError(`contact.law`) naming the first such slab and its storey.
-void require_column_contact_law(const Scene& scene);
+/// Slabs that strike columns, and rows, need a compliant law: an impulse would need the column
+/// rigid and its two floors' shares solved with the slab's, or a slab struck from both sides
+/// solved with both neighbours, which the impact module (floor pair by floor pair) does not do.
+/// Checked when a run starts (run_scene, `check`), after the command line's or Python's
+/// overrides; not by Scene::validate(), so that `--contact-law` can mend a file.
+/// @throws InputError(`contact.law`) naming the row, or the first such slab and its storey.
+void require_compliant_law_where_needed(const Scene& scene);
 
 }  // namespace pounding::analysis

@@ -13,11 +13,12 @@
 
 namespace pounding::contact {
 
-/// Two floors, one of each building, at a common elevation.
+/// Two floors, one of each building of a pair, at a common elevation.
 struct Level {
-  int index = 1;                    // 1-based among the common levels, lowest first
-  std::array<int, 2> floors{1, 1};  // 1-based floor of building 1 and of building 2
-  double elevation_m = 0.0;         // of building 1's floor above the ground (m)
+  int index = 1;                    // 1-based among the common levels, lowest first (a row: pair by pair)
+  std::array<int, 2> floors{1, 1};  // 1-based floor of the pair's first building and of its second
+  double elevation_m = 0.0;         // of the first building's floor above the ground (m)
+  std::array<int, 2> pair{0, 1};    // the pair's buildings (0-based in the scene, first < second)
 };
 
 /// The levels of two buildings whose floors stand at `elevations` (m above the ground, floor 1
@@ -32,10 +33,10 @@ std::vector<Level> common_levels(const std::array<std::vector<double>, 2>& eleva
 /// edge is the slab's: "striking" and "struck" name the gap's roles, not which body moves.
 struct Candidate {
   int level = 1;                    // 1-based level index: the contacts solved together
-  std::array<int, 2> floors{1, 1};  // the level's floor of building 1 and of building 2
+  std::array<int, 2> floors{1, 1};  // the level's floor of the pair's first building and of its second
   double elevation_m = 0.0;         // the level's elevation (m)
-  int striking_building = 0;      // 0 or 1: owns the vertex P
-  int struck_building = 1;        // the other one: owns the edge Q1→Q2
+  int striking_building = 0;        // owns the vertex P (0-based in the scene; one of `pair`)
+  int struck_building = 1;          // the other one of `pair`: owns the edge Q1→Q2
   std::size_t vertex_index = 0;   // index of P in the striking slab's outline
   std::size_t edge_index = 0;     // edge i runs from vertex i to vertex i + 1
   model::Point2 vertex_rest;      // P
@@ -52,7 +53,15 @@ struct Candidate {
   double storey_height_m = 0.0;
   double height_ratio = 0.0;
   double flexibility_m_per_kN = 0.0;
+  std::array<int, 2> pair{0, 1};  // the two buildings, first < second (0-based in the scene; two buildings: {0, 1})
+
+  /// The floor of `building` (one of `pair`) this candidate reads.
+  int floor_of(int building) const { return floors[building == pair[0] ? 0 : 1]; }
 };
+
+/// `candidates` found for two buildings (indices 0 and 1) moved onto the scene's buildings `pair`
+/// with their levels numbered after `level_offset` (slab to column keeps level 0).
+void place_in_pair(std::vector<Candidate>& candidates, const std::array<int, 2>& pair, int level_offset);
 
 /// Rest geometry of the two slab outlines (the same on every floor) and their CMs.
 struct PairGeometry {

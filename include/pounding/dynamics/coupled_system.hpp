@@ -29,15 +29,17 @@ using ConstVectorRef = const Eigen::Ref<const VectorXd>&;
 
 class CoupledSystem {
  public:
-  /// `levels`: the floor pairs at a common elevation (contact::common_levels); every candidate
-  /// lies on one of them. @pre level floors within both buildings.
-  CoupledSystem(std::array<model::Building, 2> buildings, excitation::GroundMotion ground_motion,
+  /// `levels`: the floor pairs at a common elevation (contact::common_levels, pair by pair); every
+  /// slab-to-slab candidate lies on one of them. @pre two or more buildings; level floors within
+  /// their buildings.
+  CoupledSystem(std::vector<model::Building> buildings, excitation::GroundMotion ground_motion,
                 std::vector<contact::Level> levels, std::vector<contact::Candidate> candidates);
 
   int dof() const { return dof_; }
   /// 2n, plus one z per Bouc–Wen spring (springs().smooth_count()).
   int state_size() const { return 2 * dof_ + springs_.smooth_count(); }
-  /// Index in q of the u of `floor` (1-based) of `building` (0 or 1).
+  int building_count() const { return static_cast<int>(buildings_.size()); }
+  /// Index in q of the u of `floor` (1-based) of `building` (0-based).
   int floor_index(int building, int floor) const { return offset_[building] + 3 * (floor - 1); }
 
   const model::Building& building(int b) const { return buildings_[b]; }
@@ -108,14 +110,17 @@ class CoupledSystem {
   /// G_j q̇_j, and below 1e-9 of their size (plus 1e-15 m/s) a pair is neither approaching nor
   /// separating. Two identical buildings side by side close at 1e-23 m/s by rounding alone.
   double gap_rate_round_off_mps(ConstVectorRef y, std::size_t index) const;
-  /// ġ = G q̇ as a row over the floor pair's six velocities (building 1's slab first).
+  /// ġ = G q̇ as a row over the floor pair's six velocities (the pair's first building's slab first).
   contact::RowVector6d pair_row(const contact::GapState& state, const contact::Candidate& c) const;
-  /// Velocities of the slab pair `floors` (1-based floor of building 1, of building 2) in state
-  /// y, and their inverse masses.
-  contact::Vector6d pair_velocities(ConstVectorRef y, const std::array<int, 2>& floors) const;
-  void add_pair_velocities(Eigen::Ref<VectorXd> y, const std::array<int, 2>& floors,
-                           const contact::Vector6d& change) const;
-  contact::Vector6d pair_inverse_mass(const std::array<int, 2>& floors) const;
+  /// Two slabs at one level: floors[k] (1-based) of building pair[k] (0-based).
+  struct SlabPair {
+    std::array<int, 2> pair{0, 1};
+    std::array<int, 2> floors{1, 1};
+  };
+  /// Velocities of the slab pair in state y, and their inverse masses.
+  contact::Vector6d pair_velocities(ConstVectorRef y, const SlabPair& slabs) const;
+  void add_pair_velocities(Eigen::Ref<VectorXd> y, const SlabPair& slabs, const contact::Vector6d& change) const;
+  contact::Vector6d pair_inverse_mass(const SlabPair& slabs) const;
 
   /// Motion with the contacts `held` kept closed (g̈ = −3ġ/τ − 2g/τ², a Baumgarte correction with
   /// τ = `hold_time_constant_s` that stops drift) by normal forces λ (kN, ≥ 0 pushes the slabs
@@ -194,16 +199,17 @@ class CoupledSystem {
   /// The bases modal_basis() built. Behind a pointer because std::once_flag neither copies nor
   /// moves; copies of the system share them, as they have the same buildings and influence.
   struct ModalBases {
-    std::array<std::once_flag, 2> built;
-    std::array<model::ModalBasis, 2> basis;
+    explicit ModalBases(std::size_t count) : built(count), basis(count) {}
+    std::vector<std::once_flag> built;
+    std::vector<model::ModalBasis> basis;
   };
 
-  std::array<model::Building, 2> buildings_;
+  std::vector<model::Building> buildings_;
   excitation::GroundMotion ground_motion_;
   std::vector<contact::Level> levels_;
   std::vector<contact::Candidate> candidates_;
   int dof_ = 0;
-  std::array<int, 2> offset_{0, 0};
+  std::vector<int> offset_;  // per building: the index in q of its floor 1's u
   VectorXd mass_;          // diagonal of M, size n
   MatrixXd stiffness_;     // block-diagonal K
   MatrixXd damping_;       // block-diagonal C
@@ -214,7 +220,7 @@ class CoupledSystem {
   Eigen::SparseMatrix<double> stiffness_sparse_, damping_sparse_;
   Eigen::SparseMatrix<double> acceleration_rows_;  // −M⁻¹[K, C]: A's lower half, sparse
   YieldingSprings springs_;
-  std::shared_ptr<ModalBases> modal_bases_ = std::make_shared<ModalBases>();
+  std::shared_ptr<ModalBases> modal_bases_ = std::make_shared<ModalBases>(buildings_.size());
 };
 
 }  // namespace pounding::dynamics

@@ -53,8 +53,8 @@ class ModalSystem {
 
  private:
   const CoupledSystem& system_;
-  std::array<MatrixXd, 2> shapes_;        // Φ_b, columns the modes
-  std::array<MatrixXd, 2> inverse_;       // Φ_bᵀ M_b
+  std::vector<MatrixXd> shapes_;          // Φ_b, columns the modes, per building
+  std::vector<MatrixXd> inverse_;         // Φ_bᵀ M_b
   MatrixXd shape_full_, inverse_full_;    // block-diagonal over both buildings (Jacobian maps)
   VectorXd omega_rad_s_, damping_per_s_;
   MatrixXd participation_;

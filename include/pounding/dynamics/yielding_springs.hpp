@@ -1,5 +1,5 @@
 #pragma once
-// The yielding column springs of a pair of buildings (model::HystereticLaw, docs/model.md
+// The yielding column springs of the buildings (model::HystereticLaw, docs/model.md
 // "Yielding columns"): one spring per column, storey and direction (x, y) of every building whose
 // columns yield. Spring j's drift d_j = t_j · q is the column's top-to-bottom displacement along
 // its direction (small rotations, as the stiffness: T = [[1, 0, −Δy], [0, 1, Δx]] per floor).
@@ -49,7 +49,7 @@ struct BoucWenShape {
 };
 
 struct YieldingSpring {
-  int building = 0;                 // 0 or 1
+  int building = 0;                 // 0-based in the scene
   int storey = 1;                   // 1-based: joins floor storey − 1 (the ground for 1) and floor storey
   int direction = 0;                // 0: x, 1: y
   std::string column;               // the column's scene key ("columns[3]", "column_grid[1] x[2] y[1]")
@@ -73,7 +73,7 @@ class YieldingSprings {
   YieldingSprings() = default;
   /// The springs of the buildings whose hysteresis yields; `offsets[b]` is building b's first
   /// index in q. @pre the buildings are assembled (make_building: frame factor resolved).
-  YieldingSprings(const std::array<model::Building, 2>& buildings, const std::array<int, 2>& offsets);
+  YieldingSprings(const std::vector<model::Building>& buildings, const std::vector<int>& offsets);
 
   bool empty() const { return springs_.empty(); }
   std::size_t size() const { return springs_.size(); }

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pounding/contact/candidates.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::io {
@@ -29,6 +30,8 @@ struct ImpactField {
   /// Written only by runs with slab-to-column candidates (contact::has_column_pairs), so that
   /// other runs' files keep their columns.
   bool slab_to_column = false;
+  /// Written only by runs with contact pairs other than buildings 1 and 2 (rows).
+  bool row = false;
 
   /// The JSON key: `name_unit` for a scalar with a unit, else `name`.
   std::string json_key() const;
@@ -42,17 +45,26 @@ struct ImpactField {
 /// slab-to-column fields column, height_ratio, column_shear_kN, column_moment_kNm.
 const std::vector<ImpactField>& impact_fields();
 
-/// The fields a run writes: without `slab_to_column`, those not marked slab_to_column.
-std::vector<const ImpactField*> impact_fields(bool slab_to_column);
+/// Which of the fields marked for some scenes only a run writes.
+struct ImpactFieldSet {
+  bool slab_to_column = false;  // the slab-to-column fields
+  bool row = false;             // the row fields (struck_building)
+};
+/// The set a run with `candidates` writes: slab_to_column when any is slab to column
+/// (contact::has_column_pairs), row when any pairs buildings other than 1 and 2.
+ImpactFieldSet impact_field_set(const std::vector<contact::Candidate>& candidates);
+
+/// The fields a run writes: those marked for none of the scenes, and those `set` asks for.
+std::vector<const ImpactField*> impact_fields(ImpactFieldSet set);
 
 /// One impact as summary.json writes it, keys in field order.
-nlohmann::ordered_json impact_json(const solvers::ImpactRecord& impact, bool slab_to_column = false);
+nlohmann::ordered_json impact_json(const solvers::ImpactRecord& impact, ImpactFieldSet set = {});
 
 /// impacts.csv's header columns, in field order.
-std::vector<std::string> impact_csv_columns(bool slab_to_column = false);
+std::vector<std::string> impact_csv_columns(ImpactFieldSet set = {});
 
 /// One impacts.csv row (comma-separated, no newline); reals in the shortest text that reads back
 /// to the same double.
-std::string impact_csv_row(const solvers::ImpactRecord& impact, bool slab_to_column = false);
+std::string impact_csv_row(const solvers::ImpactRecord& impact, ImpactFieldSet set = {});
 
 }  // namespace pounding::io

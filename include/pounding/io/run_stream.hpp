@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "pounding/analysis/run_scene.hpp"
+#include "pounding/io/impact_schema.hpp"
 #include "pounding/io/output_files.hpp"
 #include "pounding/io/provenance.hpp"
 #include "pounding/solvers/run_sink.hpp"
@@ -35,9 +36,9 @@ class StreamedRunFiles final : public solvers::RunSink {
   void progress(double t_s, double end_s, std::size_t impacts) override {
     if (on_progress_) on_progress_(t_s, end_s, impacts);
   }
-  /// Whether impacts.csv carries the slab-to-column fields (contact::has_column_pairs of the
-  /// run's candidates); set before the run starts.
-  void slab_to_column(bool with_fields) { slab_to_column_ = with_fields; }
+  /// Which fields impacts.csv carries beyond the common ones (impact_field_set of the run's
+  /// candidates); set before the run starts.
+  void impact_fields(ImpactFieldSet fields) { fields_ = fields; }
   /// Passes the run's progress (RunSink::progress) to `callback` (to show it; null: to nobody).
   void on_progress(std::function<void(double t_s, double end_s, std::size_t impacts)> callback) {
     on_progress_ = std::move(callback);
@@ -61,7 +62,7 @@ class StreamedRunFiles final : public solvers::RunSink {
   std::unique_ptr<ExclusiveOutput> history_, contacts_, impacts_;
   bool opened_ = false;
   bool with_history_ = false;  // history.csv and contacts_history.csv are written
-  bool slab_to_column_ = false;
+  ImpactFieldSet fields_;
   std::function<void(double, double, std::size_t)> on_progress_;
 };
 

@@ -15,6 +15,9 @@ namespace pounding::io {
 /// Values given on the command line that replace the file's.
 struct SceneOverrides {
   std::optional<double> gap_m{};      // moves building 2 along x
+  /// `--gap` as typed, each a gap in m (two buildings: as gap_m) or "NAME:NAME=m", a neighbouring
+  /// pair's gap (Scene::set_pair_gap), applied in order after gap_m.
+  std::vector<std::string> gaps{};
   std::optional<double> restitution{};
   std::optional<std::string> contact_law{};              // --contact-law
   std::optional<double> contact_stiffness{};             // --contact-stiffness, in the law's unit

@@ -52,4 +52,13 @@ bool interiors_overlap(const Polygon& a, const Polygon& b);
 /// motion along x can bring them together. Negative values mean the two overlap.
 std::optional<double> horizontal_clearance(const Polygon& left, const Polygon& right);
 
+/// How far apart two polygons stand: the shortest distance between their outlines (m) and the
+/// unit direction in which `b` would move away from `a` to widen it (the outward normal of the
+/// edge that holds the nearest point, of `a`'s, or minus `b`'s). @pre interiors not overlapping.
+struct Clearance {
+  double distance_m = 0.0;
+  Point2 direction = Point2::UnitX();
+};
+Clearance clearance(const Polygon& a, const Polygon& b);
+
 }  // namespace pounding::model

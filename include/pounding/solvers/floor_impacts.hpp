@@ -15,7 +15,7 @@ namespace pounding::solvers {
 
 struct FloorContacts {
   int level = 0;                     // 1-based level index
-  std::array<int, 2> floors{0, 0};   // the level's floor of building 1 and of building 2
+  dynamics::CoupledSystem::SlabPair slabs;   // the level's two slabs
   std::vector<std::size_t> members;          // candidate indices
   std::vector<contact::GapState> states;     // at the impact instant
   std::vector<contact::ContactRow> rows;     // impact-law rows (restitution per contact)

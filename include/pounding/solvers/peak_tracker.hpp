@@ -61,7 +61,7 @@ class PeakTracker {
   const RunKinematics& kinematics_;
   const dynamics::CoupledSystem& system_;
   OutputSelection outputs_;
-  std::array<std::vector<FloorComponents>, 2> components_;  // per building and floor, as peaks_
+  std::vector<std::vector<FloorComponents>> components_;  // per building and floor, as peaks_
   std::vector<BuildingPeaks> peaks_;
   dynamics::VectorXd partial_, accel_lo_, accel_hi_;  // states and accelerations inside a stretch
 };

@@ -84,9 +84,9 @@ class RunKinematics {
  private:
   const dynamics::CoupledSystem& system_;
   RecordedDynamics dynamics_;
-  std::array<std::size_t, 3> drift_offset_{};  // building 1's drifts from [0], building 2's from [1], count [2]
-  std::array<std::vector<model::Point2>, 2> vertices_;
-  std::array<std::vector<int>, 2> vertex_numbers_;
+  std::vector<std::size_t> drift_offset_;  // building b's drifts from [b]; the count last
+  std::vector<std::vector<model::Point2>> vertices_;
+  std::vector<std::vector<int>> vertex_numbers_;
   // Scratch space of the hot path, sized once (no allocation per step).
   mutable dynamics::VectorXd y_dot_, y_ddot_;              // absolute_accelerations, free_acceleration_rates
   mutable std::vector<model::Point2> below_, below_rate_;  // storey_drifts

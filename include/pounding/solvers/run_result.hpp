@@ -34,9 +34,9 @@ std::string_view to_string(RunStatus status);
 struct ImpactRecord {
   double t_s = 0.0;
   int level = 0;                      // 1-based level (floors at a common elevation)
-  std::array<int, 2> floors{0, 0};    // the level's floor of building 1 and of building 2
+  std::array<int, 2> floors{0, 0};    // the level's floor of the pair's first building and of its second
   double elevation_m = 0.0;           // the level's elevation (m)
-  int striking_building = 0;          // 1 or 2
+  int striking_building = 0;          // 1-based: 1 or 2 (a row: of `buildings`)
   std::size_t vertex = 0;             // 1-based index in the striking slab's outline
   std::size_t struck_edge = 0;        // 1-based edge of the struck slab
   std::size_t candidate = 0;          // index into the candidate list
@@ -61,6 +61,7 @@ struct ImpactRecord {
   double column_moment_kNm = 0.0;
   /// column_shear_kN over the column building's column_shear_capacity_kN; NaN when it gives none.
   double column_shear_ratio = std::numeric_limits<double>::quiet_NaN();
+  std::array<int, 2> buildings{1, 2};  // the pair (1-based, first < second): floors[k] is buildings[k]'s
 };
 
 struct TouchRecord {  // contact with ġ ≥ 0: no impulse
@@ -74,6 +75,7 @@ struct TouchRecord {  // contact with ġ ≥ 0: no impulse
   model::Point2 point;
   double gap_rate_mps = 0.0;
   double gap_m = 0.0;
+  std::array<int, 2> buildings{1, 2};  // as in ImpactRecord
 };
 
 struct SustainedContactRecord {
@@ -89,7 +91,19 @@ struct SustainedContactRecord {
   double max_force_kN = 0.0;
   double max_gap_drift_m = 0.0;     // max |g| while held
   double impulse_kNs = 0.0;         // impulse shares taken while held, when impacts struck its floor
+  std::array<int, 2> buildings{1, 2};  // as in ImpactRecord
 };
+
+/// An impact's, touch's or sustained contact's other building of the pair (1-based): the struck one.
+template <class Located>
+int struck_building(const Located& r) {
+  return r.striking_building == r.buildings[0] ? r.buildings[1] : r.buildings[0];
+}
+/// Its floor of `building` (1-based, one of the pair).
+template <class Located>
+int floor_of(const Located& r, int building) {
+  return r.floors[building == r.buildings[0] ? 0 : 1];
+}
 
 struct Peak {
   double value = 0.0;  // max |x| (signed value at that instant)
