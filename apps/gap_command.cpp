@@ -18,6 +18,7 @@
 #include "pounding/contact/candidates.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/gap_writer.hpp"
+#include "pounding/io/json_report.hpp"
 #include "pounding/io/output_files.hpp"
 #include "pounding/io/provenance.hpp"
 #include "pounding/io/record_list.hpp"
@@ -218,6 +219,57 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
 
 }  // namespace
 
+/// A row: each neighbouring pair's needed gap from its own contact-free run (without contact the
+/// buildings move independently, so a pair's clearance history is that of its two-building scene),
+/// each pair's files in FOLDER/<first>-<second>/, and rows.json summing them up.
+int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
+  if (!command.records.empty() || command.curve > 0 || command.all_angles || command.amplification) {
+    throw InputError("SCENE", command.scene,
+                     "is a row: its gaps are found pair by pair; --records, --curve, --all-angles and "
+                     "--amplification take scenes of two buildings (run them on one pair's scene)");
+  }
+  const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-gap") : command.out_dir;
+  io::require_writable_folder(folder, "--out");
+  const io::Provenance provenance = io::make_provenance(scene, command_line);
+  const InterruptRequests interrupts;
+  nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+  bool completed = true;
+  for (const analysis::BuildingPair& pair : scene.pairs()) {
+    const analysis::Scene two = scene.pair_scene(pair);
+    const std::string name = fmt::format("{}:{}", two.buildings[0].name, two.buildings[1].name);
+    const analysis::NeededGap gap = analysis::needed_gap(two, run_budget(command));
+    fmt::print("Pair {} (gap {:.6g} m; below, B1 is {} and B2 is {}): needed gap {}", name, pair.gap_m,
+               two.buildings[0].name, two.buildings[1].name, metres(gap.needed_gap_m));
+    if (gap.candidate >= 0) {  // named by the row's building numbers
+      std::vector<contact::Candidate> governing{gap.candidates[static_cast<std::size_t>(gap.candidate)]};
+      contact::place_in_pair(governing, {pair.first, pair.second}, 0);
+      fmt::print(" at t = {:.6f} s, {}", gap.t_s, contact::describe(governing.front()));
+    }
+    fmt::print("\n");
+    print_levels(gap);
+    print_rules(gap);
+    const bool done = gap.status == solvers::RunStatus::completed;
+    completed = completed && done;
+    if (!done) fmt::print("Stopped at t = {:.3f} s ({}): a lower bound\n", gap.end_s, solvers::to_string(gap.status));
+    const std::string pair_folder =
+        fmt::format("{}/{}-{}", folder, io::folder_name(two.buildings[0].name), io::folder_name(two.buildings[1].name));
+    io::write_gap(two.name, gap, {}, provenance, pair_folder);
+    pairs.push_back({{"pair", name},
+                     {"buildings", {pair.first + 1, pair.second + 1}},
+                     {"gap_m", pair.gap_m},
+                     {"needed_gap_m", std::isfinite(gap.needed_gap_m) ? nlohmann::json(gap.needed_gap_m) : nullptr},
+                     {"t_s", gap.candidate < 0 ? nlohmann::json(nullptr) : nlohmann::json(gap.t_s)},
+                     {"status", solvers::to_string(gap.status)},
+                     {"folder", pair_folder}});
+  }
+  io::write_json(
+      nlohmann::ordered_json{{"scene", scene.name}, {"pairs", pairs}, {"provenance", io::provenance_json(provenance)}},
+      folder + "/rows.json");
+  fmt::print("Wrote {0}/rows.json and each pair's gap.json, gap.csv, gap_history.csv in {0}/<first>-<second>/\n",
+             folder);
+  return completed ? 0 : 3;
+}
+
 int run_gap(const GapCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps, .record = command.record});
   if (command.rtol) scene.solver.rtol = *command.rtol;
@@ -230,6 +282,7 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
     if (command.atol) names["solver.atol"] = analysis::spec(analysis::Setting::atol).option;
     throw error.renamed(names).in_context(command.scene);
   }
+  if (scene.is_row()) return run_row_gap(command, scene, command_line);
   if (!command.records.empty()) return run_record_set(command, scene, command_line);
   // A scene name is text, not a path; the folder must take files before the runs, not after them.
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-gap") : command.out_dir;

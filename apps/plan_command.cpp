@@ -59,7 +59,7 @@ analysis::Scene scene_of_run(const std::string& run_dir, const std::string& scen
                  "drawn is this file's\n",
                  scene_file, summary);
     }
-    return io::read_scene(scene_file, {.gap_m = run.gap_m});
+    return io::read_scene(scene_file, {.gap_m = run.gap_m, .gaps = run.gaps});
   }
   if (run.scene_file.empty()) {
     throw InputError("provenance.scene_file", "null", "the run's scene was built in code: give its file with --scene",
@@ -73,7 +73,7 @@ analysis::Scene scene_of_run(const std::string& run_dir, const std::string& scen
     throw InputError("provenance.scene_sha256", run.scene_sha256,
                      "the scene file has changed since the run: give the scene the run used with --scene", summary);
   }
-  return io::read_scene(run.scene_file, {.gap_m = run.gap_m});
+  return io::read_scene(run.scene_file, {.gap_m = run.gap_m, .gaps = run.gaps});
 }
 
 /// Writes the plan of the run's scene into its folder (the scripts draw from plan.json) and runs
@@ -120,9 +120,12 @@ int run_plan(const PlanCommand& command, const std::string& command_line) {
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-plan") : command.out_dir;
   io::require_writable_folder(folder, "--out");
   const analysis::ScenePlan plan = analysis::scene_plan(scene);
-  fmt::print("Plan of '{}': gap {} m, {} levels where floors meet, {} contact candidates\n", plan.scene, plan.gap_m,
+  fmt::print("Plan of '{}': {}, {} levels where floors meet, {} contact candidates\n", plan.scene,
+             plan.pairs.empty() ? fmt::format("gap {} m", plan.gap_m)
+                                : fmt::format("a row of {} buildings, {} neighbouring pairs", plan.buildings.size(),
+                                              plan.pairs.size()),
              plan.levels.size(), plan.candidates.size());
-  for (int b = 0; b < 2; ++b) print_building(plan.buildings[b], b + 1);
+  for (std::size_t b = 0; b < plan.buildings.size(); ++b) print_building(plan.buildings[b], static_cast<int>(b) + 1);
   io::write_plan(plan, io::make_provenance(scene, command_line), folder);
   fmt::print("Wrote {}/plan.json\n", folder);
   if (!command.no_plot) draw_with_script("plot_plan.py", folder, "plan.png");

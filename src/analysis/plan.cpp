@@ -43,9 +43,10 @@ ScenePlan scene_plan(const Scene& scene) {
                  .buildings = {},
                  .levels = scene.levels(),
                  .candidates = scene_candidates(scene)};
-  for (std::size_t b = 0; b < 2; ++b) {
+  if (scene.is_row()) plan.pairs = scene.pairs();
+  for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
     try {
-      plan.buildings[b] = building_plan(model::make_building(scene.buildings[b]));
+      plan.buildings.push_back(building_plan(model::make_building(scene.buildings[b])));
     } catch (const InputError& error) {
       throw error.in_context(scene.file.string(), fmt::format("building[{}]", b + 1));
     }

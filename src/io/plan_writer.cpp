@@ -30,20 +30,32 @@ json building_json(const analysis::BuildingPlan& b) {
 
 json plan_json(const analysis::ScenePlan& plan) {
   json levels = json::array(), candidates = json::array();
+  const bool row = !plan.pairs.empty();  // a row's levels and candidates name their pair (1-based)
   for (const contact::Level& l : plan.levels) {
     levels.push_back({{"level", l.index}, {"floors", {l.floors[0], l.floors[1]}}, {"elevation_m", l.elevation_m}});
+    if (row) levels.back()["buildings"] = {l.pair[0] + 1, l.pair[1] + 1};
   }
   for (const contact::Candidate& c : plan.candidates) {
     candidates.push_back({{"level", c.level},
                           {"striking_building", c.striking_building + 1},
                           {"vertex", point(c.vertex_rest)},
                           {"edge", {point(c.edge_start_rest), point(c.edge_end_rest)}}});
+    if (row) candidates.back()["struck_building"] = c.struck_building + 1;
   }
-  return {{"scene", plan.scene},
-          {"gap_m", plan.gap_m},
-          {"buildings", {building_json(plan.buildings[0]), building_json(plan.buildings[1])}},
-          {"levels", levels},
-          {"candidates", candidates}};
+  json buildings = json::array();
+  for (const analysis::BuildingPlan& b : plan.buildings) buildings.push_back(building_json(b));
+  json document = {{"scene", plan.scene},
+                   {"gap_m", row ? json(nullptr) : json(plan.gap_m)},
+                   {"buildings", buildings},
+                   {"levels", levels},
+                   {"candidates", candidates}};
+  if (row) {
+    json pairs = json::array();
+    for (const analysis::BuildingPair& p : plan.pairs)
+      pairs.push_back({{"buildings", {p.first + 1, p.second + 1}}, {"gap_m", p.gap_m}});
+    document["pairs"] = pairs;
+  }
+  return document;
 }
 
 void write_plan(const analysis::ScenePlan& plan, const Provenance& provenance, const std::filesystem::path& folder) {

@@ -28,7 +28,8 @@ struct BuildingPlan {
 struct ScenePlan {
   std::string scene;
   double gap_m = 0.0;
-  std::array<BuildingPlan, 2> buildings;
+  std::vector<BuildingPlan> buildings;
+  std::vector<BuildingPair> pairs;  // a row's neighbouring pairs; empty for two buildings
   std::vector<contact::Level> levels;
   std::vector<contact::Candidate> candidates;
 };
