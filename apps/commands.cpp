@@ -96,8 +96,8 @@ void print_row(const analysis::Scene& scene) {
     const auto count = std::count_if(candidates.begin(), candidates.end(), in_pair);
     const auto columns = std::count_if(candidates.begin(), candidates.end(),
                                        [&](const contact::Candidate& c) { return in_pair(c) && c.column; });
-    fmt::print("  {}:{}: gap {} m (B{} moves away along ({:.6g}, {:.6g})); levels {}; {} candidates{}\n", first, second,
-               pair.gap_m, pair.second + 1, pair.direction.x() + 0.0, pair.direction.y() + 0.0,
+    fmt::print("  {}:{}: gap {:.6g} m ({} moves away along ({:.6g}, {:.6g})); levels {}; {} candidates{}\n", first,
+               second, pair.gap_m, second, pair.direction.x() + 0.0, pair.direction.y() + 0.0,
                at.empty() ? std::string("none") : fmt::format("{}", fmt::join(at, ", ")), count,
                columns > 0 ? fmt::format(" ({} slab to column)", columns) : std::string());
   }

@@ -235,11 +235,15 @@ int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const s
   nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
   bool completed = true;
   for (const analysis::BuildingPair& pair : scene.pairs()) {
-    const analysis::Scene two = scene.pair_scene(pair);
+    double turned_deg = 0.0;
+    const analysis::Scene two = scene.pair_scene_facing_x(pair, turned_deg);
     const std::string name = fmt::format("{}:{}", two.buildings[0].name, two.buildings[1].name);
     const analysis::NeededGap gap = analysis::needed_gap(two, run_budget(command));
-    fmt::print("Pair {} (gap {:.6g} m; below, B1 is {} and B2 is {}): needed gap {}", name, pair.gap_m,
-               two.buildings[0].name, two.buildings[1].name, metres(gap.needed_gap_m));
+    fmt::print("Pair {} (gap {:.6g} m; below, B1 is {} and B2 is {}{}): needed gap {}", name, pair.gap_m,
+               two.buildings[0].name, two.buildings[1].name,
+               turned_deg == 0.0 ? std::string()
+                                 : fmt::format(", the plan turned by {:g} deg so that they face along x", turned_deg),
+               metres(gap.needed_gap_m));
     if (gap.candidate >= 0) {  // named by the row's building numbers
       std::vector<contact::Candidate> governing{gap.candidates[static_cast<std::size_t>(gap.candidate)]};
       contact::place_in_pair(governing, {pair.first, pair.second}, 0);
@@ -257,6 +261,7 @@ int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const s
     pairs.push_back({{"pair", name},
                      {"buildings", {pair.first + 1, pair.second + 1}},
                      {"gap_m", pair.gap_m},
+                     {"plan_turned_deg", turned_deg},
                      {"needed_gap_m", std::isfinite(gap.needed_gap_m) ? nlohmann::json(gap.needed_gap_m) : nullptr},
                      {"t_s", gap.candidate < 0 ? nlohmann::json(nullptr) : nlohmann::json(gap.t_s)},
                      {"status", solvers::to_string(gap.status)},

@@ -3,6 +3,7 @@
 // command line writes (so the keys cannot drift from summary.json, gap.json and the modes JSON)
 // and its tables as numpy arrays. Runs release the GIL, so Python threads run them in parallel.
 
+#include <algorithm>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -68,6 +69,16 @@ py::array_t<double> matrix(std::size_t rows, std::size_t columns, Value value) {
 /// `scene`'s error with the scene file named, as the readers name it for the command line.
 [[noreturn]] void rethrow_in_scene(const InputError& error, const Scene& scene) {
   throw error.in_context(scene.file.string());
+}
+
+Scene with_pair_gap(Scene scene, const std::string& first, const std::string& second, double gap_m) {
+  try {
+    scene.set_pair_gap(first, second, gap_m);
+    scene.validate();
+  } catch (const InputError& error) {
+    rethrow_in_scene(error, scene);
+  }
+  return scene;
 }
 
 Scene with_gap(Scene scene, double gap_m) {
@@ -361,8 +372,31 @@ PYBIND11_MODULE(_pounding, m) {
           "peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
       .def_property_readonly(
           "yielding",
-          [](const Scene& s) { return s.buildings[0].hysteresis.yields() || s.buildings[1].hysteresis.yields(); },
+          [](const Scene& s) {
+            return std::any_of(s.buildings.begin(), s.buildings.end(),
+                               [](const pounding::model::BuildingDefinition& b) { return b.hysteresis.yields(); });
+          },
           "Whether some building's columns yield ([building.hysteresis])")
+      .def_property_readonly(
+          "building_names",
+          [](const Scene& s) {
+            std::vector<std::string> names;
+            for (const auto& b : s.buildings) names.push_back(b.name);
+            return names;
+          },
+          "The buildings' names, in the file's order (two, or a row's)")
+      .def_property_readonly(
+          "pair_gaps",
+          [](const Scene& s) {
+            std::vector<std::pair<std::string, double>> gaps;
+            for (const pounding::analysis::BuildingPair& p : s.pairs()) {
+              gaps.emplace_back(s.buildings[static_cast<std::size_t>(p.first)].name + ":" +
+                                    s.buildings[static_cast<std::size_t>(p.second)].name,
+                                p.gap_m);
+            }
+            return gaps;
+          },
+          "The neighbouring pairs' gaps, as [(\"B1:B2\", m), ...] (two buildings: the one pair, contact.gap_m)")
       .def_property_readonly(
           "slab_to_column",
           [](const Scene& s) { return pounding::contact::has_column_pairs(pounding::analysis::scene_candidates(s)); },
@@ -370,6 +404,9 @@ PYBIND11_MODULE(_pounding, m) {
           "carry the column's fields")
       .def("with_gap", &with_gap, py::arg("gap_m"),
            "The scene with building 2 moved along x to the clear gap gap_m (m), as `run --gap`")
+      .def("with_pair_gap", &with_pair_gap, py::arg("first"), py::arg("second"), py::arg("gap_m"),
+           "The scene with the neighbouring pair first:second (building names) gap_m (m) apart, as `run --gap "
+           "FIRST:SECOND=M` (the pair's second building moves, with its neighbours beyond)")
       .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),
            "The scene with output.history (bool) and output.peaks (a list of peak groups: displacements, "
            "accelerations, drifts) replaced; None keeps the scene's")
@@ -407,21 +444,24 @@ PYBIND11_MODULE(_pounding, m) {
   m.def(
       "load_scene",
       [](const std::filesystem::path& file, std::optional<double> gap_m, std::optional<double> restitution,
-         std::optional<std::string> contact_law, std::optional<double> contact_stiffness) {
+         std::optional<std::string> contact_law, std::optional<double> contact_stiffness,
+         std::vector<std::string> gaps) {
         return pounding::io::read_scene(file, {.gap_m = gap_m,
+                                               .gaps = std::move(gaps),
                                                .restitution = restitution,
                                                .contact_law = std::move(contact_law),
                                                .contact_stiffness = contact_stiffness});
       },
-      py::arg("file"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"),
-      py::arg("contact_stiffness"));
+      py::arg("file"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"), py::arg("contact_stiffness"),
+      py::arg("gaps") = std::vector<std::string>{});
   m.def(
       "scene_from_toml",
       [](const std::string& text, const std::filesystem::path& anchor, std::optional<double> gap_m,
          std::optional<double> restitution, std::optional<std::string> contact_law,
-         std::optional<double> contact_stiffness) {
+         std::optional<double> contact_stiffness, std::vector<std::string> gaps) {
         Scene scene = pounding::io::parse_scene(text, anchor,
                                                 {.gap_m = gap_m,
+                                                 .gaps = std::move(gaps),
                                                  .restitution = restitution,
                                                  .contact_law = std::move(contact_law),
                                                  .contact_stiffness = contact_stiffness});
@@ -429,7 +469,7 @@ PYBIND11_MODULE(_pounding, m) {
         return scene;
       },
       py::arg("text"), py::arg("anchor"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"),
-      py::arg("contact_stiffness"));
+      py::arg("contact_stiffness"), py::arg("gaps") = std::vector<std::string>{});
   m.def(
       "contact_law_stiffness_key",
       [](const std::string& law) {

@@ -145,14 +145,24 @@ _as_method(_scene_repr, "__repr__")
 Scene.__module__ = "pounding"  # help() and repr name the package, not the bindings
 
 
+def _gap_options(gap):
+    """`gap` as load_scene's (gap_m, gaps): a number, or a row's {"B1:B2": m, ...} (--gap B1:B2=m each)."""
+    if isinstance(gap, dict):
+        return None, [f"{pair}={float(value)!r}" for pair, value in gap.items()]
+    return gap, []
+
+
 def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiffness=None):
     """Reads and validates a scene file, like `pounding run SCENE [--gap G] [--restitution K]
-    [--contact-law L] [--contact-stiffness S]` (the same errors, naming those options). Returns a
-    Scene with .name, .file, .gap_m, .restitution, .method, .contact_law, .record_file, .history,
-    .peaks ([output]) and the with_gap(m), with_restitution(k), with_record(path, ...),
+    [--contact-law L] [--contact-stiffness S]` (the same errors, naming those options). `gap` is a
+    number (two buildings) or, for a row, a dict {"B1:B2": m, ...} of pair gaps (`--gap B1:B2=m`).
+    Returns a Scene with .name, .file, .gap_m, .pair_gaps, .building_names, .restitution, .method,
+    .contact_law, .record_file, .history, .peaks ([output]) and the with_gap(m),
+    with_pair_gap(first, second, m), with_restitution(k), with_record(path, ...),
     with_outputs(history=, peaks=) copies. `contact_stiffness` is in the
     law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp and jankowski."""
-    return _pounding.load_scene(path, gap, restitution, contact_law, contact_stiffness)
+    gap_m, gaps = _gap_options(gap)
+    return _pounding.load_scene(path, gap_m, restitution, contact_law, contact_stiffness, gaps)
 
 
 def scene_from_dict(document, folder=None, gap=None, restitution=None, contact_law=None,
@@ -169,7 +179,9 @@ def scene_from_dict(document, folder=None, gap=None, restitution=None, contact_l
         raise _input_error("", "scene", type(document).__name__, "expected a dict of the scene file's tables")
     anchor = _os.path.join(_os.fspath(folder) if folder is not None else _os.getcwd(), "(scene from a dict).toml")
     document = document if "name" in document else {"name": "scene", **document}
-    return _pounding.scene_from_toml(scene_toml(document), anchor, gap, restitution, contact_law, contact_stiffness)
+    gap_m, gaps = _gap_options(gap)
+    return _pounding.scene_from_toml(scene_toml(document), anchor, gap_m, restitution, contact_law, contact_stiffness,
+                                     gaps)
 
 
 def scene_toml(document):

@@ -11,7 +11,8 @@ The sweep file (TOML; paths relative to its folder; README, "Sweeps"):
                                        # and tables {file, format, units, dt_s, accel_column, scale,
                                        # pga_g, direction_deg}; absent: each scene's own record
     directions_deg = [0, 45, 90]       # the records' angles (H1's; a pair's H2 at + 90); absent: as each record says
-    gaps_m = [0.05, 0.1]               # absent: the scene's gap
+    gaps_m = [0.05, 0.1]               # absent: the scene's gap; a row's: tables of pair gaps,
+                                       # [{"B1:B2" = 0.1, "B2:B3" = 0.05}] (each pair named is moved)
     restitutions = [0.5]               # absent: the scene's
     methods = ["cvode-bdf", {name = "arkode-erk", rtol = 1e-8}]   # absent: the scene's
     contact_laws = ["impulse", {name = "kelvin", stiffness_kN_per_m = 1e5},
@@ -185,21 +186,24 @@ class Sweep:
         if values is None:
             return [None]
         for index, value in enumerate(values):
-            if not _is_number(value):
-                raise _error(self.file, f"{key}[{index + 1}]", _text(value), "expected a number")
+            pair_gaps = key == "gaps_m" and isinstance(value, dict) and value and all(map(_is_number, value.values()))
+            if not _is_number(value) and not pair_gaps:
+                raise _error(self.file, f"{key}[{index + 1}]", _text(value),
+                             "expected a number (gaps_m: or a row's table of pair gaps, {\"B1:B2\" = m, ...})")
             for scene_file in self.scene_files:  # each scene checks its own range (a gap must fit its plan)
                 try:
                     if key == "directions_deg":
                         self.scenes[scene_file].with_direction(float(value))
                         continue
                     option = {"gaps_m": "gap", "restitutions": "restitution"}[key]
-                    pounding.load_scene(self._resolve(scene_file), **{option: float(value)})
+                    pounding.load_scene(self._resolve(scene_file), **{option: _number_or_pairs(value)})
                 except InputError as error:
                     raise _error(self.file, f"{key}[{index + 1}]", _text(value),
                                  f"{error.reason} (scene {scene_file})") from None
-        if len(set(values)) != len(values):
+        values = [_number_or_pairs(v) for v in values]
+        if len({_gap_text(v) for v in values}) != len(values):
             raise _error(self.file, key, _text(values), "a value is given twice")
-        return [float(v) for v in values]
+        return values
 
     def _flag(self, key):
         value = self.document.get(key, False)
@@ -394,7 +398,7 @@ class Sweep:
                "record": record["name"] if record else os.path.basename(str(scene.record_file)),
                "record_source": record["source"] if record else "scene",
                **({} if direction is None else {"direction_deg": direction}),
-               "gap_m": scene.gap_m if gap_m is None else gap_m,
+               "gap_m": _gap_text(_scene_gap(scene) if gap_m is None else gap_m),
                "restitution": scene.restitution if restitution is None else restitution,
                "contact_law": law["name"] or scene.contact_law,
                "contact_stiffness": law["stiffness"],
@@ -421,6 +425,21 @@ def _stiffness_field(entry):
     """Which stiffness key a contact_laws entry gives, or None."""
     given = [key for key in STIFFNESS_KEYS if key in entry]
     return given[0] if given else None
+
+
+def _number_or_pairs(value):
+    """A gap (float) or a row's pair gaps ({"B1:B2": float, ...})."""
+    return {str(k): float(v) for k, v in value.items()} if isinstance(value, dict) else float(value)
+
+
+def _scene_gap(scene):
+    """The scene's own gap: two buildings' number, a row's pair gaps."""
+    return dict(scene.pair_gaps) if len(scene.building_names) > 2 else scene.gap_m
+
+
+def _gap_text(gap):
+    """The gap_m column: the number, or a row's "B1:B2=0.1;B2:B3=0.05"."""
+    return ";".join(f"{pair}={value!r}" for pair, value in gap.items()) if isinstance(gap, dict) else gap
 
 
 def _is_number(value):

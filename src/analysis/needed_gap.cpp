@@ -448,6 +448,12 @@ NeededGapOptions scene_options(const Scene& scene, const solvers::RunBudget& bud
 }  // namespace
 
 NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
+  if (scene.is_row()) {
+    throw InputError("building", fmt::format("{} buildings", scene.buildings.size()),
+                     "form a row, whose needed gaps are found pair by pair (pounding gap does; from code, run "
+                     "needed_gap on each Scene::pair_scene)",
+                     scene.file.string());
+  }
   const auto clock_start = std::chrono::steady_clock::now();
   const CoupledSystem system = build_system(scene);
   NeededGap result;

@@ -397,6 +397,50 @@ Scene Scene::pair_scene(const BuildingPair& pair) const {
   return two;
 }
 
+namespace {
+
+/// `definition` turned by `quarters` × 90° counter-clockwise about the origin.
+void turn_building(model::BuildingDefinition& definition, int quarters) {
+  constexpr double kCos[] = {1.0, 0.0, -1.0, 0.0}, kSin[] = {0.0, 1.0, 0.0, -1.0};
+  const double c = kCos[quarters], s = kSin[quarters];
+  const auto turn = [&](const model::Point2& p) { return model::Point2(c * p.x() - s * p.y(), s * p.x() + c * p.y()); };
+  std::vector<model::Point2> outline;
+  for (const model::Point2& p : definition.slab.vertices()) outline.push_back(turn(p));
+  definition.slab = model::Polygon(outline);
+  definition.centre_of_mass = turn(definition.centre_of_mass);
+  for (model::Column& column : definition.columns) {
+    column.position_m = turn(column.position_m);
+    if (quarters % 2 != 0) std::swap(column.b_m, column.h_m);  // b lies along x
+  }
+  Eigen::Matrix3d t = Eigen::Matrix3d::Identity();  // (u, v, φ) turned: K' = T K Tᵀ
+  t.topLeftCorner<2, 2>() << c, -s, s, c;
+  for (Eigen::Matrix3d& k : definition.storey_stiffness) k = t * k * t.transpose();
+}
+
+}  // namespace
+
+Scene Scene::pair_scene_facing_x(const BuildingPair& pair, double& turned_deg) const {
+  Scene two = pair_scene(pair);
+  const model::Point2& d = pair.direction;
+  constexpr double kAxis = 1e-9;
+  int quarters = 0;  // the turn that brings d onto +x
+  if (std::abs(d.y()) < kAxis) {
+    quarters = d.x() > 0.0 ? 0 : 2;
+  } else if (std::abs(d.x()) < kAxis) {
+    quarters = d.y() > 0.0 ? 3 : 1;
+  } else {
+    throw InputError(fmt::format("contact.gaps.\"{}:{}\"", two.buildings[0].name, two.buildings[1].name), "",
+                     fmt::format("faces along ({:.6g}, {:.6g}), not along a plan axis: the needed gap widens a gap "
+                                 "along x or y only",
+                                 d.x(), d.y()),
+                     file.string());
+  }
+  for (model::BuildingDefinition& b : two.buildings) turn_building(b, quarters);
+  turned_deg = 90.0 * quarters;
+  two.excitation.direction_deg = std::fmod(two.excitation.direction_deg + turned_deg, 360.0);
+  return two;
+}
+
 int Scene::building_index(const std::string& building_name, const std::string& key) const {
   for (std::size_t b = 0; b < buildings.size(); ++b) {
     if (buildings[b].name == building_name) return static_cast<int>(b);

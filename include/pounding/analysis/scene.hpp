@@ -125,6 +125,12 @@ struct Scene {
   /// The two-building scene of `pair`: its two buildings (first, second), contact.gap_m its gap,
   /// the rest of this scene's settings. Rows find levels and candidates pair by pair through it.
   Scene pair_scene(const BuildingPair& pair) const;
+  /// pair_scene() turned in plan by a multiple of 90° about the origin (slabs, CMs, columns with
+  /// their b and h, storey matrices, and the ground motion's direction together, so the motion is
+  /// the same) so that the pair's second building stands on the +x side of its first, as the
+  /// needed-gap analysis (a gap widened along x) takes two buildings. Sets `turned_deg` to the
+  /// turn (counter-clockwise). @throws InputError when the pair does not face along a plan axis.
+  Scene pair_scene_facing_x(const BuildingPair& pair, double& turned_deg) const;
   /// A building's index by name. @throws InputError(`key`) naming the buildings when none has it.
   int building_index(const std::string& building_name, const std::string& key) const;
 
