@@ -89,7 +89,10 @@ def draw_plan(ax, plan, impacts=None):
     ax.set_ylabel("y [m]")
     ax.set_title(f"{plan['scene']}: plan at rest, {gaps_text(plan)}")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
+    if len(plan["buildings"]) > 2:  # a row: below the plan, clear of the slabs
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=3)
+    else:
+        ax.legend(fontsize=8, loc="best")
 
 
 def draw_elevation(ax, plan):

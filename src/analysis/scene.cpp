@@ -32,7 +32,8 @@ const std::vector<ContactSettingSpec>& contact_specs() {
        .range = Range{0.0, 10.0, "m"},
        .description = "clear distance along x between the facing sides at rest (m)",
        .details = "it must equal what the slab outlines show (to 1 µm); `--gap` moves building 2 (slab, CM, "
-                  "columns) along x to another gap"},
+                  "columns) along x to another gap. Two buildings only: a row takes its gaps per pair from the "
+                  "outlines ([`[contact.gaps]`](#contactgaps-rows))"},
       {.key = "restitution",
        .option = "--restitution",
        .member = &ContactSettings::restitution,

@@ -315,8 +315,10 @@ double CoupledSystem::normal_inverse_mass(ConstVectorRef y, std::size_t index) c
 
 void CoupledSystem::add_contact_force(ConstVectorRef y, std::size_t index, double force_kN,
                                       Eigen::Ref<VectorXd> y_dot) const {
-  const Eigen::RowVectorXd row = full_row(y, index);
-  y_dot.segment(dof_, dof_) += (row.transpose() * force_kN).cwiseQuotient(mass_);
+  // Only the gap's floors feel it: O(1) per contact, not O(n) (a row has many contacts at once).
+  for (const RowBlock& block : row_blocks(candidates_[index], gap(y, index))) {
+    for (int k = 0; k < 3; ++k) y_dot[dof_ + block.first + k] += block.row[k] * force_kN / mass_[block.first + k];
+  }
 }
 
 Eigen::SparseMatrix<double> CoupledSystem::contact_force_rows(ConstVectorRef y, std::size_t index,
