@@ -659,7 +659,7 @@ void read_pair_gaps(TableReader& contact, analysis::Scene& scene) {
     const std::size_t colon = key.find(':');
     const double gap_m = gaps->number(key);
     if (colon == std::string::npos || colon == 0 || colon + 1 == key.size()) {
-      throw InputError(gaps->key_path(key), fmt::format("{}", gap_m),
+      throw InputError(fmt::format("contact.gaps.\"{}\"", key), fmt::format("{}", gap_m),
                        "expected a key \"NAME:NAME\" naming two buildings", contact.file());
     }
     scene.contact.gaps.push_back({key.substr(0, colon), key.substr(colon + 1), gap_m});

@@ -18,7 +18,8 @@ Checked:
   2. where --gap NAME:NAME=m puts the buildings (pounding plan's plan.json, 1e-9 m): the pair's second
      building and everything beyond it moves along the pair's direction, nothing else (row of three,
      row of five, the corner block's north pair along y); a row of identically placed buildings whose
-     facades line up at both ends (same y range) faces along (1, 0) and takes --gap; on two buildings
+     facades line up at both ends (same y range) faces along (1, 0) and takes --gap, and pounding gap
+     gives each such pair, unturned, the needed gap of its own two-building scene (1e-9 m); on two buildings
      --gap B1:B2=0.1 is --gap 0.1 (impacts.csv byte for byte, summary.json but for timings and
      provenance);
   3. the needed gap of a pair (pounding gap, from the pair's contact-free run) against runs: row of three
@@ -235,12 +236,14 @@ def refusals(work):
         check(old in base_text, f"the example holds {old!r} to vary")
         return write(work, name, base_text.replace(old, new, 1))
 
-    refused("contact.gap_m in a row", ["check", variant("gap_m.toml", 'law = "jankowski"', 'law = "jankowski"\ngap_m = 0.2')],
+    refused("contact.gap_m in a row",
+            ["check", variant("gap_m.toml", 'law = "jankowski"', 'law = "jankowski"\ngap_m = 0.2')],
             "contact.gap_m")
     refused("[contact.gaps] 2e-6 m off the outlines",
             ["check", variant("off.toml", '"B1:B2" = 0.20', '"B1:B2" = 0.200002')], 'contact.gaps."B1:B2"')
     done = call("check", variant("near.toml", '"B1:B2" = 0.20', '"B1:B2" = 0.2000005'))
-    check(done.returncode == 0, f"[contact.gaps] 5e-7 m off the outlines is accepted (within 1e-6 m): exit {done.returncode}")
+    check(done.returncode == 0,
+          f"[contact.gaps] 5e-7 m off the outlines is accepted (within 1e-6 m): exit {done.returncode}")
     refused("[contact.gaps] naming an unknown building",
             ["check", variant("unknown.toml", '"B1:B2" = 0.20', '"B1:BX" = 0.20')], 'contact.gaps."B1:BX"', "BX")
     refused("[contact.gaps] naming a pair 28 m apart",
@@ -251,10 +254,12 @@ def refusals(work):
             "contact.gaps")
     refused("two buildings of a row named alike", ["check", variant("twins.toml", 'name = "B3"', 'name = "B2"')],
             "name", "B2")
-    refused("overlapping slabs", ["check", variant("overlap.toml", "[[28.4, 10.0], [46.4, 10.0], [46.4, 30.0], [28.4, 30.0]]",
+    refused("overlapping slabs", ["check", variant("overlap.toml",
+                                                   "[[28.4, 10.0], [46.4, 10.0], [46.4, 30.0], [28.4, 30.0]]",
                                                    "[[28.0, 10.0], [46.4, 10.0], [46.4, 30.0], [28.0, 30.0]]")],
             "slab", "overlap")
-    refused("a row with the file's default (impulse) law", ["check", variant("impulse.toml", 'law = "jankowski"\n', "")],
+    refused("a row with the file's default (impulse) law",
+            ["check", variant("impulse.toml", 'law = "jankowski"\n', "")],
             "contact.law", "impulse")
     refused("--contact-law impulse on a row", ["run", base, "--contact-law", "impulse", "--out", work / "x"],
             ("contact.law", "--contact-law"), "impulse")
@@ -271,7 +276,8 @@ def refusals(work):
         box("B3", 2, -5.0, 10.25, 5.0, 20.0, 300.0, 0.4)], 'law = "kelvin"'))
     done = pounding("check", ring)
     check("Row of 3 buildings: 3 neighbouring pair(s)" in done.stdout,
-          "the ring scene has 3 neighbouring pairs: " + next((l for l in done.stdout.splitlines() if l.startswith("Row")), ""))
+          "the ring scene has 3 neighbouring pairs: "
+          + next((line for line in done.stdout.splitlines() if line.startswith("Row")), ""))
     refused("--gap B1:B2 on a ring", ["check", ring, "--gap", "B1:B2=0.5"], "--gap", "ring")
     refused("--gap B2:B3 on a ring (run)", ["run", ring, "--gap", "B2:B3=0.5", "--out", work / "x"], "--gap", "ring")
     # The corner diagonal: B3 at (0.5, 10.5), 0.71 m from B1's corner and 0.5 m above B2.
@@ -279,7 +285,8 @@ def refusals(work):
         box("B1", 2, -10.0, 0.0, 0.0, 10.0, 300.0, 0.4), box("B2", 2, 0.25, 0.0, 10.25, 10.0, 350.0, 0.35),
         box("B3", 2, 0.5, 10.5, 10.5, 20.5, 300.0, 0.4)], 'law = "kelvin"'))
     done = pounding("check", diagonal)
-    check("Row of 3 buildings: 3 neighbouring pair(s)" in done.stdout, "B3 at the corner diagonal: 3 neighbouring pairs")
+    check("Row of 3 buildings: 3 neighbouring pair(s)" in done.stdout,
+          "B3 at the corner diagonal: 3 neighbouring pairs")
     refused("--gap B1:B3 on the diagonal ring", ["check", diagonal, "--gap", "B1:B3=0.9"], "--gap", "ring")
 
 
@@ -312,12 +319,15 @@ def gap_placement(work):
     three, five, corner = (write(work, f"{n}.toml", absolute((ROWS / f"{n}.toml").read_text()))
                            for n in ("row-of-three", "row-of-five", "corner-block"))
     for scene, gaps, shifts, label in (
-            (three, ["B1:B2=0.5"], {"B2": (0.3, 0.0), "B3": (0.3, 0.0)}, "row of three, --gap B1:B2=0.5: B2 and B3 move 0.3 m along x"),
+            (three, ["B1:B2=0.5"], {"B2": (0.3, 0.0), "B3": (0.3, 0.0)},
+             "row of three, --gap B1:B2=0.5: B2 and B3 move 0.3 m along x"),
             (three, ["B2:B3=0.1"], {"B3": (-0.1, 0.0)}, "row of three, --gap B2:B3=0.1: B3 moves -0.1 m along x"),
-            (five, ["C:D=0.05"], {"D": (-0.05, 0.0), "E": (-0.05, 0.0)}, "row of five, --gap C:D=0.05: D and E move -0.05 m"),
+            (five, ["C:D=0.05"], {"D": (-0.05, 0.0), "E": (-0.05, 0.0)},
+             "row of five, --gap C:D=0.05: D and E move -0.05 m"),
             (five, ["A:B=0.3", "D:E=0.25"], {n: (0.2, 0.0) for n in "BCD"} | {"E": (0.25, 0.0)},
              "row of five, --gap A:B=0.3 --gap D:E=0.25: B, C, D move 0.2 m, E 0.25 m"),
-            (corner, ["Corner:North=0.1"], {"North": (0.0, 0.06)}, "corner block, --gap Corner:North=0.1: North moves 0.06 m along y")):
+            (corner, ["Corner:North=0.1"], {"North": (0.0, 0.06)},
+             "corner block, --gap Corner:North=0.1: North moves 0.06 m along y")):
         before = plan_of(work, "plan-rest", scene)
         after = plan_of(work, "plan-moved", scene, *gaps)
         if before and after:
@@ -338,22 +348,28 @@ def gap_placement(work):
         error = shift_error(before, after, {"B2": (0.25, 0.0), "B3": (0.25, 0.0)})
         check(error <= 1e-9, f"aligned facades, --gap B1:B2=0.5: B2 and B3 move 0.25 m along x ({error:.1e} m)")
 
-    # The same layout with B2 softer and heavier: each pair's needed gap is that of its two-building
-    # scene (B1 with B2 at gap_m 0.25; B2:B3 is the same pair mirrored), no quarter turn.
+    # The same layout with B2 softer and heavier: each pair's needed gap is that of its own two-building
+    # scene (gap_m 0.25), with no quarter turn.
     buildings = [box("B1", 2, -10.0, 0.0, 0.0, 10.0, 300.0, 0.4), box("B2", 2, 0.25, 0.0, 10.25, 10.0, 450.0, 0.3),
                  box("B3", 2, 10.5, 0.0, 20.5, 10.0, 300.0, 0.4)]
     row = write(work, "aligned-different.toml", small_scene("aligned-different", buildings, 'law = "kelvin"'))
-    two = write(work, "aligned-two.toml", small_scene("aligned-two", buildings[:2], 'law = "kelvin"\ngap_m = 0.25'))
-    folder, alone = fresh(work / "gap-aligned-row"), fresh(work / "gap-aligned-two")
+    folder = fresh(work / "gap-aligned-row")
     pounding("gap", row, "--out", folder)
-    pounding("gap", two, "--out", alone)
-    if (folder / "rows.json").is_file() and (alone / "gap.json").is_file():
-        theirs = json.loads((alone / "gap.json").read_text())["needed_gap_m"]
+    if (folder / "rows.json").is_file():
         for p in json.loads((folder / "rows.json").read_text())["pairs"]:
+            a, b = p["buildings"]
+            two = write(work, f"aligned-{a}{b}.toml",
+                        small_scene(f"aligned-{a}{b}", [buildings[a - 1], buildings[b - 1]],
+                                    'law = "kelvin"\ngap_m = 0.25'))
+            alone = fresh(work / f"gap-aligned-{a}{b}")
+            pounding("gap", two, "--out", alone)
+            own = alone / "gap.json"
+            theirs = json.loads(own.read_text())["needed_gap_m"] if own.is_file() else None
             ours = p["needed_gap_m"]
-            check(p["plan_turned_deg"] == 0.0 and ours is not None and abs(ours - theirs) <= 1e-9,
-                  f"aligned facades, pounding gap {p['pair']}: plan turned {p['plan_turned_deg']} deg, needed gap {ours} "
-                  f"(B1 and B2 alone: {theirs:.6f} m)")
+            check(p["plan_turned_deg"] == 0.0 and ours is not None and theirs is not None
+                  and abs(ours - theirs) <= 1e-9,
+                  f"aligned facades, pounding gap {p['pair']}: plan turned {p['plan_turned_deg']} deg, "
+                  f"needed gap {ours} (the pair alone: {theirs} m)")
 
     # Two buildings: --gap B1:B2=0.1 is --gap 0.1.
     paper = write(work, "paper.toml", absolute(PAPER.read_text()))
@@ -371,7 +387,8 @@ def gap_placement(work):
                 s.get("statistics", {}).pop(key, None)
             return s
         a, b = stripped(named), stripped(plain)
-        check(a == b, f"... and summary.json, but for timings and provenance ({a.get('gap_m')} m, {a.get('impact_count')} impacts)")
+        check(a == b, f"... and summary.json, but for timings and provenance ({a.get('gap_m')} m, "
+                      f"{a.get('impact_count')} impacts)")
 
 
 def brackets(work):
@@ -398,7 +415,8 @@ def brackets(work):
             check(bool(printed) and abs(float(printed.group(1)) - p["needed_gap_m"]) <= 5.1e-7
                   and abs(float(printed.group(2)) - p["t_s"]) <= 5.1e-7,
                   f"{scene.name} {name}: printed needed gap {printed.group(1) if printed else '?'} m at "
-                  f"{printed.group(2) if printed else '?'} s = rows.json's {p['needed_gap_m']:.9f} m at {p['t_s']:.6f} s")
+                  f"{printed.group(2) if printed else '?'} s = rows.json's {p['needed_gap_m']:.9f} m at "
+                  f"{p['t_s']:.6f} s")
             first, second = name.split(":")
             own = folder / f"{first}-{second}" / "gap.json"
             own_gap = json.loads(own.read_text()).get("needed_gap_m") if own.is_file() else None
@@ -411,12 +429,15 @@ def brackets(work):
         if scene == three:
             paper_gap = fresh(work / "gap-paper")
             pounding("gap", paper, "--out", paper_gap)
-            theirs = json.loads((paper_gap / "gap.json").read_text())["needed_gap_m"] if (paper_gap / "gap.json").is_file() else None
+            own = paper_gap / "gap.json"
+            theirs = json.loads(own.read_text())["needed_gap_m"] if own.is_file() else None
             check(theirs is not None and abs(theirs - pairs["B1:B2"]["needed_gap_m"]) <= 1e-12,
-                  f"row of three B1:B2's needed gap is the paper scene's ({pairs['B1:B2']['needed_gap_m']!r} against {theirs!r})")
+                  f"row of three B1:B2's needed gap is the paper scene's ({pairs['B1:B2']['needed_gap_m']!r} "
+                  f"against {theirs!r})")
         G, t_s = pairs[pair]["needed_gap_m"], pairs[pair]["t_s"]
         check(pairs[opened]["needed_gap_m"] < opened_gap,
-              f"{scene.name}: {opened}'s needed gap {pairs[opened]['needed_gap_m']:.6f} m < {opened_gap} m: opened, it never closes")
+              f"{scene.name}: {opened}'s needed gap {pairs[opened]['needed_gap_m']:.6f} m < {opened_gap} m: "
+              "opened, it never closes")
         for offset in (1e-4, -1e-4):
             out = fresh(work / f"bracket-{scene.stem}-{'above' if offset > 0 else 'below'}")
             gap = G + offset
@@ -451,15 +472,18 @@ def independence(work):
     two_text = paper_text.replace("gap_m = 0.20\n", 'gap_m = 0.20\nlaw = "kelvin"\n', 1)
     r3 = (ROWS / "row-of-three.toml").read_text()
     b3 = "[[building]]" + r3.split("[[building]]")[3].split("[excitation]")[0]
-    for old, new in (("[[28.4, 10.0], [46.4, 10.0], [46.4, 30.0], [28.4, 30.0]]", "[[33.2, 10.0], [51.2, 10.0], [51.2, 30.0], [33.2, 30.0]]"),
-                     ("[38.2, 20.8]", "[43.0, 20.8]"), ("x = [28.4, 34.4, 40.4, 46.4]", "x = [33.2, 39.2, 45.2, 51.2]")):
+    for old, new in (("[[28.4, 10.0], [46.4, 10.0], [46.4, 30.0], [28.4, 30.0]]",
+                      "[[33.2, 10.0], [51.2, 10.0], [51.2, 30.0], [33.2, 30.0]]"),
+                     ("[38.2, 20.8]", "[43.0, 20.8]"),
+                     ("x = [28.4, 34.4, 40.4, 46.4]", "x = [33.2, 39.2, 45.2, 51.2]")):
         check(old in b3, f"row-of-three's B3 holds {old}")
         b3 = b3.replace(old, new)
     head, tail = two_text.split("[excitation]")
     three_text = head + b3 + "[excitation]" + tail.replace("gap_m = 0.20\n", "") + '\n[contact.gaps]\n"B1:B2" = 0.2\n'
     two, three = write(work, "pair.toml", two_text), write(work, "pair-and-far.toml", three_text)
     done = pounding("check", three)
-    check("Row of 3 buildings: 1 neighbouring pair(s)" in done.stdout, "B3 5 m beyond B2 is no neighbour: 1 neighbouring pair")
+    check("Row of 3 buildings: 1 neighbouring pair(s)" in done.stdout,
+          "B3 5 m beyond B2 is no neighbour: 1 neighbouring pair")
     a, b = fresh(work / "independent-two"), fresh(work / "independent-three")
     pounding("run", two, "--history", "off", "--out", a)
     pounding("run", three, "--history", "off", "--out", b)
@@ -511,7 +535,8 @@ def symmetry(work):
     print("-- 5. symmetry and causality")
     identical = write(work, "identical.toml", small_scene("identical", [
         box("B1", 2, -10.0, 0.0, 0.0, 10.0, 300.0, 0.4), box("B2", 2, 0.25, 0.0, 10.25, 10.0, 300.0, 0.4),
-        box("B3", 2, 10.5, 0.0, 20.5, 10.0, 300.0, 0.4)], 'law = "kelvin"\n' + gaps_table({"B1:B2": 0.25, "B2:B3": 0.25})))
+        box("B3", 2, 10.5, 0.0, 20.5, 10.0, 300.0, 0.4)],
+        'law = "kelvin"\n' + gaps_table({"B1:B2": 0.25, "B2:B3": 0.25})))
     out = fresh(work / "identical-run")
     done = pounding("run", identical, "--out", out)
     results = {}
@@ -521,8 +546,10 @@ def symmetry(work):
         worst = max(float(np.max(np.abs(h[f"B{i}_f{f}_{q}"] - h[f"B{j}_f{f}_{q}"])))
                     for i, j in ((1, 2), (2, 3), (1, 3)) for f in (1, 2) for q in ("u_m", "v_m", "phi_rad"))
         peak = max(float(np.max(np.abs(h[f"B1_f{f}_u_m"]))) for f in (1, 2))
-        check(s["impact_count"] == 0, f"three identical buildings 0.25 m apart never touch ({s['impact_count']} impacts)")
-        check(worst <= 1e-12, f"... and move identically: largest |u, v, phi difference| {worst:.1e} (their |u| peaks at {peak:.4f} m)")
+        check(s["impact_count"] == 0,
+              f"three identical buildings 0.25 m apart never touch ({s['impact_count']} impacts)")
+        check(worst <= 1e-12, f"... and move identically: largest |u, v, phi difference| {worst:.1e} "
+                              f"(their |u| peaks at {peak:.4f} m)")
         results["identical"] = worst
 
     # B1 and B3 identical, B2 different; both gaps g.
@@ -531,7 +558,8 @@ def symmetry(work):
             box("B1", 2, -10.0, 0.0, 0.0, 10.0, 300.0, 0.4),
             box("B2", 2, g, -1.0, g + 10.0, 11.0, 450.0, 0.3),
             box("B3", 2, 2 * g + 10.0, 0.0, 2 * g + 20.0, 10.0, 300.0, 0.4)],
-            'law = "kelvin"\n' + gaps_table({"B1:B2": g, "B2:B3": g}), f"\n[output]\nhistory_interval_s = {interval!r}\n")
+            'law = "kelvin"\n' + gaps_table({"B1:B2": g, "B2:B3": g}),
+            f"\n[output]\nhistory_interval_s = {interval!r}\n")
     free = fresh(work / "alike-free")
     done = pounding("run", write(work, "alike-free.toml", scene(0.9, 0.001)), "--out", free)
     if done.returncode != 0:
@@ -553,7 +581,8 @@ def symmetry(work):
         clean = slope >= 0.02 and float(np.max(before)) <= g - 1e-3
         if clean and (side not in chosen or slope > chosen[side][2]):
             chosen[side] = (float(g), when, slope)
-    check(len(chosen) >= 1, f"a gap with a clean first crossing of d = u_B1 - u_B2 (max |d| {top:.4f} m): sides {sorted(chosen)}")
+    check(len(chosen) >= 1, f"a gap with a clean first crossing of d = u_B1 - u_B2 (max |d| {top:.4f} m): "
+                            f"sides {sorted(chosen)}")
     if len(chosen) < 2:
         print(f"note: only side(s) {sorted(chosen)} of d had a clean first crossing for g in 0.3-0.95 of max |d|")
     for side, (g, when, slope) in sorted(chosen.items()):
@@ -565,7 +594,8 @@ def symmetry(work):
         s = with_names(summary_of(out))
         _, impacts = impacts_of(out)
         if not impacts:
-            check(False, f"gaps {g:.6f} m: d reaches {'+' if side > 0 else '-'}g at {when:.4f} s, but the run has no impact")
+            check(False, f"gaps {g:.6f} m: d reaches {'+' if side > 0 else '-'}g at {when:.4f} s, "
+                         "but the run has no impact")
             continue
         first = min(impacts, key=lambda i: i["t_s"])
         check(pair_name(s, first) == predicted and abs(first["t_s"] - when) <= 2e-3,
@@ -600,32 +630,40 @@ def outputs(work):
         check(all(by_pair[k] == counted.get(k, 0) for k in by_pair) and set(counted) <= set(by_pair)
               and s["impacts_by_pair"] == by_pair and sum(by_pair.values()) == s["impact_count"] == len(impacts),
               f"{name}: pairs[].impacts = impacts_by_pair = impacts.csv per pair {counted}, total {s['impact_count']}")
-        check(all(p["buildings"] == sorted(p["buildings"]) and [s["_names"][b - 1] for b in p["buildings"]] == p["names"]
+        check(all(p["buildings"] == sorted(p["buildings"])
+                  and [s["_names"][b - 1] for b in p["buildings"]] == p["names"]
                   for p in s["pairs"]), f"{name}: pairs name their buildings, lower-numbered first")
         levels = {l["level"]: l for l in s["levels"]}
         check(all("buildings" in l for l in s["levels"]) and all("buildings" in c for c in s["candidates"])
-              and all(sorted((c["striking_building"], c["struck_building"])) == c["buildings"] for c in s["candidates"]),
-              f"{name}: levels and candidates carry buildings ({len(levels)} levels, {len(s['candidates'])} candidates)")
+              and all(sorted((c["striking_building"], c["struck_building"])) == c["buildings"]
+                      for c in s["candidates"]),
+              f"{name}: levels and candidates carry buildings ({len(levels)} levels, "
+              f"{len(s['candidates'])} candidates)")
         slab_to_slab = [i for i in impacts if i["level"] > 0]
-        joined = all(levels[int(i["level"])]["buildings"] == sorted((int(i["striking_building"]), int(i["struck_building"])))
+        joined = all(levels[int(i["level"])]["buildings"]
+                     == sorted((int(i["striking_building"]), int(i["struck_building"])))
                      and levels[int(i["level"])]["floors"] == [int(i["floors_b1"]), int(i["floors_b2"])]
                      and abs(levels[int(i["level"])]["elevation_m"] - i["elevation_m"]) <= 1e-9 for i in slab_to_slab)
-        check(joined, f"{name}: each of {len(slab_to_slab)} slab-to-slab impacts: its level joins the pair's buildings, "
-                      "floors_b1 and floors_b2 its lower- and higher-numbered building's floors")
+        check(joined, f"{name}: each of {len(slab_to_slab)} slab-to-slab impacts: its level joins the pair's "
+                      "buildings, floors_b1 and floors_b2 its lower- and higher-numbered building's floors")
         if name == "row-of-three":  # every storey 3 m: elevation = 3 x either floor
-            check(all(abs(3.0 * i["floors_b1"] - i["elevation_m"]) <= 1e-9 and abs(3.0 * i["floors_b2"] - i["elevation_m"]) <= 1e-9
+            check(all(abs(3.0 * i["floors_b1"] - i["elevation_m"]) <= 1e-9
+                      and abs(3.0 * i["floors_b2"] - i["elevation_m"]) <= 1e-9
                       for i in impacts), f"{name}: elevation_m = 3 m x floors_b1 = 3 m x floors_b2")
             check(all(v > 0 for v in by_pair.values()), f"{name}: B2 struck from both sides ({by_pair})")
         if name == "corner-block":
             direction = {"%s:%s" % tuple(p["names"]): p["direction"] for p in s["pairs"]}
-            check(np.allclose(direction["Corner:East"], [1, 0], atol=1e-12) and np.allclose(direction["Corner:North"], [0, 1], atol=1e-12),
+            check(np.allclose(direction["Corner:East"], [1, 0], atol=1e-12)
+                  and np.allclose(direction["Corner:North"], [0, 1], atol=1e-12),
                   f"{name}: pair directions {direction}")
         e = s["energy"]
         rest = sum(v for k, v in e.items() if k.endswith("_kJ") and k not in ("input_kJ", "residual_kJ"))
         closes = abs(e["input_kJ"] - rest - e["residual_kJ"]) <= 1e-9 * e["input_kJ"]
-        check(abs(e["relative_residual"]) < 1e-6 and closes and abs(e["residual_kJ"] / e["input_kJ"] - e["relative_residual"]) <= 1e-12,
+        others = sorted(k for k in e if k.endswith("_kJ") and k not in ("input_kJ", "residual_kJ"))
+        check(abs(e["relative_residual"]) < 1e-6 and closes
+              and abs(e["residual_kJ"] / e["input_kJ"] - e["relative_residual"]) <= 1e-12,
               f"{name}: energy audit closes: relative residual {e['relative_residual']:.2e} (limit 1e-6), "
-              f"the residual is input minus {sorted(k for k in e if k.endswith('_kJ') and k not in ('input_kJ', 'residual_kJ'))}")
+              f"the residual is input minus {others}")
         measured[name] = e["relative_residual"]
         # pounding check's pair lines against summary.json
         done = pounding("check", scene)
@@ -634,7 +672,8 @@ def outputs(work):
               f"{name}: check prints 'Row of {n} buildings: {len(s['pairs'])} neighbouring pair(s)'")
         for p in s["pairs"]:
             pair = "%s:%s" % tuple(p["names"])
-            line = re.search(rf"^\s+{re.escape(pair)}: gap ([0-9.eE+-]+) m .*; levels (.*); (\d+) candidates", done.stdout, re.M)
+            line = re.search(rf"^\s+{re.escape(pair)}: gap ([0-9.eE+-]+) m .*; levels (.*); (\d+) candidates",
+                             done.stdout, re.M)
             mine = [l["level"] for l in s["levels"] if l["buildings"] == p["buildings"]]
             said = [int(x) for x in re.findall(r"(\d+) \(\d+/\d+", line.group(2))] if line else None
             count = sum(c["buildings"] == p["buildings"] for c in s["candidates"])
@@ -652,16 +691,18 @@ def outputs(work):
               f"paper scene: no struck_building column, gap_m {s['gap_m']}")
     # a row with no impact at all still names the struck building's column
     out = fresh(work / "run-row-quiet")
-    if pounding("run", write(work, "row-of-three.toml", absolute((ROWS / "row-of-three.toml").read_text())), "--gap", "B1:B2=0.9",
-                "--gap", "B2:B3=0.9", "--history", "off", "--out", out).returncode == 0:
+    row = write(work, "row-of-three.toml", absolute((ROWS / "row-of-three.toml").read_text()))
+    if pounding("run", row, "--gap", "B1:B2=0.9", "--gap", "B2:B3=0.9", "--history", "off", "--out", out).returncode == 0:
         header, impacts = impacts_of(out)
-        check(not impacts and "struck_building" in header, f"a row run without impacts: header has struck_building ({len(impacts)} impacts)")
+        check(not impacts and "struck_building" in header,
+              f"a row run without impacts: header has struck_building ({len(impacts)} impacts)")
     # plan.json
     for name, count in (("row-of-three", 3), ("row-of-five", 5), ("corner-block", 3)):
         plan = plan_of(work, f"plan-{name}", work / f"{name}.toml")
         names = sorted(plan) if plan else []
         wanted = sorted(re.findall(r'^name = "([^"]+)"', (ROWS / f"{name}.toml").read_text(), re.M)[1:])
-        check(plan is not None and len(plan) == count and names == wanted, f"{name}: plan.json holds {count} buildings ({names})")
+        check(plan is not None and len(plan) == count and names == wanted,
+              f"{name}: plan.json holds {count} buildings ({names})")
     # report and animate on the row of three's run (history on)
     run = work / "run-row-of-three"
     if (run / "summary.json").is_file():
@@ -669,7 +710,8 @@ def outputs(work):
         done = call("report", run, timeout=120)
         tail = (done.stderr.strip().splitlines() or [""])[-1]
         check(done.returncode == 0 and (run / "report.html").is_file(),
-              f"report on a row run exits 0 and writes report.html ({done.returncode}, {time.monotonic() - started:.1f} s) {tail}")
+              f"report on a row run exits 0 and writes report.html ({done.returncode}, "
+              f"{time.monotonic() - started:.1f} s) {tail}")
         started = time.monotonic()
         try:
             done = call("animate", run, "--start", 5.6, "--end", 5.8, "--fps", 5, "--format", "gif",
@@ -703,7 +745,8 @@ def python_api(work):
     check(dict(moved.pair_gaps) == gaps and abs(dict(base.pair_gaps)["B2:B3"] - 0.2) <= 1e-9,
           f"with_pair_gap('B2', 'B3', 0.1) gives load_scene's gaps; the original keeps {base.pair_gaps}")
     for label, call_it in (("load_scene(row, gap=0.1)", lambda: module.load_scene(str(three), gap=0.1)),
-                           ("load_scene(row, gap={'B1:B3': 0.1})", lambda: module.load_scene(str(three), gap={"B1:B3": 0.1}))):
+                           ("load_scene(row, gap={'B1:B3': 0.1})",
+                            lambda: module.load_scene(str(three), gap={"B1:B3": 0.1}))):
         try:
             call_it()
             check(False, f"{label} raises InputError")
@@ -714,7 +757,8 @@ def python_api(work):
     array = result.impacts_array
     check(result.status == "completed" and "struck_building" in (array.dtype.names or ()),
           f"run(): {result.status}, impacts_array has struck_building ({len(array)} impacts)")
-    check(np.array_equal(array, again.impacts_array), "run(with_pair_gap) = run(load_scene(gap=...)), impact for impact")
+    check(np.array_equal(array, again.impacts_array),
+          "run(with_pair_gap) = run(load_scene(gap=...)), impact for impact")
     cli = fresh(work / "cli-b2b3-0.1")
     pounding("run", three, "--gap", "B2:B3=0.1", "--history", "off", "--out", cli)
     cli_count = None
@@ -724,8 +768,10 @@ def python_api(work):
         ours = np.sort(array["t_s"])
         theirs = np.sort([i["t_s"] for i in impacts])
         same = len(ours) == len(theirs) and (not len(ours) or float(np.max(np.abs(ours - theirs))) <= 1e-12)
-        struck = sorted(zip(array["t_s"], array["struck_building"])) == sorted((i["t_s"], i["struck_building"]) for i in impacts)
-        check(same and struck, f"Python's impacts are --gap B2:B3=0.1's ({len(ours)} and {len(theirs)}, onsets and struck buildings)")
+        struck = (sorted(zip(array["t_s"], array["struck_building"]))
+                  == sorted((i["t_s"], i["struck_building"]) for i in impacts))
+        check(same and struck, f"Python's impacts are --gap B2:B3=0.1's ({len(ours)} and {len(theirs)}, "
+                               "onsets and struck buildings)")
     paper = module.load_scene(str(write(work, "paper.toml", absolute(PAPER.read_text()))))
     check("struck_building" not in (module.run(paper).impacts_array.dtype.names or ()),
           "two buildings: impacts_array has no struck_building")
@@ -739,13 +785,15 @@ def python_api(work):
     done = subprocess.run(["/usr/bin/python3", "-m", "pounding.sweep", str(sweep), "--serial", "--out", str(out)],
                           capture_output=True, text=True, env=environment, timeout=300)
     tail = (done.stderr.strip().splitlines() or [""])[-1]
-    check(done.returncode == 0, f"python3 -m pounding.sweep (a row, gaps_m a table of pair gaps) exits 0 ({done.returncode}) {tail}")
+    check(done.returncode == 0,
+          f"python3 -m pounding.sweep (a row, gaps_m a table of pair gaps) exits 0 ({done.returncode}) {tail}")
     table = out / "sweep.csv"
     if table.is_file():
         with open(table, newline="") as f:
             rows = list(csv.DictReader(f))
         check(len(rows) == 1 and rows[0]["gap_m"] == "B1:B2=0.2;B2:B3=0.1" and rows[0]["status"] == "completed",
-              f"sweep.csv: one row, gap_m {rows[0]['gap_m'] if rows else '?'!r}, status {rows[0]['status'] if rows else '?'}")
+              f"sweep.csv: one row, gap_m {rows[0]['gap_m'] if rows else '?'!r}, "
+              f"status {rows[0]['status'] if rows else '?'}")
         if rows and cli_count is not None:
             check(int(rows[0]["impact_count"] or -1) == cli_count,
                   f"the sweep's impact count is the command line's ({rows[0]['impact_count']} and {cli_count})")
@@ -770,7 +818,8 @@ def main():
     elapsed = time.monotonic() - started
     print("-- measured")
     for scene, pair, G, t_s, first in bracket:
-        print(f"  {scene} {pair}: needed gap {G:.6f} m at {t_s:.6f} s; at G - 1e-4 first impact {first:.6f} s ({first - t_s:+.4f} s)")
+        print(f"  {scene} {pair}: needed gap {G:.6f} m at {t_s:.6f} s; at G - 1e-4 first impact {first:.6f} s "
+              f"({first - t_s:+.4f} s)")
     if independent:
         print(f"  independence: {independent[0]} impacts, onsets {independent[1]:.1e} s, impulses {independent[2]:.1e}")
     for key, value in (symmetric or {}).items():
