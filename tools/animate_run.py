@@ -143,6 +143,9 @@ def film(folder, level, scale, fps, speed, start, end, requested_format, out):
     plan = read_plan(folder)
     if not summary["history_levels"]:
         refuse(f"{folder}/history.csv holds no level")
+    if summary.get("pairs"):  # a row (docs/guide/rows.md)
+        refuse(f"{folder} is a row of {len(summary['peaks'])} buildings: the film shows one level of two buildings "
+               "(draw the row with `pounding plan` and tools/plot_plan.py --impacts)")
     level = level or default_level(summary)
     if level not in summary["history_levels"]:
         refuse(f"--level {level}: {folder}/history.csv holds levels {summary['history_levels']}")

@@ -192,6 +192,10 @@ def plot(folder: Path, level, compare, inset_window, out):
         sys.exit(f"error: {folder}/history.csv holds no level: plot_run draws the slabs of a level, and this "
                  "scene's slabs meet only columns (its floors' histories are in history.csv, its impacts in "
                  "impacts.csv)")
+    if summary.get("pairs"):  # a row (docs/guide/rows.md)
+        sys.exit(f"error: {folder} is a row of {len(summary['peaks'])} buildings: plot_run draws one level of two "
+                 "buildings; draw the row with `pounding plan` and tools/plot_plan.py --impacts (its histories are "
+                 "in history.csv, its impacts in impacts.csv)")
     level = level or written[-1]
     if level not in written:
         sys.exit(f"error: --level {level}: history.csv holds levels {written}")

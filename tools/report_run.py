@@ -95,6 +95,9 @@ def history_figure_html(folder, summary):
     """plot_run's figure of the level with most impacts, or a note saying why there is none."""
     if not summary["outputs"].get("history") or not summary["history_levels"]:
         return '<p class="note">No history in this run (history off): no histories drawn.</p>'
+    if summary.get("pairs"):
+        return ('<p class="note">A row of buildings: the histories of a level of two buildings are not drawn '
+                "(history.csv holds them; tools/plot_plan.py --impacts draws the row's plan and its impacts).</p>")
     level = default_level(summary)
     image = io.BytesIO()  # plot_run saves to any file object: nothing is written into the run folder
     with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
@@ -105,6 +108,14 @@ def history_figure_html(folder, summary):
             "the signed gap of every corner–edge pair; dotted green lines mark the impacts (tools/plot_run.py).</p>")
 
 
+def gaps_text(summary):
+    """"0.2 m", or a row's "B1:B2 0.2 m, B2:B3 0.1 m" (its impacts per pair after each)."""
+    if not summary.get("pairs"):
+        return f"{number(summary['gap_m'])} m"
+    return text(", ".join(f"{p['names'][0]}:{p['names'][1]} {number(p['gap_m'])} m ({p['impacts']} impacts)"
+                          for p in summary["pairs"]))
+
+
 def key_numbers(summary):
     stats, energy = summary["statistics"], summary["energy"]
     impacts = summary["impacts"]
@@ -112,7 +123,7 @@ def key_numbers(summary):
             ("method", text(summary["method"])),
             ("status", f'<span class="status-{"completed" if summary["status"] == "completed" else "other"}">'
                        f'{text(summary["status"])}</span> {text(summary["status_detail"])}'),
-            ("clear gap", f"{number(summary['gap_m'])} m"),
+            ("clear gap", gaps_text(summary)),
             ("coefficient of restitution k", number(summary["restitution"])),
             ("contact law", text(summary["contact_law"].get("name", ""))),
             ("simulated time", f"{number(summary['start_s'])}–{number(summary['end_s'])} s"),
@@ -134,7 +145,9 @@ def impacts_table(summary):
         return '<p>No impact.</p><table id="impacts"><tbody></tbody></table>'
     header = ("t [s]", "level", "striking", "corner at rest [m]", "struck edge", "approach [m/s]",
               "separation [m/s]", "impulse [kN·s]", "peak force [kN]", "energy lost [kJ]", "starts hold")
-    rows = [(f"{i['t_s']:.9f}", i["level"], f"B{i['striking_building']} vertex {i['vertex']}",
+    rows = [(f"{i['t_s']:.9f}", i["level"],
+             f"B{i['striking_building']} vertex {i['vertex']}"
+             + (f" on B{i['struck_building']}" if "struck_building" in i else ""),
              text(f"({i['vertex_rest'][0]:g}, {i['vertex_rest'][1]:g})"), i["struck_edge"],
              number(i["approach_velocity_mps"], 5), number(i["separation_velocity_mps"], 5),
              number(i["impulse_kNs"], 5), number(i["peak_force_kN"], 5), number(i["energy_lost_kJ"], 5),

@@ -649,7 +649,7 @@ INTEGER_COLUMNS = {"impact_count", "touch_count", "sustained_contact_count", "st
 
 def _typed(column, text):
     """A cell of sweep.csv as the value it was written from: None for an empty cell, text for the
-    TEXT_COLUMNS, int for the INTEGER_COLUMNS, float for the other results and parameters, and for
+    TEXT_COLUMNS and a row's pair gaps, int for the INTEGER_COLUMNS, float for the other results and parameters, and for
     a [solver] setting's column an int, a float or its text, whichever reads (order, rtol, newton)."""
     if text == "":
         return None
@@ -657,6 +657,8 @@ def _typed(column, text):
         return text
     if column in INTEGER_COLUMNS:
         return int(text)
+    if column == "gap_m" and "=" in text:  # a row's pair gaps, "B1:B2=0.2;B2:B3=0.1"
+        return text
     if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in SLAB_TO_COLUMN or column in TIMINGS \
             or column in PARAMETERS \
             or column in ALL_ANGLES or column == "direction_deg":

@@ -233,6 +233,14 @@ std::vector<RunWarning> scene_warnings(const Scene& scene) {
       break;  // once per building
     }
   }
+  if (scene.is_row()) {  // each pair's slabs that miss the other's columns, as for two buildings
+    for (const BuildingPair& pair : scene.pairs()) {
+      for (RunWarning& warning : scene_warnings(scene.pair_scene(pair))) {
+        if (warning.code == "slab_misses_columns") warnings.push_back(std::move(warning));
+      }
+    }
+    return warnings;
+  }
   const std::vector<contact::Candidate> columns = scene.column_candidates();
   for (const contact::ColumnLevel& level : scene.column_levels()) {
     const auto strikes = [&](const contact::Candidate& c) {

@@ -311,6 +311,12 @@ void validate_row(const Scene& scene) {
                                  "stand that close: nothing could touch",
                                  building_names(scene)));
   }
+  if (scene.levels().empty() && scene.column_candidates().empty()) {
+    throw InputError("building", fmt::format("{} buildings", scene.buildings.size()),
+                     fmt::format("form a row whose neighbouring pairs have no floors at a common elevation and no "
+                                 "slab facing a column{}: nothing could touch",
+                                 scene.contact.slab_to_column == "off" ? " (contact.slab_to_column = \"off\")" : ""));
+  }
   for (const PairGap& stated : scene.contact.gaps) {
     const std::string key = pair_gap_key(stated.first, stated.second);
     const int a = scene.building_index(stated.first, key), b = scene.building_index(stated.second, key);

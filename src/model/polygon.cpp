@@ -178,9 +178,13 @@ std::optional<double> horizontal_clearance(const Polygon& left, const Polygon& r
 
 namespace {
 
-/// The vertices of `points` nearest to the edges of counter-clockwise `edges`: updates `best`
-/// with the distance and `sign` times the edge's outward normal.
-void nearest_to_edges(const Polygon& points, const Polygon& edges, double sign, Clearance& best) {
+/// Each vertex of `points` against each edge of counter-clockwise `edges`: its distance, and
+/// `sign` times the edge's outward normal (+: `points` is the second polygon).
+struct Approach {
+  double distance_m;
+  Point2 direction;
+};
+void approaches(const Polygon& points, const Polygon& edges, double sign, std::vector<Approach>& out) {
   const std::vector<Point2>& q = edges.vertices();
   for (std::size_t i = 0; i < q.size(); ++i) {
     const Point2 q1 = q[i], q2 = q[(i + 1) % q.size()];
@@ -188,8 +192,7 @@ void nearest_to_edges(const Polygon& points, const Polygon& edges, double sign, 
     const Point2 normal = Point2(along.y(), -along.x()).normalized();
     for (const Point2& p : points.vertices()) {
       const double s = std::clamp((p - q1).dot(along) / along.squaredNorm(), 0.0, 1.0);
-      const double distance = (p - (q1 + s * along)).norm();
-      if (distance < best.distance_m) best = {distance, sign * normal};
+      out.push_back({(p - (q1 + s * along)).norm(), sign * normal});
     }
   }
 }
@@ -197,9 +200,24 @@ void nearest_to_edges(const Polygon& points, const Polygon& edges, double sign, 
 }  // namespace
 
 Clearance clearance(const Polygon& a, const Polygon& b) {
-  Clearance best{std::numeric_limits<double>::infinity(), Point2::UnitX()};
-  nearest_to_edges(b, a, +1.0, best);  // a's edge nearest to a vertex of b: b moves out along its normal
-  nearest_to_edges(a, b, -1.0, best);
+  std::vector<Approach> all;
+  approaches(b, a, +1.0, all);  // a's edge nearest to a vertex of b: b moves out along its normal
+  approaches(a, b, -1.0, all);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Approach& x : all) nearest = std::min(nearest, x.distance_m);
+  // A nearest corner lies on two edges (facades in line, corners face to face): of the edges at the
+  // nearest distance, the one whose normal points most from a's centroid towards b's.
+  const Point2 towards = b.centroid() - a.centroid();
+  Clearance best{nearest, Point2::UnitX()};
+  double best_alignment = -std::numeric_limits<double>::infinity();
+  for (const Approach& x : all) {
+    if (x.distance_m > nearest + 1e-9) continue;
+    const double alignment = x.direction.dot(towards);
+    if (alignment > best_alignment) {
+      best_alignment = alignment;
+      best.direction = x.direction;
+    }
+  }
   return best;
 }
 

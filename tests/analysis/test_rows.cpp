@@ -61,6 +61,14 @@ BOOST_AUTO_TEST_CASE(ClearanceIsTheShortestDistanceAndTheDirectionThatWidensIt) 
   const model::Clearance south = model::clearance(rectangle(-3, -9, 4, -0.2), a);  // a is the second
   BOOST_TEST(south.distance_m == 0.2, boost::test_tools::tolerance(1e-12));
   BOOST_TEST(south.direction.y() == 1.0);
+  // Facades in line (the same y range): the nearest corners lie on two edges each; the pair
+  // still faces along x.
+  for (const double gap : {0.25, 0.0}) {
+    const model::Clearance aligned = model::clearance(a, rectangle(10 + gap, 0, 20, 8));
+    BOOST_TEST(aligned.distance_m == gap, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(aligned.direction.x() == 1.0);
+    BOOST_TEST(aligned.direction.y() == 0.0);
+  }
   const model::Clearance diagonal = model::clearance(a, rectangle(13, 12, 20, 20));
   BOOST_TEST(diagonal.distance_m == 5.0, boost::test_tools::tolerance(1e-12));  // 3-4-5 between the corners
 }

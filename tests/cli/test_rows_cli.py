@@ -53,7 +53,7 @@ Checked:
      check's pair lines agree with summary.json (gap, levels, candidate count); the energy audit closes
      (|relative_residual| < 1e-6, and residual = input - the other terms to 1e-9 of the input) on the
      row of three, the corner block and the row of five (slab to column); plan.json holds every
-     building; report and animate (cheapest options: 0.2 s at 5 frames/s, GIF) exit 0 on a row run
+     building; report exits 0 on a row run and animate (one level of two buildings) refuses it with a message
      (relative residuals measured: row of three -1.6e-8, corner block 9.3e-8, row of five 1.8e-7);
   7. Python (skipped with a message when the module does not import): load_scene(gap={...}),
      Scene.pair_gaps, building_names, with_pair_gap (the original unchanged), run() with
@@ -692,7 +692,8 @@ def outputs(work):
     # a row with no impact at all still names the struck building's column
     out = fresh(work / "run-row-quiet")
     row = write(work, "row-of-three.toml", absolute((ROWS / "row-of-three.toml").read_text()))
-    if pounding("run", row, "--gap", "B1:B2=0.9", "--gap", "B2:B3=0.9", "--history", "off", "--out", out).returncode == 0:
+    done = pounding("run", row, "--gap", "B1:B2=0.9", "--gap", "B2:B3=0.9", "--history", "off", "--out", out)
+    if done.returncode == 0:
         header, impacts = impacts_of(out)
         check(not impacts and "struck_building" in header,
               f"a row run without impacts: header has struck_building ({len(impacts)} impacts)")
@@ -712,16 +713,12 @@ def outputs(work):
         check(done.returncode == 0 and (run / "report.html").is_file(),
               f"report on a row run exits 0 and writes report.html ({done.returncode}, "
               f"{time.monotonic() - started:.1f} s) {tail}")
-        started = time.monotonic()
-        try:
-            done = call("animate", run, "--start", 5.6, "--end", 5.8, "--fps", 5, "--format", "gif",
-                        "--out", run / "film.gif", timeout=20)
-            tail = (done.stderr.strip().splitlines() or [""])[-1]
-            check(done.returncode == 0 and (run / "film.gif").is_file(),
-                  f"animate on a row run (0.2 s at 5 frames/s, GIF) exits 0 ({done.returncode}, "
-                  f"{time.monotonic() - started:.1f} s) {tail}")
-        except subprocess.TimeoutExpired:
-            print("note: animate took more than 20 s: not checked")
+        # The film shows one level of two buildings: a row is refused with a message, not a traceback.
+        done = call("animate", run, "--start", 5.6, "--end", 5.8, "--fps", 5, "--format", "gif",
+                    "--out", run / "film.gif", timeout=60)
+        check(done.returncode == 2 and "row" in done.stderr and "Traceback" not in done.stderr,
+              f"animate refuses a row run with a message (exit {done.returncode}): "
+              f"{(done.stderr.strip().splitlines() or [''])[-1]}")
     return measured
 
 

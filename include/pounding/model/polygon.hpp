@@ -53,8 +53,10 @@ bool interiors_overlap(const Polygon& a, const Polygon& b);
 std::optional<double> horizontal_clearance(const Polygon& left, const Polygon& right);
 
 /// How far apart two polygons stand: the shortest distance between their outlines (m) and the
-/// unit direction in which `b` would move away from `a` to widen it (the outward normal of the
-/// edge that holds the nearest point, of `a`'s, or minus `b`'s). @pre interiors not overlapping.
+/// unit direction in which `b` would move away from `a` to widen it: the outward normal of the
+/// edge that holds the nearest point (`a`'s, or minus `b`'s); where several edges do (a nearest
+/// corner lies on two), the one pointing most from a's centroid towards b's. @pre interiors not
+/// overlapping, both counter-clockwise.
 struct Clearance {
   double distance_m = 0.0;
   Point2 direction = Point2::UnitX();
