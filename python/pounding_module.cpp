@@ -349,7 +349,8 @@ PYBIND11_MODULE(_pounding, m) {
       .def_property_readonly(
           "file", [](const Scene& s) { return s.file; }, "The scene file it was read from")
       .def_property_readonly(
-          "gap_m", [](const Scene& s) { return s.contact.gap_m; }, "contact.gap_m: the clear gap at rest (m)")
+          "gap_m", [](const Scene& s) { return s.is_row() ? std::nullopt : std::optional(s.contact.gap_m); },
+          "contact.gap_m: the clear gap at rest (m); None for a row (pair_gaps has its gaps)")
       .def_property_readonly(
           "restitution", [](const Scene& s) { return s.contact.restitution; },
           "contact.restitution: the coefficient of restitution")

@@ -470,6 +470,12 @@ void Scene::set_pair_gap(const std::string& first, const std::string& second, do
     return (p.first == a && p.second == b) || (p.first == b && p.second == a);
   });
   if (pair == neighbours.end()) throw InputError(key, format_value(gap_m), "names no neighbouring pair");
+  if (gap_m > contact.candidate_margin_m) {
+    throw InputError(key, format_value(gap_m),
+                     fmt::format("is wider than contact.candidate_margin_m = {} m: the two would no longer be "
+                                 "neighbours, and could not touch (raise the margin to study wider gaps)",
+                                 contact.candidate_margin_m));
+  }
   // The buildings on the second's side: reachable from it through neighbouring pairs but this one.
   std::vector<bool> moves(buildings.size(), false);
   std::vector<int> stack{pair->second};

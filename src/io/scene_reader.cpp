@@ -814,7 +814,23 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
     }
   };
   if (overrides.gap_m) apply_option("--gap", [&] { scene.set_gap(*overrides.gap_m); });
-  for (const std::string& text : overrides.gaps) apply_option("--gap", [&] { apply_gap_text(scene, text); });
+  std::set<std::string> pairs_given;
+  for (const std::string& text : overrides.gaps) {
+    try {
+      const std::string pair = text.substr(0, text.find('='));
+      const std::size_t colon = pair.find(':');
+      const std::string reversed =
+          colon == std::string::npos ? pair : pair.substr(colon + 1) + ":" + pair.substr(0, colon);
+      if (pairs_given.count(pair) || pairs_given.count(reversed))
+        throw InputError("--gap", text, "sets a pair's gap twice");
+      pairs_given.insert(pair);
+      apply_gap_text(scene, text);
+      scene.validate();
+    } catch (const InputError& error) {  // named by the option; a pair's as typed
+      throw InputError("--gap", text.find('=') == std::string::npos ? error.value() : text, error.reason(),
+                       file.string());
+    }
+  }
   if (overrides.restitution) {
     apply_option("--restitution", [&] { scene.contact.restitution = *overrides.restitution; });
   }
