@@ -15,6 +15,7 @@
 #include "interrupts.hpp"
 #include "pounding/analysis/needed_gap.hpp"
 #include "pounding/analysis/record_set.hpp"
+#include "pounding/analysis/run_scene.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/gap_writer.hpp"
@@ -232,11 +233,25 @@ int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const s
   io::require_writable_folder(folder, "--out");
   const io::Provenance provenance = io::make_provenance(scene, command_line);
   const InterruptRequests interrupts;
-  nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
-  bool completed = true;
+  // Every pair turned first, so that a pair the analysis cannot take stops the command before any
+  // file is written; a spectral scaling at a building's period is the row's (its slots are the row's).
+  const std::optional<excitation::SaScaling> row_scaling = analysis::resolved_excitation(scene).scale_to_sa;
+  std::vector<std::pair<analysis::BuildingPair, double>> turns;  // each pair and its turn (deg)
+  std::vector<analysis::Scene> scenes;
   for (const analysis::BuildingPair& pair : scene.pairs()) {
     double turned_deg = 0.0;
-    const analysis::Scene two = scene.pair_scene_facing_x(pair, turned_deg);
+    scenes.push_back(scene.pair_scene_facing_x(pair, turned_deg));
+    if (row_scaling && row_scaling->building != 0) {
+      scenes.back().excitation.scale_to_sa = row_scaling;
+      scenes.back().excitation.scale_to_sa->building = 0;  // at the period resolved for the row
+    }
+    turns.emplace_back(pair, turned_deg);
+  }
+  nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+  bool completed = true;
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const analysis::Scene& two = scenes[k];
+    const auto& [pair, turned_deg] = turns[k];
     const std::string name = fmt::format("{}:{}", two.buildings[0].name, two.buildings[1].name);
     const analysis::NeededGap gap = analysis::needed_gap(two, run_budget(command));
     fmt::print("Pair {} (gap {:.6g} m; below, B1 is {} and B2 is {}{}): needed gap {}", name, pair.gap_m,
@@ -247,7 +262,8 @@ int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const s
     if (gap.candidate >= 0) {  // named by the row's building numbers
       std::vector<contact::Candidate> governing{gap.candidates[static_cast<std::size_t>(gap.candidate)]};
       contact::place_in_pair(governing, {pair.first, pair.second}, 0);
-      fmt::print(" at t = {:.6f} s, {}", gap.t_s, contact::describe(governing.front()));
+      fmt::print(" at t = {:.6f} s, {}{}", gap.t_s, contact::describe(governing.front()),
+                 turned_deg == 0.0 ? "" : " (in the turned plan's coordinates)");
     }
     fmt::print("\n");
     print_levels(gap);

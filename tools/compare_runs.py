@@ -118,7 +118,12 @@ def main():
             for key, unit, scale in (("u_m", "cm", 100), ("v_m", "cm", 100), ("phi_rad", "mrad", 1000)):
                 d = abs(fb[key]["value"]) - abs(fa[key]["value"])
                 peak_rows.append({"building": pa["building"], "floor": fa["floor"], "quantity": key, "difference": d})
-        top = pa["floors"][sa["levels"][-1]["floors"][b] - 1]  # this building's floor at the top level
+        # This building's floor at the top level it meets (a row: its highest floor at any of its levels).
+        at = [lv["floors"][side] for lv in sa["levels"] for side, other in enumerate(lv.get("buildings", [1, 2]))
+              if other == b + 1]
+        if not at:
+            continue
+        top = pa["floors"][max(at) - 1]
         top_b = pb["floors"][top["floor"] - 1]
         print(f"  {pa['building']} floor {top['floor']}: |u| {100 * abs(top['u_m']['value']):.2f} -> "
               f"{100 * abs(top_b['u_m']['value']):.2f} cm, |v| {100 * abs(top['v_m']['value']):.2f} -> "

@@ -289,10 +289,17 @@ void validate_pair(const Scene& scene) {
 
 /// A row: distinct names, no two slabs overlapping at rest, a neighbouring pair, the stated gaps
 /// those of neighbouring pairs and equal to the outlines', no contact.gap_m (checked by the reader).
-void validate_row(const Scene& scene) {
+/// A row's buildings: distinct names that a pair's key can hold, no two slabs overlapping at rest.
+/// First, as the other checks find the row's pairs from its outlines.
+void validate_row_buildings(const Scene& scene) {
   for (std::size_t i = 0; i < scene.buildings.size(); ++i) {
+    const std::string& name = scene.buildings[i].name;
+    if (name.find_first_of(":=") != std::string::npos) {
+      throw InputError(building_key(i) + ".name", fmt::format("\"{}\"", name),
+                       "holds ':' or '=': a row names its pairs NAME:NAME (and --gap NAME:NAME=m)");
+    }
     for (std::size_t j = i + 1; j < scene.buildings.size(); ++j) {
-      if (scene.buildings[i].name == scene.buildings[j].name) {
+      if (name == scene.buildings[j].name) {
         throw InputError(building_key(j) + ".name", fmt::format("\"{}\"", scene.buildings[j].name),
                          fmt::format("is also {}'s: the buildings of a row need distinct names (gaps and outputs "
                                      "name them)",
@@ -304,6 +311,12 @@ void validate_row(const Scene& scene) {
       }
     }
   }
+}
+
+/// A row: a neighbouring pair, each able to touch (a level or a slab facing a column, as two
+/// buildings must), the stated gaps those of neighbouring pairs and equal to the outlines', no
+/// contact.gap_m (checked by the reader).
+void validate_row(const Scene& scene) {
   const std::vector<BuildingPair> pairs = scene.pairs();
   if (pairs.empty()) {
     throw InputError("contact.candidate_margin_m", format_value(scene.contact.candidate_margin_m),
@@ -311,28 +324,34 @@ void validate_row(const Scene& scene) {
                                  "stand that close: nothing could touch",
                                  building_names(scene)));
   }
-  if (scene.levels().empty() && scene.column_candidates().empty()) {
-    throw InputError("building", fmt::format("{} buildings", scene.buildings.size()),
-                     fmt::format("form a row whose neighbouring pairs have no floors at a common elevation and no "
-                                 "slab facing a column{}: nothing could touch",
-                                 scene.contact.slab_to_column == "off" ? " (contact.slab_to_column = \"off\")" : ""));
+  for (const BuildingPair& pair : pairs) {
+    const Scene two = scene.pair_scene(pair);
+    if (!two.levels().empty() || !two.column_candidates().empty()) continue;
+    throw InputError(
+        pair_gap_key(two.buildings[0].name, two.buildings[1].name), format_value(pair.gap_m),
+        fmt::format("is a neighbouring pair ({:.6g} m apart) that could never touch: no floors at a "
+                    "common elevation and no slab facing a column{}. Move them farther apart than "
+                    "contact.candidate_margin_m = {} m, or let their slabs meet",
+                    pair.gap_m, scene.contact.slab_to_column == "off" ? " (contact.slab_to_column = \"off\")" : "",
+                    scene.contact.candidate_margin_m));
   }
   for (const PairGap& stated : scene.contact.gaps) {
     const std::string key = pair_gap_key(stated.first, stated.second);
     const int a = scene.building_index(stated.first, key), b = scene.building_index(stated.second, key);
+    if (a == b) throw InputError(key, format_value(stated.gap_m), "names one building twice");
     const auto pair = std::find_if(pairs.begin(), pairs.end(), [&](const BuildingPair& p) {
       return (p.first == a && p.second == b) || (p.first == b && p.second == a);
     });
     if (pair == pairs.end()) {
       const double distance = model::clearance(scene.buildings[a].slab, scene.buildings[b].slab).distance_m;
       throw InputError(key, format_value(stated.gap_m),
-                       fmt::format("names no neighbouring pair: the slabs stand {} m apart, farther than "
+                       fmt::format("names no neighbouring pair: the slabs stand {:.6g} m apart, farther than "
                                    "contact.candidate_margin_m = {} m",
                                    distance, scene.contact.candidate_margin_m));
     }
     if (std::abs(pair->gap_m - stated.gap_m) > kGapTolerance_m) {
       throw InputError(key, format_value(stated.gap_m),
-                       fmt::format("disagrees with the slab outlines, whose clear distance is {} m", pair->gap_m));
+                       fmt::format("disagrees with the slab outlines, whose clear distance is {:.9g} m", pair->gap_m));
     }
   }
 }
@@ -369,10 +388,13 @@ void ContactSettings::set_stiffness(double value) {
 
 void Scene::set_gap(double gap_m) {
   if (is_row()) {
+    const std::vector<BuildingPair> neighbours = pairs();
+    const BuildingPair example = neighbours.empty() ? BuildingPair{} : neighbours.front();
     throw InputError("contact.gap_m", format_value(gap_m),
                      fmt::format("is one gap, and the {} buildings of a row have one per neighbouring pair: name "
                                  "the pair (--gap {}:{}={})",
-                                 buildings.size(), buildings[0].name, buildings[1].name, gap_m));
+                                 buildings.size(), buildings[static_cast<std::size_t>(example.first)].name,
+                                 buildings[static_cast<std::size_t>(example.second)].name, gap_m));
   }
   validate_gap("contact.gap_m", gap_m);
   const model::Point2 shift(gap_m - contact.gap_m, 0.0);
@@ -436,13 +458,21 @@ Scene Scene::pair_scene_facing_x(const BuildingPair& pair, double& turned_deg) c
   } else if (std::abs(d.x()) < kAxis) {
     quarters = d.y() > 0.0 ? 3 : 1;
   } else {
-    throw InputError(fmt::format("contact.gaps.\"{}:{}\"", two.buildings[0].name, two.buildings[1].name), "",
+    throw InputError(fmt::format("pair {}:{}", two.buildings[0].name, two.buildings[1].name), "",
                      fmt::format("faces along ({:.6g}, {:.6g}), not along a plan axis: the needed gap widens a gap "
                                  "along x or y only",
                                  d.x(), d.y()),
                      file.string());
   }
   for (model::BuildingDefinition& b : two.buildings) turn_building(b, quarters);
+  const std::optional<double> along_x = model::horizontal_clearance(two.buildings[0].slab, two.buildings[1].slab);
+  if (!along_x || std::abs(*along_x - pair.gap_m) > kGapTolerance_m) {  // corner to corner
+    throw InputError(fmt::format("pair {}:{}", two.buildings[0].name, two.buildings[1].name), "",
+                     fmt::format("stands corner to corner ({:.6g} m apart, not across facing sides): the needed gap "
+                                 "widens a gap between facing sides",
+                                 pair.gap_m),
+                     file.string());
+  }
   turned_deg = 90.0 * quarters;
   two.excitation.direction_deg = std::fmod(two.excitation.direction_deg + turned_deg, 360.0);
   return two;
@@ -470,6 +500,7 @@ void Scene::set_pair_gap(const std::string& first, const std::string& second, do
     return (p.first == a && p.second == b) || (p.first == b && p.second == a);
   });
   if (pair == neighbours.end()) throw InputError(key, format_value(gap_m), "names no neighbouring pair");
+  if (std::abs(gap_m - pair->gap_m) <= kGapTolerance_m) return;  // as it stands (a ring's too)
   if (gap_m > contact.candidate_margin_m) {
     throw InputError(key, format_value(gap_m),
                      fmt::format("is wider than contact.candidate_margin_m = {} m: the two would no longer be "
@@ -592,6 +623,7 @@ void Scene::validate() const {
     }
   }
   try {
+    if (is_row()) validate_row_buildings(*this);
     excitation.validate();
     validate_contact(contact);
     validate_levels(*this);
