@@ -187,7 +187,8 @@ struct Approach {
 void approaches(const Polygon& points, const Polygon& edges, double sign, std::vector<Approach>& out) {
   const std::vector<Point2>& q = edges.vertices();
   for (std::size_t i = 0; i < q.size(); ++i) {
-    const Point2 q1 = q[i], q2 = q[(i + 1) % q.size()];
+    const Point2& q1 = q[i];
+    const Point2& q2 = q[(i + 1) % q.size()];
     const Point2 along = q2 - q1;
     const Point2 normal = Point2(along.y(), -along.x()).normalized();
     for (const Point2& p : points.vertices()) {
