@@ -312,6 +312,7 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
   options.repeat = command.repeat;
   options.quick = command.quick;
   options.validate();
+  analysis::require_study_scene(scene);  // before the header and the folder
   const std::string folder =
       command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");

@@ -234,7 +234,19 @@ std::vector<RunWarning> scene_warnings(const Scene& scene) {
     }
   }
   if (scene.is_row()) {  // each pair's slabs that miss the other's columns, as for two buildings
-    for (const BuildingPair& pair : scene.pairs()) {
+    const std::vector<BuildingPair> pairs = scene.pairs();
+    for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
+      const int index = static_cast<int>(b);
+      if (std::any_of(pairs.begin(), pairs.end(),
+                      [&](const BuildingPair& p) { return p.first == index || p.second == index; })) {
+        continue;
+      }
+      warnings.push_back(
+          {"building_alone", fmt::format("building[{}] '{}' stands farther than contact.candidate_margin_m = {} m from "
+                                         "every other building: it is shaken but touches nothing",
+                                         b + 1, scene.buildings[b].name, scene.contact.candidate_margin_m)});
+    }
+    for (const BuildingPair& pair : pairs) {
       for (RunWarning& warning : scene_warnings(scene.pair_scene(pair))) {
         if (warning.code == "slab_misses_columns") warnings.push_back(std::move(warning));
       }

@@ -232,16 +232,19 @@ Scene reference_scene(const Scene& scene, double rtol = kYieldingReferenceRtol) 
 
 }  // namespace
 
+void require_study_scene(const Scene& scene) {
+  if (!scene.is_row()) return;
+  throw InputError("building", fmt::format("{} buildings", scene.buildings.size()),
+                   "form a row, which needs a compliant law, and the study measures against the exact path, which "
+                   "runs the impulse law only: study one pair's scene",
+                   scene.file.string());
+}
+
 StudyResult run_study(const Scene& given, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress,
                       const std::function<void(const StiffnessRow&)>& stiffness_progress) {
   options.validate();
-  if (given.is_row()) {
-    throw InputError("building", fmt::format("{} buildings", given.buildings.size()),
-                     "form a row, which needs a compliant law, and the study measures against the exact path, which "
-                     "runs the impulse law only: study one pair's scene",
-                     given.file.string());
-  }
+  require_study_scene(given);
   // Runs are compared by their histories and every peak group, whatever the scene's [output] leaves out.
   Scene scene = given;
   scene.output.history = true;

@@ -65,7 +65,7 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits);
 /// Something about a completed run that its numbers alone do not say. `code` is stable (for
 /// scripts); `message` says what and what to do.
 struct RunWarning {
-  std::string code;  // record_undersampled, implausible_floor_mass, slab_misses_columns
+  std::string code;  // record_undersampled, implausible_floor_mass, slab_misses_columns, building_alone
   std::string message;
 };
 

@@ -125,7 +125,12 @@ std::string study_reference(const Scene& scene);
 /// run yielding columns have rows, and both ladders are left out (the stiffness ladder's runs
 /// are elastic in what they measure, the truncation ladder is the exact path's).
 /// `progress` and `stiffness_progress` are called with each finished row (for printing as it
-/// goes). After an interrupt request no further run starts.
+/// goes). After an interrupt request no further run starts. @throws InputError as
+/// require_study_scene.
+
+/// A row is refused (it needs a compliant law, and the study measures against the exact path,
+/// which runs the impulse law only). @throws InputError naming the buildings.
+void require_study_scene(const Scene& scene);
 
 StudyResult run_study(const Scene& scene, const StudyOptions& options,
                       const std::function<void(const StudyRow&)>& progress = {},
