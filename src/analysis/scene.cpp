@@ -287,8 +287,6 @@ void validate_pair(const Scene& scene) {
   }
 }
 
-/// A row: distinct names, no two slabs overlapping at rest, a neighbouring pair, the stated gaps
-/// those of neighbouring pairs and equal to the outlines', no contact.gap_m (checked by the reader).
 /// A row's buildings: distinct names that a pair's key can hold, no two slabs overlapping at rest.
 /// First, as the other checks find the row's pairs from its outlines.
 void validate_row_buildings(const Scene& scene) {
