@@ -1,6 +1,8 @@
 #include "pounding/io/scene_reader.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
@@ -9,6 +11,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -638,6 +641,13 @@ analysis::OutputSettings read_output(std::optional<TableReader> table) {
   return output;
 }
 
+/// The two building names of a pair's key "NAME:NAME"; empty unless both are given.
+std::optional<std::array<std::string, 2>> pair_names(std::string_view key) {
+  const std::size_t colon = key.find(':');
+  if (colon == std::string_view::npos || colon == 0 || colon + 1 == key.size()) return std::nullopt;
+  return std::array{std::string(key.substr(0, colon)), std::string(key.substr(colon + 1))};
+}
+
 /// [contact.gaps] of a row ("NAME:NAME" = m), and no contact.gap_m there; neither for two buildings.
 void read_pair_gaps(TableReader& contact, analysis::Scene& scene) {
   if (scene.is_row()) {
@@ -656,13 +666,13 @@ void read_pair_gaps(TableReader& contact, analysis::Scene& scene) {
                      "is for rows of three or more buildings; two buildings take contact.gap_m", contact.file());
   }
   for (const std::string& key : gaps->unasked_keys()) {
-    const std::size_t colon = key.find(':');
     const double gap_m = gaps->number(key);
-    if (colon == std::string::npos || colon == 0 || colon + 1 == key.size()) {
+    const std::optional<std::array<std::string, 2>> names = pair_names(key);
+    if (!names) {
       throw InputError(fmt::format("contact.gaps.\"{}\"", key), fmt::format("{}", gap_m),
                        "expected a key \"NAME:NAME\" naming two buildings", contact.file());
     }
-    scene.contact.gaps.push_back({key.substr(0, colon), key.substr(colon + 1), gap_m});
+    scene.contact.gaps.push_back({(*names)[0], (*names)[1], gap_m});
   }
   gaps->finish();
 }
@@ -773,27 +783,28 @@ void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice
   }
 }
 
-/// One `--gap`: "0.1" (two buildings) or "B1:B2=0.1".
-void apply_gap_text(analysis::Scene& scene, const std::string& text) {
+/// One `--gap`: "0.1" (two buildings) or "B1:B2=0.1". Returns the pair's names, in order, or
+/// none for a plain gap.
+std::optional<std::array<std::string, 2>> apply_gap_text(analysis::Scene& scene, const std::string& text) {
   const std::size_t equals = text.find('=');
-  const std::string number = equals == std::string::npos ? text : text.substr(equals + 1);
+  const std::string_view number =
+      equals == std::string::npos ? std::string_view(text) : std::string_view(text).substr(equals + 1);
   double gap_m = 0.0;
-  std::size_t used = 0;
-  try {
-    gap_m = std::stod(number, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != number.size()) {
+  const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), gap_m);
+  if (error != std::errc() || end != number.data() + number.size() || number.empty()) {
     throw InputError("--gap", text, "expected a gap in m, or NAME:NAME=m for a pair of a row (e.g. B1:B2=0.1)");
   }
-  if (equals == std::string::npos) return scene.set_gap(gap_m);
-  const std::string names = text.substr(0, equals);
-  const std::size_t colon = names.find(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == names.size()) {
+  if (equals == std::string::npos) {
+    scene.set_gap(gap_m);
+    return std::nullopt;
+  }
+  std::optional<std::array<std::string, 2>> names = pair_names(std::string_view(text).substr(0, equals));
+  if (!names) {
     throw InputError("--gap", text, "expected NAME:NAME=m, two building names and the pair's gap (e.g. B1:B2=0.1)");
   }
-  scene.set_pair_gap(names.substr(0, colon), names.substr(colon + 1), gap_m);
+  scene.set_pair_gap((*names)[0], (*names)[1], gap_m);
+  std::sort(names->begin(), names->end());
+  return names;
 }
 
 }  // namespace
@@ -814,17 +825,13 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
     }
   };
   if (overrides.gap_m) apply_option("--gap", [&] { scene.set_gap(*overrides.gap_m); });
-  std::set<std::string> pairs_given;
+  std::set<std::array<std::string, 2>> pairs_given;  // names sorted (B2:B1 is B1:B2); a plain gap: none
   for (const std::string& text : overrides.gaps) {
     try {
-      const std::string pair = text.substr(0, text.find('='));
-      const std::size_t colon = pair.find(':');
-      const std::string reversed =
-          colon == std::string::npos ? pair : pair.substr(colon + 1) + ":" + pair.substr(0, colon);
-      if (pairs_given.count(pair) || pairs_given.count(reversed))
+      const std::optional<std::array<std::string, 2>> pair = apply_gap_text(scene, text);
+      if (!pairs_given.insert(pair.value_or(std::array<std::string, 2>{})).second) {
         throw InputError("--gap", text, "sets a pair's gap twice");
-      pairs_given.insert(pair);
-      apply_gap_text(scene, text);
+      }
       scene.validate();
     } catch (const InputError& error) {  // named by the option; a pair's as typed
       throw InputError("--gap", text.find('=') == std::string::npos ? error.value() : text, error.reason(),

@@ -72,8 +72,8 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
                             const std::vector<bool>& holds, const std::vector<bool>& were_held,
                             RunResult& result) {
-  const dynamics::CoupledSystem::SlabPair& floors = contacts.slabs;
-  const contact::Vector6d v_after = system.pair_velocities(y_after, floors);
+  const dynamics::CoupledSystem::SlabPair& slabs = contacts.slabs;
+  const contact::Vector6d v_after = system.pair_velocities(y_after, slabs);
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
     if (!were_held.empty() && were_held[k]) continue;  // a held contact's share: not an impact
@@ -97,8 +97,8 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
       result.touches.push_back(touch_record(system, t, i, s));
     }
   }
-  const contact::Vector6d inverse_mass = system.pair_inverse_mass(floors);
-  return contact::kinetic_energy(system.pair_velocities(y_before, floors), inverse_mass) -
+  const contact::Vector6d inverse_mass = system.pair_inverse_mass(slabs);
+  return contact::kinetic_energy(system.pair_velocities(y_before, slabs), inverse_mass) -
          contact::kinetic_energy(v_after, inverse_mass);
 }
 
