@@ -291,7 +291,8 @@ const std::vector<MethodInfo> kMethods = {
      .factory = exact_factory,
      .steps_per_period = kExactSubdivisionsPerPeriod,
      .clearance_steps = true,
-     .reference = true},
+     .reference = true,
+     .rows = false},
 };
 
 std::string quoted(const std::string& text) { return "\"" + text + "\""; }

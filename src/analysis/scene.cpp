@@ -565,30 +565,31 @@ std::vector<contact::Level> Scene::levels() const {
                                 contact.level_tolerance_m);
 }
 
-void require_compliant_law_where_needed(const Scene& scene) {
-  if (contact_law_info(scene.contact.law).law != contact::ContactLaw::impulse) return;
-  if (scene.is_row()) {
-    throw InputError("contact.law", fmt::format("\"{}\"", scene.contact.law),
-                     fmt::format("cannot resolve a row of {} buildings: a slab struck from both sides at once needs "
-                                 "one impact problem over both neighbours, which the impact module (floor pair by "
-                                 "floor pair) does not solve yet. Use a compliant law (kelvin, hertzdamp or "
-                                 "jankowski), whose forces act on every slab together",
-                                 scene.buildings.size()),
-                     scene.file.string());
-  }
-  const std::vector<contact::ColumnLevel> levels = scene.column_levels();
+namespace {
+
+/// require_compliant_law_where_needed() on a two-building scene; errors name `file`.
+void require_no_column_contact(const Scene& pair, const std::string& file) {
+  const std::vector<contact::ColumnLevel> levels = pair.column_levels();
   if (levels.empty()) return;
   const contact::ColumnLevel& first = levels.front();
   throw InputError(
-      "contact.law", fmt::format("\"{}\"", scene.contact.law),
+      "contact.law", fmt::format("\"{}\"", pair.contact.law),
       fmt::format("cannot resolve slab-to-column contact: {} floor {} ({:.6g} m) stands between floors of {} and would "
                   "strike the columns of its storey {} (and {} such floor{} in all). Use a compliant law (kelvin, "
                   "hertzdamp or jankowski), whose force the column's two floors share, or set "
                   "contact.slab_to_column = \"off\" to leave such contacts out",
-                  scene.buildings[first.slab_building].name, first.slab_floor, first.elevation_m,
-                  scene.buildings[1 - first.slab_building].name, first.storey, levels.size(),
+                  pair.buildings[first.slab_building].name, first.slab_floor, first.elevation_m,
+                  pair.buildings[1 - first.slab_building].name, first.storey, levels.size(),
                   levels.size() == 1 ? "" : "s"),
-      scene.file.string());
+      file);
+}
+
+}  // namespace
+
+void require_compliant_law_where_needed(const Scene& scene) {
+  if (contact_law_info(scene.contact.law).law != contact::ContactLaw::impulse) return;
+  if (!scene.is_row()) return require_no_column_contact(scene, scene.file.string());
+  for (const BuildingPair& pair : scene.pairs()) require_no_column_contact(scene.pair_scene(pair), scene.file.string());
 }
 
 std::vector<contact::Candidate> Scene::column_candidates() const {

@@ -1,6 +1,7 @@
 #include "pounding/contact/impact.hpp"
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -17,16 +18,21 @@ struct Lcp {
   Eigen::VectorXd offset;    // ġ⁻ − e: w = W I + offset
 };
 
-Lcp assemble(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass) {
+Lcp assemble(const std::vector<ContactRow>& contacts, const Eigen::VectorXd& inverse_mass) {
   const Eigen::Index m = static_cast<Eigen::Index>(contacts.size());
-  Eigen::MatrixXd g(m, 6);
+  Eigen::MatrixXd g(m, inverse_mass.size());
   Lcp lcp{Eigen::MatrixXd(m, m), Eigen::VectorXd(m)};
   for (Eigen::Index i = 0; i < m; ++i) {
     g.row(i) = contacts[i].jacobian;
     const double rate = contacts[i].gap_rate_mps;
     lcp.offset[i] = rate + contacts[i].restitution * std::min(rate, 0.0);
   }
-  lcp.w_matrix = g * inverse_mass.asDiagonal() * g.transpose();
+  // A floor pair's W is formed with a fixed six-vector M⁻¹ (as two-building runs always were).
+  if (inverse_mass.size() == 6) {
+    lcp.w_matrix = g * Eigen::Map<const Vector6d>(inverse_mass.data()).asDiagonal() * g.transpose();
+  } else {
+    lcp.w_matrix = g * inverse_mass.asDiagonal() * g.transpose();
+  }
   return lcp;
 }
 
@@ -92,8 +98,8 @@ Vector6d inverse_mass(double mass1_t, double polar1_tm2, double mass2_t, double 
   return inv;
 }
 
-double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass) {
-  const double a = contact.jacobian.cwiseAbs2().dot(inverse_mass.transpose());
+double single_impulse(const ContactRow& contact, const Eigen::VectorXd& inverse_mass) {
+  const double a = gap_rate(contact.jacobian.cwiseAbs2(), inverse_mass);
   return (1.0 + contact.restitution) * (-contact.gap_rate_mps) / a;
 }
 
@@ -112,8 +118,9 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& of
   return solution;
 }
 
-ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass) {
+ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Eigen::VectorXd& inverse_mass) {
   ImpulseSolution solution;
+  solution.velocity_change = Eigen::VectorXd::Zero(inverse_mass.size());
   if (contacts.empty()) return solution;
   const Lcp lcp = assemble(contacts, inverse_mass);
   const LcpSolution lcp_solution = solve_lcp(lcp.w_matrix, lcp.offset);
@@ -126,8 +133,35 @@ ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Ve
   return solution;
 }
 
-double kinetic_energy(const Vector6d& velocities, const Vector6d& inverse_mass) {
-  return 0.5 * velocities.cwiseAbs2().dot(inverse_mass.cwiseInverse());
+template <int N>
+ImpulseSolution closing_impulses_of_size(const std::vector<Eigen::RowVectorXd>& rows,
+                                         const Eigen::VectorXd& inverse_mass, const Eigen::VectorXd& velocities) {
+  const Eigen::Map<const Eigen::Matrix<double, N, 1>> inv(inverse_mass.data(), inverse_mass.size());
+  const Eigen::Map<const Eigen::Matrix<double, N, 1>> v(velocities.data(), velocities.size());
+  Eigen::MatrixXd g(static_cast<Eigen::Index>(rows.size()), inverse_mass.size());
+  for (std::size_t r = 0; r < rows.size(); ++r) g.row(static_cast<Eigen::Index>(r)) = rows[r];
+  const Eigen::MatrixXd w = g * inv.asDiagonal() * g.transpose();
+  const Eigen::VectorXd impulses = w.completeOrthogonalDecomposition().solve(-(g * v));
+  ImpulseSolution solution;
+  solution.impulses_kNs.assign(impulses.data(), impulses.data() + impulses.size());
+  solution.velocity_change = inv.cwiseProduct(g.transpose() * impulses);
+  return solution;
+}
+
+ImpulseSolution closing_impulses(const std::vector<Eigen::RowVectorXd>& rows, const Eigen::VectorXd& inverse_mass,
+                                 const Eigen::VectorXd& velocities) {
+  if (inverse_mass.size() == 6) return closing_impulses_of_size<6>(rows, inverse_mass, velocities);
+  return closing_impulses_of_size<Eigen::Dynamic>(rows, inverse_mass, velocities);
+}
+
+double kinetic_energy(const Eigen::VectorXd& velocities, const Eigen::VectorXd& inverse_mass) {
+  return 0.5 * gap_rate(velocities.cwiseAbs2().transpose(), inverse_mass.cwiseInverse());
+}
+
+double gap_rate(const Eigen::RowVectorXd& row, const Eigen::VectorXd& velocities) {
+  if (row.size() == 6)
+    return Eigen::Map<const RowVector6d>(row.data()).dot(Eigen::Map<const Vector6d>(velocities.data()));
+  return row.dot(velocities);
 }
 
 }  // namespace pounding::contact

@@ -1,6 +1,7 @@
 #include "pounding/dynamics/coupled_system.hpp"
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -113,15 +114,6 @@ CoupledSystem::RowBlocks CoupledSystem::row_blocks(const contact::Candidate& c, 
   return blocks;
 }
 
-contact::RowVector6d CoupledSystem::pair_row(const contact::GapState& state,
-                                             const contact::Candidate& c) const {
-  const auto side = [&](int building) { return building == c.pair[0] ? 0 : 3; };
-  contact::RowVector6d row;
-  row.segment<3>(side(c.striking_building)) = state.striking_row;
-  row.segment<3>(side(c.struck_building)) = state.struck_row;
-  return row;
-}
-
 double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const {
   const contact::Candidate& c = candidates_[index];
   const contact::GapState s = gap(y, index);
@@ -138,33 +130,44 @@ double CoupledSystem::gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, s
 }
 
 double CoupledSystem::gap_rate_round_off_mps(ConstVectorRef y, std::size_t index) const {
-  const contact::Candidate& c = candidates_[index];
-  if (c.column) {
-    double size = 0.0;
-    for (const RowBlock& block : row_blocks(c, gap(y, index)))
-      size += block.row.cwiseAbs().dot(y.segment<3>(dof_ + block.first).cwiseAbs());
-    return 1e-15 + 1e-9 * size;
-  }
-  const contact::RowVector6d row = pair_row(gap(y, index), c);
-  return 1e-15 + 1e-9 * row.cwiseAbs().dot(pair_velocities(y, {c.pair, c.floors}).cwiseAbs());
+  double size = 0.0;
+  for (const RowBlock& block : row_blocks(candidates_[index], gap(y, index)))
+    size += block.row.cwiseAbs().dot(y.segment<3>(dof_ + block.first).cwiseAbs());
+  return 1e-15 + 1e-9 * size;
 }
 
-contact::Vector6d CoupledSystem::pair_velocities(ConstVectorRef y, const SlabPair& slabs) const {
-  contact::Vector6d v;
-  v << y.segment<3>(dof_ + floor_index(slabs.pair[0], slabs.floors[0])),
-      y.segment<3>(dof_ + floor_index(slabs.pair[1], slabs.floors[1]));
+VectorXd CoupledSystem::slab_velocities(ConstVectorRef y, const std::vector<Slab>& slabs) const {
+  VectorXd v(3 * static_cast<Eigen::Index>(slabs.size()));
+  for (std::size_t k = 0; k < slabs.size(); ++k)
+    v.segment<3>(3 * static_cast<Eigen::Index>(k)) =
+        y.segment<3>(dof_ + floor_index(slabs[k].building, slabs[k].floor));
   return v;
 }
 
-void CoupledSystem::add_pair_velocities(Eigen::Ref<VectorXd> y, const SlabPair& slabs,
-                                        const contact::Vector6d& change) const {
-  y.segment<3>(dof_ + floor_index(slabs.pair[0], slabs.floors[0])) += change.head<3>();
-  y.segment<3>(dof_ + floor_index(slabs.pair[1], slabs.floors[1])) += change.tail<3>();
+void CoupledSystem::add_slab_velocities(Eigen::Ref<VectorXd> y, const std::vector<Slab>& slabs,
+                                        const VectorXd& change) const {
+  for (std::size_t k = 0; k < slabs.size(); ++k)
+    y.segment<3>(dof_ + floor_index(slabs[k].building, slabs[k].floor)) +=
+        change.segment<3>(3 * static_cast<Eigen::Index>(k));
 }
 
-contact::Vector6d CoupledSystem::pair_inverse_mass(const SlabPair& slabs) const {
-  const int i = floor_index(slabs.pair[0], slabs.floors[0]), j = floor_index(slabs.pair[1], slabs.floors[1]);
-  return contact::inverse_mass(mass_[i], mass_[i + 2], mass_[j], mass_[j + 2]);
+VectorXd CoupledSystem::slab_inverse_mass(const std::vector<Slab>& slabs) const {
+  VectorXd inverse(3 * static_cast<Eigen::Index>(slabs.size()));
+  for (std::size_t k = 0; k < slabs.size(); ++k) {
+    const int i = floor_index(slabs[k].building, slabs[k].floor);
+    inverse.segment<3>(3 * static_cast<Eigen::Index>(k)) << 1 / mass_[i], 1 / mass_[i + 1], 1 / mass_[i + 2];
+  }
+  return inverse;
+}
+
+Eigen::RowVectorXd CoupledSystem::slab_row(const contact::GapState& s, const contact::Candidate& c,
+                                           const std::vector<Slab>& slabs) const {
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(3 * static_cast<Eigen::Index>(slabs.size()));
+  for (const RowBlock& block : row_blocks(c, s)) {
+    const auto at = std::find(slabs.begin(), slabs.end(), Slab{block.building, block.floor});
+    row.segment<3>(3 * (at - slabs.begin())) = block.row;
+  }
+  return row;
 }
 
 void CoupledSystem::constraint_rows(ConstVectorRef y, const std::vector<std::size_t>& held, MatrixXd& rows,

@@ -534,7 +534,7 @@ RunResult run_event_driven(const dynamics::CoupledSystem& system, const EventOpt
     throw InputError("initial_state", std::to_string(options.initial_state.size()) + " values",
                      "needs one value per state (" + std::to_string(system.state_size()) + ")");
   }
-  // The impact module solves impulses floor pair by floor pair; a column point reads three floors.
+  // The impact module solves impulses slab against slab; a column point reads three floors.
   if (options.law == contact::ContactLaw::impulse && contact::has_column_pairs(system.candidates())) {
     throw InputError("law", "impulse", "cannot resolve slab-to-column contacts: they need a compliant law");
   }

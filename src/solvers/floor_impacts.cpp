@@ -1,22 +1,68 @@
 #include "pounding/solvers/floor_impacts.hpp"
 
+#include <algorithm>
+#include <array>
+
 namespace pounding::solvers {
 
-FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int level,
-                                    double restitution,
-                                    const std::function<bool(std::size_t, const contact::GapState&)>& take) {
+namespace {
+
+using Slab = dynamics::CoupledSystem::Slab;
+
+std::array<Slab, 2> slabs_of(const contact::Level& level) {
+  return {Slab{level.pair[0], level.floors[0]}, Slab{level.pair[1], level.floors[1]}};
+}
+
+bool share_a_slab(const contact::Level& a, const contact::Level& b) {
+  for (const Slab& s : slabs_of(a)) {
+    for (const Slab& t : slabs_of(b)) {
+      if (s == t) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<int> joined_levels(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int level,
+                               const TakeContact& take) {
+  const std::vector<contact::Level>& levels = system.levels();
+  const auto has_contact = [&](int l) {
+    for (std::size_t i = 0; i < system.candidates().size(); ++i) {
+      if (system.candidates()[i].level == l && take(i, system.gap(y, i))) return true;
+    }
+    return false;
+  };
+  std::vector<int> joined{level};
+  for (std::size_t next = 0; next < joined.size(); ++next) {
+    const contact::Level& from = levels[static_cast<std::size_t>(joined[next] - 1)];
+    for (const contact::Level& other : levels) {
+      if (std::find(joined.begin(), joined.end(), other.index) != joined.end()) continue;
+      if (share_a_slab(from, other) && has_contact(other.index)) joined.push_back(other.index);
+    }
+  }
+  std::sort(joined.begin(), joined.end());
+  return joined;
+}
+
+FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y,
+                                    const std::vector<int>& levels, double restitution, const TakeContact& take) {
   FloorContacts contacts;
-  contacts.level = level;
-  const contact::Level& on = system.levels().at(static_cast<std::size_t>(level - 1));
-  contacts.slabs = {on.pair, on.floors};
+  contacts.levels = levels;
+  for (int level : levels) {
+    for (const Slab& slab : slabs_of(system.levels().at(static_cast<std::size_t>(level - 1)))) {
+      if (std::find(contacts.slabs.begin(), contacts.slabs.end(), slab) == contacts.slabs.end())
+        contacts.slabs.push_back(slab);
+    }
+  }
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     const contact::Candidate& c = system.candidates()[i];
-    if (c.level != level) continue;
+    if (!std::binary_search(levels.begin(), levels.end(), c.level)) continue;
     const contact::GapState s = system.gap(y, i);
     if (!take(i, s)) continue;
     contacts.members.push_back(i);
     contacts.states.push_back(s);
-    contacts.rows.push_back({system.pair_row(s, c), s.gap_rate_mps, restitution});
+    contacts.rows.push_back({system.slab_row(s, c, contacts.slabs), s.gap_rate_mps, restitution});
   }
   return contacts;
 }
@@ -62,8 +108,8 @@ ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::siz
 
 contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, dynamics::VectorXd& y,
                                         const FloorContacts& contacts) {
-  contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.pair_inverse_mass(contacts.slabs));
-  system.add_pair_velocities(y, contacts.slabs, solution.velocity_change);
+  contact::ImpulseSolution solution = contact::solve_impulses(contacts.rows, system.slab_inverse_mass(contacts.slabs));
+  system.add_slab_velocities(y, contacts.slabs, solution.velocity_change);
   return solution;
 }
 
@@ -72,15 +118,15 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
                             const std::vector<bool>& holds, const std::vector<bool>& were_held,
                             RunResult& result) {
-  const dynamics::CoupledSystem::SlabPair& slabs = contacts.slabs;
-  const contact::Vector6d v_after = system.pair_velocities(y_after, slabs);
+  const std::vector<Slab>& slabs = contacts.slabs;
+  const dynamics::VectorXd v_after = system.slab_velocities(y_after, slabs);
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {
     const std::size_t i = contacts.members[k];
     if (!were_held.empty() && were_held[k]) continue;  // a held contact's share: not an impact
     const contact::GapState& s = contacts.states[k];
     const double impulse = solution.impulses_kNs[k];
     const double rate_before = contacts.rows[k].gap_rate_mps;
-    const double rate_after = contacts.rows[k].jacobian.dot(v_after);
+    const double rate_after = contact::gap_rate(contacts.rows[k].jacobian, v_after);
     // Closing by rounding alone is not approaching: its round-off impulse is no impact.
     const double round_off_mps = system.gap_rate_round_off_mps(y_before, i);
     if (impulse > 0.0 && rate_before < -round_off_mps) {
@@ -97,8 +143,8 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
       result.touches.push_back(touch_record(system, t, i, s));
     }
   }
-  const contact::Vector6d inverse_mass = system.pair_inverse_mass(slabs);
-  return contact::kinetic_energy(system.pair_velocities(y_before, slabs), inverse_mass) -
+  const dynamics::VectorXd inverse_mass = system.slab_inverse_mass(slabs);
+  return contact::kinetic_energy(system.slab_velocities(y_before, slabs), inverse_mass) -
          contact::kinetic_energy(v_after, inverse_mass);
 }
 

@@ -322,7 +322,7 @@ void HhtRun::track_overlaps(const State& s) {
 }
 
 State HhtRun::settle(const State& s) {
-  // Impacts at this step end: per level, every contact within the tolerance or deeper solved
+  // Impacts at this step end: per group of levels, every contact within the tolerance or deeper solved
   // together (an overlap that halving could not resolve still takes its impulse, so it does not
   // sink on); a touch is a pair that reaches g ≤ 0 (within the tolerance) without approaching.
   VectorXd y = first_order(s);
@@ -339,9 +339,18 @@ State HhtRun::settle(const State& s) {
     else if (touching[i] && !touching_[i] && g.gap_m >= -tol) new_touches.insert(i);
   }
   bool changed = false;
+  // Levels whose contacts share a slab (a row's middle building struck from both sides) are one
+  // impact problem; each group is solved once.
+  const TakeContact take = [&](std::size_t i, const contact::GapState&) { return in_contact[i]; };
+  std::set<std::vector<int>> groups;
+  std::set<int> resolved;  // every level of a group
   for (int level : levels) {
-    const FloorContacts contacts = gather_floor_contacts(system_, y, level, options_.restitution,
-        [&](std::size_t i, const contact::GapState&) { return in_contact[i]; });
+    const std::vector<int> group = joined_levels(system_, y, level, take);
+    groups.insert(group);
+    resolved.insert(group.begin(), group.end());
+  }
+  for (const std::vector<int>& group : groups) {
+    const FloorContacts contacts = gather_floor_contacts(system_, y, group, options_.restitution, take);
     const VectorXd before = y;
     const contact::ImpulseSolution solution = apply_impulses(system_, y, contacts);
     recorder_.add_impact_loss(
@@ -352,7 +361,7 @@ State HhtRun::settle(const State& s) {
     changed = true;
   }
   for (std::size_t i : new_touches) {
-    if (levels.count(system_.candidates()[i].level)) continue;  // recorded with its level's impact
+    if (resolved.count(system_.candidates()[i].level)) continue;  // recorded with its group's impact
     result_.touches.push_back(touch_record(system_, s.t_s, i, system_.gap(y, i)));
     ++result_.statistics.events;
   }
@@ -472,7 +481,7 @@ RunResult run_hht(const dynamics::CoupledSystem& system, const HhtOptions& optio
     throw InputError("initial_state", std::to_string(options.initial_state.size()) + " values",
                      "needs one value per state (" + std::to_string(system.state_size()) + ")");
   }
-  if (contact::has_column_pairs(system.candidates())) {  // HHT resolves impulses floor pair by floor pair
+  if (contact::has_column_pairs(system.candidates())) {  // HHT resolves impulses slab against slab
     throw InputError("method", "hht", "cannot resolve slab-to-column contacts: they need a compliant law");
   }
   HhtRun run(system, options);

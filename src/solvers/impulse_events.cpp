@@ -1,5 +1,4 @@
 // The impulse law's events (law_events.hpp): velocity jumps, sustained contacts and their releases.
-#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -39,7 +38,8 @@ class ImpulseEvents final : public LawEvents {
   void hold(std::size_t i, double t);
   void release(std::size_t i, double t, const VectorXd& y, const std::string& reason);
   void settle_holds(double t, const VectorXd& y);
-  FloorContacts floor_contacts(const VectorXd& y, int level, const std::set<std::size_t>& fired) const;
+  /// Whether candidate i in state s takes part in an impact at this instant.
+  bool takes_part(std::size_t i, const contact::GapState& s, const std::set<std::size_t>& fired) const;
   /// g̈ of each member of `contacts` in state y with the contacts `held` kept closed.
   VectorXd free_gap_accelerations(double t, const VectorXd& y, const std::vector<std::size_t>& held,
                                   const FloorContacts& contacts) const;
@@ -47,7 +47,7 @@ class ImpulseEvents final : public LawEvents {
                                  contact::ImpulseSolution& solution) const;
   void stick(const FloorContacts& contacts, const std::vector<bool>& holding, VectorXd& y,
              contact::ImpulseSolution& solution) const;
-  void resolve_floor(double t, VectorXd& y, int level, const std::set<std::size_t>& fired);
+  void resolve_floor(double t, VectorXd& y, const std::vector<int>& levels, const std::set<std::size_t>& fired);
   void update_hold_records(double t, const VectorXd& y);
   /// The held contacts' forces (kN, compressive positive) at (t, y), in the order of states_.held().
   VectorXd hold_forces(double t, const Eigen::Ref<const VectorXd>& y) const {
@@ -107,7 +107,12 @@ void ImpulseEvents::handle_event(double t, VectorXd& y, const std::vector<std::s
     fired.insert(i);
     levels.insert(system_.candidates()[i].level);
   }
-  for (int level : levels) resolve_floor(t, y, level, fired);
+  // Levels whose contacts share a slab (a row's middle building struck from both sides) are one
+  // impact problem; each group is solved once.
+  const TakeContact take = [&](std::size_t i, const contact::GapState& s) { return takes_part(i, s, fired); };
+  std::set<std::vector<int>> groups;
+  for (int level : levels) groups.insert(joined_levels(system_, y, level, take));
+  for (const std::vector<int>& group : groups) resolve_floor(t, y, group, fired);
   settle_holds(t, y);
   update_hold_records(t, y);  // a hold may end before the next step does
 }
@@ -157,13 +162,11 @@ void ImpulseEvents::settle_holds(double t, const VectorXd& y) {
   for (std::size_t i : separating) release(i, t, y, "tensile force");
 }
 
-FloorContacts ImpulseEvents::floor_contacts(const VectorXd& y, int level, const std::set<std::size_t>& fired) const {
-  // Every contact of this level's slab pair that is closed now takes part, so simultaneous
-  // contacts are solved together, never one after another.
-  return gather_floor_contacts(system_, y, level, options_.restitution, [&](std::size_t i, const contact::GapState& s) {
-    const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
-    return states_.is(i, ContactMode::held) || fired.count(i) || closed;
-  });
+bool ImpulseEvents::takes_part(std::size_t i, const contact::GapState& s, const std::set<std::size_t>& fired) const {
+  // Every contact of the group's slabs that is closed now takes part, so simultaneous contacts
+  // are solved together, never one after another.
+  const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
+  return states_.is(i, ContactMode::held) || fired.count(i) || closed;
 }
 
 VectorXd ImpulseEvents::free_gap_accelerations(double t, const VectorXd& y, const std::vector<std::size_t>& held,
@@ -190,17 +193,18 @@ std::vector<bool> ImpulseEvents::settle_floor(double t, VectorXd& y, FloorContac
     for (std::size_t k = 0; k < n; ++k) contacts.rows[k].restitution = holding[k] ? 0.0 : options_.restitution;
     y_after = y;
     solution = apply_impulses(system_, y_after, contacts);
-    const contact::Vector6d v_after = system_.pair_velocities(y_after, contacts.slabs);
+    const VectorXd v_after = system_.slab_velocities(y_after, contacts.slabs);
 
-    std::vector<std::size_t> trial;  // held elsewhere, plus this floor's slow separations
+    std::vector<std::size_t> trial;  // held elsewhere, plus this group's slow separations
     for (std::size_t i : states_.held()) {
-      if (system_.candidates()[i].level != contacts.level) trial.push_back(i);
+      if (!std::binary_search(contacts.levels.begin(), contacts.levels.end(), system_.candidates()[i].level))
+        trial.push_back(i);
     }
     const std::size_t others = trial.size();
     const VectorXd accel = free_gap_accelerations(t, y_after, trial, contacts);
     std::vector<std::size_t> slow;
     for (std::size_t k = 0; k < n; ++k) {
-      const double rate = contacts.rows[k].jacobian.dot(v_after);
+      const double rate = contact::gap_rate(contacts.rows[k].jacobian, v_after);
       const double apex_m = accel[k] < 0.0 ? rate * rate / (-2.0 * accel[k]) : kInfinity;
       if (rate < options_.hold_velocity_mps || apex_m < options_.hold_height_m) {
         trial.push_back(contacts.members[k]);
@@ -233,21 +237,20 @@ void ImpulseEvents::stick(const FloorContacts& contacts, const std::vector<bool>
     if (holding[k]) held.push_back(k);
   }
   if (held.empty()) return;
-  const Eigen::Index m = static_cast<Eigen::Index>(held.size());
-  const contact::Vector6d inverse_mass = system_.pair_inverse_mass(contacts.slabs);
-  const contact::Vector6d velocities = system_.pair_velocities(y, contacts.slabs);
-  Eigen::MatrixXd rows(m, 6);
-  for (Eigen::Index r = 0; r < m; ++r) rows.row(r) = contacts.rows[held[static_cast<std::size_t>(r)]].jacobian;
-  const Eigen::MatrixXd w = rows * inverse_mass.asDiagonal() * rows.transpose();
-  const VectorXd impulses = w.completeOrthogonalDecomposition().solve(-(rows * velocities));
-  const contact::Vector6d change = inverse_mass.cwiseProduct(rows.transpose() * impulses);
-  system_.add_pair_velocities(y, contacts.slabs, change);
-  solution.velocity_change += change;
-  for (Eigen::Index r = 0; r < m; ++r) solution.impulses_kNs[held[static_cast<std::size_t>(r)]] += impulses[r];
+  std::vector<Eigen::RowVectorXd> rows;
+  for (std::size_t k : held) rows.push_back(contacts.rows[k].jacobian);
+  const contact::ImpulseSolution closing = contact::closing_impulses(rows, system_.slab_inverse_mass(contacts.slabs),
+                                                                     system_.slab_velocities(y, contacts.slabs));
+  system_.add_slab_velocities(y, contacts.slabs, closing.velocity_change);
+  solution.velocity_change += closing.velocity_change;
+  for (std::size_t r = 0; r < held.size(); ++r) solution.impulses_kNs[held[r]] += closing.impulses_kNs[r];
 }
 
-void ImpulseEvents::resolve_floor(double t, VectorXd& y, int level, const std::set<std::size_t>& fired) {
-  FloorContacts contacts = floor_contacts(y, level, fired);
+void ImpulseEvents::resolve_floor(double t, VectorXd& y, const std::vector<int>& levels,
+                                  const std::set<std::size_t>& fired) {
+  FloorContacts contacts =
+      gather_floor_contacts(system_, y, levels, options_.restitution,
+                            [&](std::size_t i, const contact::GapState& s) { return takes_part(i, s, fired); });
   const VectorXd y_before = y;
   contact::ImpulseSolution solution;
   std::vector<bool> were_held(contacts.members.size());

@@ -27,6 +27,7 @@ struct FreePair {
     const SlabMotion b{centre_b, Eigen::Vector3d::Zero(), velocity.tail<3>()};
     const GapState s = evaluate_gap(c, a, b);
     ContactRow r;
+    r.jacobian.resize(6);
     r.jacobian << s.striking_row, s.struck_row;
     r.gap_rate_mps = s.gap_rate_mps;
     r.restitution = k;
@@ -125,4 +126,73 @@ BOOST_AUTO_TEST_CASE(SeparatingContactTakesNoImpulse) {
   const auto solution = solve_impulses({pair.row(pair.corner(Point2(0, 3)), before, 0.5)}, pair.inverse());
   BOOST_TEST(solution.impulses_kNs[0] == 0.0);
   BOOST_TEST(solution.velocity_change.norm() == 0.0);
+}
+
+namespace {
+
+// Three free slabs in a line along x, A | B | C, the contacts A:B and B:C head-on through every
+// CM (rows over the nine velocities (u̇, v̇, φ̇) of A, B, C): ġ_AB = u̇_B − u̇_A, ġ_BC = u̇_C − u̇_B.
+struct FreeChain {
+  Eigen::VectorXd inverse(double m_a, double m_b, double m_c) const {
+    Eigen::VectorXd inv(9);
+    inv << 1 / m_a, 1 / m_a, 1 / (m_a * 10), 1 / m_b, 1 / m_b, 1 / (m_b * 10), 1 / m_c, 1 / m_c, 1 / (m_c * 10);
+    return inv;
+  }
+  static ContactRow contact(int left, const Eigen::VectorXd& velocity, double k) {
+    ContactRow row;
+    row.jacobian = Eigen::RowVectorXd::Zero(9);
+    row.jacobian[3 * left] = -1.0;
+    row.jacobian[3 * left + 3] = 1.0;
+    row.gap_rate_mps = row.jacobian.dot(velocity);
+    row.restitution = k;
+    return row;
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(MiddleSlabStruckFromBothSidesAtOnceIsOneProblem) {
+  // A and C (equal masses) close on B at rest with equal speeds: by symmetry B stays at rest,
+  // each contact separates at k times its approach and takes I = m (1 + k) v.
+  const double m = 200, k = 0.5, v = 1.5;
+  Eigen::VectorXd before = Eigen::VectorXd::Zero(9);
+  before[0] = v;
+  before[6] = -v;
+  const FreeChain chain;
+  const auto solution =
+      solve_impulses({chain.contact(0, before, k), chain.contact(1, before, k)}, chain.inverse(m, 300, m));
+  const Eigen::VectorXd after = before + solution.velocity_change;
+  BOOST_TEST(after[3] == 0.0, tt::tolerance(1e-14));
+  BOOST_TEST(after[0] == -k * v, tt::tolerance(1e-12));
+  BOOST_TEST(after[6] == k * v, tt::tolerance(1e-12));
+  for (double impulse : solution.impulses_kNs) BOOST_TEST(impulse == m * (1 + k) * v, tt::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(PlasticStrikeOnSlabsInContactMovesThemAllTogether) {
+  // B rests against C (ġ_BC = 0) when A strikes B with k = 0: the one problem over the three
+  // slabs leaves all three with the common velocity m_A v / (m_A + m_B + m_C). Solving A:B alone
+  // would drive B into C.
+  const double m_a = 200, m_b = 300, m_c = 150, v = 1.2;
+  Eigen::VectorXd before = Eigen::VectorXd::Zero(9);
+  before[0] = v;
+  const FreeChain chain;
+  const Eigen::VectorXd inverse = chain.inverse(m_a, m_b, m_c);
+  const auto joint = solve_impulses({chain.contact(0, before, 0.0), chain.contact(1, before, 0.0)}, inverse);
+  const Eigen::VectorXd after = before + joint.velocity_change;
+  const double common = m_a * v / (m_a + m_b + m_c);
+  for (int slab = 0; slab < 3; ++slab) BOOST_TEST(after[3 * slab] == common, tt::tolerance(1e-12));
+  BOOST_TEST(joint.impulses_kNs[1] == m_c * common, tt::tolerance(1e-12));
+
+  const auto alone = solve_impulses({chain.contact(0, before, 0.0)}, inverse);
+  const Eigen::VectorXd after_alone = before + alone.velocity_change;
+  BOOST_TEST(chain.contact(1, after_alone, 0.0).gap_rate_mps < -0.1);  // B would close on C
+}
+
+BOOST_AUTO_TEST_CASE(GapRateOfAFloorPairIsTheDotProduct) {
+  Eigen::RowVectorXd row(6);
+  row << 0.3, -1.0, 2.5, -0.3, 1.0, -7.25;
+  Eigen::VectorXd velocity(6);
+  velocity << 1.0, 0.5, -0.02, 0.25, -0.75, 0.01;
+  BOOST_TEST(gap_rate(row, velocity) == row.dot(velocity), tt::tolerance(1e-15));
+  BOOST_TEST(gap_rate(row.head(3), velocity.head(3)) == row.head(3).dot(velocity.head(3)));
 }

@@ -168,12 +168,12 @@ struct Scene {
   void validate() const;
 };
 
-/// Slabs that strike columns, and rows, need a compliant law: an impulse would need the column
-/// rigid and its two floors' shares solved with the slab's, or a slab struck from both sides
-/// solved with both neighbours, which the impact module (floor pair by floor pair) does not do.
+/// Slabs that strike columns need a compliant law: an impulse would need the column rigid and its
+/// two floors' shares solved with the slab's, which the impact module (slab to slab) does not do.
 /// Checked when a run starts (run_scene, `check`), after the command line's or Python's
 /// overrides; not by Scene::validate(), so that `--contact-law` can mend a file.
-/// @throws InputError(`contact.law`) naming the row, or the first such slab and its storey.
+/// @throws InputError(`contact.law`) naming the first such slab (of a row: in its first such pair)
+/// and its storey.
 void require_compliant_law_where_needed(const Scene& scene);
 
 }  // namespace pounding::analysis

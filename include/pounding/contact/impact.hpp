@@ -1,7 +1,8 @@
 #pragma once
 // Impact law: instantaneous, frictionless, Newton restitution (docs/model.md §6). Pure functions on
-// one floor pair, whose six velocities are ordered (u̇, v̇, φ̇) of building 1's slab, then
-// building 2's.
+// a group of slabs, whose velocities are stacked (u̇, v̇, φ̇) slab by slab: the two slabs of one
+// floor pair (six velocities, building 1's slab first), or every slab of a row that one instant's
+// contacts join (a middle building's slab struck from both sides).
 
 #include <Eigen/Core>
 #include <vector>
@@ -14,29 +15,30 @@ using RowVector6d = Eigen::Matrix<double, 1, 6>;
 /// (1/m₁, 1/m₁, 1/J₁, 1/m₂, 1/m₂, 1/J₂) of the two slabs of one floor.
 Vector6d inverse_mass(double mass1_t, double polar1_tm2, double mass2_t, double polar2_tm2);
 
-/// One contact of an impact: ġ = jacobian · q̇ over the floor pair's six velocities.
+/// One contact of an impact: ġ = jacobian · q̇ over the group's velocities (3 per slab).
 struct ContactRow {
-  RowVector6d jacobian;
+  Eigen::RowVectorXd jacobian;
   double gap_rate_mps = 0.0;  // ġ⁻, before the impact
   double restitution = 0.5;   // k ∈ [0, 1] for this contact
 };
 
 /// Single contact, the paper's law: a = G M⁻¹ Gᵀ, I = (1 + k)(−ġ⁻)/a (kN·s), Δq̇ = M⁻¹ Gᵀ I.
 /// Gives ġ⁺ = −k ġ⁻. @pre ġ⁻ < 0, 0 ≤ k ≤ 1.
-double single_impulse(const ContactRow& contact, const Vector6d& inverse_mass);
+double single_impulse(const ContactRow& contact, const Eigen::VectorXd& inverse_mass);
 
 struct ImpulseSolution {
   std::vector<double> impulses_kNs;            // one per contact, ≥ 0
-  Vector6d velocity_change = Vector6d::Zero();  // Δq̇ = M⁻¹ Gᵀ I
+  Eigen::VectorXd velocity_change;             // Δq̇ = M⁻¹ Gᵀ I, over the group's velocities
   bool exact = true;                            // false when the iterative fallback was used
 };
 
-/// Contacts on one floor pair at one instant, solved together as the linear complementarity
+/// Contacts on one group of slabs at one instant, solved together as the linear complementarity
 /// problem w = ġ⁻ + W I − e ≥ 0, I ≥ 0, Iᵢ wᵢ = 0 with W = G M⁻¹ Gᵀ and e_i = −k min(ġ⁻_i, 0)
 /// (restitution acts on approaching contacts; the others only may not start to approach).
 /// For one approaching contact this is single_impulse(). Exact by active-set enumeration up to
 /// 12 contacts, projected Gauss–Seidel beyond.
-ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Vector6d& inverse_mass);
+/// @pre every row and `inverse_mass` of one size (3 per slab).
+ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Eigen::VectorXd& inverse_mass);
 
 struct LcpSolution {
   Eigen::VectorXd x;      // ≥ 0
@@ -49,7 +51,17 @@ struct LcpSolution {
 /// unknowns, projected Gauss–Seidel beyond. @pre W square, offset of the same size.
 LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& offset);
 
-/// Kinetic energy ½ q̇ᵀ M q̇ of the floor pair (kJ).
-double kinetic_energy(const Vector6d& velocities, const Vector6d& inverse_mass);
+/// The impulses (kN·s, of either sign) that bring every row's ġ to zero together, least squares
+/// where rows depend, and their Δq̇ = M⁻¹ Gᵀ I for the group's `velocities` q̇.
+/// @pre rows, `inverse_mass` and `velocities` of one size.
+ImpulseSolution closing_impulses(const std::vector<Eigen::RowVectorXd>& rows, const Eigen::VectorXd& inverse_mass,
+                                 const Eigen::VectorXd& velocities);
+
+/// Kinetic energy ½ q̇ᵀ M q̇ of the group (kJ).
+double kinetic_energy(const Eigen::VectorXd& velocities, const Eigen::VectorXd& inverse_mass);
+
+/// ġ = row · q̇ (m/s). A floor pair's six velocities are summed as Eigen sums a fixed six-vector,
+/// so that two-building runs keep their bits whatever the group's storage.
+double gap_rate(const Eigen::RowVectorXd& row, const Eigen::VectorXd& velocities);
 
 }  // namespace pounding::contact

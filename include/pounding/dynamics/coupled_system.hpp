@@ -110,17 +110,21 @@ class CoupledSystem {
   /// G_j q̇_j, and below 1e-9 of their size (plus 1e-15 m/s) a pair is neither approaching nor
   /// separating. Two identical buildings side by side close at 1e-23 m/s by rounding alone.
   double gap_rate_round_off_mps(ConstVectorRef y, std::size_t index) const;
-  /// ġ = G q̇ as a row over the floor pair's six velocities (the pair's first building's slab first).
-  contact::RowVector6d pair_row(const contact::GapState& state, const contact::Candidate& c) const;
-  /// Two slabs at one level: floors[k] (1-based) of building pair[k] (0-based).
-  struct SlabPair {
-    std::array<int, 2> pair{0, 1};
-    std::array<int, 2> floors{1, 1};
+  /// One slab: `floor` (1-based) of `building` (0-based).
+  struct Slab {
+    int building = 0;
+    int floor = 1;
+    bool operator==(const Slab&) const = default;
   };
-  /// Velocities of the slab pair in state y, and their inverse masses.
-  contact::Vector6d pair_velocities(ConstVectorRef y, const SlabPair& slabs) const;
-  void add_pair_velocities(Eigen::Ref<VectorXd> y, const SlabPair& slabs, const contact::Vector6d& change) const;
-  contact::Vector6d pair_inverse_mass(const SlabPair& slabs) const;
+  /// The velocities (u̇, v̇, φ̇) of `slabs` in state y, stacked in their order (3 per slab), and
+  /// their inverse masses (1/m, 1/m, 1/J).
+  VectorXd slab_velocities(ConstVectorRef y, const std::vector<Slab>& slabs) const;
+  void add_slab_velocities(Eigen::Ref<VectorXd> y, const std::vector<Slab>& slabs, const VectorXd& change) const;
+  VectorXd slab_inverse_mass(const std::vector<Slab>& slabs) const;
+  /// ġ = G q̇ of candidate `c` in gap state `s` as a row over the velocities of `slabs`.
+  /// @pre every floor row_blocks(c, s) reads is one of `slabs`.
+  Eigen::RowVectorXd slab_row(const contact::GapState& s, const contact::Candidate& c,
+                              const std::vector<Slab>& slabs) const;
 
   /// Motion with the contacts `held` kept closed (g̈ = −3ġ/τ − 2g/τ², a Baumgarte correction with
   /// τ = `hold_time_constant_s` that stops drift) by normal forces λ (kN, ≥ 0 pushes the slabs
