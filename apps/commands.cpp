@@ -471,9 +471,8 @@ int run_methods(const MethodsCommand& command) {
     std::vector<std::string> keys;
     for (analysis::Setting s : method.settings) keys.emplace_back(analysis::spec(s).key);
     if (!command.json) {
-      fmt::print("{:<12} {}\n{:<12} uses {}; yielding columns: {}; rows: {}\n", method.name, method.description, "",
-                 fmt::join(keys, ", "), method.yielding_columns ? "yes (form physical)" : "no",
-                 method.rows ? "yes" : "no");
+      fmt::print("{:<12} {}\n{:<12} uses {}; yielding columns: {}\n", method.name, method.description, "",
+                 fmt::join(keys, ", "), method.yielding_columns ? "yes (form physical)" : "no");
       continue;
     }
     nlohmann::json series = nlohmann::json::array();
@@ -486,7 +485,6 @@ int run_methods(const MethodsCommand& command) {
                     {"event_driven", method.event_driven},
                     {"reference", method.reference},
                     {"yielding_columns", method.yielding_columns},
-                    {"rows", method.rows},
                     {"study",
                      {{"setting", analysis::spec(method.ladder_setting).key},
                       {"ladder", method.ladder},

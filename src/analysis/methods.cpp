@@ -291,8 +291,7 @@ const std::vector<MethodInfo> kMethods = {
      .factory = exact_factory,
      .steps_per_period = kExactSubdivisionsPerPeriod,
      .clearance_steps = true,
-     .reference = true,
-     .rows = false},
+     .reference = true},
 };
 
 std::string quoted(const std::string& text) { return "\"" + text + "\""; }

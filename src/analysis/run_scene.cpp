@@ -186,19 +186,6 @@ void check_modes_kept(const Scene& scene, const UsedSettings& used, const dynami
 
 /// Yielding columns run only on methods that locate their branch changes, in the physical form.
 /// @throws InputError naming the first yielding building's hysteresis.law.
-void require_row_supported(const Scene& scene, const UsedSettings& used) {
-  if (!scene.is_row() || used.method->rows) return;
-  std::vector<std::string_view> able;
-  for (const MethodInfo& method : methods()) {
-    if (method.rows) able.push_back(method.name);
-  }
-  throw InputError("solver.method", fmt::format("\"{}\"", used.method->name),
-                   fmt::format("a row of {} buildings does not run on method {} (its propagator is built for two "
-                               "buildings); rows run on {}",
-                               scene.buildings.size(), used.method->name, fmt::join(able, ", ")),
-                   scene.file.string());
-}
-
 void require_yielding_supported(const Scene& scene, const UsedSettings& used) {
   for (std::size_t b = 0; b < scene.buildings.size(); ++b) {
     if (!scene.buildings[b].hysteresis.yields()) continue;
@@ -414,7 +401,6 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   const UsedSettings used = resolve(scene.solver, &system);
   check_modes_kept(scene, used, system);
   require_yielding_supported(scene, used);
-  require_row_supported(scene, used);
   RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
                    scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
   report.contact_law = law.name;

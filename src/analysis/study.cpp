@@ -235,8 +235,7 @@ Scene reference_scene(const Scene& scene, double rtol = kYieldingReferenceRtol) 
 void require_study_scene(const Scene& scene) {
   if (!scene.is_row()) return;
   throw InputError("building", fmt::format("{} buildings", scene.buildings.size()),
-                   "form a row, which needs a compliant law, and the study measures against the exact path, which "
-                   "runs the impulse law only: study one pair's scene",
+                   "form a row, and the study's report is written for one pair and one gap: study one pair's scene",
                    scene.file.string());
 }
 

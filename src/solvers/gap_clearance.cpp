@@ -11,7 +11,12 @@ namespace pounding::solvers {
 
 GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(system) {
   const std::vector<contact::Candidate>& candidates = system.candidates();
-  for (int b = 0; b < 2; ++b) {
+  const auto count = static_cast<std::size_t>(system.building_count());
+  buildings_.resize(count);
+  for (auto* scratch :
+       {&amplitude_, &eta_, &eta_rate_, &rate_bound_, &rate_growth_, &displacement_bound_, &displacement_growth_})
+    scratch->resize(count);
+  for (int b = 0; b < system.building_count(); ++b) {
     BuildingModes& modes = buildings_[b];
     const int n = system.building(b).dof();
     modes.offset = system.floor_index(b, 1);
@@ -25,7 +30,9 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
       shortest_damped_period_s_ = std::min(shortest_damped_period_s_, period_s);
     }
     modes.participation = basis.participation.cwiseAbs();  // a column per ground-motion component
-    for (const contact::Candidate& c : candidates) modes.floors.push_back(c.floors[b]);
+    for (const contact::Candidate& c : candidates) {
+      if (c.pair[0] == b || c.pair[1] == b) modes.floors.push_back(c.floor_of(b));
+    }
     std::sort(modes.floors.begin(), modes.floors.end());
     modes.floors.erase(std::unique(modes.floors.begin(), modes.floors.end()), modes.floors.end());
     const auto rows = static_cast<Eigen::Index>(3 * modes.floors.size());
@@ -46,12 +53,15 @@ GapClearance::GapClearance(const dynamics::CoupledSystem& system) : system_(syst
       (*bound)[b].resize(rows);
   }
   for (const contact::Candidate& c : candidates) {
-    Pair pair;
-    for (int b = 0; b < 2; ++b) {
+    const auto row_of = [&](int b) {
       const std::vector<int>& floors = buildings_[b].floors;
-      pair.row[b] = 3 * static_cast<int>(std::lower_bound(floors.begin(), floors.end(), c.floors[b]) - floors.begin());
-    }
+      return 3 * static_cast<int>(std::lower_bound(floors.begin(), floors.end(), c.floor_of(b)) - floors.begin());
+    };
+    Pair pair;
     pair.striking = c.striking_building;
+    pair.struck = c.struck_building;
+    pair.striking_row = row_of(pair.striking);
+    pair.struck_row = row_of(pair.struck);
     pair.arm_striking_m = (c.vertex_rest - system.building(c.striking_building).definition.centre_of_mass).norm();
     pair.arm_struck_m = (c.vertex_rest - system.building(c.struck_building).definition.centre_of_mass).norm();
     pairs_.push_back(pair);
@@ -63,7 +73,7 @@ double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, con
   const int dof = system_.dof();
   // Bounds on |q̇| and |q| of the contact floors over a window τ, affine in τ: the header's
   // Â = A(t) + |Γ| a τ through the rows, as rate_0 + rate_1 τ and shift_0 + shift_1 τ.
-  for (int b = 0; b < 2; ++b) {
+  for (std::size_t b = 0; b < buildings_.size(); ++b) {
     const BuildingModes& modes = buildings_[b];
     const auto n = modes.omega_rad_s.size();
     eta_[b].noalias() = modes.projection * y.segment(modes.offset, n);
@@ -85,17 +95,15 @@ double GapClearance::open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, con
     const double gap_m = system_.gap(y, i).gap_m;
     if (!(gap_m > clearance_m)) return 0.0;
     const Pair& pair = pairs_[i];
-    const int a = pair.striking, b = 1 - a;
+    const int a = pair.striking, b = pair.struck, row_a = pair.striking_row, row_b = pair.struck_row;
     // The bound L(τ) on |ġ| over a window τ (the header's), nondecreasing in τ.
     auto rate_bound_mps = [&](double tau_s) {
-      const Eigen::Vector3d rate_a =
-          rate_bound_[a].segment<3>(pair.row[a]) + tau_s * rate_growth_[a].segment<3>(pair.row[a]);
-      const Eigen::Vector3d rate_b =
-          rate_bound_[b].segment<3>(pair.row[b]) + tau_s * rate_growth_[b].segment<3>(pair.row[b]);
+      const Eigen::Vector3d rate_a = rate_bound_[a].segment<3>(row_a) + tau_s * rate_growth_[a].segment<3>(row_a);
+      const Eigen::Vector3d rate_b = rate_bound_[b].segment<3>(row_b) + tau_s * rate_growth_[b].segment<3>(row_b);
       const Eigen::Vector3d shift_a =
-          displacement_bound_[a].segment<3>(pair.row[a]) + tau_s * displacement_growth_[a].segment<3>(pair.row[a]);
+          displacement_bound_[a].segment<3>(row_a) + tau_s * displacement_growth_[a].segment<3>(row_a);
       const Eigen::Vector3d shift_b =
-          displacement_bound_[b].segment<3>(pair.row[b]) + tau_s * displacement_growth_[b].segment<3>(pair.row[b]);
+          displacement_bound_[b].segment<3>(row_b) + tau_s * displacement_growth_[b].segment<3>(row_b);
       // |P − C_B| ≤ r_AB + |(u, v)_A − (u, v)_B| + r_A |φ_A|.
       const double arm_struck_m = pair.arm_struck_m + std::hypot(shift_a[0] + shift_b[0], shift_a[1] + shift_b[1]) +
                                   pair.arm_striking_m * shift_a[2];

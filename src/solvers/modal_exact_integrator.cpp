@@ -28,8 +28,21 @@ void start_held_stretch(std::unique_ptr<Integrator>& held, OdeFunctions& functio
 ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynamics::CoupledSystem& system, double t0,
                                            const Eigen::VectorXd& y0, ExactSettings settings)
     : functions_(functions), system_(system), settings_(std::move(settings)) {
+  const auto count = static_cast<std::size_t>(system.building_count());
+  bases_.resize(count);
+  mode_offset_.resize(count);
+  dof_offset_.resize(count);
+  every_building_.assign(count, true);
+  needed_.resize(count);
+  contact_dofs_.resize(count);
+  contact_shapes_.resize(count);
+  contact_static_.resize(count);
+  contact_q_.resize(count);
+  contact_q_rate_.resize(count);
+  for (CachedSteps& entry : step_cache_) entry.filled.resize(count);
+  for (CachedSteps& entry : probe_cache_) entry.filled.resize(count);
   int modes = 0;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system.building_count(); ++b) {
     const int n = system.building(b).dof();
     dof_offset_[b] = system.floor_index(b, 1);
     mode_offset_[b] = modes;
@@ -41,17 +54,17 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
   damping_ratio_.resize(modes);
   components_ = system.ground_motion().component_count();
   participation_.resize(modes, components_);
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     omega_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].omega_rad_s;
     damping_ratio_.segment(mode_offset_[b], bases_[b].size()) = bases_[b].damping_ratio;
     participation_.middleRows(mode_offset_[b], bases_[b].size()) = bases_[b].participation;
   }
   for (const contact::Candidate& c : system.candidates()) {
-    for (int b = 0; b < 2; ++b) {
-      for (int k = 0; k < 3; ++k) contact_dofs_[b].push_back(3 * (c.floors[b] - 1) + k);
+    for (int side = 0; side < 2; ++side) {
+      for (int k = 0; k < 3; ++k) contact_dofs_[c.pair[side]].push_back(3 * (c.floors[side] - 1) + k);
     }
   }
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     std::vector<int>& dofs = contact_dofs_[b];
     std::sort(dofs.begin(), dofs.end());
     dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
@@ -63,7 +76,7 @@ ModalExactIntegrator::ModalExactIntegrator(OdeFunctions& functions, const dynami
     }
   }
   contact_y_ = Eigen::VectorXd::Constant(system.state_size(), std::numeric_limits<double>::quiet_NaN());
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     contact_q_[b].resize(contact_shapes_[b].rows());
     contact_q_rate_[b].resize(contact_shapes_[b].rows());
   }
@@ -88,7 +101,7 @@ void ModalExactIntegrator::restart(double t, const Eigen::VectorXd& y) {
   }
   const int n = system_.dof();
   ModalState& modal = segment_.start;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const int size = bases_[b].size(), dofs = system_.building(b).dof();
     modal.eta.segment(mode_offset_[b], size).noalias() = bases_[b].projection * y.segment(dof_offset_[b], dofs);
     modal.eta_rate.segment(mode_offset_[b], size).noalias() =
@@ -136,18 +149,18 @@ void ModalExactIntegrator::begin_segment(double t, double t_end) {
 }
 
 const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(StepCache& cache, double tau_s, double same_s,
-                                                                    Buildings buildings) {
+                                                                    const Buildings& buildings) {
   auto slot = std::find_if(cache.begin(), cache.end(),
                            [&](const CachedSteps& c) { return std::abs(c.tau_s - tau_s) <= same_s; });
   if (slot == cache.end()) {
     slot = cache.end() - 1;  // the least recently used
     slot->tau_s = tau_s;
-    slot->filled = {false, false};
+    slot->filled.assign(slot->filled.size(), false);
     slot->steps.resize(static_cast<std::size_t>(omega_.size()));
   }
   std::rotate(cache.begin(), slot, slot + 1);
   CachedSteps& entry = cache.front();
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     if (!buildings[b] || entry.filled[b]) continue;
     for (int k = mode_offset_[b]; k < mode_offset_[b] + bases_[b].size(); ++k) {
       entry.steps[static_cast<std::size_t>(k)] = oscillator_step(omega_[k], damping_ratio_[k], tau_s);
@@ -157,8 +170,8 @@ const std::vector<OscillatorStep>& ModalExactIntegrator::steps_over(StepCache& c
   return entry.steps;
 }
 
-ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_at(double t, ModalState& modal, Buildings buildings,
-                                                                 StepCache* cache) {
+ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_at(double t, ModalState& modal,
+                                                                 const Buildings& buildings, StepCache* cache) {
   const double tau = t - segment_.t_start_s;
   // A step's τ = t_end − t is the difference of two rounded times: the same record interval or
   // step bound comes out a few ulps of t apart from step to step. At step ends those τ count as
@@ -169,7 +182,7 @@ ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_at(double t, Modal
   const std::vector<OscillatorStep>& steps = steps_over(cache ? *cache : probe_cache_, tau, same_s, buildings);
   modal.accel_mps2 = segment_.accel_mps2 + segment_.slope_mps3 * tau;
   modal.accel_rate_mps3 = segment_.slope_mps3;
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     if (!buildings[b]) {
       modal.eta.segment(mode_offset_[b], bases_[b].size()).setConstant(std::numeric_limits<double>::quiet_NaN());
       modal.eta_rate.segment(mode_offset_[b], bases_[b].size()).setConstant(std::numeric_limits<double>::quiet_NaN());
@@ -192,7 +205,7 @@ ModalExactIntegrator::ModalState& ModalExactIntegrator::modal_at(double t, Modal
 
 void ModalExactIntegrator::physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const {
   const int n = system_.dof();
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const int size = bases_[b].size(), dofs = system_.building(b).dof();
     y.segment(dof_offset_[b], dofs).noalias() = bases_[b].shapes * modal.eta.segment(mode_offset_[b], size);
     y.segment(n + dof_offset_[b], dofs).noalias() = bases_[b].shapes * modal.eta_rate.segment(mode_offset_[b], size);
@@ -206,7 +219,7 @@ void ModalExactIntegrator::physical(const ModalState& modal, Eigen::Ref<Eigen::V
 
 const Eigen::VectorXd& ModalExactIntegrator::contact_state(const ModalState& modal) {
   const int n = system_.dof();
-  for (int b = 0; b < 2; ++b) {
+  for (int b = 0; b < system_.building_count(); ++b) {
     const int size = bases_[b].size();
     Eigen::VectorXd &q = contact_q_[b], &q_rate = contact_q_rate_[b];
     q.noalias() = contact_shapes_[b] * modal.eta.segment(mode_offset_[b], size);
@@ -266,7 +279,7 @@ StepOutcome ModalExactIntegrator::step(double t_final) {
   ++counters_.steps;
 
   end_t_s_ = std::numeric_limits<double>::quiet_NaN();
-  const ModalState& end = modal_at(t_end, end_, {true, true}, &step_cache_);
+  const ModalState& end = modal_at(t_end, end_, every_building_, &step_cache_);
   const Eigen::VectorXd& roots_end = roots_at(t_end, contact_state(end), roots_end_);
   const double t_root = earliest_root(t_end, roots_end);
 
@@ -339,13 +352,17 @@ void ModalExactIntegrator::interpolate_components(double t, const std::vector<in
                                                   Eigen::Ref<Eigen::VectorXd> y) {
   if (held_phase_) return held_->interpolate(t, y);
   const int n = system_.dof();
-  Buildings needed{false, false};  // a floor's peak needs its own building's modes only
-  for (int index : indices) needed[(index >= n ? index - n : index) >= dof_offset_[1] ? 1 : 0] = true;
-  const ModalState& modal = modal_at(t, probe_, needed);
+  // A floor's peak needs its own building's modes only.
+  const auto building_of = [&](int dof) {
+    return static_cast<int>(std::upper_bound(dof_offset_.begin(), dof_offset_.end(), dof) - dof_offset_.begin()) - 1;
+  };
+  needed_.assign(needed_.size(), false);
+  for (int index : indices) needed_[static_cast<std::size_t>(building_of(index >= n ? index - n : index))] = true;
+  const ModalState& modal = modal_at(t, probe_, needed_);
   for (int index : indices) {
     const bool rate = index >= n;
     const int dof = rate ? index - n : index;
-    const int b = dof >= dof_offset_[1] ? 1 : 0;
+    const int b = building_of(dof);
     const int size = bases_[b].size();
     const Eigen::VectorXd& coordinates = rate ? modal.eta_rate : modal.eta;
     y[index] = bases_[b].shapes.row(dof - dof_offset_[b]).dot(coordinates.segment(mode_offset_[b], size));

@@ -190,9 +190,6 @@ struct MethodInfo {
   /// functions like the contacts. The exact path's modal propagator and HHT's constant effective
   /// matrix assume elastic buildings.
   bool yielding_columns = false;
-  /// Runs rows of three or more buildings. The exact path's propagator and clearance bound are
-  /// built for two.
-  bool rows = true;
   Setting ladder_setting = Setting::rtol;
   std::vector<double> ladder{}, quick_ladder{};  // the study's settings (quick: `study --quick`)
   std::vector<StudySeries> series{};         // one per line of the study plot

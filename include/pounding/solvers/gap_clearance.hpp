@@ -37,7 +37,7 @@ class GapClearance {
   ///   acts in the window (free flight).
   double open_time_s(const Eigen::Ref<const Eigen::VectorXd>& y, const std::vector<bool>& watched, double clearance_m,
                      double horizon_s, const Eigen::Vector2d& peak_accel_mps2) const;
-  /// The shortest damped period (s) among both buildings' oscillating modes (ζ < 1; infinity if
+  /// The shortest damped period (s) among every building's oscillating modes (ζ < 1; infinity if
   /// none oscillates).
   double shortest_damped_period_s() const { return shortest_damped_period_s_; }
 
@@ -54,18 +54,18 @@ class GapClearance {
     std::vector<Eigen::VectorXd> rate_growth, displacement_growth;
   };
   struct Pair {
-    std::array<int, 2> row{0, 0};  // per building, first bound row of the candidate's floor
-    int striking = 0;
+    int striking = 0, struck = 0;          // buildings
+    int striking_row = 0, struck_row = 0;  // first bound row of the candidate's floor in each
     double arm_striking_m = 0.0;   // r_A
     double arm_struck_m = 0.0;     // r_AB
   };
 
-  std::array<BuildingModes, 2> buildings_;
+  std::vector<BuildingModes> buildings_;
   std::vector<Pair> pairs_;
   double shortest_damped_period_s_ = std::numeric_limits<double>::infinity();
   const dynamics::CoupledSystem& system_;
   // Scratch for open_time_s (no allocation per call).
-  mutable std::array<Eigen::VectorXd, 2> amplitude_, eta_, eta_rate_, rate_bound_, rate_growth_, displacement_bound_,
+  mutable std::vector<Eigen::VectorXd> amplitude_, eta_, eta_rate_, rate_bound_, rate_growth_, displacement_bound_,
       displacement_growth_;
 };
 

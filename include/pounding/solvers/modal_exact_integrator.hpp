@@ -85,21 +85,24 @@ class ModalExactIntegrator final : public Integrator {
   /// Every mode's OscillatorStep over one τ, filled per building as asked for.
   struct CachedSteps {
     double tau_s = -1.0;
-    std::array<bool, 2> filled{false, false};
+    std::vector<bool> filled;  // per building
     std::vector<OscillatorStep> steps;
   };
   /// The most recently used τ first; at step ends a τ within round-off of a kept one reuses it
   /// (see modal_at). Two caches, so the probes inside a step (root polishing, the recorder's
   /// points) do not evict the step lengths that recur from step to step.
   using StepCache = std::array<CachedSteps, 4>;
-  using Buildings = std::array<bool, 2>;  // which buildings' modes to evaluate
+  using Buildings = std::vector<bool>;  // which buildings' modes to evaluate
 
   void begin_segment(double t, double t_end);
   /// Every mode's step over τ from `cache` (one within same_s of τ), computed for `buildings` if missing.
-  const std::vector<OscillatorStep>& steps_over(StepCache& cache, double tau_s, double same_s, Buildings buildings);
+  const std::vector<OscillatorStep>& steps_over(StepCache& cache, double tau_s, double same_s,
+                                                const Buildings& buildings);
   /// Writes the modes of `buildings` at t within the current step into `modal` (the others
   /// NaN); returns `modal`. `cache`: the step-length cache, for a step's end (null: a probe).
-  ModalState& modal_at(double t, ModalState& modal, Buildings buildings = {true, true}, StepCache* cache = nullptr);
+  ModalState& modal_at(double t, ModalState& modal, const Buildings& buildings, StepCache* cache = nullptr);
+  /// modal_at for every building.
+  ModalState& modal_at(double t, ModalState& modal) { return modal_at(t, modal, every_building_); }
   /// modal_at, reusing the step's start and end states (else written into `scratch`).
   const ModalState& modal_in_step(double t, ModalState& scratch);
   void physical(const ModalState& modal, Eigen::Ref<Eigen::VectorXd> y) const;
@@ -117,21 +120,24 @@ class ModalExactIntegrator final : public Integrator {
   std::unique_ptr<Integrator> held_;  // integrates the held stretches
   bool held_phase_ = false;
 
-  std::array<model::ModalBasis, 2> bases_;
-  std::array<int, 2> mode_offset_{0, 0};  // first mode of each building in ModalState
-  std::array<int, 2> dof_offset_{0, 0};   // first DOF of each building in q
+  // Per building:
+  std::vector<model::ModalBasis> bases_;
+  std::vector<int> mode_offset_;           // first mode of each building in ModalState
+  std::vector<int> dof_offset_;            // first DOF of each building in q
+  Buildings every_building_;               // all true
   Eigen::VectorXd omega_, damping_ratio_;  // every mode, building 1's first
   Eigen::MatrixXd participation_;          // Γ: a row per mode as above, a column per ground-motion component
   int components_ = 1;                     // of the ground motion
   // Contact floors' DOFs: per building, the local DOF indices and the matching rows of Φ.
-  std::array<std::vector<int>, 2> contact_dofs_;
-  std::array<Eigen::MatrixXd, 2> contact_shapes_;
-  std::array<Eigen::MatrixXd, 2> contact_static_;  // the same rows of the static correction R (a column per component)
+  std::vector<std::vector<int>> contact_dofs_;
+  std::vector<Eigen::MatrixXd> contact_shapes_;
+  std::vector<Eigen::MatrixXd> contact_static_;    // the same rows of the static correction R (a column per component)
   bool truncated_ = false;                         // some mode is left out
   Eigen::VectorXd contact_y_;  // NaN outside the contact floors
   StepCache step_cache_, probe_cache_;
   // Scratch, sized once, so that a step allocates nothing.
-  std::array<Eigen::VectorXd, 2> contact_q_, contact_q_rate_;
+  std::vector<Eigen::VectorXd> contact_q_, contact_q_rate_;
+  Buildings needed_;  // interpolate_components: the buildings its indices read
   ModalState probe_, probe_b_;
   Eigen::VectorXd roots_end_, roots_probe_;
 
