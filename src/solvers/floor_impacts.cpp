@@ -35,7 +35,7 @@ std::vector<int> joined_levels(const dynamics::CoupledSystem& system, const dyna
   };
   std::vector<int> joined{level};
   for (std::size_t next = 0; next < joined.size(); ++next) {
-    const contact::Level& from = levels[static_cast<std::size_t>(joined[next] - 1)];
+    const contact::Level& from = levels.at(static_cast<std::size_t>(joined[next] - 1));
     for (const contact::Level& other : levels) {
       if (std::find(joined.begin(), joined.end(), other.index) != joined.end()) continue;
       if (share_a_slab(from, other) && has_contact(other.index)) joined.push_back(other.index);
@@ -43,6 +43,13 @@ std::vector<int> joined_levels(const dynamics::CoupledSystem& system, const dyna
   }
   std::sort(joined.begin(), joined.end());
   return joined;
+}
+
+std::set<std::vector<int>> level_groups(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y,
+                                        const std::set<int>& levels, const TakeContact& take) {
+  std::set<std::vector<int>> groups;
+  for (int level : levels) groups.insert(joined_levels(system, y, level, take));
+  return groups;
 }
 
 FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y,
@@ -134,7 +141,7 @@ double record_floor_outcome(const dynamics::CoupledSystem& system, double t, con
       r.approach_velocity_mps = -rate_before;
       r.separation_velocity_mps = rate_after;
       r.impulse_kNs = impulse;
-      r.energy_lost_kJ = -impulse * (rate_before + rate_after) / 2.0;  // the shares sum to the pair's loss
+      r.energy_lost_kJ = -impulse * (rate_before + rate_after) / 2.0;  // the shares sum to the group's loss
       r.starts_hold = !holds.empty() && holds[k];
       result.impacts.push_back(r);
     } else if (touched.count(i) && rate_before >= -round_off_mps) {

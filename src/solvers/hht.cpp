@@ -322,9 +322,9 @@ void HhtRun::track_overlaps(const State& s) {
 }
 
 State HhtRun::settle(const State& s) {
-  // Impacts at this step end: per group of levels, every contact within the tolerance or deeper solved
-  // together (an overlap that halving could not resolve still takes its impulse, so it does not
-  // sink on); a touch is a pair that reaches g ≤ 0 (within the tolerance) without approaching.
+  // Impacts at this step end: per group of levels that share a slab, every contact within the
+  // tolerance or deeper solved together (an overlap that halving could not resolve still takes its
+  // impulse, so it does not sink on); a touch is a pair that reaches g ≤ 0 (within the tolerance) without approaching.
   VectorXd y = first_order(s);
   const double tol = options_.contact_tolerance_m;
   std::vector<bool> in_contact(touching_.size(), false), touching(touching_.size(), false);
@@ -339,17 +339,11 @@ State HhtRun::settle(const State& s) {
     else if (touching[i] && !touching_[i] && g.gap_m >= -tol) new_touches.insert(i);
   }
   bool changed = false;
-  // Levels whose contacts share a slab (a row's middle building struck from both sides) are one
-  // impact problem; each group is solved once.
   const TakeContact take = [&](std::size_t i, const contact::GapState&) { return in_contact[i]; };
-  std::set<std::vector<int>> groups;
+  const std::set<std::vector<int>> groups = level_groups(system_, y, levels, take);
   std::set<int> resolved;  // every level of a group
-  for (int level : levels) {
-    const std::vector<int> group = joined_levels(system_, y, level, take);
-    groups.insert(group);
-    resolved.insert(group.begin(), group.end());
-  }
   for (const std::vector<int>& group : groups) {
+    resolved.insert(group.begin(), group.end());
     const FloorContacts contacts = gather_floor_contacts(system_, y, group, options_.restitution, take);
     const VectorXd before = y;
     const contact::ImpulseSolution solution = apply_impulses(system_, y, contacts);

@@ -107,12 +107,9 @@ void ImpulseEvents::handle_event(double t, VectorXd& y, const std::vector<std::s
     fired.insert(i);
     levels.insert(system_.candidates()[i].level);
   }
-  // Levels whose contacts share a slab (a row's middle building struck from both sides) are one
-  // impact problem; each group is solved once.
+  // Contacts that share a slab are one impact problem (level_groups), each group solved once.
   const TakeContact take = [&](std::size_t i, const contact::GapState& s) { return takes_part(i, s, fired); };
-  std::set<std::vector<int>> groups;
-  for (int level : levels) groups.insert(joined_levels(system_, y, level, take));
-  for (const std::vector<int>& group : groups) resolve_floor(t, y, group, fired);
+  for (const std::vector<int>& group : level_groups(system_, y, levels, take)) resolve_floor(t, y, group, fired);
   settle_holds(t, y);
   update_hold_records(t, y);  // a hold may end before the next step does
 }

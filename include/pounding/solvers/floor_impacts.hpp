@@ -30,6 +30,12 @@ using TakeContact = std::function<bool(std::size_t, const contact::GapState&)>;
 std::vector<int> joined_levels(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y, int level,
                                const TakeContact& take);
 
+/// The groups of joined_levels() of each of `levels`, each group once. Levels whose contacts
+/// share a slab (a row's middle building struck from both sides) are one impact problem; groups
+/// share no slab, so they may be resolved one after another.
+std::set<std::vector<int>> level_groups(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y,
+                                        const std::set<int>& levels, const TakeContact& take);
+
 /// The candidates of `levels` (1-based) for which take(index, state) holds, with restitution k each.
 FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y,
                                     const std::vector<int>& levels, double restitution, const TakeContact& take);
