@@ -77,17 +77,40 @@ Eigen::VectorXd enumerate(const Lcp& lcp, double tolerance) {
   return {};
 }
 
-Eigen::VectorXd gauss_seidel(const Lcp& lcp) {
+/// max_i |min(W_ii x_i, w_i)| / max_i |offset_i|: zero exactly where x ≥ 0 solves the LCP (both
+/// terms are velocities, so the ratio is scale-free).
+double complementarity_residual(const Lcp& lcp, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd w = lcp.w_matrix * x + lcp.offset;
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    largest = std::max(largest, std::abs(std::min(lcp.w_matrix(i, i) * x[i], w[i])));
+  const double scale = lcp.offset.cwiseAbs().maxCoeff();
+  return scale > 0.0 ? largest / scale : largest;
+}
+
+/// Projected Gauss–Seidel until the residual is below kGaussSeidelResidual (checked every
+/// kGaussSeidelCheck sweeps) or after kGaussSeidelSweeps sweeps. It converges for symmetric
+/// positive semi-definite W, slowly where contacts depend on each other (rows of held slabs).
+constexpr int kGaussSeidelSweeps = 20000;
+constexpr int kGaussSeidelCheck = 25;
+constexpr double kGaussSeidelResidual = 1e-12;
+
+LcpSolution gauss_seidel(const Lcp& lcp) {
   const Eigen::Index m = lcp.offset.size();
-  Eigen::VectorXd impulses = Eigen::VectorXd::Zero(m);
-  for (int sweep = 0; sweep < 1000; ++sweep) {
+  LcpSolution solution{Eigen::VectorXd::Zero(m), {}, false, 0.0};
+  Eigen::VectorXd& impulses = solution.x;
+  for (int sweep = 1; sweep <= kGaussSeidelSweeps; ++sweep) {
     for (Eigen::Index i = 0; i < m; ++i) {
       if (lcp.w_matrix(i, i) <= 0.0) continue;
       const double w = lcp.w_matrix.row(i).dot(impulses) + lcp.offset[i];
       impulses[i] = std::max(0.0, impulses[i] - w / lcp.w_matrix(i, i));
     }
+    if (sweep % kGaussSeidelCheck == 0) {
+      solution.residual = complementarity_residual(lcp, impulses);
+      if (solution.residual <= kGaussSeidelResidual) break;
+    }
   }
-  return impulses;
+  return solution;
 }
 
 }  // namespace
@@ -110,10 +133,7 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& of
   const double tolerance =
       1e-12 * (offset.cwiseAbs().maxCoeff() + 1e-12) * (1.0 + w_matrix.diagonal().maxCoeff());
   if (offset.size() <= static_cast<Eigen::Index>(kMaxEnumerated)) solution.x = enumerate(lcp, tolerance);
-  if (solution.x.size() == 0) {
-    solution.x = gauss_seidel(lcp);
-    solution.exact = false;
-  }
+  if (solution.x.size() == 0) solution = gauss_seidel(lcp);
   solution.w = w_matrix * solution.x + offset;
   return solution;
 }
@@ -126,6 +146,7 @@ ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Ei
   const LcpSolution lcp_solution = solve_lcp(lcp.w_matrix, lcp.offset);
   const Eigen::VectorXd& impulses = lcp_solution.x;
   solution.exact = lcp_solution.exact;
+  solution.lcp_residual = lcp_solution.residual;
   solution.impulses_kNs.assign(impulses.data(), impulses.data() + impulses.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     solution.velocity_change += inverse_mass.cwiseProduct(contacts[i].jacobian.transpose()) * impulses[i];

@@ -241,6 +241,13 @@ void append_solver(const analysis::RunReport& report, std::string& text) {
     fmt::format_to(out, "Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
                    s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
   }
+  if (s.iterative_lcp_solves > 0) {
+    fmt::format_to(
+        out,
+        "Contact problems of more than 12 contacts: {} solved by projected Gauss-Seidel, largest relative residual "
+        "{:.1e}\n",
+        s.iterative_lcp_solves, s.largest_lcp_residual);
+  }
 }
 
 /// One line per warning, each after a line break (the brief report has no final one).

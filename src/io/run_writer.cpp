@@ -217,6 +217,8 @@ json statistics_json(const solvers::SolverStatistics& s, const std::vector<conta
           {"halvings", s.halvings},
           {"smallest_step_s", s.smallest_step_s},
           {"unresolved_contacts", s.unresolved_contacts},
+          {"iterative_lcp_solves", s.iterative_lcp_solves},
+          {"largest_lcp_residual", s.largest_lcp_residual},
           {"max_interpenetration_m", s.max_interpenetration_m},
           {"max_interpenetration_t_s", overlapped ? json(s.max_interpenetration_t_s) : json(nullptr)},
           {"max_interpenetration_pair",

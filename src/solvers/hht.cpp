@@ -347,6 +347,7 @@ State HhtRun::settle(const State& s) {
     const FloorContacts contacts = gather_floor_contacts(system_, y, group, options_.restitution, take);
     const VectorXd before = y;
     const contact::ImpulseSolution solution = apply_impulses(system_, y, contacts);
+    result_.statistics.note_lcp(solution.exact, solution.lcp_residual);
     recorder_.add_impact_loss(
         record_floor_outcome(system_, s.t_s, contacts, solution, before, y, new_touches, {}, {}, result_));
     recorder_.stream_new_impacts(result_.impacts);

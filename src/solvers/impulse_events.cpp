@@ -150,6 +150,7 @@ void ImpulseEvents::settle_holds(double t, const VectorXd& y) {
   // A twin held beside its contact (coincident corners: the same row twice) gets no force and
   // zero acceleration; only an opening acceleration clearly above round-off releases a pair.
   const contact::LcpSolution solution = system_.hold_complementarity(t, y, held, context_.springs);
+  result_.statistics.note_lcp(solution.exact, solution.residual);
   const double round_off = 1e-9 * (1.0 + solution.w.cwiseAbs().maxCoeff());
   std::vector<std::size_t> separating;
   for (std::size_t r = 0; r < held.size(); ++r) {
@@ -190,6 +191,7 @@ std::vector<bool> ImpulseEvents::settle_floor(double t, VectorXd& y, FloorContac
     for (std::size_t k = 0; k < n; ++k) contacts.rows[k].restitution = holding[k] ? 0.0 : options_.restitution;
     y_after = y;
     solution = apply_impulses(system_, y_after, contacts);
+    result_.statistics.note_lcp(solution.exact, solution.lcp_residual);
     const VectorXd v_after = system_.slab_velocities(y_after, contacts.slabs);
 
     std::vector<std::size_t> trial;  // held elsewhere, plus this group's slow separations

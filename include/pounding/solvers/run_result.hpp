@@ -3,6 +3,7 @@
 // status with a named reason. Units in the member names.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -191,6 +192,13 @@ struct SolverStatistics {
   long interpolant_events = 0;  // contacts found inside a step from the interpolant (grazing)
   long yield_events = 0;        // yielding columns' branch changes (yield, unload); not in `events`
   long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
+  long iterative_lcp_solves = 0;   // impact and hold problems of more than 12 contacts (Gauss–Seidel)
+  double largest_lcp_residual = 0.0;  // their largest residual (contact::LcpSolution::residual)
+  void note_lcp(bool exact, double residual) {
+    if (exact) return;
+    ++iterative_lcp_solves;
+    largest_lcp_residual = std::max(largest_lcp_residual, residual);
+  }
   long halvings = 0;               // HHT: step halvings on overlap
   double smallest_step_s = 0.0;    // HHT: the smallest step taken
   long unresolved_contacts = 0;    // HHT: times a pair sank deeper than the tolerance at an accepted step end
