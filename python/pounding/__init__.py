@@ -160,7 +160,7 @@ def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiff
     .contact_law, .record_file, .history, .peaks ([output]) and the with_gap(m),
     with_pair_gap(first, second, m), with_restitution(k), with_record(path, ...),
     with_outputs(history=, peaks=) copies. `contact_stiffness` is in the
-    law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp and jankowski."""
+    law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp, hertzdamp-ye and jankowski."""
     gap_m, gaps = _gap_options(gap)
     return _pounding.load_scene(path, gap_m, restitution, contact_law, contact_stiffness, gaps)
 

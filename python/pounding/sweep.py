@@ -62,7 +62,7 @@ RECORD_FIELDS = {"file": "file", "format": "format", "units": "units", "dt_s": "
 # field -> Scene.with_record keyword: the scaling fields under the scene's names, or the record
 # list's short ones (scale, pga_g, sa)
 SECOND_KEYS = {"excitation.second.file": "record2", "excitation.second.accel_column": "record2_column"}
-STIFFNESS_KEYS = ("stiffness_kN_per_m", "stiffness_kN_per_m1_5")  # kelvin; hertzdamp, jankowski
+STIFFNESS_KEYS = ("stiffness_kN_per_m", "stiffness_kN_per_m1_5")  # kelvin; the Hertz laws
 LAW_KEYS = ("name", *STIFFNESS_KEYS)
 
 # Columns of sweep.csv after the parameters (which are PARAMETERS, then one column a [solver]

@@ -61,6 +61,16 @@ const std::vector<ContactLawInfo> kLaws = {
      .stiffness_source = "Muthukumar & DesRoches 2006, 25 000 kip/in^1.5 for concrete bridge decks (2.75e7 kN/m^1.5)",
      .damping_key = "normalised_damping",
      .methods = kEventDrivenIntegrators},
+    {.name = "hertzdamp-ye",
+     .description = "Hertz contact with nonlinear damping F = k_h delta^1.5 (1 + 8(1-e)/(5e) delta_dot/v0) "
+                    "(Ye, Li & Zhu 2009): hertzdamp's form, its rebound within 0.05 of e at any e",
+     .law = contact::ContactLaw::hertzdamp_ye,
+     .stiffness_key = "stiffness_kN_per_m1_5",
+     .stiffness_unit = "kN/m^1.5",
+     .default_stiffness = 25e3 * kKipInKilonewtons / (kInchInMetres * std::sqrt(kInchInMetres)),
+     .stiffness_source = "as hertzdamp: Muthukumar & DesRoches 2006, 25 000 kip/in^1.5 (2.75e7 kN/m^1.5)",
+     .damping_key = "normalised_damping",
+     .methods = kEventDrivenIntegrators},
     {.name = "jankowski",
      .description = "nonlinear viscoelastic F = beta delta^1.5 + c delta_dot approaching, beta delta^1.5 "
                     "separating, c from restitution (Jankowski 2005)",
@@ -99,6 +109,8 @@ double contact_damping(const ContactLawInfo& law, double restitution) {
     case contact::ContactLaw::impulse: return 0.0;
     case contact::ContactLaw::kelvin: return contact::kelvin_damping_ratio(restitution);
     case contact::ContactLaw::hertzdamp: return contact::hertzdamp_normalised_damping(restitution);
+    case contact::ContactLaw::hertzdamp_ye:
+      return contact::hertzdamp_ye_normalised_damping(restitution);
     case contact::ContactLaw::jankowski: return contact::jankowski_damping_ratio(restitution);
   }
   return 0.0;

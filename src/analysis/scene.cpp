@@ -66,11 +66,12 @@ const std::vector<ContactSettingSpec>& contact_specs() {
        .description = "how contacts push",
        .details = "`impulse` is the paper's rigid impact with restitution and held contacts; `kelvin` a "
                   "spring–dashpot element while the slabs overlap; `hertzdamp` a Hertz spring with damping ∝ δ^1.5 "
-                  "(Muthukumar & DesRoches 2006); `jankowski` a Hertz spring with a dashpot while approaching "
+                  "(Muthukumar & DesRoches 2006); `hertzdamp-ye` the same with Ye, Li & Zhu's (2009) damping, "
+                  "whose rebound follows e; `jankowski` a Hertz spring with a dashpot while approaching "
                   "(Jankowski 2005) ([model.md §6a](model.md#6a-compliant-contact-kelvin-hertzdamp-jankowski), "
                   "which also says which law to use for what). The compliant laws run on cvode-bdf, cvode-adams, "
-                  "arkode-erk and arkode-dirk; hht and exact refuse them (exit 2). `jankowski` refuses "
-                  "`restitution = 0` (its damping ratio is infinite there)"},
+                  "arkode-erk and arkode-dirk; hht and exact refuse them (exit 2). `jankowski` and `hertzdamp-ye` "
+                  "refuse `restitution = 0` (their damping is infinite there)"},
       {.key = "slab_to_column",
        .member = &ContactSettings::slab_to_column,
        .choices = {"on", "off"},
@@ -92,12 +93,12 @@ const std::vector<ContactSettingSpec>& contact_specs() {
        .option = "--contact-stiffness",
        .member = &ContactSettings::stiffness_kN_per_m1_5,
        .range = Range{1.0, 1e13, "kN/m^1.5", false, "[1, 1e13]"},
-       .description = "hertzdamp's k_h or jankowski's β (kN/m^1.5)",
+       .description = "hertzdamp's and hertzdamp-ye's k_h or jankowski's β (kN/m^1.5)",
        .details = "refused for impulse and kelvin; `--contact-stiffness` sets it when one of these laws is in "
-                  "force. Defaults as quoted, not checked against the papers: hertzdamp 25 000 kip/in^1.5 "
-                  "(Muthukumar & DesRoches 2006, concrete bridge decks), jankowski 2.75e9 N/m^1.5 (Jankowski 2005, "
-                  "the same concrete tests as kelvin's default). The damping follows from `restitution` (and for "
-                  "hertzdamp the approach speed at onset)"},
+                  "force. Defaults as quoted, not checked against the papers: hertzdamp and hertzdamp-ye 25 000 "
+                  "kip/in^1.5 (Muthukumar & DesRoches 2006, concrete bridge decks), jankowski 2.75e9 N/m^1.5 "
+                  "(Jankowski 2005, the same concrete tests as kelvin's default). The damping follows from "
+                  "`restitution` (and for the hertzdamp laws the approach speed at onset)"},
       {.key = "level_tolerance_m",
        .member = &ContactSettings::level_tolerance_m,
        .range = Range{0.0, 0.5, "m", true},
@@ -163,6 +164,11 @@ void validate_contact(const ContactSettings& contact) {
     throw InputError("contact.restitution", "0",
                      "must be positive for law jankowski: its damping ratio 9 sqrt(5) (1 - e^2) / (2e (e (9 pi - 16) "
                      "+ 16)) is infinite at e = 0 (use kelvin or hertzdamp for a plastic contact)");
+  }
+  if (law.law == contact::ContactLaw::hertzdamp_ye && contact.restitution == 0.0) {
+    throw InputError("contact.restitution", "0",
+                     "must be positive for law hertzdamp-ye: its damping 8 (1 - e) / (5e) is infinite at e = 0 (use "
+                     "kelvin or hertzdamp for a plastic contact)");
   }
 }
 
@@ -576,7 +582,7 @@ void require_no_column_contact(const Scene& pair, const std::string& file) {
       "contact.law", fmt::format("\"{}\"", pair.contact.law),
       fmt::format("cannot resolve slab-to-column contact: {} floor {} ({:.6g} m) stands between floors of {} and would "
                   "strike the columns of its storey {} (and {} such floor{} in all). Use a compliant law (kelvin, "
-                  "hertzdamp or jankowski), whose force the column's two floors share, or set "
+                  "hertzdamp, hertzdamp-ye or jankowski), whose force the column's two floors share, or set "
                   "contact.slab_to_column = \"off\" to leave such contacts out",
                   pair.buildings[first.slab_building].name, first.slab_floor, first.elevation_m,
                   pair.buildings[1 - first.slab_building].name, first.storey, levels.size(),

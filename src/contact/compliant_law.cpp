@@ -17,6 +17,8 @@ std::string_view to_string(ContactLaw law) {
       return "kelvin";
     case ContactLaw::hertzdamp:
       return "hertzdamp";
+    case ContactLaw::hertzdamp_ye:
+      return "hertzdamp-ye";
     case ContactLaw::jankowski:
       return "jankowski";
   }
@@ -24,6 +26,10 @@ std::string_view to_string(ContactLaw law) {
 }
 
 double hertzdamp_normalised_damping(double restitution) { return 0.75 * (1.0 - restitution * restitution); }
+
+double hertzdamp_ye_normalised_damping(double restitution) { return 1.6 * (1.0 - restitution) / restitution; }
+
+bool refuses_plastic(ContactLaw law) { return law == ContactLaw::jankowski || law == ContactLaw::hertzdamp_ye; }
 
 double jankowski_damping_ratio(double restitution) {
   const double e = restitution;
@@ -45,6 +51,10 @@ CompliantContact::CompliantContact(ContactLaw law, double stiffness, double rest
     case ContactLaw::hertzdamp:
       damping_ = hertzdamp_normalised_damping(restitution) * stiffness / approach_speed_mps;
       break;
+    case ContactLaw::hertzdamp_ye:
+      assert(restitution > 0.0);
+      damping_ = hertzdamp_ye_normalised_damping(restitution) * stiffness / approach_speed_mps;
+      break;
     case ContactLaw::jankowski:
       assert(restitution > 0.0);
       damping_ = 2.0 * jankowski_damping_ratio(restitution) * std::sqrt(stiffness / normal_inverse_mass_per_t);
@@ -59,7 +69,7 @@ double CompliantContact::force_kN(double overlap_m, double rate_mps) const {
   if (law_ == ContactLaw::kelvin) return stiffness_ * overlap_m + damping_ * rate_mps;
   const double overlap = own_overlap(std::max(overlap_m, 0.0));
   const double hertz = std::pow(overlap, 1.5);
-  if (law_ == ContactLaw::hertzdamp) return hertz * (stiffness_ + damping_ * rate_mps);
+  if (hertzdamp_form()) return hertz * (stiffness_ + damping_ * rate_mps);
   const bool approaching = !switched_;
   return stiffness_ * hertz + (approaching ? damping_ * std::pow(overlap, 0.25) * rate_mps : 0.0);
 }
@@ -75,7 +85,7 @@ ForceSlopes CompliantContact::slopes(double overlap_m, double rate_mps) const {
 }
 
 ForceSlopes CompliantContact::hertz_slopes(double overlap, double root, double rate_mps) const {
-  if (law_ == ContactLaw::hertzdamp) {
+  if (hertzdamp_form()) {
     return {1.5 * root * (stiffness_ + damping_ * rate_mps), damping_ * overlap * root};
   }
   ForceSlopes slopes{1.5 * stiffness_ * root, 0.0};
@@ -114,6 +124,7 @@ double CompliantContact::first_switch(double overlap_m, double rate_mps) const {
     case ContactLaw::kelvin:
       return stiffness_ * overlap_m + damping_ * rate_mps;
     case ContactLaw::hertzdamp:
+    case ContactLaw::hertzdamp_ye:
       return stiffness_ + damping_ * rate_mps;
     case ContactLaw::jankowski:
       return rate_mps;
@@ -134,6 +145,7 @@ double CompliantContact::switch_rate(double, double rate_mps, double accel_mps2)
       rate = stiffness_ * rate_mps + damping_ * accel_mps2;
       break;
     case ContactLaw::hertzdamp:
+    case ContactLaw::hertzdamp_ye:
       rate = damping_ * accel_mps2;
       break;
     case ContactLaw::jankowski:

@@ -58,8 +58,10 @@ void EventOptions::validate() const {
   }
   if (max_steps < 1) throw InputError("max_steps", std::to_string(max_steps), "must be positive");
   if (law != contact::ContactLaw::impulse) positive(contact_stiffness, "contact_stiffness");
-  if (law == contact::ContactLaw::jankowski && restitution == 0.0) {
-    throw InputError("restitution", "0", "must be positive for the jankowski law (its damping ratio is infinite at 0)");
+  if (contact::refuses_plastic(law) && restitution == 0.0) {
+    throw InputError(
+        "restitution", "0",
+        fmt::format("must be positive for the {} law (its damping is infinite at 0)", contact::to_string(law)));
   }
   budget.validate();
   if (initial_state.size() != 0 && !initial_state.allFinite()) {

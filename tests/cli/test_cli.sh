@@ -369,7 +369,7 @@ expect_refusal "--hold-rtol = 1e-10: does not apply to method arkode-dirk" run "
 expect_refusal "--newton = \"dense\": does not apply to method arkode-erk" run "$scene" --method arkode-erk --newton dense --out "$work/bad"
 # Contact laws: a law key for the impulse law, an unknown law, and kelvin where it cannot run.
 expect_refusal "--contact-stiffness = 1000000: does not apply to law impulse" run "$scene" --contact-stiffness 1e6 --out "$work/bad"
-expect_refusal "--contact-law = \"hertz\": expected impulse, kelvin, hertzdamp or jankowski" run "$scene" --contact-law hertz --out "$work/bad"
+expect_refusal "--contact-law = \"hertz\": expected impulse, kelvin, hertzdamp, hertzdamp-ye or jankowski" run "$scene" --contact-law hertz --out "$work/bad"
 expect_refusal "--contact-stiffness = 0.0001: must lie in \[1, 1e13\] kN/m^1.5" \
   run "$scene" --contact-law hertzdamp --contact-stiffness 1e-4 --out "$work/bad"
 expect_refusal "contact.law = \"kelvin\": does not run on method hht" run "$scene" --contact-law kelvin --method hht --out "$work/bad"

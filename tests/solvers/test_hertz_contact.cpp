@@ -43,13 +43,17 @@ struct ScalarOutcome {
 };
 
 /// The laws as the papers write them (not the library's code): hertzdamp
-/// F = k δ^1.5 + (3k(1 − e²)/(4v₀)) δ^1.5 δ̇ while positive; jankowski F = k
+/// F = k δ^1.5 + (3k(1 − e²)/(4v₀)) δ^1.5 δ̇ while positive; hertzdamp-ye the
+/// same with 8k(1 − e)/(5ev₀) (Ye, Li & Zhu 2009); jankowski F = k
 /// δ^1.5 + c δ̇ while δ̇ > 0 and k δ^1.5 after, c = 2ξ√(k√δ μ), ξ = 9√5(1 −
 /// e²)/(2e(e(9π − 16) + 16)).
 double paper_force(ContactLaw law, double e, double k, double mu, double v0, double overlap, double rate) {
   const double d = std::max(overlap, 0.0);
   if (law == ContactLaw::hertzdamp) {
     return std::max(0.0, k * std::pow(d, 1.5) + 3.0 * k * (1.0 - e * e) / (4.0 * v0) * std::pow(d, 1.5) * rate);
+  }
+  if (law == ContactLaw::hertzdamp_ye) {
+    return std::max(0.0, k * std::pow(d, 1.5) + 8.0 * k * (1.0 - e) / (5.0 * e * v0) * std::pow(d, 1.5) * rate);
   }
   const double xi = 9.0 * std::sqrt(5.0) * (1.0 - e * e) / (2.0 * e * (e * (9.0 * std::numbers::pi - 16.0) + 16.0));
   return k * std::pow(d, 1.5) + (rate > 0.0 ? 2.0 * xi * std::sqrt(k * std::sqrt(d) * mu) * rate : 0.0);
@@ -147,7 +151,7 @@ void check_against_scalar(ContactLaw law, double e, const solvers::IntegratorFac
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(HertzLawsMatchTheScalarContactOnCvodeBdf) {
-  for (ContactLaw law : {ContactLaw::hertzdamp, ContactLaw::jankowski}) {
+  for (ContactLaw law : {ContactLaw::hertzdamp, ContactLaw::hertzdamp_ye, ContactLaw::jankowski}) {
     for (double e : {0.3, 0.5, 0.7, 0.9}) check_against_scalar(law, e, cvode(1e-10, 1e-12));
   }
 }
@@ -165,11 +169,12 @@ BOOST_AUTO_TEST_CASE(AchievedRestitutionAgainstThePublishedRelations) {
   // approximate energy integral, within 0.01 of e here; Muthukumar & DesRoches'
   // (the Lankarani–Nikravesh form) assumes the approach speed barely falls
   // during the contact, so it holds to first order in 1 − e only (Ye et al.
-  // 2009): within 1.5 (1 − e)² of e. The laws are self-similar (the achieved e
+  // 2009): within 1.5 (1 − e)² of e; Ye, Li & Zhu's own relation (hertzdamp-ye)
+  // within 0.05 at every e (0.044 at e = 0.3). The laws are self-similar (the achieved e
   // depends on e alone), so one mass, speed and stiffness show it.
   const HeadOn pair;
   for (double e : {0.3, 0.5, 0.7, 0.9}) {
-    for (ContactLaw law : {ContactLaw::hertzdamp, ContactLaw::jankowski}) {
+    for (ContactLaw law : {ContactLaw::hertzdamp, ContactLaw::hertzdamp_ye, ContactLaw::jankowski}) {
       const solvers::RunResult r = pair.run(law, e, kStiffness, cvode(1e-10, 1e-12));
       BOOST_TEST_REQUIRE(r.impacts.size() == 1u);
       const double achieved = r.impacts[0].separation_velocity_mps / HeadOn::v0;
@@ -178,7 +183,9 @@ BOOST_AUTO_TEST_CASE(AchievedRestitutionAgainstThePublishedRelations) {
       const double lost = r.impacts[0].energy_lost_kJ / (0.5 * HeadOn::mu * HeadOn::v0 * HeadOn::v0);
       BOOST_TEST(lost == 1.0 - achieved * achieved, tt::tolerance(1e-5));
       BOOST_TEST_MESSAGE(contact::to_string(law) << ": e = " << e << " achieves " << achieved);
-      const double bound = law == ContactLaw::jankowski ? 0.01 : 1.5 * (1.0 - e) * (1.0 - e);
+      const double bound = law == ContactLaw::jankowski      ? 0.01
+                           : law == ContactLaw::hertzdamp_ye ? 0.05
+                                                             : 1.5 * (1.0 - e) * (1.0 - e);
       BOOST_TEST(std::abs(achieved - e) <= bound, contact::to_string(law) << " e = " << e << " achieves " << achieved);
     }
   }

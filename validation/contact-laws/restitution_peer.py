@@ -6,10 +6,10 @@ sharing no code with the program): for each compliant law and target e,
    δ(0) = 0, δ̇(0) = v₀, integrated until the law releases the contact. The ratio of separation to
    approach speed depends on e alone (kelvin by linearity, the Hertz laws by self-similarity), so
    it is the law's restitution table. It is also given for the published damping relations of
-   the Hertz form F = k_h δ^1.5 (1 + χ δ̇/δ̇₀) that the program does not use, to show what each
-   achieves: Hunt & Crossley (1975) χ = 3(1 − e)/2, Lankarani & Nikravesh (1990) χ = 3(1 − e²)/4
-   (the program's hertzdamp, after Muthukumar & DesRoches 2006) and Ye, Li & Zhu (2009)
-   χ = 8(1 − e)/(5e);
+   the Hertz form F = k_h δ^1.5 (1 + χ δ̇/δ̇₀), to show what each achieves: Hunt & Crossley
+   (1975) χ = 3(1 − e)/2, Lankarani & Nikravesh (1990) χ = 3(1 − e²)/4 (the program's hertzdamp,
+   after Muthukumar & DesRoches 2006) and Ye, Li & Zhu (2009) χ = 8(1 − e)/(5e) (the program's
+   hertzdamp-ye);
 2. the first contact of the scene lone-impact.toml (two undamped one-storey oscillators after a
    ground pulse, meeting head-on in line with both centres of mass) at 100 times each law's
    default stiffness: its onset, impulse and ratio of separation to approach speed, which
@@ -20,8 +20,8 @@ sharing no code with the program): for each compliant law and target e,
     validation/contact-laws/restitution_peer.py            (print both tables)
     validation/contact-laws/restitution_peer.py --manifest OUT [--manifest-current COMMITTED]
 
-The laws as docs/model.md §6a states them (released where the force turns tensile, kelvin and
-hertzdamp; jankowski's dashpot acts only while approaching and the contact lasts until the gap
+The laws as docs/model.md §6a states them (released where the force turns tensile, kelvin, hertzdamp
+and hertzdamp-ye; jankowski's dashpot acts only while approaching and the contact lasts until the gap
 opens). Units: t, m, s, kN.
 """
 import argparse
@@ -39,13 +39,13 @@ RTOL, ATOL = 1e-12, 1e-15
 RESTITUTIONS = [0.1, 0.3, 0.5, 0.7, 0.9, 1.0]
 # Each law's default stiffness (kN/m for kelvin, kN/m^1.5 for the Hertz laws; docs/scene-format.md)
 # and the multiple the scene uses, at which the contact lasts a few milliseconds.
-DEFAULT_STIFFNESS = {"kelvin": 93500.0, "hertzdamp": 2.74711e7, "jankowski": 2.75e6}
+DEFAULT_STIFFNESS = {"kelvin": 93500.0, "hertzdamp": 2.74711e7, "hertzdamp-ye": 2.74711e7, "jankowski": 2.75e6}
 STIFFNESS_FACTOR = 100.0
-LAWS = ("kelvin", "hertzdamp", "jankowski")
+LAWS = ("kelvin", "hertzdamp", "hertzdamp-ye", "jankowski")
 HERTZ_RELATIONS = {  # χ(e) of F = k_h δ^1.5 (1 + χ δ̇/δ̇₀)
     "Hunt & Crossley 1975": lambda e: 1.5 * (1.0 - e),
     "Lankarani & Nikravesh 1990 (hertzdamp)": lambda e: 0.75 * (1.0 - e * e),
-    "Ye, Li & Zhu 2009": lambda e: 1.6 * (1.0 - e) / e,
+    "Ye, Li & Zhu 2009 (hertzdamp-ye)": lambda e: 1.6 * (1.0 - e) / e,
 }
 
 
@@ -85,6 +85,8 @@ class Law:
 def law_for(name, stiffness, e, v0, w):
     if name == "hertzdamp":
         return Law("hertz", stiffness, e, v0, w, chi=HERTZ_RELATIONS["Lankarani & Nikravesh 1990 (hertzdamp)"](e))
+    if name == "hertzdamp-ye":
+        return Law("hertz", stiffness, e, v0, w, chi=HERTZ_RELATIONS["Ye, Li & Zhu 2009 (hertzdamp-ye)"](e))
     return Law(name, stiffness, e, v0, w)
 
 

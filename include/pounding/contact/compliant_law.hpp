@@ -11,13 +11,22 @@
 namespace pounding::contact {
 
 /// How contacts are resolved (analysis/contact_laws.hpp lists them for users).
-enum class ContactLaw { impulse, kelvin, hertzdamp, jankowski };
+enum class ContactLaw { impulse, kelvin, hertzdamp, hertzdamp_ye, jankowski };
 
 std::string_view to_string(ContactLaw law);
 
 /// Hertzdamp's damping ξ = 3k_h(1 − e²)/(4δ̇₀) (Muthukumar & DesRoches 2006) as
 /// ξδ̇₀/k_h = 3(1 − e²)/4 (dimensionless). @pre restitution ∈ [0, 1].
 double hertzdamp_normalised_damping(double restitution);
+
+/// Ye, Li & Zhu's (2009) damping for the same Hertz form, ξ = 8k_h(1 − e)/(5eδ̇₀), as
+/// ξδ̇₀/k_h = 8(1 − e)/(5e) (dimensionless). Derived without assuming that the approach speed
+/// barely falls, so it holds for low e too (docs/model.md §6a).
+/// @pre restitution ∈ (0, 1]: ξ → ∞ as e → 0, so e = 0 is refused for this law.
+double hertzdamp_ye_normalised_damping(double restitution);
+
+/// Whether the law gives e = 0 an infinite damping (jankowski, hertzdamp-ye), so refuses it.
+bool refuses_plastic(ContactLaw law);
 
 /// Jankowski's (2005) impact damping ratio ξ = 9√5(1 − e²)/(2e(e(9π − 16) +
 /// 16)).
@@ -39,8 +48,8 @@ struct ForceSlopes {
 /// fixed at onset:
 ///   kelvin     F = kδ + cδ̇, c = 2ξ√(k/W); released where F turns tensile;
 ///   hertzdamp  F = k_h δ^1.5 + ξ δ^1.5 δ̇, ξ = 3k_h(1 − e²)/(4δ̇₀); released
-///   where F turns tensile; jankowski  F = βδ^1.5 + cδ̇ approaching (δ̇ > 0),
-///   βδ^1.5 separating, c = 2ξ√(β√δ/W);
+///   where F turns tensile; hertzdamp-ye  the same with ξ = 8k_h(1 − e)/(5eδ̇₀); jankowski  F = βδ^1.5 + cδ̇ approaching
+///   (δ̇ > 0), βδ^1.5 separating, c = 2ξ√(β√δ/W);
 /// W = G M⁻¹ Gᵀ the pair's inverse effective mass along the normal, δ̇₀ the
 /// approach speed. A struck column's local flexibility f (m/kN, slab-to-column
 /// contacts) acts in series with the law's spring: kelvin's k becomes
@@ -69,7 +78,7 @@ class CompliantContact {
   double force_kN(double overlap_m, double rate_mps) const;
   ForceSlopes slopes(double overlap_m, double rate_mps) const;
   /// Falls through zero where the law switches: the force for kelvin, k_h + ξδ̇
-  /// (the force's sign) for hertzdamp, δ̇ for jankowski; after a switch its
+  /// (the force's sign) for hertzdamp and hertzdamp-ye, δ̇ for jankowski; after a switch its
   /// negation (the switch back).
   double switch_value(double overlap_m, double rate_mps) const;
   /// d(switch_value)/dt given δ̈ (m/s²).
@@ -87,12 +96,14 @@ class CompliantContact {
   double own_overlap(double overlap_m) const;
   /// dδ_c/dδ.
   double own_overlap_slope(double own_overlap_m) const;
+  /// hertzdamp or hertzdamp-ye: F = δ^1.5 (k_h + ξδ̇).
+  bool hertzdamp_form() const { return law_ == ContactLaw::hertzdamp || law_ == ContactLaw::hertzdamp_ye; }
   /// The Hertz laws' slopes in δ_c (= δ without a column) and δ̇.
   ForceSlopes hertz_slopes(double own_overlap_m, double root, double rate_mps) const;
 
   ContactLaw law_;
   double stiffness_;
-  /// kelvin: c (kN·s/m); hertzdamp: ξ (kN·s/m^2.5); jankowski: c/δ^(1/4)
+  /// kelvin: c (kN·s/m); hertzdamp, hertzdamp-ye: ξ (kN·s/m^2.5); jankowski: c/δ^(1/4)
   /// (kN·s/m^1.25).
   double damping_ = 0.0;
   double series_flexibility_ = 0.0;  // f (m/kN)
