@@ -113,6 +113,59 @@ LcpSolution gauss_seidel(const Lcp& lcp) {
   return solution;
 }
 
+/// The contacts coupled to each other through W (sharing a slab), each group in ascending order.
+std::vector<std::vector<Eigen::Index>> coupled_blocks(const Eigen::MatrixXd& w_matrix) {
+  const Eigen::Index m = w_matrix.rows();
+  std::vector<Eigen::Index> block(static_cast<std::size_t>(m), -1);
+  std::vector<std::vector<Eigen::Index>> blocks;
+  for (Eigen::Index start = 0; start < m; ++start) {
+    if (block[static_cast<std::size_t>(start)] >= 0) continue;
+    blocks.emplace_back();
+    std::vector<Eigen::Index> todo{start};
+    block[static_cast<std::size_t>(start)] = static_cast<Eigen::Index>(blocks.size() - 1);
+    while (!todo.empty()) {
+      const Eigen::Index i = todo.back();
+      todo.pop_back();
+      blocks.back().push_back(i);
+      for (Eigen::Index j = 0; j < m; ++j) {
+        if (block[static_cast<std::size_t>(j)] < 0 && w_matrix(i, j) != 0.0) {
+          block[static_cast<std::size_t>(j)] = block[static_cast<std::size_t>(i)];
+          todo.push_back(j);
+        }
+      }
+    }
+    std::sort(blocks.back().begin(), blocks.back().end());
+  }
+  return blocks;
+}
+
+/// A problem of more than kMaxEnumerated contacts, split into its independent blocks (contacts
+/// that share no slab do not interact; the held contacts of every level form one problem): each
+/// block of at most kMaxEnumerated is solved exactly, a larger one by Gauss–Seidel.
+LcpSolution solve_by_blocks(const Lcp& lcp, double tolerance) {
+  const Eigen::Index m = lcp.offset.size();
+  LcpSolution solution{Eigen::VectorXd::Zero(m), {}, true, 0.0};
+  for (const std::vector<Eigen::Index>& members : coupled_blocks(lcp.w_matrix)) {
+    const Eigen::Index size = static_cast<Eigen::Index>(members.size());
+    Lcp sub{Eigen::MatrixXd(size, size), Eigen::VectorXd(size)};
+    for (Eigen::Index r = 0; r < size; ++r) {
+      sub.offset[r] = lcp.offset[members[static_cast<std::size_t>(r)]];
+      for (Eigen::Index c = 0; c < size; ++c)
+        sub.w_matrix(r, c) = lcp.w_matrix(members[static_cast<std::size_t>(r)], members[static_cast<std::size_t>(c)]);
+    }
+    Eigen::VectorXd x;
+    if (size <= static_cast<Eigen::Index>(kMaxEnumerated)) x = enumerate(sub, tolerance);
+    if (x.size() == 0) {
+      const LcpSolution iterated = gauss_seidel(sub);
+      x = iterated.x;
+      solution.exact = false;
+    }
+    for (Eigen::Index r = 0; r < size; ++r) solution.x[members[static_cast<std::size_t>(r)]] = x[r];
+  }
+  if (!solution.exact) solution.residual = complementarity_residual(lcp, solution.x);
+  return solution;
+}
+
 }  // namespace
 
 Vector6d inverse_mass(double mass1_t, double polar1_tm2, double mass2_t, double polar2_tm2) {
@@ -132,8 +185,12 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& of
   const Lcp lcp{w_matrix, offset};
   const double tolerance =
       1e-12 * (offset.cwiseAbs().maxCoeff() + 1e-12) * (1.0 + w_matrix.diagonal().maxCoeff());
-  if (offset.size() <= static_cast<Eigen::Index>(kMaxEnumerated)) solution.x = enumerate(lcp, tolerance);
-  if (solution.x.size() == 0) solution = gauss_seidel(lcp);
+  if (offset.size() <= static_cast<Eigen::Index>(kMaxEnumerated)) {
+    solution.x = enumerate(lcp, tolerance);
+    if (solution.x.size() == 0) solution = gauss_seidel(lcp);
+  } else {
+    solution = solve_by_blocks(lcp, tolerance);
+  }
   solution.w = w_matrix * solution.x + offset;
   return solution;
 }

@@ -52,8 +52,9 @@ struct LcpSolution {
 
 /// The linear complementarity problem w = W x + offset ≥ 0, x ≥ 0, xᵢ wᵢ = 0 for a symmetric
 /// positive semi-definite W: by active-set enumeration (sparsest solution first) up to 12
-/// unknowns, projected Gauss–Seidel beyond, swept until its residual is below 1e-12 (at most
-/// 20 000 sweeps; the run's statistics report every such solve and the largest residual).
+/// unknowns; beyond, split into the blocks W couples, each enumerated up to 12 unknowns, a larger
+/// block by projected Gauss–Seidel swept until its residual is below 1e-12 (at most 20 000
+/// sweeps; the run's statistics report every such solve and the largest residual).
 /// @pre W square, offset of the same size.
 LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& offset);
 
