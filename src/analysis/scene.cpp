@@ -160,15 +160,14 @@ void validate_contact(const ContactSettings& contact) {
   };
   check_stiffness("stiffness_kN_per_m", contact.stiffness_kN_per_m);
   check_stiffness("stiffness_kN_per_m1_5", contact.stiffness_kN_per_m1_5);
-  if (law.law == contact::ContactLaw::jankowski && contact.restitution == 0.0) {
+  if (contact::refuses_plastic(law.law) && contact.restitution == 0.0) {
+    const char* damping = law.law == contact::ContactLaw::jankowski
+                              ? "damping ratio 9 sqrt(5) (1 - e^2) / (2e (e (9 pi - 16) + 16))"
+                              : "damping 8 (1 - e) / (5e)";
     throw InputError("contact.restitution", "0",
-                     "must be positive for law jankowski: its damping ratio 9 sqrt(5) (1 - e^2) / (2e (e (9 pi - 16) "
-                     "+ 16)) is infinite at e = 0 (use kelvin or hertzdamp for a plastic contact)");
-  }
-  if (law.law == contact::ContactLaw::hertzdamp_ye && contact.restitution == 0.0) {
-    throw InputError("contact.restitution", "0",
-                     "must be positive for law hertzdamp-ye: its damping 8 (1 - e) / (5e) is infinite at e = 0 (use "
-                     "kelvin or hertzdamp for a plastic contact)");
+                     fmt::format("must be positive for law {}: its {} is infinite at e = 0 (use kelvin or hertzdamp "
+                                 "for a plastic contact)",
+                                 law.name, damping));
   }
 }
 

@@ -78,7 +78,8 @@ Eigen::VectorXd enumerate(const Lcp& lcp, double tolerance) {
 }
 
 /// max_i |min(W_ii x_i, w_i)| / max_i |offset_i|: zero exactly where x ≥ 0 solves the LCP (both
-/// terms are velocities, so the ratio is scale-free).
+/// terms are in w's unit, a velocity for impacts and an acceleration for holds, so the ratio is
+/// scale-free).
 double complementarity_residual(const Lcp& lcp, const Eigen::VectorXd& x) {
   const Eigen::VectorXd w = lcp.w_matrix * x + lcp.offset;
   double largest = 0.0;
@@ -105,11 +106,9 @@ LcpSolution gauss_seidel(const Lcp& lcp) {
       const double w = lcp.w_matrix.row(i).dot(impulses) + lcp.offset[i];
       impulses[i] = std::max(0.0, impulses[i] - w / lcp.w_matrix(i, i));
     }
-    if (sweep % kGaussSeidelCheck == 0) {
-      solution.residual = complementarity_residual(lcp, impulses);
-      if (solution.residual <= kGaussSeidelResidual) break;
-    }
+    if (sweep % kGaussSeidelCheck == 0 && complementarity_residual(lcp, impulses) <= kGaussSeidelResidual) break;
   }
+  solution.residual = complementarity_residual(lcp, impulses);
   return solution;
 }
 

@@ -244,8 +244,8 @@ void append_solver(const analysis::RunReport& report, std::string& text) {
   if (s.iterative_lcp_solves > 0) {
     fmt::format_to(
         out,
-        "Contact problems of more than 12 coupled contacts: {} solved by projected Gauss-Seidel, largest relative "
-        "residual {:.1e}\n",
+        "Contact problems solved by projected Gauss-Seidel (more than 12 coupled contacts, or no exact active "
+        "set): {}, largest relative residual {:.1e}\n",
         s.iterative_lcp_solves, s.largest_lcp_residual);
   }
 }

@@ -341,8 +341,21 @@ BOOST_AUTO_TEST_CASE(JankowskiRefusesPlasticRestitution) {
   BOOST_TEST(paper_with("law = \"hertzdamp\"\n", {.restitution = 0.0}).contact.restitution == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(HertzdampYeRefusesPlasticRestitution) {
+  // Its damping 8(1 − e)/(5e) is infinite at e = 0, as jankowski's is.
+  check_refused([] { paper_with("law = \"hertzdamp-ye\"\n", {.restitution = 0.0}); }, "--restitution",
+                {"hertzdamp-ye", "infinite"});
+  solvers::EventOptions options;
+  options.law = ContactLaw::hertzdamp_ye;
+  options.contact_stiffness = 1e6;
+  options.restitution = 0.0;
+  BOOST_CHECK_THROW(options.validate(), InputError);
+  options.restitution = 1e-3;
+  BOOST_CHECK_NO_THROW(options.validate());
+}
+
 BOOST_AUTO_TEST_CASE(HhtAndExactRefuseTheHertzLaws) {
-  for (const char* law : {"hertzdamp", "jankowski"}) {
+  for (const char* law : {"hertzdamp", "hertzdamp-ye", "jankowski"}) {
     analysis::Scene scene = paper_with("", {.contact_law = std::string(law)});
     for (const char* method : {"hht", "exact"}) {
       scene.solver = analysis::with_method(scene.solver, method);
@@ -355,7 +368,7 @@ BOOST_AUTO_TEST_CASE(PaperSceneRunsWithTheHertzLaws) {
   // Before the first contact every law integrates the same free motion.
   const analysis::RunReport impulse = analysis::run_scene(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml"));
   BOOST_TEST_REQUIRE(!impulse.result.impacts.empty());
-  for (const char* law : {"hertzdamp", "jankowski"}) {
+  for (const char* law : {"hertzdamp", "hertzdamp-ye", "jankowski"}) {
     for (const char* method : {"cvode-bdf", "cvode-adams", "arkode-dirk", "arkode-erk"}) {
       analysis::Scene scene =
           io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string(law)});

@@ -113,7 +113,7 @@ def through_contact(law, rhs, y0, t0, t_max, overlap_of):
             ev = lambda t, z: overlap_of(z[:-1])[1]
             ev.terminal, ev.direction = True, -1
             events.append(ev)
-        # Start just inside: δ = 0 at onset is itself a zero of the gap event.
+        # δ = 0 at onset is a zero of the gap event too; its direction (falling) keeps it from firing.
         sol = solve_ivp(f, (t, t_max), np.append(y, impulse), method="DOP853", rtol=RTOL, atol=ATOL,
                         events=events, first_step=1e-9 * (t_max - t))
         if sol.status != 1:

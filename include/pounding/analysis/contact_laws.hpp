@@ -39,7 +39,7 @@ const ContactLawInfo& contact_law_info(std::string_view name, const std::string&
 /// "impulse, kelvin, hertzdamp or jankowski".
 std::string contact_law_names();
 /// The law's damping parameter for restitution e, named by law.damping_key; 0 for impulse.
-/// @pre e ∈ [0, 1] (jankowski: e > 0).
+/// @pre e ∈ [0, 1] (jankowski, hertzdamp-ye: e > 0).
 double contact_damping(const ContactLawInfo& law, double restitution);
 bool supports(const ContactLawInfo& law, const MethodInfo& method);
 /// @throws InputError (key `contact.law`) naming the law and the method when the method cannot

@@ -63,7 +63,7 @@ class CompliantContact {
  public:
   /// stiffness: k (kN/m) for kelvin, k_h or β (kN/m^1.5) for hertzdamp and
   /// jankowski.
-  /// @pre law ≠ impulse, stiffness > 0, restitution ∈ [0, 1] (jankowski: > 0),
+  /// @pre law ≠ impulse, stiffness > 0, restitution ∈ [0, 1] (jankowski, hertzdamp-ye: > 0),
   ///   approach_speed_mps > 0, normal_inverse_mass_per_t > 0.
   ///   series_flexibility_m_per_kN ≥ 0.
   CompliantContact(ContactLaw law, double stiffness, double restitution, double approach_speed_mps,

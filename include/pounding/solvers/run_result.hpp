@@ -192,7 +192,7 @@ struct SolverStatistics {
   long interpolant_events = 0;  // contacts found inside a step from the interpolant (grazing)
   long yield_events = 0;        // yielding columns' branch changes (yield, unload); not in `events`
   long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
-  long iterative_lcp_solves = 0;   // impact and hold problems of more than 12 coupled contacts (Gauss–Seidel)
+  long iterative_lcp_solves = 0;   // impact and hold problems solved by Gauss–Seidel (docs/model.md §6)
   double largest_lcp_residual = 0.0;  // their largest residual (contact::LcpSolution::residual)
   void note_lcp(bool exact, double residual) {
     if (exact) return;
