@@ -31,6 +31,9 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Jacobian, under the sanitizers). And slab_column_random (25 random scenes through the command
 # line; test_column_contact and slab_column_scipy run the slab-to-column code under the sanitizers).
 # And rows_cli (the command line, report and the Python module; test_rows and row_scipy run the
-# rows' code under the sanitizers).
+# rows' code under the sanitizers). And zero_gap_and_grazing (964 s here at 3742d93, 31 s in
+# Release: the twins at zero gap on every event-driven method, whose held problem now goes through
+# the block enumeration, which allocates a matrix per active set; test_impact runs that code,
+# test_event_driven the holds, under the sanitizers).
 ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
-  -E '^(test_beyond_paper|extreme_quick|test_needed_gap|peer_scipy_exact|peer_scipy_bdf|test_step_bound|test_record_set|test_hht|test_cli|test_stream_cli|yielding_scipy|all_angles|two_components_scipy|bouc_wen_scipy|slab_column_random|rows_cli)$'
+  -E '^(test_beyond_paper|extreme_quick|test_needed_gap|peer_scipy_exact|peer_scipy_bdf|test_step_bound|test_record_set|test_hht|test_cli|test_stream_cli|yielding_scipy|all_angles|two_components_scipy|bouc_wen_scipy|slab_column_random|rows_cli|zero_gap_and_grazing)$'
