@@ -16,6 +16,9 @@ namespace {
 // propagator assume impulses and held contacts.
 constexpr double kKipInKilonewtons = 4.4482216152605;
 constexpr double kInchInMetres = 0.0254;
+// Muthukumar & DesRoches' (2006) k_h = 25 000 kip/in^1.5 for concrete bridge decks (kN/m^1.5): the
+// default of both hertzdamp laws.
+const double kBridgeDeckHertzStiffness = 25e3 * kKipInKilonewtons / (kInchInMetres * std::sqrt(kInchInMetres));
 
 const std::vector<std::string_view> kEventDrivenIntegrators{"cvode-bdf", "cvode-adams", "arkode-erk", "arkode-dirk"};
 
@@ -57,7 +60,7 @@ const std::vector<ContactLawInfo> kLaws = {
      // Muthukumar & DesRoches (2006, Earthquake Engng Struct. Dyn. 35:811-828) and Muthukumar
      // (2003) give k_h = 25 000 kip/in^1.5 for concrete bridge decks (as the OpenSees
      // ImpactMaterial documentation quotes them; not yet checked against the papers).
-     .default_stiffness = 25e3 * kKipInKilonewtons / (kInchInMetres * std::sqrt(kInchInMetres)),
+     .default_stiffness = kBridgeDeckHertzStiffness,
      .stiffness_source = "Muthukumar & DesRoches 2006, 25 000 kip/in^1.5 for concrete bridge decks (2.75e7 kN/m^1.5)",
      .damping_key = "normalised_damping",
      .methods = kEventDrivenIntegrators},
@@ -67,7 +70,7 @@ const std::vector<ContactLawInfo> kLaws = {
      .law = contact::ContactLaw::hertzdamp_ye,
      .stiffness_key = "stiffness_kN_per_m1_5",
      .stiffness_unit = "kN/m^1.5",
-     .default_stiffness = 25e3 * kKipInKilonewtons / (kInchInMetres * std::sqrt(kInchInMetres)),
+     .default_stiffness = kBridgeDeckHertzStiffness,
      .stiffness_source = "as hertzdamp: Muthukumar & DesRoches 2006, 25 000 kip/in^1.5 (2.75e7 kN/m^1.5)",
      .damping_key = "normalised_damping",
      .methods = kEventDrivenIntegrators},
