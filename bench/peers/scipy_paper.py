@@ -28,6 +28,8 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+from peer_manifest import manifest_is_current  # noqa: E402  (the check behind scipy_peer_current)
 RECORD = ROOT / "examples/records/elcentro1940_ns_0.02s.AT2"
 E_KPA, STOREY_M, ZETA = 3.15e7, 3.0, 0.05
 
@@ -309,21 +311,6 @@ def write_manifest(path, args):
     print(f"Wrote {path}: {len(CHECK_CASES)} cases x {len(MANIFEST_METHODS)} methods")
 
 
-def manifest_is_current(committed, fresh):
-    """Whether the committed manifest's expected impacts are this solver's today (times within
-    1e-11 s, impulses within 1e-9 relative: last-digit differences of another machine's LAPACK)."""
-    import tomllib
-    old, new = (tomllib.loads(Path(f).read_text())["case"] for f in (committed, fresh))
-    for a, b in zip(old, new):
-        ta, tb = a["expected"]["impact_times_s"], b["expected"]["impact_times_s"]
-        ja, jb = a["expected"]["impulses_kNs"], b["expected"]["impulses_kNs"]
-        if a["name"] != b["name"] or len(ta) != len(tb) or any(abs(x - y) > 1e-11 for x, y in zip(ta, tb)) \
-                or any(abs(x - y) > 1e-9 * abs(y) for x, y in zip(ja, jb)):
-            print(f"{committed}: case {a['name']} is not what the peer computes now: run --manifest again")
-            return False
-    return len(old) == len(new)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--gap", type=float, default=0.20)
@@ -340,7 +327,8 @@ def main():
     parser.add_argument("--impulse-tol", type=float, default=1e-6, help="with --check: relative impulses")
     parser.add_argument("--manifest", help="write the check cases as a `pounding verify` manifest to this file")
     parser.add_argument("--manifest-current", metavar="COMMITTED",
-                        help="with --manifest: exit 1 unless COMMITTED holds the same expected impacts")
+                        help="with --manifest: exit 1 unless COMMITTED holds the same expected impacts "
+                             "(within a tenth of its checks' tolerances: tools/peer_manifest.py)")
     args = parser.parse_args()
     if args.manifest:
         write_manifest(args.manifest, args)

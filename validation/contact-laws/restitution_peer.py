@@ -34,6 +34,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parents[1] / "tools"))
+from peer_manifest import manifest_is_current  # noqa: E402  (the check behind restitution_peer_current)
 SCENE = HERE / "lone-impact.toml"
 RTOL, ATOL = 1e-12, 1e-15
 RESTITUTIONS = [0.1, 0.3, 0.5, 0.7, 0.9, 1.0]
@@ -235,26 +237,12 @@ def write_manifest(path, scene):
     print(f"Wrote {path}")
 
 
-def manifest_is_current(committed, fresh):
-    """Whether the committed manifest's expected values are what the peer computes now (within
-    1e-9 relative, 1e-11 s: last digits of another machine's libm)."""
-    old, new = (tomllib.loads(Path(f).read_text())["case"] for f in (committed, fresh))
-    close = lambda a, b, tol: abs(a - b) <= tol * max(abs(b), 1.0)
-    for a, b in zip(old, new):
-        ea, eb = a["expected"], b["expected"]
-        if a["name"] != b["name"] or not close(ea["rebound"], eb["rebound"], 1e-9) \
-                or not close(ea["impact_times_s"][0], eb["impact_times_s"][0], 1e-11) \
-                or not close(ea["impulses_kNs"][0], eb["impulses_kNs"][0], 1e-9):
-            print(f"{committed}: case {a['name']} is not what the peer computes now: run --manifest again")
-            return False
-    return len(old) == len(new)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--manifest", metavar="OUT", help="write the pounding verify manifest")
     parser.add_argument("--manifest-current", metavar="COMMITTED",
-                        help="with --manifest: exit 1 unless COMMITTED holds the same expected values")
+                        help="with --manifest: exit 1 unless COMMITTED holds the same expected values "
+                             "(within a tenth of its checks' tolerances: tools/peer_manifest.py)")
     args = parser.parse_args()
     scene = Scene()
     if args.manifest:
