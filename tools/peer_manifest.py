@@ -55,6 +55,10 @@ def case_differences(committed_case, fresh_case, defaults):
         return problems
     for key in sorted(old):
         if key not in QUANTITIES:
+            # Text and whole numbers (a status, a count) compare exactly; a computed number needs
+            # its tolerance in QUANTITIES, or another CPU's last digits would fail it.
+            if any(isinstance(v, float) for v in _as_list(old[key]) + _as_list(new[key])):
+                raise ValueError(f"{key}: a computed number with no tolerance here (add it to QUANTITIES)")
             if old[key] != new[key]:
                 problems.append(f"{key} = {old[key]!r}, the peer now gives {new[key]!r}")
             continue

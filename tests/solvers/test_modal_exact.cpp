@@ -183,9 +183,10 @@ namespace {
 // ωt·δω/ω separating the paths is the state-space path's; it moves the paper scene's first
 // impact by 3e-13 s (each path alone moves it by < 1e-14 s when its step length changes), and
 // each bounce of an accumulation, at half the speed of the last, doubles it: ~5e-12 s at the
-// slow bounce that starts the first hold. Hence 3e-12 s for the impacts faster than 0.1 m/s
-// (measured up to 1.4e-12 s, torsion scene) and 2e-11 s for the slow tail
-// of an accumulation.
+// slow bounce that starts the first hold. Measured here: up to 1.4e-12 s for the impacts faster
+// than 0.1 m/s (torsion scene), 5.7e-12 s for the slow tail of an accumulation. The bounds are ten
+// times that, 3e-11 s and 2e-10 s: the difference is itself round-off, which another compiler,
+// CPU or Eigen version rounds otherwise (docs/guide/development.md, "Across machines").
 void check_against_state_space(const std::string& file, const io::SceneOverrides& overrides = {}) {
   const auto modal = run_exact(file, Form::modal, overrides);
   const auto state_space = run_exact(file, Form::state_space, overrides);
@@ -208,8 +209,8 @@ void check_against_state_space(const std::string& file, const io::SceneOverrides
   }
   BOOST_TEST_MESSAGE(file << ": " << modal.impacts.size() << " impacts; largest difference before the first hold "
                           << fast << " s (faster than 0.1 m/s), " << before << " s (all), after it " << after << " s");
-  BOOST_TEST(fast <= 3e-12);
-  BOOST_TEST(before <= 2e-11);
+  BOOST_TEST(fast <= 3e-11);
+  BOOST_TEST(before <= 2e-10);
   BOOST_TEST(after <= 1e-9);
   // Free flight's energy integrals are closed forms in modal coordinates: the balance closes to
   // round-off plus the held stretches' tolerance (the Gauss quadrature left 2.5e-10 on the paper
