@@ -61,19 +61,23 @@ void print_column_levels(const analysis::Scene& scene, const std::vector<contact
              column_levels.size());
   for (const contact::ColumnLevel& l : column_levels) {
     const int columns = 1 - l.slab_building;
-    std::vector<std::string> struck;
+    std::vector<std::string> struck, round_corner;  // facing the slab's edges; reachable round a corner
     for (const contact::Candidate& c : candidates) {
       if (!c.column || c.struck_building != l.slab_building || c.floors[l.slab_building] != l.slab_floor) continue;
       const std::string label =
           fmt::format("{} ({:.3g} mm/MN)", c.column_index + 1, c.flexibility_m_per_kN * 1e6);  // m/kN -> mm/MN
-      if (std::find(struck.begin(), struck.end(), label) == struck.end()) struck.push_back(label);
+      std::vector<std::string>& list = c.corner ? round_corner : struck;
+      if (std::find(list.begin(), list.end(), label) == list.end()) list.push_back(label);
     }
     const double below = l.storey > 1 ? z[columns][l.storey - 2] : 0.0;
-    fmt::print("  B{} floor {} ({:.6g} m) -> B{} storey {} ({:.6g} to {:.6g} m) at height ratio {:.4g}: {}\n",
+    fmt::print("  B{} floor {} ({:.6g} m) -> B{} storey {} ({:.6g} to {:.6g} m) at height ratio {:.4g}: {}{}\n",
                l.slab_building + 1, l.slab_floor, l.elevation_m, columns + 1, l.storey, below, z[columns][l.storey - 1],
                l.height_ratio,
                struck.empty() ? std::string("no facade column within reach")
-                              : fmt::format("columns {} (number, local flexibility)", fmt::join(struck, ", ")));
+                              : fmt::format("columns {} (number, local flexibility)", fmt::join(struck, ", ")),
+               round_corner.empty()
+                   ? std::string()
+                   : fmt::format("; round a corner, against a side edge: {}", fmt::join(round_corner, ", ")));
   }
 }
 
@@ -454,6 +458,13 @@ int run_check(const CheckCommand& command) {
         "Contact candidates: {} ({} slab vertex against slab edge at a level, {} column against slab edge, "
         "level 0)\n",
         candidates.size(), candidates.size() - static_cast<std::size_t>(column_pairs), column_pairs);
+  }
+  if (const auto corners =
+          std::count_if(candidates.begin(), candidates.end(), [](const auto& c) { return c.corner; })) {
+    fmt::print(
+        "  {} of them corner candidates, listed last: a vertex that can reach the edge only round a corner of "
+        "the other slab (docs/model.md §5a)\n",
+        corners);
   }
   for (const auto& c : candidates) fmt::print("  level {}: {}\n", c.level, contact::describe(c));
   const analysis::UsedSettings used = analysis::resolve(scene.solver, &system);

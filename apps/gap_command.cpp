@@ -30,9 +30,22 @@ namespace {
 
 std::string metres(double value) { return std::isfinite(value) ? fmt::format("{:.6f} m", value) : "never closes"; }
 
-void print_levels(const analysis::NeededGap& gap) {
+/// How the tables name the pair's buildings: B1 and B2 for a scene of two, the scene's own names
+/// for a pair of a row.
+struct PairNames {
+  std::array<std::string, 2> buildings{"B1", "B2"};
+  std::array<std::string, 2> peaks{"d1", "d2"};  // the columns of their peaks towards each other
+};
+
+PairNames row_pair_names(const analysis::Scene& two) {
+  return {{two.buildings[0].name, two.buildings[1].name},
+          {"d " + two.buildings[0].name, "d " + two.buildings[1].name}};
+}
+
+void print_levels(const analysis::NeededGap& gap, const PairNames& names = {}) {
   fmt::print("{:>5} {:>9} {:>8} {:>15} {:>9} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "level", "floors", "z [m]",
-             "needed gap [m]", "t [s]", "d1 [m]", "d2 [m]", "ABS [m]", "SRSS [m]", "DDC [m]");
+             "needed gap [m]", "t [s]", names.peaks[0] + " [m]", names.peaks[1] + " [m]", "ABS [m]", "SRSS [m]",
+             "DDC [m]");
   bool columns = false;
   for (const analysis::LevelGap& l : gap.levels) {
     const bool closes = l.candidate >= 0;
@@ -45,16 +58,17 @@ void print_levels(const analysis::NeededGap& gap) {
   }
   if (columns) {
     fmt::print(
-        "  c1, c2: a slab of B1, B2 facing the other building's columns (floors: the slab's floor and the "
-        "struck storey; d: the slab's facing vertices and the column points at its height)\n");
+        "  c1, c2: a slab of {}, {} facing the other building's columns (floors: the slab's floor and the "
+        "struck storey; d: the slab's facing vertices and the column points at its height)\n",
+        names.buildings[0], names.buildings[1]);
   }
 }
 
-void print_rules(const analysis::NeededGap& gap) {
-  fmt::print("First modes along x: B1 mode {} T = {:.4f} s zeta = {:.4f}; B2 mode {} T = {:.4f} s zeta = {:.4f}; "
+void print_rules(const analysis::NeededGap& gap, const PairNames& names = {}) {
+  fmt::print("First modes along x: {} mode {} T = {:.4f} s zeta = {:.4f}; {} mode {} T = {:.4f} s zeta = {:.4f}; "
              "CQC rho = {:.4f}\n",
-             gap.modes[0].mode, gap.modes[0].period_s, gap.modes[0].damping_ratio, gap.modes[1].mode,
-             gap.modes[1].period_s, gap.modes[1].damping_ratio, gap.rho);
+             names.buildings[0], gap.modes[0].mode, gap.modes[0].period_s, gap.modes[0].damping_ratio,
+             names.buildings[1], gap.modes[1].mode, gap.modes[1].period_s, gap.modes[1].damping_ratio, gap.rho);
   if (gap.yielding) {
     fmt::print(
         "Columns yield: the contact-free run is nonlinear ({} branch changes), and the code rules below "
@@ -254,10 +268,9 @@ int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const s
     const auto& [pair, turned_deg] = turns[k];
     const std::string name = fmt::format("{}:{}", two.buildings[0].name, two.buildings[1].name);
     const analysis::NeededGap gap = analysis::needed_gap(two, run_budget(command));
-    fmt::print("Pair {} (gap {:.6g} m; below, B1 is {} and B2 is {}{}): needed gap {}", name, pair.gap_m,
-               two.buildings[0].name, two.buildings[1].name,
+    fmt::print("Pair {} (gap {:.6g} m{}): needed gap {}", name, pair.gap_m,
                turned_deg == 0.0 ? std::string()
-                                 : fmt::format(", the plan turned by {:g} deg so that they face along x", turned_deg),
+                                 : fmt::format("; the plan turned by {:g} deg so that they face along x", turned_deg),
                metres(gap.needed_gap_m));
     if (gap.candidate >= 0) {  // named by the row's building numbers
       std::vector<contact::Candidate> governing{gap.candidates[static_cast<std::size_t>(gap.candidate)]};
@@ -266,8 +279,8 @@ int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const s
                  turned_deg == 0.0 ? "" : " (in the turned plan's coordinates)");
     }
     fmt::print("\n");
-    print_levels(gap);
-    print_rules(gap);
+    print_levels(gap, row_pair_names(two));
+    print_rules(gap, row_pair_names(two));
     const bool done = gap.status == solvers::RunStatus::completed;
     completed = completed && done;
     if (!done) fmt::print("Stopped at t = {:.3f} s ({}): a lower bound\n", gap.end_s, solvers::to_string(gap.status));

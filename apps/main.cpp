@@ -133,7 +133,7 @@ std::string version_text() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pounding: seismic pounding of two adjacent multistorey buildings"};
+  CLI::App app{"pounding: seismic pounding of adjacent multistorey buildings, two or a row of any number"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text(), "Print the program version and the git commit it was built from");
 

@@ -1,4 +1,4 @@
-"""Seismic pounding of two adjacent buildings, from Python: the command line's analyses
+"""Seismic pounding of adjacent buildings (two, or a row), from Python: the command line's analyses
 returning Python objects and numpy arrays instead of files.
 
     scene = pounding.load_scene("examples/paper/paper.toml", gap=0.02)

@@ -192,8 +192,9 @@ class FreeRun final : public solvers::OdeFunctions {
 
 std::vector<bool> counted_pairs(const CoupledSystem& system) {
   std::vector<bool> counted;
+  // A corner candidate (a side edge, an edge facing away) does not close as the gap closes.
   for (const contact::Candidate& c : system.candidates())
-    counted.push_back(shift_sign(c) * c.normal_rest.x() > kMinimumOpeningRate);
+    counted.push_back(!c.corner && shift_sign(c) * c.normal_rest.x() > kMinimumOpeningRate);
   return counted;
 }
 

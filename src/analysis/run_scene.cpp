@@ -15,6 +15,17 @@
 
 namespace pounding::analysis {
 
+namespace {
+
+/// The facing candidates first, in their order, then the corner ones: a scene's facing candidates
+/// keep their numbers whether or not it has corner candidates (docs/model.md §4).
+std::vector<contact::Candidate> corners_last(std::vector<contact::Candidate> candidates) {
+  std::stable_partition(candidates.begin(), candidates.end(), [](const contact::Candidate& c) { return !c.corner; });
+  return candidates;
+}
+
+}  // namespace
+
 std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
   if (scene.is_row()) {
     // Pair by pair, each pair's slab-to-slab candidates and then its slab-to-column ones, the
@@ -28,7 +39,7 @@ std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
       candidates.insert(candidates.end(), found.begin(), found.end());
       level_offset += static_cast<int>(two.levels().size());
     }
-    return candidates;
+    return corners_last(std::move(candidates));
   }
   contact::PairGeometry geometry{{scene.buildings[0].slab, scene.buildings[1].slab},
                                  {scene.buildings[0].centre_of_mass, scene.buildings[1].centre_of_mass}};
@@ -37,7 +48,7 @@ std::vector<contact::Candidate> scene_candidates(const Scene& scene) {
   // Slab to column after slab to slab, so that a scene without them keeps its candidates' numbers.
   const std::vector<contact::Candidate> columns = scene.column_candidates();
   candidates.insert(candidates.end(), columns.begin(), columns.end());
-  return candidates;
+  return corners_last(std::move(candidates));
 }
 
 namespace {

@@ -32,6 +32,12 @@ bool within_reach(const Point2& p, const Point2& q1, const Point2& q2, const Poi
   return in_front && over_edge;
 }
 
+bool corner_reach(const Point2& p, const Point2& q1, const Point2& q2, const CandidateOptions& options) {
+  const Point2 edge = q2 - q1;
+  const double along = std::clamp((p - q1).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+  return (p - (q1 + along * edge)).norm() <= options.gap_m + options.margin_m;
+}
+
 namespace {
 
 void add_pairs(const PairGeometry& geometry, int striking, const Level& level, const CandidateOptions& options,
@@ -49,6 +55,29 @@ void add_pairs(const PairGeometry& geometry, int striking, const Level& level, c
       if (within_reach(p, q1, q2, normal, options)) {
         out.push_back({level.index, level.floors, level.elevation_m, striking, struck, v, e, p, q1, q2, normal});
       }
+    }
+  }
+}
+
+/// The corner candidates of `striking`'s vertices at `level`: every vertex–edge pair within
+/// corner_reach that `facing` (the level's facing candidates) does not hold.
+void add_corner_pairs(const PairGeometry& geometry, int striking, const Level& level, const CandidateOptions& options,
+                      const std::vector<Candidate>& facing, std::vector<Candidate>& out) {
+  const int struck = 1 - striking;
+  const model::Polygon& vertices = geometry.slabs[striking];
+  const model::Polygon& edges = geometry.slabs[struck];
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const Point2& q1 = edges.vertex(e);
+    const Point2& q2 = edges.edge_end(e);
+    for (std::size_t v = 0; v < vertices.size(); ++v) {
+      const auto same = [&](const Candidate& c) {
+        return c.striking_building == striking && c.vertex_index == v && c.edge_index == e;
+      };
+      if (std::any_of(facing.begin(), facing.end(), same) || !corner_reach(vertices.vertex(v), q1, q2, options))
+        continue;
+      out.push_back({level.index, level.floors, level.elevation_m, striking, struck, v, e, vertices.vertex(v), q1, q2,
+                     outward_normal(q1, q2)});
+      out.back().corner = true;
     }
   }
 }
@@ -80,8 +109,12 @@ std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::
                                        const CandidateOptions& options) {
   std::vector<Candidate> candidates;
   for (const Level& level : levels) {
+    const std::size_t first = candidates.size();
     add_pairs(geometry, 0, level, options, candidates);
     add_pairs(geometry, 1, level, options, candidates);
+    const std::vector<Candidate> facing(candidates.begin() + static_cast<std::ptrdiff_t>(first), candidates.end());
+    add_corner_pairs(geometry, 0, level, options, facing, candidates);
+    add_corner_pairs(geometry, 1, level, options, facing, candidates);
   }
   return candidates;
 }
@@ -106,10 +139,10 @@ std::string describe(const Candidate& c) {
                        c.floor_of(c.striking_building), c.height_ratio, c.struck_building + 1, c.edge_index + 1,
                        c.edge_start_rest.x(), c.edge_start_rest.y(), c.edge_end_rest.x(), c.edge_end_rest.y());
   }
-  return fmt::format("B{} vertex {} ({:g}, {:g}) -> B{} edge {} ({:g}, {:g})-({:g}, {:g})",
-                     c.striking_building + 1, c.vertex_index + 1, c.vertex_rest.x(), c.vertex_rest.y(),
-                     c.struck_building + 1, c.edge_index + 1, c.edge_start_rest.x(),
-                     c.edge_start_rest.y(), c.edge_end_rest.x(), c.edge_end_rest.y());
+  return fmt::format("B{} vertex {} ({:g}, {:g}) -> B{} {}edge {} ({:g}, {:g})-({:g}, {:g})", c.striking_building + 1,
+                     c.vertex_index + 1, c.vertex_rest.x(), c.vertex_rest.y(), c.struck_building + 1,
+                     c.corner ? "corner " : "", c.edge_index + 1, c.edge_start_rest.x(), c.edge_start_rest.y(),
+                     c.edge_end_rest.x(), c.edge_end_rest.y());
 }
 
 }  // namespace pounding::contact

@@ -85,24 +85,41 @@ std::vector<Candidate> find_column_candidates(const std::array<const model::Buil
     const int struck = level.slab_building, striking = 1 - struck;  // the column point is the vertex
     const model::BuildingDefinition& columns = *buildings[striking];
     const model::Polygon& slab = buildings[struck]->slab;
-    for (std::size_t e = 0; e < slab.size(); ++e) {
+    const auto add = [&](std::size_t e, const FacadeColumn& point, bool corner) {
       const Point2& q1 = slab.vertex(e);
       const Point2& q2 = slab.edge_end(e);
       const Point2 normal = outward_normal(q1, q2);
+      Candidate c{0, {0, 0}, level.elevation_m, striking, struck, 0, e, point.point, q1, q2, normal};
+      c.floors[struck] = level.slab_floor;
+      c.floors[striking] = level.storey;
+      c.column = true;
+      c.corner = corner;
+      c.lower_floor = level.storey - 1;
+      c.column_index = point.column;
+      c.storey_height_m = level.storey_height_m;
+      c.height_ratio = level.height_ratio;
+      c.flexibility_m_per_kN = column_flexibility(columns.columns[point.column], columns.E_kPa, level.storey_height_m,
+                                                  level.height_ratio, normal);
+      candidates.push_back(c);
+    };
+    // The facing pairs, then (as for slabs) the corner ones: a column standing at a slab corner
+    // may come round onto the other slab's side edge.
+    std::vector<std::array<std::size_t, 2>> facing;  // (edge, facade point) pairs taken
+    for (std::size_t e = 0; e < slab.size(); ++e) {
+      const Point2& q1 = slab.vertex(e);
+      const Point2 normal = outward_normal(q1, slab.edge_end(e));
       if (!faces(q1, normal, columns.slab)) continue;
-      for (const FacadeColumn& point : facade[striking]) {
-        if (!within_reach(point.point, q1, q2, normal, options)) continue;
-        Candidate c{0, {0, 0}, level.elevation_m, striking, struck, 0, e, point.point, q1, q2, normal};
-        c.floors[struck] = level.slab_floor;
-        c.floors[striking] = level.storey;
-        c.column = true;
-        c.lower_floor = level.storey - 1;
-        c.column_index = point.column;
-        c.storey_height_m = level.storey_height_m;
-        c.height_ratio = level.height_ratio;
-        c.flexibility_m_per_kN = column_flexibility(columns.columns[point.column], columns.E_kPa, level.storey_height_m,
-                                                    level.height_ratio, normal);
-        candidates.push_back(c);
+      for (std::size_t k = 0; k < facade[striking].size(); ++k) {
+        if (!within_reach(facade[striking][k].point, q1, slab.edge_end(e), normal, options)) continue;
+        add(e, facade[striking][k], false);
+        facing.push_back({e, k});
+      }
+    }
+    for (std::size_t e = 0; e < slab.size(); ++e) {
+      for (std::size_t k = 0; k < facade[striking].size(); ++k) {
+        const bool taken = std::find(facing.begin(), facing.end(), std::array<std::size_t, 2>{e, k}) != facing.end();
+        if (!taken && corner_reach(facade[striking][k].point, slab.vertex(e), slab.edge_end(e), options))
+          add(e, facade[striking][k], true);
       }
     }
   }

@@ -20,6 +20,13 @@ Point2 perp(const Point2& a) { return {-a.y(), a.x()}; }
 /// Planar cross product a × b (scalar).
 double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+/// The projection parameter of d = P − Q1 on `edge` (Q1Q2 as it stands), for candidate c.
+double segment_param(const Candidate& c, const Point2& d, const Point2& edge) {
+  if (!c.corner) return d.dot(edge) / edge.squaredNorm();
+  const double length = edge.norm();
+  return (d.dot(edge) / length - kCornerEdgeInset_m) / (length - 2.0 * kCornerEdgeInset_m);
+}
+
 }  // namespace
 
 GapState evaluate_gap(const Candidate& c, const SlabMotion& a, const SlabMotion& b) {
@@ -39,7 +46,7 @@ GapState evaluate_gap(const Candidate& c, const SlabMotion& a, const SlabMotion&
   GapState s;
   s.gap_m = d.dot(n);
   s.gap_rate_mps = d_dot.dot(n) + d.dot(n_dot);
-  s.segment_param = d.dot(edge) / edge.squaredNorm();
+  s.segment_param = segment_param(c, d, edge);
   s.contact_point = p;
   s.normal = n;
   s.striking_row << n.x(), n.y(), cross(arm_p, n);
@@ -80,7 +87,7 @@ GapState evaluate_column_gap(const Candidate& c, const SlabMotion* lower, const 
   GapState s;
   s.gap_m = d.dot(n);
   s.gap_rate_mps = d_dot.dot(n) + d.dot(n_dot);
-  s.segment_param = d.dot(edge) / edge.squaredNorm();
+  s.segment_param = segment_param(c, d, edge);
   s.contact_point = p;
   s.normal = n;
   s.striking_row << weight_upper * n.x(), weight_upper * n.y(), weight_upper * cross(arm_upper, n);

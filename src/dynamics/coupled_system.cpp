@@ -1,5 +1,7 @@
 #include "pounding/dynamics/coupled_system.hpp"
 
+#include "pounding/contact/corners.hpp"
+
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
@@ -98,6 +100,20 @@ contact::GapState CoupledSystem::gap(ConstVectorRef y, std::size_t index) const 
   }
   return contact::evaluate_gap(c, slab(y, c.striking_building, c.floor_of(c.striking_building)),
                                slab(y, c.struck_building, c.floor_of(c.struck_building)));
+}
+
+double CoupledSystem::depth_inside_m(ConstVectorRef y, std::size_t index, const contact::GapState& s) const {
+  const contact::Candidate& c = candidates_[index];
+  const int b = c.struck_building;
+  const contact::SlabMotion motion = slab(y, b, c.floor_of(b));
+  const double cos_phi = std::cos(motion.q[2]), sin_phi = std::sin(motion.q[2]);
+  std::vector<model::Point2> outline;
+  for (const model::Point2& v : buildings_[b].definition.slab.vertices()) {
+    const model::Point2 arm = v - motion.centre_rest;
+    outline.emplace_back(motion.centre_rest + motion.q.head<2>() +
+                         model::Point2(cos_phi * arm.x() - sin_phi * arm.y(), sin_phi * arm.x() + cos_phi * arm.y()));
+  }
+  return contact::depth_inside(outline, s.contact_point);
 }
 
 CoupledSystem::RowBlocks CoupledSystem::row_blocks(const contact::Candidate& c, const contact::GapState& s) const {

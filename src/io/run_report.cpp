@@ -241,6 +241,12 @@ void append_solver(const analysis::RunReport& report, std::string& text) {
     fmt::format_to(out, "Solver: {} steps, {} rhs, {} root evaluations, {} Jacobians, {} restarts; run time {:.3f} s\n",
                    s.steps, s.rhs_evaluations, s.root_evaluations, s.jacobian_evaluations, s.restarts, s.wall_time_s);
   }
+  if (s.corner_candidates > 0) {
+    fmt::format_to(out,
+                   "Corners: {} corner candidates (a vertex and a side edge, or an edge facing away), {} of them "
+                   "armed; {} contacts handed round a corner\n",
+                   s.corner_candidates, s.corner_candidates_armed, s.corner_handovers);
+  }
   if (s.iterative_lcp_solves > 0) {
     fmt::format_to(
         out,

@@ -76,6 +76,7 @@ json candidates_json(const std::vector<contact::Candidate>& candidates, bool row
                              {"edge", c.edge_index + 1},
                              {"edge_rest", json::array({point(c.edge_start_rest), point(c.edge_end_rest)})}},
                             row));
+    if (c.corner) list.back()["corner"] = true;  // reachable only round a corner (docs/model.md §4)
     if (c.column) {  // the column point (striking building's column) against the slab's edge
       list.back().update({{"column", c.column_index + 1},
                           {"storey", c.floor_of(c.striking_building)},
@@ -205,26 +206,33 @@ json pounding_demand_json(const analysis::RunReport& report) {
 
 json statistics_json(const solvers::SolverStatistics& s, const std::vector<contact::Candidate>& candidates) {
   const bool overlapped = s.max_interpenetration_candidate >= 0;
-  return {{"steps", s.steps},
-          {"rhs_evaluations", s.rhs_evaluations},
-          {"root_evaluations", s.root_evaluations},
-          {"jacobian_evaluations", s.jacobian_evaluations},
-          {"error_test_failures", s.error_test_failures},
-          {"restarts", s.restarts},
-          {"events", s.events},
-          {"interpolant_events", s.interpolant_events},
-          {"off_segment_crossings", s.off_segment_crossings},
-          {"halvings", s.halvings},
-          {"smallest_step_s", s.smallest_step_s},
-          {"unresolved_contacts", s.unresolved_contacts},
-          {"iterative_lcp_solves", s.iterative_lcp_solves},
-          {"largest_lcp_residual", s.largest_lcp_residual},
-          {"max_interpenetration_m", s.max_interpenetration_m},
-          {"max_interpenetration_t_s", overlapped ? json(s.max_interpenetration_t_s) : json(nullptr)},
-          {"max_interpenetration_pair",
-           overlapped ? json(contact::describe(candidates[static_cast<std::size_t>(s.max_interpenetration_candidate)]))
-                      : json(nullptr)},
-          {"wall_time_s", s.wall_time_s}};
+  json statistics = {
+      {"steps", s.steps},
+      {"rhs_evaluations", s.rhs_evaluations},
+      {"root_evaluations", s.root_evaluations},
+      {"jacobian_evaluations", s.jacobian_evaluations},
+      {"error_test_failures", s.error_test_failures},
+      {"restarts", s.restarts},
+      {"events", s.events},
+      {"interpolant_events", s.interpolant_events},
+      {"off_segment_crossings", s.off_segment_crossings},
+      {"halvings", s.halvings},
+      {"smallest_step_s", s.smallest_step_s},
+      {"unresolved_contacts", s.unresolved_contacts},
+      {"iterative_lcp_solves", s.iterative_lcp_solves},
+      {"largest_lcp_residual", s.largest_lcp_residual},
+      {"max_interpenetration_m", s.max_interpenetration_m},
+      {"max_interpenetration_t_s", overlapped ? json(s.max_interpenetration_t_s) : json(nullptr)},
+      {"max_interpenetration_pair",
+       overlapped ? json(contact::describe(candidates[static_cast<std::size_t>(s.max_interpenetration_candidate)]))
+                  : json(nullptr)},
+      {"wall_time_s", s.wall_time_s}};
+  if (s.corner_candidates > 0) {  // only scenes with corners that can meet (docs/model.md §5a)
+    statistics.update({{"corner_candidates", s.corner_candidates},
+                       {"corner_candidates_armed", s.corner_candidates_armed},
+                       {"corner_handovers", s.corner_handovers}});
+  }
+  return statistics;
 }
 
 /// The contact law and the parameters it ran with (impulse: none).

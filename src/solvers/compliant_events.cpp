@@ -72,6 +72,15 @@ class CompliantEvents final : public LawEvents {
     return open_[i]->law.switch_rate(-s.gap_m, -s.gap_rate_mps, -system_.gap_acceleration(y, y_dot, i));
   }
   void begin_contact(std::size_t i, double t, const VectorXd& y);
+  /// Contact i's point slid off its edge's end: candidate j carries it on, with its law and
+  /// record (one contact: docs/model.md §5a).
+  void hand_over(std::size_t i, std::size_t j, const VectorXd& y) {
+    open_[j] = std::move(open_[i]);
+    open_[i].reset();
+    context_.mask(i, options_.reopen_gap_m, y);
+    states_.start_acting(j);
+    ++result_.statistics.corner_handovers;
+  }
   void end_contact(std::size_t i, double t, const VectorXd& y);
 
   std::vector<std::optional<OpenContact>> open_;  // set from onset until the gap opens
@@ -82,7 +91,12 @@ void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Cross
   // same function may cross again: each root acts only if the state at it moves in the direction
   // of its switch (closing gap, falling switch function, opening gap).
   for (std::size_t i : crossed.edge) {
-    if (states_.is(i, ContactMode::compliant)) end_contact(i, t, y);
+    if (!states_.is(i, ContactMode::compliant)) continue;
+    if (const std::optional<std::size_t> j = context_.successor(i, y, true)) {
+      hand_over(i, *j, y);
+    } else {
+      end_contact(i, t, y);
+    }
   }
   for (std::size_t i : crossed.force) {
     if (!open_[i] || switch_rate(t, y, i) >= 0.0) continue;
@@ -105,7 +119,7 @@ void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Cross
       continue;
     }
     if (!states_.open(i)) continue;
-    if (!s.on_segment()) {
+    if (!context_.meets(i, y, s)) {
       context_.passed_beside_edge(i);
     } else if (s.gap_rate_mps < 0.0) {
       begin_contact(i, t, y);

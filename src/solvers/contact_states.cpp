@@ -35,18 +35,18 @@ void ContactStates::mask_beside_edge(std::size_t i, double reopen_m) {
   mask_floor_m_[i] = -kNoFloor;
 }
 
-void ContactStates::rearm(const std::vector<contact::GapState>& gaps) {
+void ContactStates::rearm(const std::vector<contact::GapState>& gaps, const Arrived& arrived) {
   for (std::size_t i = 0; i < modes_.size(); ++i) {
     if (modes_[i] == ContactMode::masked && gaps[i].gap_m > reopen_at_m_[i]) modes_[i] = ContactMode::armed;
   }
-  watch_arrivals(gaps);
+  watch_arrivals(gaps, arrived);
 }
 
-void ContactStates::watch_arrivals(const std::vector<contact::GapState>& gaps) {
+void ContactStates::watch_arrivals(const std::vector<contact::GapState>& gaps, const Arrived& arrived) {
   // Masked as it passed beside the edge, the vertex has come onto it: from here on its gap is a
   // depth into the other slab, watched by a root as a contact's is.
   for (std::size_t i = 0; i < modes_.size(); ++i) {
-    if (modes_[i] == ContactMode::masked && !has_floor(i) && gaps[i].on_segment()) {
+    if (modes_[i] == ContactMode::masked && !has_floor(i) && gaps[i].on_segment() && arrived(i)) {
       mask_floor_m_[i] = std::min(gaps[i].gap_m, 0.0) - overlap_allowance_m_;
     }
   }
@@ -73,6 +73,44 @@ void ContactStates::start_acting(std::size_t i) {
 void ContactStates::stop_acting(std::size_t i) {
   leave_lists(i);
   modes_[i] = ContactMode::released;
+}
+
+CornerCover::CornerCover(const std::vector<contact::Candidate>& candidates, contact::CornerLinks links,
+                         double touch_band_m)
+    : candidates_(candidates),
+      links_(std::move(links)),
+      touch_band_m_(touch_band_m),
+      covered_(candidates.size(), false),
+      live_(candidates.size(), true),
+      ever_live_(candidates.size(), false) {
+  for (const contact::Candidate& c : candidates) corner_count_ += c.corner;
+}
+
+void CornerCover::cover_group(long group) {
+  if (group == contact::kNoCandidate) return;
+  for (std::size_t j : links_.members[static_cast<std::size_t>(group)]) covered_[j] = true;
+}
+
+void CornerCover::update(const std::vector<contact::GapState>& gaps, const ContactStates& states) {
+  std::fill(covered_.begin(), covered_.end(), false);
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    if (states.open(i)) continue;
+    cover_group(static_cast<long>(links_.group[i]));
+    // A corner of the struck slab at this contact's point: the same contact seen from the corner.
+    const double reach_m = 2.0 * (std::max(-gaps[i].gap_m, 0.0) + touch_band_m_);
+    for (long group : links_.edge_end_group[i]) {
+      if (group == contact::kNoCandidate) continue;
+      const std::size_t first = links_.members[static_cast<std::size_t>(group)].front();
+      if ((gaps[first].contact_point - gaps[i].contact_point).norm() <= reach_m) cover_group(group);
+    }
+  }
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    if (!states.open(i)) covered_[i] = false;  // a contact in progress is its own
+    // A corner candidate can close only from in front of its edge, over it.
+    const bool can_close = gaps[i].on_segment() && gaps[i].gap_m >= -touch_band_m_;
+    live_[i] = states.open(i) && !covered_[i] && (!candidates_[i].corner || can_close);
+    if (live_[i] && candidates_[i].corner) ever_live_[i] = true;
+  }
 }
 
 WitnessLayout::Crossed WitnessLayout::crossed(const std::vector<int>& flags) const {

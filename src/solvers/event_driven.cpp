@@ -89,6 +89,13 @@ std::vector<std::vector<int>> gap_components(const dynamics::CoupledSystem& syst
   return components;
 }
 
+/// Every building's slab outline size, by scene index (contact::link_corners).
+std::vector<std::size_t> outline_sizes(const dynamics::CoupledSystem& system) {
+  std::vector<std::size_t> sizes;
+  for (int b = 0; b < system.building_count(); ++b) sizes.push_back(system.building(b).definition.slab.size());
+  return sizes;
+}
+
 class EventDrivenRun final : public OdeFunctions {
  public:
   EventDrivenRun(const dynamics::CoupledSystem& system, const EventOptions& options)
@@ -96,6 +103,8 @@ class EventDrivenRun final : public OdeFunctions {
         options_(options),
         count_(system.candidates().size()),
         states_(count_, options.overlap_allowance_m),
+        cover_(system.candidates(), contact::link_corners(system.candidates(), outline_sizes(system)),
+               options.contact_tolerance_m),
         yields_(system.springs(), options.max_events_per_s),
         witnesses_(count_, yields_.size()),
         gap_components_(gap_components(system)),
@@ -139,7 +148,7 @@ class EventDrivenRun final : public OdeFunctions {
   void roots(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
     g.setConstant(1.0);
     for (std::size_t i = 0; i < count_; ++i) {
-      if (states_.open(i)) {
+      if (cover_.live(i)) {
         g[witnesses_.at(Witness::gap, i)] = states_.gap_witness(i, system_.gap(y, i).gap_m);
       }
     }
@@ -157,13 +166,11 @@ class EventDrivenRun final : public OdeFunctions {
     law_->add_force_jacobian(y, rows);
   }
   std::unique_ptr<LawEvents> make_law_events() {
-    const EventContext context{system_,
-                               options_,
-                               states_,
-                               recorder_,
-                               result_,
-                               yields_.states(),
-                               [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); }};
+    const EventContext context{
+        system_,          options_,
+        states_,          cover_,
+        recorder_,        result_,
+        yields_.states(), [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); }};
     return options_.law == contact::ContactLaw::impulse ? make_impulse_events(context) : make_compliant_events(context);
   }
   /// For the recorder: this rhs, the law's contact forces, and whether none acts (is_free_motion).
@@ -178,7 +185,9 @@ class EventDrivenRun final : public OdeFunctions {
   /// scan_missed_contacts over the step (prev_t_, t], whose ends' gaps are prev_gaps_ and gaps_;
   /// its grazes become touches.
   std::optional<MissedContact> missed_contact(double t);
-  void note_overlaps(double t);
+  /// Notes the overlap of every open, uncovered pair whose vertex is inside the other slab at
+  /// (t, y), whose gaps are gaps_.
+  void note_overlaps(double t, const VectorXd& y);
   /// The event at t: counted, handed to the law, recorded.
   void event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed);
   /// Step limits and bookkeeping for a new smooth stretch starting at (t, y).
@@ -202,6 +211,11 @@ class EventDrivenRun final : public OdeFunctions {
     gaps.resize(count_);
     for (std::size_t i = 0; i < count_; ++i) gaps[i] = system_.gap(y, i);
   }
+  /// Adds to `crossed` the live armed candidates that went through zero at the event's instant by
+  /// a rounding (g = −5e-16 m), closing, whose root no integrator or scan flagged: after the
+  /// restart they would start below zero, where their roots can no longer fire. `gaps`: every
+  /// candidate's gap at the event.
+  void add_rounded_through(const std::vector<contact::GapState>& gaps, WitnessLayout::Crossed& crossed) const;
   /// Ends a completed run as unresolved_overlap if a pair not held sank past the touch band.
   void report_overlap();
   void count_event(double t);
@@ -217,6 +231,7 @@ class EventDrivenRun final : public OdeFunctions {
   BudgetClock budget_{options_.budget};
   std::size_t count_;
   ContactStates states_;
+  CornerCover cover_;  // covered and live candidates, updated at every check
   YieldStates yields_;
   WitnessLayout witnesses_;
   std::vector<std::vector<int>> gap_components_;   // per candidate, the components of y its gap reads
@@ -261,7 +276,8 @@ void EventDrivenRun::begin_phase(double t, const VectorXd& y) {
   current_max_step_s_ = -1.0;  // force update_step_bound to hand the integrator its bound
   set_next_stop(t);
   evaluate_gaps(y, prev_gaps_);
-  states_.watch_arrivals(prev_gaps_);
+  states_.watch_arrivals(prev_gaps_, [&](std::size_t i) { return law_->meets(i, y, prev_gaps_[i]); });
+  cover_.update(prev_gaps_, states_);
   update_step_bound(t, y, prev_gaps_);
   prev_t_ = t;
   prev_y_ = y;
@@ -349,6 +365,9 @@ std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
       return run_.system_.gap(at_, i);
     }
     double rate_round_off_mps(std::size_t i) override { return run_.system_.gap_rate_round_off_mps(at_, i); }
+    double depth_inside_m(std::size_t i) override {
+      return run_.system_.depth_inside_m(at_, i, run_.system_.gap(at_, i));
+    }
 
    private:
     EventDrivenRun& run_;
@@ -358,7 +377,7 @@ std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
   const std::optional<MissedContact> missed = scan_missed_contacts(
       states_, path, prev_t_, t, prev_gaps_, gaps_,
       {.contact_tolerance_m = options_.contact_tolerance_m, .overlap_allowance_m = options_.overlap_allowance_m},
-      grazes);
+      grazes, &cover_);
   for (const Graze& graze : grazes)
     result_.touches.push_back(touch_record(system_, graze.t_s, graze.candidate, graze.gap));
   return missed;
@@ -373,28 +392,41 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y, const std::v
     }
     return system_.gap_acceleration(y, y_dot, i);
   };
-  const double bound = step_bound_->max_step_s(t, y, gaps, states_, gap_acceleration);
+  const double bound = step_bound_->max_step_s(t, y, gaps, states_, cover_, gap_acceleration);
   if (bound != current_max_step_s_) {
     integrator_->set_max_step(bound);
     current_max_step_s_ = bound;
   }
 }
 
-void EventDrivenRun::note_overlaps(double t) {
+void EventDrivenRun::note_overlaps(double t, const VectorXd& y) {
   for (std::size_t i = 0; i < count_; ++i) {
-    // A held gap's drift is reported with its hold, a compliant one's penetration is the law's.
-    if (!states_.open(i)) continue;
-    const contact::GapState& s = gaps_[i];
-    if (s.on_segment()) result_.statistics.note_overlap(s.gap_m, t, i);
+    // A held gap's drift is reported with its hold, a compliant one's penetration is the law's,
+    // a covered one's point is in a contact in progress.
+    if (states_.open(i) && !cover_.covered(i) && gaps_[i].on_segment()) law_->note_overlap(t, y, i, gaps_[i]);
   }
 }
 
 void EventDrivenRun::after_step(double t, const VectorXd& y) {
-  note_overlaps(t);
+  note_overlaps(t, y);
   check_collapse(t, yields_.observe(y));
-  states_.rearm(gaps_);
+  states_.rearm(gaps_, [&](std::size_t i) { return law_->meets(i, y, gaps_[i]); });
+  cover_.update(gaps_, states_);
   law_->after_step(t, y);
   update_step_bound(t, y, gaps_);
+}
+
+void EventDrivenRun::add_rounded_through(const std::vector<contact::GapState>& gaps,
+                                         WitnessLayout::Crossed& crossed) const {
+  for (std::size_t i = 0; i < count_; ++i) {
+    const contact::GapState& s = gaps[i];
+    const bool rounded_through = s.gap_m <= 0.0 && s.gap_m > -options_.overlap_allowance_m;
+    if (rounded_through && cover_.live(i) && states_.is(i, ContactMode::armed) && s.on_segment() &&
+        s.gap_rate_mps < 0.0 && std::find(crossed.gap.begin(), crossed.gap.end(), i) == crossed.gap.end()) {
+      crossed.gap.push_back(i);
+    }
+  }
+  std::sort(crossed.gap.begin(), crossed.gap.end());
 }
 
 void EventDrivenRun::report_overlap() {
@@ -404,10 +436,12 @@ void EventDrivenRun::report_overlap() {
   if (result_.status != RunStatus::completed || !(stats.max_interpenetration_m > options_.contact_tolerance_m)) return;
   const contact::Candidate& c = system_.candidates()[static_cast<std::size_t>(stats.max_interpenetration_candidate)];
   result_.status = RunStatus::unresolved_overlap;
+  // The touch band is the event loop's own, fixed (not hht's contact_tolerance_m setting).
   result_.status_detail = fmt::format(
-      "slabs sank {:.3g} m into each other at {:.6f} s (deeper than contact_tolerance_m {} m), level {}: {}",
-      stats.max_interpenetration_m, stats.max_interpenetration_t_s, options_.contact_tolerance_m, c.level,
-      contact::describe(c));
+      "{} lay {:.3g} m inside the other slab at {:.6f} s, level {}, with no contact holding it: deeper than the "
+      "event loop's {:g} m touch band, so a contact was passed over before it (docs/model.md §7)",
+      contact::describe(c), stats.max_interpenetration_m, stats.max_interpenetration_t_s, c.level,
+      options_.contact_tolerance_m);
 }
 
 bool EventDrivenRun::step_once() {
@@ -441,7 +475,11 @@ bool EventDrivenRun::step_once() {
     recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power,
                       integrator_->energy_between(prev_t_, hidden->t_s), components);
     law_->integrate(prev_t_, hidden->t_s, y_event, interpolate);
-    event(hidden->t_s, y_event, {.gap = {hidden->candidate}});
+    WitnessLayout::Crossed crossed{.gap = {hidden->candidate}};
+    std::vector<contact::GapState> at_event;
+    evaluate_gaps(y_event, at_event);
+    add_rounded_through(at_event, crossed);
+    event(hidden->t_s, y_event, crossed);
     restart(hidden->t_s, y_event);
     return !stop_;
   }
@@ -451,16 +489,7 @@ bool EventDrivenRun::step_once() {
   if (outcome.kind == StepKind::root) {
     const std::vector<int> flags = integrator_->roots_found();
     WitnessLayout::Crossed crossed = witnesses_.crossed(flags);
-    // An integrator flags the functions whose crossing it located; one that went through zero
-    // at the same instant by a rounding (g = −5e-16 m) can go unflagged, and after the restart
-    // it would start below zero, where its root can no longer fire.
-    for (std::size_t i = 0; i < count_; ++i) {
-      if (!witnesses_.flagged(flags, Witness::gap, i) && states_.is(i, ContactMode::armed) && gaps_[i].gap_m <= 0.0 &&
-          gaps_[i].on_segment() && gaps_[i].gap_rate_mps < 0.0) {
-        crossed.gap.push_back(i);
-      }
-    }
-    std::sort(crossed.gap.begin(), crossed.gap.end());
+    add_rounded_through(gaps_, crossed);
     event(t, y, crossed);
     restart(t, y);
     return !stop_;
@@ -516,6 +545,8 @@ RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const st
     result_.status_detail = fmt::format("after t = {} s: {}", prev_t_, error.what());
   }
   result_.end_s = prev_t_;
+  result_.statistics.corner_candidates = cover_.corner_count();
+  result_.statistics.corner_candidates_armed = cover_.corner_armed();
   report_overlap();
   law_->finish(prev_t_, prev_y_);
   double hysteretic_kJ = 0.0;

@@ -21,10 +21,11 @@ double EventStepBound::enable_clearance() {
 }
 
 double EventStepBound::max_step_s(double t, const Eigen::VectorXd& y, const std::vector<contact::GapState>& gaps,
-                                  const ContactStates& states, const GapAcceleration& gap_acceleration) {
+                                  const ContactStates& states, const CornerCover& cover,
+                                  const GapAcceleration& gap_acceleration) {
   double bound = mode_bound_ ? mode_bound_->max_step_s(y) : options_.max_step_s;
   open_until_s_ = -std::numeric_limits<double>::infinity();
-  if (clearance_ && states.free_motion()) bound = std::max(bound, clear_step_s(t, y, states));
+  if (clearance_ && states.free_motion()) bound = std::max(bound, clear_step_s(t, y, states, cover));
   for (std::size_t i = 0; i < states.size(); ++i) {
     if (!states.is(i, ContactMode::masked)) continue;
     const contact::GapState& s = gaps[i];
@@ -39,7 +40,8 @@ double EventStepBound::max_step_s(double t, const Eigen::VectorXd& y, const std:
   return bound;
 }
 
-double EventStepBound::clear_step_s(double t, const Eigen::VectorXd& y, const ContactStates& states) {
+double EventStepBound::clear_step_s(double t, const Eigen::VectorXd& y, const ContactStates& states,
+                                    const CornerCover& cover) {
   // Steps end at record samples, so the window ends at the next one and each component is one
   // straight piece over it: its largest |a_c| is at an end.
   const excitation::GroundMotion& motion = system_.ground_motion();
@@ -50,8 +52,10 @@ double EventStepBound::clear_step_s(double t, const Eigen::VectorXd& y, const Co
   for (int c = 0; c < motion.component_count(); ++c) {
     peak_accel_mps2[c] = std::max(std::abs(motion.accel_at(t, c)), std::abs(motion.accel_at(*next, c)));
   }
+  // A dormant corner candidate is left out: its vertex reaches its (side) edge only across the
+  // line of the other slab's facing edge, whose gap the bound holds open (docs/model.md §5a).
   for (std::size_t i = 0; i < states.size(); ++i) {
-    watched_[i] = states.open(i);
+    watched_[i] = states.open(i) && (!system_.candidates()[i].corner || cover.live(i));
   }
   // Above contact_tolerance_m throughout, a gap can neither close nor touch inside the step.
   const double open_s = clearance_->open_time_s(y, watched_, options_.contact_tolerance_m, horizon_s, peak_accel_mps2);

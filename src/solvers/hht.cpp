@@ -139,8 +139,15 @@ class HhtRun {
     y << s.d, s.v;
     return y;
   }
-  /// On its edge and deeper than the contact tolerance.
-  bool sunk(const contact::GapState& g) const { return g.on_segment() && g.gap_m < -options_.contact_tolerance_m; }
+  /// On its edge, with its vertex inside the other slab if behind the tolerance band: a corner
+  /// beside the slab's end, behind the line of its facade, is outside (docs/model.md §5a).
+  bool on_edge(const VectorXd& y, std::size_t i, const contact::GapState& g) const {
+    return g.on_segment() && (g.gap_m >= -options_.contact_tolerance_m || system_.depth_inside_m(y, i, g) > 0.0);
+  }
+  /// On its edge (on_edge) and deeper than the contact tolerance.
+  bool sunk(const VectorXd& y, std::size_t i, const contact::GapState& g) const {
+    return g.gap_m < -options_.contact_tolerance_m && on_edge(y, i, g);
+  }
   /// Per candidate, the gap below which a step from `s` overlaps: −tolerance, or for a pair
   /// already sunk at `s` (an overlap halving did not resolve) a further tolerance below where it
   /// is, so that it cannot sink on unnoticed.
@@ -210,7 +217,7 @@ std::vector<double> HhtRun::overlap_limits(const State& s) const {
   std::vector<double> limits(system_.candidates().size());
   for (std::size_t i = 0; i < limits.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
-    limits[i] = sunk(g) ? g.gap_m - tol : -tol;
+    limits[i] = sunk(y, i, g) ? g.gap_m - tol : -tol;
   }
   return limits;
 }
@@ -221,7 +228,7 @@ std::vector<std::size_t> HhtRun::new_overlaps(const std::vector<double>& limits,
   std::vector<std::size_t> overlapping;
   for (std::size_t i = 0; i < limits.size(); ++i) {
     const StepGap step{from, to, i, system_.gap(y_from, i), system_.gap(y_to, i)};
-    const bool below = step.end.gap_m < limits[i] && (step.end.on_segment() || crossed_on_edge(step, limits[i]));
+    const bool below = step.end.gap_m < limits[i] && (on_edge(y_to, i, step.end) || crossed_on_edge(step, limits[i]));
     if (below || (step.end.gap_m >= limits[i] && dipped_on_edge(step, limits[i]))) overlapping.push_back(i);
   }
   return overlapping;
@@ -234,7 +241,7 @@ bool HhtRun::crossed_on_edge(const StepGap& step, double limit) const {
   if (!(start > 0.0 && end < 0.0)) return false;
   auto gap_at = [&](double t) { return system_.gap(hermite(step.from, step.to, t), step.candidate); };
   const double t = find_root([&](double t) { return gap_at(t).gap_m - limit; }, step.from.t_s, step.to.t_s, start, end);
-  return gap_at(t).on_segment();
+  return on_edge(hermite(step.from, step.to, t), step.candidate, gap_at(t));
 }
 
 bool HhtRun::dipped_on_edge(const StepGap& step, double limit) const {
@@ -256,8 +263,9 @@ bool HhtRun::dipped_on_edge(const StepGap& step, double limit) const {
   }
   for (double s : roots) {
     if (!(s > 0.0 && s < 1.0)) continue;
-    const contact::GapState inside = system_.gap(hermite(step.from, step.to, step.from.t_s + s * h), step.candidate);
-    if (inside.on_segment() && inside.gap_m < limit) return true;
+    const VectorXd y = hermite(step.from, step.to, step.from.t_s + s * h);
+    const contact::GapState inside = system_.gap(y, step.candidate);
+    if (inside.gap_m < limit && on_edge(y, step.candidate, inside)) return true;
   }
   return false;
 }
@@ -266,8 +274,8 @@ bool HhtRun::closing_contact(const std::vector<double>& limits, const State& s) 
   const VectorXd y = first_order(s);
   for (std::size_t i = 0; i < limits.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
-    if (g.on_segment() && g.gap_m >= limits[i] && g.gap_m <= limits[i] + 2.0 * options_.contact_tolerance_m &&
-        g.gap_rate_mps < 0.0) {
+    if (g.gap_m >= limits[i] && g.gap_m <= limits[i] + 2.0 * options_.contact_tolerance_m && g.gap_rate_mps < 0.0 &&
+        on_edge(y, i, g)) {
       return true;
     }
   }
@@ -314,8 +322,13 @@ void HhtRun::track_overlaps(const State& s) {
   const VectorXd y = first_order(s);
   for (std::size_t i = 0; i < sunk_.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
-    if (g.on_segment()) result_.statistics.note_overlap(g.gap_m, s.t_s, i);
-    const bool now = sunk(g);
+    if (g.on_segment() && g.gap_m < -result_.statistics.max_interpenetration_m) {
+      // Beyond the tolerance band, inside the other slab and no deeper than the vertex's distance
+      // to its nearest edge; within it, at the slab's outline.
+      const double depth_m = g.gap_m >= -options_.contact_tolerance_m ? -g.gap_m : system_.depth_inside_m(y, i, g);
+      if (depth_m > 0.0) result_.statistics.note_overlap(overlap_depth(g.gap_m, depth_m), s.t_s, i);
+    }
+    const bool now = sunk(y, i, g);
     if (now && !sunk_[i]) ++result_.statistics.unresolved_contacts;
     sunk_[i] = now;
   }
@@ -332,7 +345,7 @@ State HhtRun::settle(const State& s) {
   std::set<std::size_t> new_touches;
   for (std::size_t i = 0; i < touching_.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
-    in_contact[i] = g.on_segment() && g.gap_m <= tol;
+    in_contact[i] = g.gap_m <= tol && on_edge(y, i, g);
     touching[i] = in_contact[i] && g.gap_m <= 0.0;
     if (!in_contact[i]) continue;
     if (approaching(g)) levels.insert(system_.candidates()[i].level);
@@ -413,7 +426,10 @@ State HhtRun::interpolate(const State& s, const State& trial, const std::vector<
 }
 
 void HhtRun::report_overlaps() {
-  const SolverStatistics& stats = result_.statistics;
+  // Every candidate, corner ones included, is examined at every step end: all are armed.
+  SolverStatistics& stats = result_.statistics;
+  for (const contact::Candidate& c : system_.candidates()) stats.corner_candidates += c.corner;
+  stats.corner_candidates_armed = stats.corner_candidates;
   if (stats.unresolved_contacts == 0 || result_.status != RunStatus::completed) return;
   const contact::Candidate& c = system_.candidates()[static_cast<std::size_t>(stats.max_interpenetration_candidate)];
   result_.status = RunStatus::unresolved_overlap;

@@ -37,9 +37,19 @@ class ImpulseEvents final : public LawEvents {
   void handle_event(double t, VectorXd& y, const std::vector<std::size_t>& gap_roots);
   void hold(std::size_t i, double t);
   void release(std::size_t i, double t, const VectorXd& y, const std::string& reason);
+  /// Held contact i's point slid off its edge's end: candidate j holds on, in the same sustained
+  /// contact (docs/model.md §5a); the next settle_holds decides whether it stays pressed.
+  void hand_over(std::size_t i, std::size_t j, const VectorXd& y) {
+    if (!states_.hold(j)) return;
+    hold_record_[j] = hold_record_[i];
+    hold_record_[i] = -1;
+    states_.release_hold(i, options_.contact_tolerance_m, system_.gap(y, i).gap_m);
+    ++result_.statistics.corner_handovers;
+  }
   void settle_holds(double t, const VectorXd& y);
   /// Whether candidate i in state s takes part in an impact at this instant.
-  bool takes_part(std::size_t i, const contact::GapState& s, const std::set<std::size_t>& fired) const;
+  bool takes_part(std::size_t i, const contact::GapState& s, const std::set<std::size_t>& fired,
+                  const VectorXd& y) const;
   /// g̈ of each member of `contacts` in state y with the contacts `held` kept closed.
   VectorXd free_gap_accelerations(double t, const VectorXd& y, const std::vector<std::size_t>& held,
                                   const FloorContacts& contacts) const;
@@ -89,7 +99,14 @@ double ImpulseEvents::constraint_power(double t, const VectorXd& y) const {
 }
 
 void ImpulseEvents::on_event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
-  for (std::size_t i : crossed.edge) release(i, t, y, "slid off the edge");
+  for (std::size_t i : crossed.edge) {
+    if (const std::optional<std::size_t> j =
+            states_.is(i, ContactMode::held) ? context_.successor(i, y, false) : std::nullopt) {
+      hand_over(i, *j, y);
+    } else {
+      release(i, t, y, "slid off the edge");
+    }
+  }
   for (std::size_t i : crossed.force) release(i, t, y, "tensile force");
   handle_event(t, y, crossed.gap);
 }
@@ -99,16 +116,16 @@ void ImpulseEvents::handle_event(double t, VectorXd& y, const std::vector<std::s
   std::set<int> levels;
   for (std::size_t i : gap_roots) {
     const contact::GapState s = system_.gap(y, i);
-    if (!s.on_segment()) {
+    if (!context_.meets(i, y, s)) {
       context_.passed_beside_edge(i);
       continue;
     }
-    result_.statistics.note_overlap(s.gap_m, t, i);
+    context_.note_overlap(t, y, i, s);
     fired.insert(i);
     levels.insert(system_.candidates()[i].level);
   }
   // Contacts that share a slab are one impact problem (level_groups), each group solved once.
-  const TakeContact take = [&](std::size_t i, const contact::GapState& s) { return takes_part(i, s, fired); };
+  const TakeContact take = [&](std::size_t i, const contact::GapState& s) { return takes_part(i, s, fired, y); };
   for (const std::vector<int>& group : level_groups(system_, y, levels, take)) resolve_floor(t, y, group, fired);
   settle_holds(t, y);
   update_hold_records(t, y);  // a hold may end before the next step does
@@ -160,10 +177,12 @@ void ImpulseEvents::settle_holds(double t, const VectorXd& y) {
   for (std::size_t i : separating) release(i, t, y, "tensile force");
 }
 
-bool ImpulseEvents::takes_part(std::size_t i, const contact::GapState& s, const std::set<std::size_t>& fired) const {
+bool ImpulseEvents::takes_part(std::size_t i, const contact::GapState& s, const std::set<std::size_t>& fired,
+                               const VectorXd& y) const {
   // Every contact of the group's slabs that is closed now takes part, so simultaneous contacts
   // are solved together, never one after another.
-  const bool closed = std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment();
+  const bool closed =
+      std::abs(s.gap_m) <= options_.contact_tolerance_m && s.on_segment() && !context_.slides_along_face(i, y, s);
   return states_.is(i, ContactMode::held) || fired.count(i) || closed;
 }
 
@@ -249,7 +268,7 @@ void ImpulseEvents::resolve_floor(double t, VectorXd& y, const std::vector<int>&
                                   const std::set<std::size_t>& fired) {
   FloorContacts contacts =
       gather_floor_contacts(system_, y, levels, options_.restitution,
-                            [&](std::size_t i, const contact::GapState& s) { return takes_part(i, s, fired); });
+                            [&](std::size_t i, const contact::GapState& s) { return takes_part(i, s, fired, y); });
   const VectorXd y_before = y;
   contact::ImpulseSolution solution;
   std::vector<bool> were_held(contacts.members.size());

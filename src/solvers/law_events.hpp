@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "pounding/dynamics/coupled_system.hpp"
@@ -26,6 +27,7 @@ struct EventContext {
   const dynamics::CoupledSystem& system;
   const EventOptions& options;
   ContactStates& states;
+  const CornerCover& cover;  // covered and live candidates, and the corner links
   Recorder& recorder;
   RunResult& result;
   /// The yielding springs' branches for the system's functions (null: every column elastic).
@@ -42,6 +44,40 @@ struct EventContext {
     states.mask_beside_edge(i, options.reopen_gap_m);
     ++result.statistics.off_segment_crossings;
   }
+  /// Whether candidate i, whose root fired (or whose closing a scan found) in state y with gap
+  /// state s, is a contact there (docs/model.md §5a, "inside means inside"): its vertex over its
+  /// edge, and either at the edge's line (within the touch band: a crossing) or, found deeper,
+  /// inside the other slab with this edge the nearest. A vertex behind the line of a side edge
+  /// but on the other slab's facade (a floor root or a scan that found it there) touches nothing.
+  bool meets(std::size_t i, const dynamics::VectorXd& y, const contact::GapState& s) const {
+    if (!s.on_segment()) return false;
+    if (s.gap_m >= -options.contact_tolerance_m) return !slides_along_face(i, y, s);
+    const double depth_m = system.depth_inside_m(y, i, s);
+    return depth_m > 0.0 && overlap_depth(s.gap_m, depth_m) == s.gap_m;
+  }
+  /// Whether candidate i's vertex, at its edge's line near an end, lies on the line of the struck
+  /// slab's edge round that end, without closing on it, where that edge and an edge of the vertex's
+  /// own slab face each other: the vertex slides along the face where the slabs meet, on the
+  /// struck slab's outline, and enters it across neither edge.
+  bool slides_along_face(std::size_t i, const dynamics::VectorXd& y, const contact::GapState& s) const;
+  /// Notes candidate i's overlap in state y (its gap state s) if its vertex lies inside the other
+  /// slab: behind its edge's line is inside only within the slab's outline (not for a corner
+  /// beside the slab's end), and there no deeper than the vertex's distance to the nearest edge.
+  void note_overlap(double t, const dynamics::VectorXd& y, std::size_t i, const contact::GapState& s) const {
+    if (!(s.gap_m < -result.statistics.max_interpenetration_m)) return;
+    // Within the touch band a vertex is at the slab's outline, whichever edge is nearer.
+    if (s.gap_m >= -options.contact_tolerance_m) return result.statistics.note_overlap(s.gap_m, t, i);
+    const double depth_m = system.depth_inside_m(y, i, s);
+    if (depth_m > 0.0) result.statistics.note_overlap(overlap_depth(s.gap_m, depth_m), t, i);
+  }
+  /// The candidate that carries on contact i (held, or a compliant one still overlapping), whose
+  /// point has just slid off the end of its edge, in state y (docs/model.md §5a): the twin at
+  /// that end if its corner lies on its own edge and in contact there, else the next edge round
+  /// that end if the point lies on it and in contact; none if the contact ends. "In contact":
+  /// overlapping (g < 0) for a compliant law, within the touch band for a hold. "On its edge":
+  /// within twice the contact's depth plus the touch band of it, the distance the slabs' relative
+  /// rotation can put between a corner and the point passing it.
+  std::optional<std::size_t> successor(std::size_t i, const dynamics::VectorXd& y, bool compliant) const;
 };
 
 /// The edge witness of a contact in state s: how far its point is from the nearer end of its edge
@@ -86,6 +122,14 @@ class LawEvents {
   virtual void after_step(double t, const dynamics::VectorXd& y) = 0;
   /// Closes what is still open at the end of the run (t, y).
   virtual void finish(double t, const dynamics::VectorXd& y) = 0;
+  /// EventContext::meets, for the loop's checks after a step.
+  bool meets(std::size_t i, const dynamics::VectorXd& y, const contact::GapState& s) const {
+    return context_.meets(i, y, s);
+  }
+  /// EventContext::note_overlap, for the loop's checks after a step.
+  void note_overlap(double t, const dynamics::VectorXd& y, std::size_t i, const contact::GapState& s) const {
+    context_.note_overlap(t, y, i, s);
+  }
 
  protected:
   // What both laws work on, by the names their functions use.

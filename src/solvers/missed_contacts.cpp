@@ -10,6 +10,16 @@ namespace pounding::solvers {
 
 namespace {
 
+/// A vertex that came onto its edge already behind it (masked beside the edge, or dormant): a
+/// contact at the step end if it lies inside the other slab with this edge the nearest (its depth
+/// is −g). Behind the line beside the slab's corner it is outside; nearer another edge, it came
+/// in across that one, whose own candidate answers for it.
+std::optional<double> arrival(StepGaps& path, std::size_t i, double t_end, const contact::GapState& end) {
+  path.at(i, t_end);
+  const double depth_m = path.depth_inside_m(i);
+  return depth_m > 0.0 && depth_m >= -end.gap_m * (1.0 - 1e-9) ? std::optional(t_end) : std::nullopt;
+}
+
 /// An armed pair's minimum inside the step (ġ < 0 at the start, ġ > 0 at the end, both ends
 /// open): the crossing into contact if the minimum is below zero; a graze if within the band.
 std::optional<double> dip(StepGaps& path, std::size_t i, double t_start, double t_end, const contact::GapState& s0,
@@ -40,8 +50,9 @@ std::optional<double> reclosure(const ContactStates& states, StepGaps& path, std
                                 double overlap_allowance_m) {
   if (!end.on_segment()) return std::nullopt;
   // Masked after crossing the edge's extension, the vertex has come onto the edge inside the
-  // other slab: a contact now, wherever it is heading.
-  if (!states.has_floor(i) && end.gap_m < -overlap_allowance_m) return t_end;
+  // other slab: a contact now, wherever it is heading. (Behind the edge's line beside the slab's
+  // corner, it is not inside.)
+  if (!states.has_floor(i) && end.gap_m < -overlap_allowance_m) return arrival(path, i, t_end, end);
   if (!(end.gap_m < 0.0 && end.gap_rate_mps < 0.0)) return std::nullopt;
   auto state_at = [&](double time) { return path.at(i, time); };
   constexpr int kSamples = 32;
@@ -84,19 +95,52 @@ std::optional<double> reclosure(const ContactStates& states, StepGaps& path, std
   return at_floor ? std::optional<double>(t_end) : std::nullopt;
 }
 
+/// A dormant corner candidate (no root over the step) that ends it closed on its edge: the last
+/// crossing of zero inside the step, if the vertex was on the edge there; if it came onto the edge
+/// already behind it, a contact at the step end when it lies inside the other slab.
+std::optional<double> dormant_closing(StepGaps& path, std::size_t i, double t_start, double t_end,
+                                      const contact::GapState& start, const contact::GapState& end,
+                                      double overlap_allowance_m) {
+  if (!(end.on_segment() && end.gap_m < 0.0)) return std::nullopt;
+  constexpr int kSamples = 32;
+  double t_open = t_start, g_open = start.gap_m, t_shut = t_end, g_shut = end.gap_m;
+  if (g_open < 0.0) {  // the last sample still open, if any
+    t_open = -1.0;
+    for (int k = kSamples - 1; k > 0; --k) {
+      const double time = t_start + (t_end - t_start) * k / kSamples;
+      const double g = path.at(i, time).gap_m;
+      if (g >= 0.0) {
+        t_open = time, g_open = g;
+        break;
+      }
+      t_shut = time, g_shut = g;
+    }
+  }
+  if (t_open >= t_start) {
+    const double t_hit = find_root([&](double time) { return path.at(i, time).gap_m; }, t_open, t_shut, g_open, g_shut);
+    if (path.at(i, t_hit).on_segment()) return t_hit;
+  }
+  if (end.gap_m >= -overlap_allowance_m) return std::nullopt;
+  return arrival(path, i, t_end, end);
+}
+
 }  // namespace
 
 std::optional<MissedContact> scan_missed_contacts(const ContactStates& states, StepGaps& path, double t_start,
                                                   double t_end, const std::vector<contact::GapState>& start,
                                                   const std::vector<contact::GapState>& end,
-                                                  const ScanTolerances& tolerances, std::vector<Graze>& grazes) {
+                                                  const ScanTolerances& tolerances, std::vector<Graze>& grazes,
+                                                  const CornerCover* cover) {
   std::optional<MissedContact> earliest;
   for (std::size_t i = 0; i < states.size(); ++i) {
+    if (cover && cover->covered(i)) continue;
     std::optional<double> t_hit;
     if (states.is(i, ContactMode::masked)) {
       t_hit = reclosure(states, path, i, t_start, t_end, start[i], end[i], tolerances.overlap_allowance_m);
     } else if (states.is(i, ContactMode::armed)) {
-      t_hit = dip(path, i, t_start, t_end, start[i], end[i], tolerances.contact_tolerance_m, grazes);
+      if (cover && !cover->live(i))
+        t_hit = dormant_closing(path, i, t_start, t_end, start[i], end[i], tolerances.overlap_allowance_m);
+      if (!t_hit) t_hit = dip(path, i, t_start, t_end, start[i], end[i], tolerances.contact_tolerance_m, grazes);
     }
     if (t_hit && (!earliest || *t_hit < earliest->t_s)) earliest = MissedContact{*t_hit, i};
   }

@@ -20,7 +20,8 @@ std::vector<model::Point2> contact_vertices(const std::vector<contact::Candidate
   std::vector<model::Point2> points;
   for (const contact::Candidate& c : candidates) {
     if (c.striking_building == building && !c.column) add_unique(points, c.vertex_rest);  // a column point is no corner
-    if (c.struck_building == building) {
+    // A corner candidate's edge is a side edge: its far end moves away from the joint, not into it.
+    if (c.struck_building == building && !c.corner) {
       add_unique(points, c.edge_start_rest);
       add_unique(points, c.edge_end_rest);
     }

@@ -41,11 +41,14 @@ BOOST_AUTO_TEST_CASE(PaperSceneHasTwoCandidatesPerCommonFloor) {
 }
 
 BOOST_AUTO_TEST_CASE(AlignedEqualSlabsGiveFourFaceCandidates) {
-  // Two 10 × 10 slabs face to face: each slab's two facing corners against the other's edge.
+  // Two 10 × 10 slabs face to face: each slab's two facing corners against the other's edge, and
+  // the same four corners against the other's side edges, which they reach round its corners.
   const PairGeometry pair{
       {Polygon({{-10, 0}, {0, 0}, {0, 10}, {-10, 10}}), Polygon({{0.1, 0}, {10.1, 0}, {10.1, 10}, {0.1, 10}})},
       {Point2(-5, 5), Point2(5.1, 5)}};
-  BOOST_TEST(find_candidates(pair, matching_floors(1), {.margin_m = 1.0, .gap_m = 0.1}).size() == 4u);
+  const auto candidates = find_candidates(pair, matching_floors(1), {.margin_m = 1.0, .gap_m = 0.1});
+  BOOST_TEST_REQUIRE(candidates.size() == 8u);
+  for (std::size_t i = 0; i < 8; ++i) BOOST_TEST(candidates[i].corner == (i >= 4));
 }
 
 BOOST_AUTO_TEST_CASE(DistantVerticesAreLeftOut) {

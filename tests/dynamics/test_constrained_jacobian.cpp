@@ -67,7 +67,7 @@ std::vector<std::size_t> held_at_level_2(const dynamics::CoupledSystem& system) 
   std::vector<std::size_t> held;
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
     const contact::Candidate& c = system.candidates()[i];
-    if (c.level == 2 && c.striking_building == 1) held.push_back(i);
+    if (c.level == 2 && c.striking_building == 1 && !c.corner) held.push_back(i);
   }
   return held;
 }

@@ -39,6 +39,7 @@ class ClosedFormPath final : public solvers::StepGaps {
       : gap_(std::move(gap)), rate_(std::move(rate)) {}
   contact::GapState at(std::size_t, double t) override { return gap_state(gap_(t), rate_(t)); }
   double rate_round_off_mps(std::size_t) override { return 1e-15; }
+  double depth_inside_m(std::size_t) override { return 1.0; }  // the closed forms' pairs are face to face
   contact::GapState at(double t) { return at(0, t); }
 
  private:
@@ -69,7 +70,8 @@ BOOST_AUTO_TEST_CASE(ContactStatesFollowTheirNamedTransitions) {
   BOOST_TEST(states.gap_witness(2, -5.0) == 1.0);  // no root while it passes beside the edge
 
   // After a step: 0 reopened beyond its level, 1 did not; 2 came onto its edge 3 nm deep.
-  states.rearm({gap_state(2e-10, 0.1), gap_state(5e-11, 0.1), gap_state(-3e-9, -0.1)});
+  states.rearm({gap_state(2e-10, 0.1), gap_state(5e-11, 0.1), gap_state(-3e-9, -0.1)},
+               [](std::size_t) { return true; });
   BOOST_TEST(states.is(0, ContactMode::armed));
   BOOST_TEST(states.is(1, ContactMode::masked));
   BOOST_TEST(states.mask_floor_m(2) == -3e-9 - kAllowance_m, tt::tolerance(1e-15));
@@ -167,12 +169,14 @@ BOOST_AUTO_TEST_CASE(AnArmedOrRisingPairSetsNoFlightBoundAndAFallingMaskedOneAQu
   const Eigen::VectorXd y = Eigen::VectorXd::Zero(system.state_size());
   const double gap = 1e-3, rate = 0.1, accel = -2.0;
   solvers::ContactStates states(1, kAllowance_m);
+  const solvers::CornerCover cover(system.candidates(), contact::link_corners(system.candidates(), {4, 4}), 1e-8);
   auto falling = [&](std::size_t) { return accel; };
-  BOOST_TEST(bound.max_step_s(0.0, y, {gap_state(gap, rate)}, states, falling) == 10.0);  // armed
+  BOOST_TEST(bound.max_step_s(0.0, y, {gap_state(gap, rate)}, states, cover, falling) == 10.0);  // armed
   states.mask(0, 1e-10, 0.0);
-  BOOST_TEST(bound.max_step_s(0.0, y, {gap_state(gap, rate)}, states, [](std::size_t) { return 2.0; }) == 10.0);
+  BOOST_TEST(bound.max_step_s(0.0, y, {gap_state(gap, rate)}, states, cover, [](std::size_t) { return 2.0; }) == 10.0);
   // Height above the floor h = g + 1 nm; back at the floor when h + ġτ + ½g̈τ² = 0.
   const double h = gap + kAllowance_m;
   const double flight = (rate + std::sqrt(rate * rate - 2.0 * h * accel)) / -accel;
-  BOOST_TEST(bound.max_step_s(0.0, y, {gap_state(gap, rate)}, states, falling) == flight / 4.0, tt::tolerance(1e-12));
+  BOOST_TEST(bound.max_step_s(0.0, y, {gap_state(gap, rate)}, states, cover, falling) == flight / 4.0,
+             tt::tolerance(1e-12));
 }

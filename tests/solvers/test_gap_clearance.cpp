@@ -75,6 +75,9 @@ void check_case(const dynamics::CoupledSystem& system, const Eigen::VectorXd& y0
   constexpr double kHorizon_s = 1.0;
   int closing = 0;
   for (std::size_t i = 0; i < system.candidates().size(); ++i) {
+    // A corner candidate (a side edge of these slabs, whose facades stand in line) starts at zero
+    // gap beside its edge; the run does not watch it while dormant (docs/model.md §5a).
+    if (system.candidates()[i].corner) continue;
     std::vector<bool> alone(system.candidates().size(), false);
     alone[i] = true;
     const double open_s =
@@ -122,7 +125,10 @@ BOOST_AUTO_TEST_CASE(TheStruckSlabsRotationClosesTheGapNoSoonerThanTheBoundSays)
 BOOST_AUTO_TEST_CASE(NoGapComesWithinTheClearanceInsideTheWindowFromRandomStates) {
   const auto system = slabs(2.0);
   const solvers::GapClearance clearance(system);
-  const std::vector<bool> all(system.candidates().size(), true);
+  // Every facing candidate (the corner ones, side edges at zero gap beside their edges, are not
+  // watched while dormant: docs/model.md §5a).
+  std::vector<bool> all;
+  for (const contact::Candidate& c : system.candidates()) all.push_back(!c.corner);
   std::mt19937 random(12);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   int closing = 0;

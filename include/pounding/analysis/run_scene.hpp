@@ -14,7 +14,8 @@
 
 namespace pounding::analysis {
 
-/// The candidates the scene's geometry allows (docs/model.md §4), on every level (Scene::levels()).
+/// The candidates the scene's geometry allows (docs/model.md §4), on every level (Scene::levels()):
+/// the facing ones (slab to slab, then slab to column, pair by pair), then the corner ones.
 std::vector<contact::Candidate> scene_candidates(const Scene& scene);
 
 /// scene.excitation with a spectral scaling at a building's first period (excitation.scale_to_sa

@@ -48,6 +48,10 @@ struct Candidate {
   // `storey_height_m`; the slab meets it at `height_ratio` ξ ∈ (0, 1) up that storey, where the
   // member's local flexibility along the normal is `flexibility_m_per_kN` (column_flexibility).
   bool column = false;
+  /// A corner candidate: the vertex can reach the edge only around a corner of the struck slab
+  /// (a side edge of facades in line, or an edge that faces away at rest). It is dormant (no root
+  /// function) until its vertex comes onto the edge (docs/model.md §4).
+  bool corner = false;
   int lower_floor = 0;
   std::size_t column_index = 0;
   double storey_height_m = 0.0;
@@ -78,9 +82,9 @@ struct CandidateOptions {
   double gap_m = 0.0;  // the scene's clear gap
 };
 
-/// All candidates on `levels`, level by level, building 1's vertices first. Each level repeats
-/// the same vertex–edge pairs because all floors of a building share its outline.
-/// @pre both slabs simple and counter-clockwise.
+/// All candidates on `levels`, level by level: the facing ones (building 1's vertices first),
+/// then the corner ones (corner_reach). Each level repeats the same vertex–edge pairs because all
+/// floors of a building share its outline. @pre both slabs simple and counter-clockwise.
 std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::vector<Level>& levels,
                                        const CandidateOptions& options);
 
@@ -89,6 +93,11 @@ std::vector<Candidate> find_candidates(const PairGeometry& geometry, const std::
 /// keeps a vertex–edge pair (slab corners and column points alike).
 bool within_reach(const model::Point2& vertex, const model::Point2& q1, const model::Point2& q2,
                   const model::Point2& normal, const CandidateOptions& options);
+/// Whether `vertex`, at rest, lies within options.gap_m + margin of the segment q1→q2 (Euclidean),
+/// whatever side of the edge's line it is on: the rule that adds corner candidates, the pairs the
+/// facing rule (within_reach on a facing edge) leaves out.
+bool corner_reach(const model::Point2& vertex, const model::Point2& q1, const model::Point2& q2,
+                  const CandidateOptions& options);
 /// The outward unit normal of the edge q1→q2 of a counter-clockwise outline.
 model::Point2 outward_normal(const model::Point2& q1, const model::Point2& q2);
 /// Whether some vertex of `other` lies in front of the edge from q1 with outward `normal`.

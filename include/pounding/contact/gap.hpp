@@ -10,6 +10,10 @@ namespace pounding::contact {
 
 /// How far beyond an edge's ends (fraction of the edge) a vertex still counts as on the edge.
 inline constexpr double kOnSegmentTolerance = 1e-9;
+/// A corner candidate's edge is taken this much (m) short of either end: a vertex at the struck
+/// slab's corner itself lies on the facing edge there, whose candidate holds it; it meets the
+/// side edge only once over it (docs/model.md §5a).
+inline constexpr double kCornerEdgeInset_m = 1e-6;
 
 /// Motion of one slab: displacements of its CM and rotation, and their rates.
 struct SlabMotion {
@@ -23,7 +27,8 @@ struct SlabMotion {
 struct GapState {
   double gap_m = 0.0;
   double gap_rate_mps = 0.0;          // ġ = G q̇
-  double segment_param = 0.0;         // projection of P on Q1Q2: 0 at Q1, 1 at Q2
+  double segment_param = 0.0;         // projection of P on Q1Q2: 0 at Q1, 1 at Q2 (a corner
+                                      // candidate's: on its edge less kCornerEdgeInset_m at each end)
   model::Point2 contact_point;        // current position of P (m)
   model::Point2 normal;               // current outward unit normal of the struck edge
   /// ġ = striking_row · q̇_striking + struck_row · q̇_struck. striking_row = (n_x, n_y, ρ_A × n),

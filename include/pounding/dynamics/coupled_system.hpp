@@ -104,6 +104,11 @@ class CoupledSystem {
     const RowBlock* end() const { return blocks.data() + count; }
   };
   RowBlocks row_blocks(const contact::Candidate& c, const contact::GapState& s) const;
+  /// How deep (m) candidate `index`'s contact point, at gap state `s` in state y, lies inside
+  /// the struck slab's outline as it stands in y: its distance to the nearest edge when inside, 0
+  /// outside (contact::depth_inside). Unlike −g, which measures behind the struck edge's line
+  /// only, it is 0 for a corner beside the slab's end, however far behind that line.
+  double depth_inside_m(ConstVectorRef y, std::size_t index, const contact::GapState& s) const;
   /// g̈ (m/s²) of candidate `index` in state y moving with ẏ = y_dot: G q̈ + h.
   double gap_acceleration(ConstVectorRef y, ConstVectorRef y_dot, std::size_t index) const;
   /// The round-off of candidate `index`'s gap rate in state y (m/s): ġ is a difference of terms

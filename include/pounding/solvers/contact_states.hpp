@@ -13,10 +13,13 @@
 // Gaps in m, positive open; a masked pair's floor is the gap below which its root fires.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <vector>
 
+#include "pounding/contact/corners.hpp"
 #include "pounding/contact/gap.hpp"
 
 namespace pounding::solvers {
@@ -60,11 +63,14 @@ class ContactStates {
   /// Masks i without a floor root: its vertex crossed the extension of the edge, beside it, and
   /// its gap goes on falling while it passes.
   void mask_beside_edge(std::size_t i, double reopen_m);
+  /// Whether masked candidate i's vertex, now on its edge, has arrived in contact there (at the
+  /// edge's line, or inside the other slab with this edge the nearest: EventContext::meets).
+  using Arrived = std::function<bool(std::size_t i)>;
   /// After a step: masked candidates whose gap exceeds their reopen level are armed again, and
-  /// one masked beside its edge whose vertex is now on the edge gets its floor root.
-  void rearm(const std::vector<contact::GapState>& gaps);
+  /// one masked beside its edge whose vertex has now arrived on the edge gets its floor root.
+  void rearm(const std::vector<contact::GapState>& gaps, const Arrived& arrived);
   /// The floor roots of `rearm` alone (at a restart: nothing has reopened within no time).
-  void watch_arrivals(const std::vector<contact::GapState>& gaps);
+  void watch_arrivals(const std::vector<contact::GapState>& gaps, const Arrived& arrived);
 
   /// armed/masked → held. @return false if i was already held.
   bool hold(std::size_t i);
@@ -86,6 +92,38 @@ class ContactStates {
   std::vector<double> mask_floor_m_;  // gap below which a masked candidate's root fires
   std::vector<std::size_t> held_;
   std::vector<std::size_t> acting_;
+};
+
+/// Corners (docs/model.md §5a), recomputed at every check (a phase's start, a step's end) from
+/// every candidate's gap there and the contact states:
+///  - a contact in progress (held, or a compliant one from onset until its gap opens) covers its
+///    point's other candidates on the struck slab, and the candidates of a corner of the struck
+///    slab that lies at its point (within twice its depth plus the touch band): one contact
+///    there, not two;
+///  - a candidate is live (its gap a root function) when it is open, not covered, and either a
+///    facing one or a corner one whose vertex projects onto its edge from in front of it (g above
+///    minus the touch band). A dormant corner candidate is still examined at every step's end
+///    (scan_missed_contacts).
+class CornerCover {
+ public:
+  CornerCover(const std::vector<contact::Candidate>& candidates, contact::CornerLinks links, double touch_band_m);
+
+  void update(const std::vector<contact::GapState>& gaps, const ContactStates& states);
+  bool covered(std::size_t i) const { return covered_[i]; }
+  bool live(std::size_t i) const { return live_[i]; }
+  const contact::CornerLinks& links() const { return links_; }
+  /// Corner candidates, and how many of them were ever live.
+  long corner_count() const { return corner_count_; }
+  long corner_armed() const { return static_cast<long>(std::count(ever_live_.begin(), ever_live_.end(), true)); }
+
+ private:
+  void cover_group(long group);
+
+  const std::vector<contact::Candidate>& candidates_;
+  contact::CornerLinks links_;
+  double touch_band_m_;
+  long corner_count_ = 0;
+  std::vector<bool> covered_, live_, ever_live_;
 };
 
 /// The run's root functions ("witnesses"): three blocks, one entry per candidate, then one entry

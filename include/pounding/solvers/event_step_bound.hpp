@@ -39,15 +39,15 @@ class EventStepBound {
   double enable_clearance();
 
   /// The bound from (t, y), whose gaps are `gaps`; `gap_acceleration` is asked only for masked
-  /// pairs in flight. Sets open_until_s().
+  /// pairs in flight; `cover` says which corner candidates are armed. Sets open_until_s().
   double max_step_s(double t, const Eigen::VectorXd& y, const std::vector<contact::GapState>& gaps,
-                    const ContactStates& states, const GapAcceleration& gap_acceleration);
+                    const ContactStates& states, const CornerCover& cover, const GapAcceleration& gap_acceleration);
 
   /// The time (s) up to which the last max_step_s proved every watched gap open (−∞: none).
   double open_until_s() const { return open_until_s_; }
 
  private:
-  double clear_step_s(double t, const Eigen::VectorXd& y, const ContactStates& states);
+  double clear_step_s(double t, const Eigen::VectorXd& y, const ContactStates& states, const CornerCover& cover);
 
   const dynamics::CoupledSystem& system_;
   const EventOptions& options_;

@@ -181,6 +181,11 @@ struct SpringResult {
   double final_slip_m = 0.0;  // its plastic part's slip at the end (the drift at zero force, α = 0)
 };
 
+/// The gap to note as an overlap for a vertex `gap_m` behind its edge's line and `depth_m` inside
+/// the other slab (its distance to the nearest edge; docs/model.md §5a): the gap, unless the
+/// vertex lies measurably nearer another edge (a corner), whose distance then bounds it.
+inline double overlap_depth(double gap_m, double depth_m) { return depth_m < -gap_m * (1.0 - 1e-6) ? -depth_m : gap_m; }
+
 struct SolverStatistics {
   long steps = 0;
   long rhs_evaluations = 0;
@@ -192,6 +197,11 @@ struct SolverStatistics {
   long interpolant_events = 0;  // contacts found inside a step from the interpolant (grazing)
   long yield_events = 0;        // yielding columns' branch changes (yield, unload); not in `events`
   long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
+  /// Corners (docs/model.md §5a): the corner candidates, how many of them were ever armed (a live
+  /// root function), and the contacts handed round a corner to another candidate.
+  long corner_candidates = 0;
+  long corner_candidates_armed = 0;
+  long corner_handovers = 0;
   long iterative_lcp_solves = 0;   // impact and hold problems solved by Gauss–Seidel (docs/model.md §6)
   double largest_lcp_residual = 0.0;  // their largest residual (contact::LcpSolution::residual)
   void note_lcp(bool exact, double residual) {
