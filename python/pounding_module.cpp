@@ -10,6 +10,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <optional>
+#include <tuple>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -372,6 +373,9 @@ PYBIND11_MODULE(_pounding, m) {
       .def_property_readonly(
           "peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
       .def_property_readonly(
+          "contact_free_reference", [](const Scene& s) { return s.output.contact_free_reference; },
+          "output.contact_free_reference: whether runs also run without contact, for the pounding-induced demand")
+      .def_property_readonly(
           "yielding",
           [](const Scene& s) {
             return std::any_of(s.buildings.begin(), s.buildings.end(),
@@ -398,6 +402,25 @@ PYBIND11_MODULE(_pounding, m) {
             return gaps;
           },
           "The neighbouring pairs' gaps, as [(\"B1:B2\", m), ...] (two buildings: the one pair, contact.gap_m)")
+      .def(
+          "pair_scenes",
+          [](const Scene& s) {
+            std::vector<std::tuple<std::string, double, Scene>> scenes;
+            for (const pounding::analysis::BuildingPair& p : s.pairs()) {
+              double turned_deg = 0.0;
+              try {
+                Scene two = s.pair_scene_facing_x(p, turned_deg);
+                scenes.emplace_back(s.buildings[static_cast<std::size_t>(p.first)].name + ":" +
+                                        s.buildings[static_cast<std::size_t>(p.second)].name,
+                                    turned_deg, std::move(two));
+              } catch (const InputError& error) {
+                rethrow_in_scene(error, s);
+              }
+            }
+            return scenes;
+          },
+          "Each neighbouring pair's scene of two buildings, turned in plan so that they face along x, as "
+          "`pounding gap` analyses a row: [(\"B1:B2\", turned_deg, Scene), ...]")
       .def_property_readonly(
           "slab_to_column",
           [](const Scene& s) { return pounding::contact::has_column_pairs(pounding::analysis::scene_candidates(s)); },

@@ -39,6 +39,7 @@ import json
 import logging
 import math
 import os
+import re
 import pathlib
 import signal
 import socket
@@ -81,7 +82,29 @@ YIELDING = ("b1_max_ductility", "b2_max_ductility", "hysteretic_kJ", "yield_even
 # Written when some scene of the sweep has slabs that can strike columns: how many impacts were
 # slab to column, the largest shear they caused in a column and (with a capacity) its ratio.
 SLAB_TO_COLUMN = ("slab_to_column_impact_count", "max_column_shear_kN", "max_column_shear_ratio")
+# Written when some scene of the sweep asks for the run without contact ([output]
+# contact_free_reference): each building's largest storey drift ratio at the CM (over x and y),
+# with contact and without.
+POUNDING_DEMAND = ("b1_max_drift_ratio", "b1_max_drift_ratio_no_contact", "b2_max_drift_ratio",
+                   "b2_max_drift_ratio_no_contact")
 TIMINGS = ("solver_time_s", "wall_time_s")
+# A row's columns, written when some scene of the sweep is a row: the peaks of its buildings
+# beyond the second (b3_peak_u_m, ...), then per neighbouring pair its impacts and, with
+# needed_gap, its needed gap ("impact_count B1:B2", "needed_gap_m B1:B2").
+PEAK_QUANTITIES = ("u_m", "v_m", "phi_rad")
+
+
+def building_peak_columns(count):
+    """The peak columns of buildings 3 ... count (1 and 2 are in RESULTS)."""
+    return [f"b{k}_peak_{quantity}" for k in range(3, count + 1) for quantity in PEAK_QUANTITIES]
+
+
+def pair_impact_column(pair):
+    return f"impact_count {pair}"
+
+
+def pair_needed_gap_column(pair):
+    return f"needed_gap_m {pair}"
 
 
 def _text(value):
@@ -374,8 +397,14 @@ class Sweep:
     def columns(self):
         yielding = YIELDING if any(scene.yielding for scene in self.scenes.values()) else ()
         columns = SLAB_TO_COLUMN if any(scene.slab_to_column for scene in self.scenes.values()) else ()
-        return [*self.parameter_columns(), *self.setting_keys, *RESULTS, *yielding, *columns,
+        demand = POUNDING_DEMAND if any(scene.contact_free_reference for scene in self.scenes.values()) else ()
+        rows = [scene for scene in self.scenes.values() if len(scene.building_names) > 2]
+        pairs = list(dict.fromkeys(pair for scene in rows for pair, _ in scene.pair_gaps))
+        buildings = max((len(scene.building_names) for scene in rows), default=2)
+        return [*self.parameter_columns(), *self.setting_keys, *RESULTS, *building_peak_columns(buildings),
+                *map(pair_impact_column, pairs), *yielding, *columns, *demand,
                 *(NEEDED_GAP if self.needed_gap else ()),
+                *(map(pair_needed_gap_column, pairs) if self.needed_gap else ()),
                 *(ALL_ANGLES if self.all_angles else ()),
                 *TIMINGS]
 
@@ -470,11 +499,15 @@ def _failure(error):
 
 
 def needed_gap_task(task):
-    """The needed gap of the task's scene (its own gap and tolerances) under its record."""
+    """The needed gap of the task's scene (its own gap and tolerances) under its record; of a row,
+    each neighbouring pair's (`pounding gap` on a row), the largest in needed_gap_m."""
     try:
-        gap = pounding.needed_gap(_scene({"scene_file": task["scene_file"], "record": task["record"],
-                                          "direction_deg": task.get("direction_deg")}),
-                                  max_wall_time_s=task.get("max_wall_time_s"), all_angles=task.get("all_angles", False))
+        scene = _scene({"scene_file": task["scene_file"], "record": task["record"],
+                        "direction_deg": task.get("direction_deg")})
+        if len(scene.building_names) > 2:
+            return _row_needed_gaps(scene, task)
+        gap = pounding.needed_gap(scene, max_wall_time_s=task.get("max_wall_time_s"),
+                                  all_angles=task.get("all_angles", False))
     except Exception as error:  # noqa: BLE001  (a record that cannot be read: the rows say so)
         failed = {"needed_gap_m": None, "needed_gap_level": None, "needed_gap_t_s": None,
                   "needed_gap_status": "failed: " + _failure(error)}
@@ -488,14 +521,38 @@ def needed_gap_task(task):
     return row
 
 
+def _row_needed_gaps(scene, task):
+    """A row's needed gaps, pair by pair (each pair's own contact-free run: the buildings move
+    independently without contact): a column each, and in needed_gap_m, _level, _t_s the pair
+    that needs the most; the status the first pair's that did not complete, or "completed"."""
+    if task.get("all_angles"):
+        raise _error(task["scene_file"], "needed_gap", '"all_angles"',
+                     "takes scenes of two buildings; this one is a row (run it on one pair's scene)")
+    row, worst, status = {}, None, "completed"
+    for pair, _, two in scene.pair_scenes():
+        gap = pounding.needed_gap(two, max_wall_time_s=task.get("max_wall_time_s"))
+        finite = gap.needed_gap_m is not None and math.isfinite(gap.needed_gap_m)
+        row[pair_needed_gap_column(pair)] = gap.needed_gap_m if finite else None
+        if gap.status != "completed" and status == "completed":
+            status = f"{pair}: {gap.status}"
+        if finite and (worst is None or gap.needed_gap_m > worst.needed_gap_m):
+            worst = gap
+    row.update({"needed_gap_m": worst.needed_gap_m if worst else None,
+                "needed_gap_level": (worst.level or None) if worst else None,
+                "needed_gap_t_s": worst.t_s if worst else None, "needed_gap_status": status})
+    return row
+
+
 def run_task(task, needed_gap=None):
     """One run of the sweep: its result columns (RESULTS, TIMINGS and, given, the needed gap's)."""
     start = time.perf_counter()
     row = dict.fromkeys(RESULTS)
     try:
         # A row keeps impact statistics and displacement peaks only (_summarise): the run computes
-        # no history and no other peaks.
-        scene = _scene(task).with_outputs(history=False, peaks=["displacements"])
+        # no history and no other peaks, but the drifts a contact-free reference compares.
+        scene = _scene(task)
+        scene = scene.with_outputs(history=False,
+                                   peaks=["displacements", *(["drifts"] if scene.contact_free_reference else [])])
         result = pounding.run(scene, method=task["method"], max_wall_time_s=task.get("max_wall_time_s"),
                               **task["settings"])
         row.update(_summarise(result))
@@ -517,15 +574,22 @@ def _summarise(result):
            "max_approach_speed_mps": max((abs(i["approach_velocity_mps"]) for i in impacts), default=0.0),
            "impact_loss_kJ": result.energy["impact_loss_kJ"],
            "steps": result.statistics["steps"], "solver_time_s": result.statistics["wall_time_s"]}
-    for building, prefix in zip(result.peaks, ("b1", "b2")):
-        for quantity in ("u_m", "v_m", "phi_rad"):
-            row[f"{prefix}_peak_{quantity}"] = max(abs(f[quantity]["value"]) for f in building["floors"])
+    for number, building in enumerate(result.peaks, start=1):
+        for quantity in PEAK_QUANTITIES:
+            row[f"b{number}_peak_{quantity}"] = max(abs(f[quantity]["value"]) for f in building["floors"])
+    for pair, count in result.summary.get("impacts_by_pair", {}).items():
+        row[pair_impact_column(pair)] = count
     if result.yielding is not None:
         for building in result.yielding["buildings"]:
             row[f"b{building['building']}_max_ductility"] = max(
                 max(s["peak_ductility_x"], s["peak_ductility_y"]) for s in building["storeys"])
         row["hysteretic_kJ"] = result.yielding["hysteretic_kJ"]
         row["yield_events"] = result.yielding["yield_events"]
+    if "pounding_demand" in result.summary:
+        for prefix, building in zip(("b1", "b2"), result.summary["pounding_demand"]["buildings"][:2]):
+            for suffix, side in (("", "with"), ("_no_contact", "without")):
+                row[f"{prefix}_max_drift_ratio{suffix}"] = max(
+                    max(s["drift_x"][side], s["drift_y"][side]) for s in building["storeys"])
     if "impacts_slab_to_column" in result.summary:
         on_columns = [i for i in impacts if i["level"] == 0]
         row["slab_to_column_impact_count"] = len(on_columns)
@@ -655,13 +719,15 @@ def _typed(column, text):
         return None
     if column in TEXT_COLUMNS:
         return text
-    if column in INTEGER_COLUMNS:
+    if column in INTEGER_COLUMNS or column.startswith("impact_count "):
         return int(text)
     if column == "gap_m" and "=" in text:  # a row's pair gaps, "B1:B2=0.2;B2:B3=0.1"
         return text
-    if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in SLAB_TO_COLUMN or column in TIMINGS \
+    if column in RESULTS or column in NEEDED_GAP or column in YIELDING or column in SLAB_TO_COLUMN \
+            or column in POUNDING_DEMAND or column in TIMINGS \
             or column in PARAMETERS \
-            or column in ALL_ANGLES or column == "direction_deg":
+            or column in ALL_ANGLES or column == "direction_deg" \
+            or column.startswith("needed_gap_m ") or re.fullmatch(r"b\d+_peak_[a-z_]+", column):
         return float(text)
     for kind in (int, float):
         try:
@@ -694,7 +760,9 @@ class SweepResult:
         self.csv = self.out / "sweep.csv"
         self.rows = read_table(self.csv)
         self.executed, self.skipped, self.interrupted = executed, skipped, interrupted
-        self.failed = sum(row["status"] != "completed" for row in self.rows)
+        # A run that did not complete, or whose needed gap failed, is a failed row.
+        self.failed = sum(row["status"] != "completed" or str(row.get("needed_gap_status") or "").startswith("failed")
+                          for row in self.rows)
 
     def frame(self):
         """The rows as a pandas DataFrame (Debian python3-pandas), a column a sweep.csv column."""
@@ -950,9 +1018,9 @@ def main(argv=None):
     except InputError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
-    except SchedulerUnreachable as error:
+    except SchedulerUnreachable as error:  # a refusal, as a bad sweep file is: nothing ran
         print(f"error: {error}", file=sys.stderr)
-        return 3
+        return 2
     print(f"{len(result.rows)} rows in {result.csv} ({result.executed} run now, {result.skipped} already there, "
           f"{result.failed} not completed)")
     if result.interrupted:

@@ -785,7 +785,8 @@ def python_api(work):
 
     # A sweep of one row with a table of pair gaps.
     out = fresh(work / "sweep-out")
-    sweep = write(work, "rows.sweep.toml", f'scenes = ["{three}"]\ngaps_m = [{{"B1:B2" = 0.2, "B2:B3" = 0.1}}]\n')
+    sweep = write(work, "rows.sweep.toml",
+                  f'scenes = ["{three}"]\ngaps_m = [{{"B1:B2" = 0.2, "B2:B3" = 0.1}}]\nneeded_gap = true\n')
     environment = dict(os.environ)
     if PYTHONPATH_DIR:
         environment["PYTHONPATH"] = PYTHONPATH_DIR + os.pathsep + environment.get("PYTHONPATH", "")
@@ -804,6 +805,24 @@ def python_api(work):
         if rows and cli_count is not None:
             check(int(rows[0]["impact_count"] or -1) == cli_count,
                   f"the sweep's impact count is the command line's ({rows[0]['impact_count']} and {cli_count})")
+        if rows:
+            row = rows[0]
+            per_pair = [int(row.get(f"impact_count {pair}") or 0) for pair in ("B1:B2", "B2:B3")]
+            check(sum(per_pair) == int(row["impact_count"] or -1) and row.get("b3_peak_u_m"),
+                  f"sweep.csv: each pair's impacts ({per_pair}) add up to impact_count, and B3 has its peaks "
+                  f"(b3_peak_u_m {row.get('b3_peak_u_m')!r})")
+            gap_cli = fresh(work / "gap-b2b3-0.1")
+            pounding("gap", three, "--gap", "B2:B3=0.1", "--out", gap_cli)
+            if (gap_cli / "rows.json").is_file():
+                expected = {p["pair"]: p["needed_gap_m"] for p in json.loads((gap_cli / "rows.json").read_text())["pairs"]}
+                found = {pair: float(row.get(f"needed_gap_m {pair}") or "nan") for pair in expected}
+                check(all(abs(found[pair] - expected[pair]) <= 1e-9 for pair in expected)
+                      and abs(float(row["needed_gap_m"] or "nan") - max(expected.values())) <= 1e-9
+                      and row["needed_gap_status"] == "completed",
+                      f"the sweep's needed gap of each pair is `pounding gap`'s ({found} and {expected}), the row's "
+                      f"the largest, status {row['needed_gap_status']!r}")
+            else:
+                check(False, "pounding gap on the row wrote rows.json")
     else:
         check(False, "the sweep wrote sweep.csv")
     return True

@@ -232,7 +232,7 @@ def test_front_end_errors_are_messages_not_tracebacks(folder, tmp_path):
     for arguments, status, words in ((["--scheduler", "garbage"], 2, "--scheduler = \"garbage\": expected an address"),
                                      (["--scheduler", ""], 2, "--scheduler: an empty value is not allowed"),
                                      # nothing listens on port 1: exit 3 after the bounded wait (10 s)
-                                     (["--scheduler", "tcp://127.0.0.1:1"], 3, "no Dask scheduler answered within"),
+                                     (["--scheduler", "tcp://127.0.0.1:1"], 2, "no Dask scheduler answered within"),
                                      (["--serial", "--out", str(a_file)], 2, "cannot create this folder")):
         done = subprocess.run([CLI, "sweep", folder / "sweep.toml", "--no-progress"] + arguments,
                               capture_output=True, text=True, timeout=120)
@@ -347,6 +347,27 @@ def test_slab_to_column_scenes_add_their_columns(serial, tmp_path):
     assert row["slab_to_column_impact_count"] == run.summary["impacts_slab_to_column"] == len(run.impacts) > 0
     assert row["max_column_shear_kN"] == max(i["column_shear_kN"] for i in run.impacts)
     assert row["max_column_shear_ratio"] is None
+
+
+def test_a_contact_free_reference_adds_the_pounding_induced_drifts(serial, tmp_path):
+    """A sweep over a scene that asks for the run without contact ([output] contact_free_reference)
+    completes (it used to fail every row: the sweep's runs kept no drift peaks) and writes each
+    building's largest storey drift ratio with and without contact, as the run's summary gives them."""
+    assert not set(sweeps.POUNDING_DEMAND) & set(serial.rows[0])
+    text = PAPER.read_text().replace("[contact]", "[output]\ncontact_free_reference = true\n\n[contact]")
+    scene = tmp_path / "paper-reference.toml"
+    scene.write_text(text.replace('"../records/', f'"{SOURCE / "examples" / "records"}/'))
+    path = tmp_path / "sweep.toml"
+    path.write_text(f'scenes = ["{scene}"]\ngaps_m = [0.2]\n')
+    result = pounding.sweep(path, out=tmp_path / "out", workers=0, progress=False)
+    row = result.rows[0]
+    assert row["status"] == "completed" and result.failed == 0
+    demand = pounding.run(pounding.load_scene(scene)).summary["pounding_demand"]["buildings"]
+    for b, building in zip((1, 2), demand):
+        for suffix, side in (("", "with"), ("_no_contact", "without")):
+            expected = max(max(s["drift_x"][side], s["drift_y"][side]) for s in building["storeys"])
+            assert row[f"b{b}_max_drift_ratio{suffix}"] == pytest.approx(expected, rel=1e-12)
+    assert row["b2_max_drift_ratio"] != row["b2_max_drift_ratio_no_contact"]  # the pair pounds at 0.2 m
 
 
 def test_directions_cross_the_records(folder, tmp_path):
