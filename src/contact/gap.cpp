@@ -22,8 +22,9 @@ double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * 
 
 /// The projection parameter of d = P − Q1 on `edge` (Q1Q2 as it stands), for candidate c.
 double segment_param(const Candidate& c, const Point2& d, const Point2& edge) {
-  if (!c.corner) return d.dot(edge) / edge.squaredNorm();
   const double length = edge.norm();
+  // (An edge of a few micrometres, which no slab has, is taken whole.)
+  if (!c.corner || length <= 4.0 * kCornerEdgeInset_m) return d.dot(edge) / edge.squaredNorm();
   return (d.dot(edge) / length - kCornerEdgeInset_m) / (length - 2.0 * kCornerEdgeInset_m);
 }
 

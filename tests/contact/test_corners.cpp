@@ -9,6 +9,8 @@
 #include "pounding/contact/corners.hpp"
 #include "pounding/contact/gap.hpp"
 #include "pounding/contact/impact.hpp"
+#include "pounding/analysis/run_scene.hpp"
+#include "pounding/io/scene_reader.hpp"
 
 namespace tt = boost::test_tools;
 using namespace pounding;
@@ -164,5 +166,35 @@ BOOST_AUTO_TEST_CASE(SquaresMeetingCornerToCornerInARun) {
     if (std::abs(r.t_s - result.impacts[0].t_s) < 1e-9) impulse += r.impulse_kNs;
   }
   BOOST_TEST(impulse == 1.5 * 10.0 * v * std::sqrt(2.0), tt::tolerance(1e-6));
+  BOOST_TEST(result.statistics.max_interpenetration_m < 1e-9);
+}
+
+namespace {
+
+/// tests/data/street/`file` (two one-storey slabs in line, tests/solvers/test_street_scipy.py's
+/// scene) run with `overrides` on cvode-bdf at the scene's default tolerances.
+solvers::RunResult run_in_line(const std::string& file, const io::SceneOverrides& overrides = {}) {
+  return analysis::run_scene(io::read_scene(POUNDING_TEST_DATA_DIR "/street/" + file, overrides)).result;
+}
+
+}  // namespace
+
+// The corner rules end to end, short enough for the sanitizer pass (the scipy peer's comparison of
+// the same scenes, tests/solvers/test_street_scipy.py, is left out there for its length).
+BOOST_AUTO_TEST_CASE(AKelvinContactIsHandedRoundTheCornersOfFacadesInLine) {
+  const solvers::RunResult result = run_in_line("in-line.toml");
+  BOOST_TEST(solvers::to_string(result.status) == "completed");
+  BOOST_TEST(result.statistics.corner_candidates == 4);
+  BOOST_TEST(result.statistics.corner_handovers >= 1);  // the peer, at rtol 1e-12: 4
+  BOOST_TEST(std::abs(result.energy.residual_kJ()) <= 1e-6 * result.energy.input_kJ);
+}
+
+BOOST_AUTO_TEST_CASE(AHoldIsHandedRoundTheCornerOfFacadesInLineToAMicrometre) {
+  // B 1 um higher: B's side edges face A's corners by a micrometre (facing candidates), and a
+  // vertex on the facade behind such an edge's line touches nothing there.
+  const solvers::RunResult result = run_in_line("in-line-1um.toml");
+  BOOST_TEST(solvers::to_string(result.status) == "completed");
+  BOOST_TEST(result.statistics.corner_handovers >= 1);  // a hold passes to its twin (the peer: 1)
+  BOOST_TEST(!result.sustained_contacts.empty());
   BOOST_TEST(result.statistics.max_interpenetration_m < 1e-9);
 }
