@@ -38,8 +38,7 @@ struct PairNames {
 };
 
 PairNames row_pair_names(const analysis::Scene& two) {
-  return {{two.buildings[0].name, two.buildings[1].name},
-          {"d " + two.buildings[0].name, "d " + two.buildings[1].name}};
+  return {{two.buildings[0].name, two.buildings[1].name}, {"d " + two.buildings[0].name, "d " + two.buildings[1].name}};
 }
 
 void print_levels(const analysis::NeededGap& gap, const PairNames& names = {}) {
@@ -65,10 +64,11 @@ void print_levels(const analysis::NeededGap& gap, const PairNames& names = {}) {
 }
 
 void print_rules(const analysis::NeededGap& gap, const PairNames& names = {}) {
-  fmt::print("First modes along x: {} mode {} T = {:.4f} s zeta = {:.4f}; {} mode {} T = {:.4f} s zeta = {:.4f}; "
-             "CQC rho = {:.4f}\n",
-             names.buildings[0], gap.modes[0].mode, gap.modes[0].period_s, gap.modes[0].damping_ratio,
-             names.buildings[1], gap.modes[1].mode, gap.modes[1].period_s, gap.modes[1].damping_ratio, gap.rho);
+  fmt::print(
+      "First modes along x: {} mode {} T = {:.4f} s zeta = {:.4f}; {} mode {} T = {:.4f} s zeta = {:.4f}; "
+      "CQC rho = {:.4f}\n",
+      names.buildings[0], gap.modes[0].mode, gap.modes[0].period_s, gap.modes[0].damping_ratio, names.buildings[1],
+      gap.modes[1].mode, gap.modes[1].period_s, gap.modes[1].damping_ratio, gap.rho);
   if (gap.yielding) {
     fmt::print(
         "Columns yield: the contact-free run is nonlinear ({} branch changes), and the code rules below "
@@ -107,9 +107,7 @@ void print_all_angles(const analysis::NeededGap& gap) {
                  ? fmt::format("two runs superposed, the touch gaps sampled every {:g} s", all.sample_interval_s)
                  : fmt::format("one run every {:g} degrees: yielding buildings do not superpose", all.step_deg),
              all.runs,
-             all.status == solvers::RunStatus::completed
-                 ? ""
-                 : fmt::format("; a run stopped ({}): lower bounds", solvers::to_string(all.status)));
+             all.status == solvers::RunStatus::completed ? "" : fmt::format("; {}: lower bounds", all.status_detail));
   // Level 0 with a governing pair: a slab facing columns (its pair names the column and the slab).
   const std::string where = all.worst_level > 0 || all.worst_candidate < 0
                                 ? fmt::format("level {}", all.worst_level)

@@ -321,6 +321,7 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
   double t = t0;
   solvers::BudgetClock clock(options.budget);
   solvers::RunResult stop;  // receives the reason when the budget or a signal ends the run
+  double restarted_at = -std::numeric_limits<double>::infinity();
   while (t < t_end) {
     if (clock.exhausted(t, stop)) {
       result.status = stop.status;
@@ -329,7 +330,17 @@ void integrate(const CoupledSystem& system, const NeededGapOptions& options, Fre
     }
     const solvers::StepOutcome outcome = integrator.step(t_end);
     if (outcome.kind == solvers::StepKind::failure) {
-      throw std::runtime_error(fmt::format("contact-free run failed after t = {} s: {}", t, outcome.failure));
+      // A root function that stays at zero after a root (a column spring whose witness rests at
+      // zero) is an illegal input to CVODE's next root check; a restart there takes it as a root
+      // at the start, which CVODE leaves alone until it moves. Once at an instant, then a failure.
+      if (outcome.failure.find("CV_ILL_INPUT") == std::string::npos || restarted_at == t) {
+        throw std::runtime_error(fmt::format("contact-free run failed after t = {} s: {}", t, outcome.failure));
+      }
+      result.steps += integrator.counters().steps;
+      integrator.restart(t, integrator.state());
+      set_next_stop(t);
+      restarted_at = t;
+      continue;
     }
     t = outcome.t_s;
     for (; next_sample <= t; next_sample = t0 + static_cast<double>(samples.size()) * interval_s) {
@@ -451,8 +462,8 @@ NeededGapOptions scene_options(const Scene& scene, const solvers::RunBudget& bud
 NeededGap needed_gap(const Scene& scene, const solvers::RunBudget& budget) {
   if (scene.is_row()) {
     throw InputError("building", fmt::format("{} buildings", scene.buildings.size()),
-                     "form a row, whose needed gaps are found pair by pair (pounding gap does; from code, run "
-                     "needed_gap on each Scene::pair_scene)",
+                     "form a row, whose needed gaps are found pair by pair (pounding gap does; from Python, "
+                     "needed_gap on each of Scene.pair_scenes())",
                      scene.file.string());
   }
   const auto clock_start = std::chrono::steady_clock::now();
@@ -514,6 +525,27 @@ void note_status(const NeededGap& run, AllAngles& all) {
   if (all.status == solvers::RunStatus::completed) all.status = run.status;
 }
 
+/// One angle's contact-free run; a run that fails is noted with its angle (the first such in
+/// AllAngles::status_detail) and gives no needed gap (NaN), so the others still count.
+NeededGap run_at(const Scene& scene, double angle_deg, const solvers::RunBudget& budget, AllAngles& all) {
+  NeededGap run;
+  try {
+    run = needed_gap(turned_to(scene, angle_deg), budget);
+  } catch (const std::runtime_error& error) {
+    if (dynamic_cast<const InputError*>(&error)) throw;
+    run.status = solvers::RunStatus::solver_failure;
+    run.status_detail = error.what();
+    run.needed_gap_m = std::numeric_limits<double>::quiet_NaN();
+  }
+  if (run.status != solvers::RunStatus::completed && all.status_detail.empty()) {
+    all.status_detail = fmt::format("the run with the record along {:g} deg: {}{}", angle_deg,
+                                    solvers::to_string(run.status),
+                                    run.status_detail.empty() ? "" : " (" + run.status_detail + ")");
+  }
+  note_status(run, all);
+  return run;
+}
+
 /// Elastic buildings: the motion at angle θ is cos θ y₀(t) + sin θ y₉₀(t), so two contact-free
 /// runs sampled on one time grid give every angle's touch gaps, evaluated exactly (rotation
 /// included) at the combined states.
@@ -554,9 +586,7 @@ void swept_envelope(const Scene& scene, const solvers::RunBudget& budget, AllAng
   all.method = "sweep";
   all.step_deg = kSweepStep_deg;
   for (double angle = 0.0; angle < 360.0 - 1e-9; angle += kSweepStep_deg) {
-    const NeededGap run = needed_gap(turned_to(scene, angle), budget);
-    note_status(run, all);
-    all.envelope.push_back({angle, run.needed_gap_m});
+    all.envelope.push_back({angle, run_at(scene, angle, budget, all).needed_gap_m});
   }
 }
 
@@ -565,11 +595,10 @@ void refine_worst_angle(const Scene& scene, const solvers::RunBudget& budget, Al
   std::map<double, NeededGap> runs;
   auto at = [&](double angle) -> double {
     auto found = runs.find(angle);
-    if (found == runs.end()) {
-      found = runs.emplace(angle, needed_gap(turned_to(scene, angle), budget)).first;
-      note_status(found->second, all);
-    }
-    return found->second.needed_gap_m;
+    if (found == runs.end()) found = runs.emplace(angle, run_at(scene, angle, budget, all)).first;
+    // A failed angle's NaN never wins a comparison: the search goes the other way.
+    return std::isnan(found->second.needed_gap_m) ? -std::numeric_limits<double>::infinity()
+                                                  : found->second.needed_gap_m;
   };
   const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
   double low = all.estimate.angle_deg - all.step_deg, high = all.estimate.angle_deg + all.step_deg;
@@ -583,7 +612,7 @@ void refine_worst_angle(const Scene& scene, const solvers::RunBudget& budget, Al
     }
   }
   const auto worst = std::max_element(runs.begin(), runs.end(), [](const auto& x, const auto& y) {
-    return x.second.needed_gap_m < y.second.needed_gap_m;
+    return std::isnan(x.second.needed_gap_m) || x.second.needed_gap_m < y.second.needed_gap_m;
   });
   all.worst = {std::fmod(worst->first + 360.0, 360.0), worst->second.needed_gap_m};
   all.worst_level = worst->second.level;
@@ -604,7 +633,7 @@ void add_all_angles(const Scene& scene, NeededGap& gap, const solvers::RunBudget
     superposed_envelope(scene, budget, all);
   }
   all.estimate = *std::max_element(all.envelope.begin(), all.envelope.end(), [](const AngleGap& x, const AngleGap& y) {
-    return x.needed_gap_m < y.needed_gap_m;
+    return std::isnan(x.needed_gap_m) || x.needed_gap_m < y.needed_gap_m;  // a failed angle never the largest
   });
   refine_worst_angle(scene, budget, all);
   gap.all_angles = std::move(all);

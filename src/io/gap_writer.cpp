@@ -215,6 +215,7 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
         {"envelope_largest", {{"angle_deg", all->estimate.angle_deg}, {"needed_gap_m", all->estimate.needed_gap_m}}},
         {"runs", all->runs},
         {"status", solvers::to_string(all->status)}};
+    if (!all->status_detail.empty()) document["all_angles"]["status_detail"] = all->status_detail;
   }
   if (!curve.empty()) {
     json points = json::array();

@@ -104,8 +104,11 @@ struct AllAngles {
   double worst_t_s = 0.0;
   long worst_candidate = -1;
   int runs = 0;  // contact-free runs it took
-  /// completed, or the first run's status that did not complete (the figures are then lower bounds).
+  /// completed, or the first run's status that did not complete (the figures are then lower bounds),
+  /// and which run that was and why: "the run with the record along 125 deg: solver_failure (...)".
+  /// A run that failed gives no needed gap at its angle (NaN in the envelope); the others count.
   solvers::RunStatus status = solvers::RunStatus::completed;
+  std::string status_detail;
 };
 
 struct NeededGap {
