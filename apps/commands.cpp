@@ -48,7 +48,8 @@ void print_modes_table(const analysis::BuildingSummary& building, int count) {
 
 /// The slabs between two floors of the other building and the facade columns each can strike.
 void print_column_levels(const analysis::Scene& scene, const std::vector<contact::ColumnLevel>& column_levels,
-                         const std::array<std::vector<double>, 2>& z) {
+                         const std::array<std::vector<double>, 2>& z,
+                         const std::array<std::string, 2>& names = {"B1", "B2"}) {
   if (scene.contact.slab_to_column == "off") {
     const auto all = contact::column_levels(z, scene.contact.level_tolerance_m);
     if (!all.empty())
@@ -70,9 +71,9 @@ void print_column_levels(const analysis::Scene& scene, const std::vector<contact
       if (std::find(list.begin(), list.end(), label) == list.end()) list.push_back(label);
     }
     const double below = l.storey > 1 ? z[columns][l.storey - 2] : 0.0;
-    fmt::print("  B{} floor {} ({:.6g} m) -> B{} storey {} ({:.6g} to {:.6g} m) at height ratio {:.4g}: {}{}\n",
-               l.slab_building + 1, l.slab_floor, l.elevation_m, columns + 1, l.storey, below, z[columns][l.storey - 1],
-               l.height_ratio,
+    fmt::print("  {} floor {} ({:.6g} m) -> {} storey {} ({:.6g} to {:.6g} m) at height ratio {:.4g}: {}{}\n",
+               names[l.slab_building], l.slab_floor, l.elevation_m, names[columns], l.storey, below,
+               z[columns][l.storey - 1], l.height_ratio,
                struck.empty() ? std::string("no facade column within reach")
                               : fmt::format("columns {} (number, local flexibility)", fmt::join(struck, ", ")),
                round_corner.empty()
@@ -104,6 +105,11 @@ void print_row(const analysis::Scene& scene) {
                second, pair.gap_m, second, pair.direction.x() + 0.0, pair.direction.y() + 0.0,
                at.empty() ? std::string("none") : fmt::format("{}", fmt::join(at, ", ")), count,
                columns > 0 ? fmt::format(" ({} slab to column)", columns) : std::string());
+    // The pair's slabs between two floors of the other building, and the columns each can strike.
+    const analysis::Scene two = scene.pair_scene(pair);
+    print_column_levels(two, two.column_levels(),
+                        {model::floor_elevations(two.buildings[0]), model::floor_elevations(two.buildings[1])},
+                        {first, second});
   }
 }
 
