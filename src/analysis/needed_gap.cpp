@@ -538,9 +538,9 @@ NeededGap run_at(const Scene& scene, double angle_deg, const solvers::RunBudget&
     run.needed_gap_m = std::numeric_limits<double>::quiet_NaN();
   }
   if (run.status != solvers::RunStatus::completed && all.status_detail.empty()) {
-    all.status_detail = fmt::format("the run with the record along {:g} deg: {}{}", angle_deg,
-                                    solvers::to_string(run.status),
-                                    run.status_detail.empty() ? "" : " (" + run.status_detail + ")");
+    all.status_detail =
+        fmt::format("the run with the record along {:g} deg: {}{}", angle_deg, solvers::to_string(run.status),
+                    run.status_detail.empty() ? "" : " (" + run.status_detail + ")");
   }
   note_status(run, all);
   return run;
