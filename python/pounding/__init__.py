@@ -88,16 +88,22 @@ _RECORD_KINDS = {"file": "path", "second.file": "path", "format": "text", "units
                  "accel_column": "whole number", "second.accel_column": "whole number"}
 
 
+# The scene key each with_record argument sets, by the argument's name where it differs.
+_RECORD_ARGUMENTS = {"second.file": "record2", "second.accel_column": "record2_column"}
+
+
 def _check_record_types(arguments):
-    """with_record's arguments of the wrong type: InputError naming the scene key they set
-    (`excitation.dt_s`, ...), not the binding's signature dump."""
+    """with_record's arguments of the wrong type: InputError naming the call and its argument
+    ("Scene.with_record(dt_s=...)") and the scene key it sets (`excitation.dt_s`, ...), not the
+    binding's signature dump."""
     accepted = {"path": (str, _os.PathLike), "text": (str,), "number": (_numbers.Real,), "whole number": (_numbers.Integral,)}
     for key, value in arguments.items():
         kind = _RECORD_KINDS[key]
         if value is None or (isinstance(value, accepted[kind]) and not isinstance(value, bool)):
             continue
         text = repr(value) if len(repr(value)) <= 40 else repr(value)[:40] + "..."
-        raise _input_error("", f"excitation.{key}", text, f"expected a {kind}")
+        argument = _RECORD_ARGUMENTS.get(key, key)
+        raise _input_error(f"Scene.with_record({argument}=...)", f"excitation.{key}", text, f"expected a {kind}")
 
 
 def _check_settings(settings):
@@ -417,9 +423,12 @@ def run(scene, method=None, max_steps=None, max_wall_time_s=None, max_history_va
     Returns a RunResult; a run that did not complete says so in .status, it does not raise."""
     _check_settings(settings)
     limits = _pounding.RunLimits()
-    for name, value in (("max_steps", max_steps), ("max_wall_time_s", max_wall_time_s),
-                        ("max_history_values", max_history_values)):
+    for name, value, kind in (("max_steps", max_steps, _numbers.Integral), ("max_wall_time_s", max_wall_time_s, _numbers.Real),
+                              ("max_history_values", max_history_values, _numbers.Real)):
         if value is not None:
+            if isinstance(value, bool) or not isinstance(value, kind):
+                raise _input_error("", name, repr(value)[:40], "expected a whole number" if kind is _numbers.Integral
+                                   else "expected a number")
             _check_number(name, value, 1, 10**12)  # the command line's --max-steps range
             setattr(limits, name, value)
     return RunResult(_pounding.run(scene, method, settings, limits))

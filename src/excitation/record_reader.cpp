@@ -148,6 +148,12 @@ RecordSamples read_peer_at2(const std::vector<Line>& lines, const Parser& parser
   const At2Header header = parse_at2_header(lines[3], parser);
   RecordSamples samples;
   for (std::size_t i = kHeaderLines; i < lines.size(); ++i) {
+    // An AT2 file separates its values by spaces: a comma is a decimal comma, which would split
+    // one value into two (and then the count would be blamed on the header) or misread it.
+    if (lines[i].text.find(',') != std::string::npos) {
+      throw parser.error(lines[i], 0, lines[i].text,
+                         "holds a comma: PEER AT2 values are written with a decimal point and separated by spaces");
+    }
     const auto fields = split_fields(lines[i].text);
     for (std::size_t f = 0; f < fields.size(); ++f) {
       samples.accel.push_back(parser.number(fields[f], lines[i], f + 1));

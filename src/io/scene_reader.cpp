@@ -776,7 +776,8 @@ void apply_record(analysis::Scene& scene, const excitation::RecordChoice& choice
     // missing, in the scene's name (the key excitation.dt_s was never typed).
     if (error.key() == "excitation.dt_s" && error.value() == "missing" && (choice.format || choice.file)) {
       throw InputError("--record-dt", "missing",
-                       "the record is read as format 'single', which needs its sample spacing (s)",
+                       fmt::format("the record {} is read as format 'single', which needs its sample spacing (s)",
+                                   choice.file.value_or(scene.excitation.file).string()),
                        scene.file.string());
     }
     throw error.renamed(record_option_names(choice), scene.file.string());

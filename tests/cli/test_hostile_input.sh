@@ -39,7 +39,7 @@ refused "--json: an empty value is not allowed" modes "$paper" --json ''
 refused "--count: Value 0 not in range 1 to 10000" modes "$paper" --count 0
 refused "--repeat: Value 1000000000 not in range 1 to 100" study "$paper" --repeat 1000000000
 refused "unknown command 'frobnicate'" frobnicate
-refused "paper.toml: --record-dt = missing: the record is read as format 'single'" \
+refused "paper.toml: --record-dt = missing: the record $source_dir/examples/records/elcentro1940_ns_0.02s.AT2 is read as format 'single'" \
   run "$paper" --record "$source_dir/examples/records/elcentro1940_ns_0.02s.AT2" --record-format single --out "$work/o"
 
 # Work bounded before it is allocated: a 10 000 x 10 000 column grid (10^8 columns from 150 kB of

@@ -85,6 +85,13 @@ BOOST_AUTO_TEST_CASE(NptsDisagreeingWithTheValuesIsRefused) {
   BOOST_TEST(mentions(error_of(file, at2()), {"e.AT2", "line 4", "announces 5", "holds 4"}));
 }
 
+BOOST_AUTO_TEST_CASE(ADecimalCommaNamesItsLineNotTheHeader) {
+  // "0,2" read as two values made the count disagree with NPTS, and the header was blamed.
+  TempDir dir;
+  const auto file = dir.write("c.AT2", kOlderHeader + "1 0,2 3\n4\n");
+  BOOST_TEST(mentions(error_of(file, at2()), {"c.AT2", "line 5", "'1 0,2 3'", "comma"}));
+}
+
 BOOST_AUTO_TEST_CASE(NonPositiveTimeStepIsRefused) {
   TempDir dir;
   std::string header = kOlderHeader;

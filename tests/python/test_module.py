@@ -236,6 +236,20 @@ def test_whole_numbers_too_large_for_c_raise_naming_the_keyword():
         assert raised.value.key == key and "must lie in" in str(raised.value), keywords
 
 
+def test_keywords_of_the_wrong_type_raise_naming_them():
+    # run(S, max_steps=1.5) gave pybind11's "incompatible function arguments" without a name, and
+    # with_record(units=5) named the scene key but not the argument.
+    scene = pounding.load_scene(PAPER)
+    for keywords, key, words in ((dict(max_steps=1.5), "max_steps", "whole number"),
+                                 (dict(max_wall_time_s="x"), "max_wall_time_s", "a number")):
+        with pytest.raises(pounding.InputError) as raised:
+            pounding.run(scene, **keywords)
+        assert raised.value.key == key and words in str(raised.value), keywords
+    with pytest.raises(pounding.InputError) as raised:
+        scene.with_record(SOURCE / "examples" / "records" / "elcentro1940_ns_0.02s.AT2", units=5)
+    assert raised.value.key == "excitation.units" and str(raised.value).startswith("Scene.with_record(units=...)")
+
+
 def test_modes_match_cli(tmp_path):
     cli("modes", PAPER, "--json", tmp_path / "modes.json")
     expected = json.loads((tmp_path / "modes.json").read_text())["buildings"]
