@@ -523,8 +523,8 @@ def needed_gap_task(task):
 
 def _row_needed_gaps(scene, task):
     """A row's needed gaps, pair by pair (each pair's own contact-free run: the buildings move
-    independently without contact): a column each, and in needed_gap_m, _level, _t_s the pair
-    that needs the most; the status the first pair's that did not complete, or "completed"."""
+    independently without contact): a column each, and in needed_gap_m and _t_s the pair that
+    needs the most; the status the first pair's that did not complete, or "completed"."""
     if task.get("all_angles"):
         raise _error(task["scene_file"], "needed_gap", '"all_angles"',
                      "takes scenes of two buildings; this one is a row (run it on one pair's scene)")
@@ -537,8 +537,8 @@ def _row_needed_gaps(scene, task):
             status = f"{pair}: {gap.status}"
         if finite and (worst is None or gap.needed_gap_m > worst.needed_gap_m):
             worst = gap
-    row.update({"needed_gap_m": worst.needed_gap_m if worst else None,
-                "needed_gap_level": (worst.level or None) if worst else None,
+    # The pair's level numbers are its own scene's, not the row's: left empty.
+    row.update({"needed_gap_m": worst.needed_gap_m if worst else None, "needed_gap_level": None,
                 "needed_gap_t_s": worst.t_s if worst else None, "needed_gap_status": status})
     return row
 

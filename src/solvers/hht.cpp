@@ -323,10 +323,9 @@ void HhtRun::track_overlaps(const State& s) {
   for (std::size_t i = 0; i < sunk_.size(); ++i) {
     const contact::GapState g = system_.gap(y, i);
     if (g.on_segment() && g.gap_m < -result_.statistics.max_interpenetration_m) {
-      // Beyond the tolerance band, inside the other slab and no deeper than the vertex's distance
-      // to its nearest edge; within it, at the slab's outline.
-      const double depth_m = g.gap_m >= -options_.contact_tolerance_m ? -g.gap_m : system_.depth_inside_m(y, i, g);
-      if (depth_m > 0.0) result_.statistics.note_overlap(overlap_depth(g.gap_m, depth_m), s.t_s, i);
+      const double overlap_m =
+          noted_overlap_m(g.gap_m, options_.contact_tolerance_m, [&] { return system_.depth_inside_m(y, i, g); });
+      if (!std::isnan(overlap_m)) result_.statistics.note_overlap(overlap_m, s.t_s, i);
     }
     const bool now = sunk(y, i, g);
     if (now && !sunk_[i]) ++result_.statistics.unresolved_contacts;

@@ -9,6 +9,7 @@
 //     jankowski), integrated with the motion; contacts begin, release and end at roots.
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -52,8 +53,7 @@ struct EventContext {
   bool meets(std::size_t i, const dynamics::VectorXd& y, const contact::GapState& s) const {
     if (!s.on_segment()) return false;
     if (s.gap_m >= -options.contact_tolerance_m) return !slides_along_face(i, y, s);
-    const double depth_m = system.depth_inside_m(y, i, s);
-    return depth_m > 0.0 && overlap_depth(s.gap_m, depth_m) == s.gap_m;
+    return inside_across_edge(s.gap_m, system.depth_inside_m(y, i, s));
   }
   /// Whether candidate i's vertex, at its edge's line near an end, lies on the line of the struck
   /// slab's edge round that end, without closing on it, where that edge and an edge of the vertex's
@@ -65,10 +65,9 @@ struct EventContext {
   /// beside the slab's end), and there no deeper than the vertex's distance to the nearest edge.
   void note_overlap(double t, const dynamics::VectorXd& y, std::size_t i, const contact::GapState& s) const {
     if (!(s.gap_m < -result.statistics.max_interpenetration_m)) return;
-    // Within the touch band a vertex is at the slab's outline, whichever edge is nearer.
-    if (s.gap_m >= -options.contact_tolerance_m) return result.statistics.note_overlap(s.gap_m, t, i);
-    const double depth_m = system.depth_inside_m(y, i, s);
-    if (depth_m > 0.0) result.statistics.note_overlap(overlap_depth(s.gap_m, depth_m), t, i);
+    const double overlap_m =
+        noted_overlap_m(s.gap_m, options.contact_tolerance_m, [&] { return system.depth_inside_m(y, i, s); });
+    if (!std::isnan(overlap_m)) result.statistics.note_overlap(overlap_m, t, i);
   }
   /// The candidate that carries on contact i (held, or a compliant one still overlapping), whose
   /// point has just slid off the end of its edge, in state y (docs/model.md §5a): the twin at

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "pounding/solvers/root_finding.hpp"
+#include "pounding/solvers/run_result.hpp"
 
 namespace pounding::solvers {
 
@@ -16,8 +17,7 @@ namespace {
 /// in across that one, whose own candidate answers for it.
 std::optional<double> arrival(StepGaps& path, std::size_t i, double t_end, const contact::GapState& end) {
   path.at(i, t_end);
-  const double depth_m = path.depth_inside_m(i);
-  return depth_m > 0.0 && depth_m >= -end.gap_m * (1.0 - 1e-9) ? std::optional(t_end) : std::nullopt;
+  return inside_across_edge(end.gap_m, path.depth_inside_m(i)) ? std::optional(t_end) : std::nullopt;
 }
 
 /// An armed pair's minimum inside the step (ġ < 0 at the start, ġ > 0 at the end, both ends

@@ -181,10 +181,25 @@ struct SpringResult {
   double final_slip_m = 0.0;  // its plastic part's slip at the end (the drift at zero force, α = 0)
 };
 
-/// The gap to note as an overlap for a vertex `gap_m` behind its edge's line and `depth_m` inside
-/// the other slab (its distance to the nearest edge; docs/model.md §5a): the gap, unless the
-/// vertex lies measurably nearer another edge (a corner), whose distance then bounds it.
-inline double overlap_depth(double gap_m, double depth_m) { return depth_m < -gap_m * (1.0 - 1e-6) ? -depth_m : gap_m; }
+/// "Inside means inside" (docs/model.md §5a), for a vertex `gap_m` (< 0) behind its edge's line
+/// whose distance to the other slab's nearest edge is `depth_m` when it lies inside that slab (0
+/// outside): whether that edge is the nearest one, so that the vertex is inside across it (a vertex
+/// measurably nearer another edge came in across that one, or is at a corner).
+inline bool inside_across_edge(double gap_m, double depth_m) {
+  return depth_m > 0.0 && depth_m >= -gap_m * (1.0 - 1e-6);
+}
+
+/// The gap to note as that vertex's overlap: the gap itself within the touch band `band_m` (the
+/// vertex is at the slab's outline, whichever edge is nearer) or inside across this edge; the
+/// depth when inside but nearer another edge; none (NaN) outside. `depth_inside_m()` is asked
+/// only beyond the band.
+template <class Depth>
+double noted_overlap_m(double gap_m, double band_m, const Depth& depth_inside_m) {
+  if (gap_m >= -band_m) return gap_m;
+  const double depth_m = depth_inside_m();
+  if (!(depth_m > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return inside_across_edge(gap_m, depth_m) ? gap_m : -depth_m;
+}
 
 struct SolverStatistics {
   long steps = 0;
