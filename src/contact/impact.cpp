@@ -231,6 +231,80 @@ ImpulseSolution closing_impulses(const std::vector<Eigen::RowVectorXd>& rows, co
   return closing_impulses_of_size<Eigen::Dynamic>(rows, inverse_mass, velocities);
 }
 
+namespace {
+
+/// Whether every kept row's ġ at `velocities` is at least its minimum, to `tolerance`.
+bool keeps_minimum(const std::vector<KeptRow>& kept, const Eigen::VectorXd& velocities, double tolerance) {
+  for (const KeptRow& row : kept) {
+    if (gap_rate(row.jacobian, velocities) < row.min_rate_mps - tolerance) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+ImpulseSolution closing_impulses_keeping(const std::vector<Eigen::RowVectorXd>& held, const std::vector<KeptRow>& kept,
+                                         const Eigen::VectorXd& inverse_mass, const Eigen::VectorXd& velocities) {
+  ImpulseSolution plain = closing_impulses(held, inverse_mass, velocities);
+  double scale = 1e-12;
+  for (const Eigen::RowVectorXd& row : held) scale = std::max(scale, std::abs(gap_rate(row, velocities)));
+  for (const KeptRow& row : kept) scale = std::max(scale, std::abs(gap_rate(row.jacobian, velocities)));
+  const double tolerance = 1e-12 * scale;
+  const Eigen::VectorXd after = velocities + plain.velocity_change;
+  if (kept.size() > kMaxEnumerated || keeps_minimum(kept, after, tolerance)) {
+    plain.impulses_kNs.resize(held.size() + kept.size(), 0.0);
+    return plain;
+  }
+  // Rows: held, then kept. Unknown impulses x; w = G M⁻¹ Gᵀ x + (G q̇ − target).
+  const Eigen::Index h = static_cast<Eigen::Index>(held.size()), m = h + static_cast<Eigen::Index>(kept.size());
+  Eigen::MatrixXd g(m, inverse_mass.size());
+  Eigen::VectorXd offset(m);
+  for (Eigen::Index r = 0; r < h; ++r) {
+    g.row(r) = held[static_cast<std::size_t>(r)];
+    offset[r] = gap_rate(g.row(r), velocities);
+  }
+  for (Eigen::Index r = h; r < m; ++r) {
+    const KeptRow& row = kept[static_cast<std::size_t>(r - h)];
+    g.row(r) = row.jacobian;
+    offset[r] = gap_rate(row.jacobian, velocities) - row.min_rate_mps;
+  }
+  const Eigen::MatrixXd w_matrix = g * inverse_mass.asDiagonal() * g.transpose();
+  const unsigned free_count = static_cast<unsigned>(kept.size());
+  std::vector<unsigned> masks(1u << free_count);
+  std::iota(masks.begin(), masks.end(), 0u);
+  std::stable_sort(masks.begin(), masks.end(),
+                   [](unsigned a, unsigned b) { return std::popcount(a) < std::popcount(b); });
+  for (unsigned mask : masks) {
+    std::vector<Eigen::Index> active;
+    for (Eigen::Index r = 0; r < h; ++r) active.push_back(r);
+    for (unsigned k = 0; k < free_count; ++k) {
+      if (mask & (1u << k)) active.push_back(h + static_cast<Eigen::Index>(k));
+    }
+    const Eigen::Index a = static_cast<Eigen::Index>(active.size());
+    Eigen::MatrixXd w_aa(a, a);
+    Eigen::VectorXd rhs(a);
+    for (Eigen::Index r = 0; r < a; ++r) {
+      rhs[r] = -offset[active[r]];
+      for (Eigen::Index c = 0; c < a; ++c) w_aa(r, c) = w_matrix(active[r], active[c]);
+    }
+    const Eigen::VectorXd solved = w_aa.completeOrthogonalDecomposition().solve(rhs);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
+    for (Eigen::Index r = 0; r < a; ++r) x[active[r]] = solved[r];
+    const Eigen::VectorXd w = w_matrix * x + offset;
+    bool solves = true;
+    for (Eigen::Index r = 0; r < m && solves; ++r) {
+      solves = r < h ? std::abs(w[r]) <= tolerance : x[r] >= -tolerance && w[r] >= -tolerance;
+    }
+    if (!solves) continue;
+    ImpulseSolution solution;
+    solution.impulses_kNs.assign(x.data(), x.data() + m);
+    solution.velocity_change = inverse_mass.cwiseProduct(g.transpose() * x);
+    return solution;
+  }
+  plain.impulses_kNs.resize(held.size() + kept.size(), 0.0);  // no mixed solution: the held rows' own
+  return plain;
+}
+
 double kinetic_energy(const Eigen::VectorXd& velocities, const Eigen::VectorXd& inverse_mass) {
   return 0.5 * gap_rate(velocities.cwiseAbs2().transpose(), inverse_mass.cwiseInverse());
 }

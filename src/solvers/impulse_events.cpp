@@ -250,18 +250,26 @@ void ImpulseEvents::stick(const FloorContacts& contacts, const std::vector<bool>
   // off would have brought it to rest). Left to the drift correction, that speed would open the
   // gap by ~v·τ and do work against the constraint; instead the held contacts are brought to
   // ġ = 0 together here, and the kinetic energy this takes counts as impact loss.
-  std::vector<std::size_t> held;
-  for (std::size_t k = 0; k < holding.size(); ++k) {
-    if (holding[k]) held.push_back(k);
-  }
+  // The group's other contacts keep what the impact gave them (the rebound of one that took an
+  // impulse, else not closing): a pull on the held ones must not leave a neighbour on the same
+  // slabs closing again at once, to be struck again a little deeper.
+  std::vector<std::size_t> held, kept;
+  for (std::size_t k = 0; k < holding.size(); ++k) (holding[k] ? held : kept).push_back(k);
   if (held.empty()) return;
+  const VectorXd velocities = system_.slab_velocities(y, contacts.slabs);
   std::vector<Eigen::RowVectorXd> rows;
   for (std::size_t k : held) rows.push_back(contacts.rows[k].jacobian);
-  const contact::ImpulseSolution closing = contact::closing_impulses(rows, system_.slab_inverse_mass(contacts.slabs),
-                                                                     system_.slab_velocities(y, contacts.slabs));
+  std::vector<contact::KeptRow> kept_rows;
+  for (std::size_t k : kept) {
+    const double rate = contact::gap_rate(contacts.rows[k].jacobian, velocities);
+    kept_rows.push_back({contacts.rows[k].jacobian, solution.impulses_kNs[k] > 0.0 ? std::max(rate, 0.0) : 0.0});
+  }
+  const contact::ImpulseSolution closing =
+      contact::closing_impulses_keeping(rows, kept_rows, system_.slab_inverse_mass(contacts.slabs), velocities);
   system_.add_slab_velocities(y, contacts.slabs, closing.velocity_change);
   solution.velocity_change += closing.velocity_change;
   for (std::size_t r = 0; r < held.size(); ++r) solution.impulses_kNs[held[r]] += closing.impulses_kNs[r];
+  for (std::size_t r = 0; r < kept.size(); ++r) solution.impulses_kNs[kept[r]] += closing.impulses_kNs[held.size() + r];
 }
 
 void ImpulseEvents::resolve_floor(double t, VectorXd& y, const std::vector<int>& levels,

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include <Eigen/LU>
+
 #include "pounding/contact/gap.hpp"
 #include "pounding/contact/impact.hpp"
 
@@ -117,6 +119,50 @@ BOOST_AUTO_TEST_CASE(SymmetricFaceImpactSolvedTogetherGivesNoRotation) {
   }
   BOOST_TEST(std::abs(sequential[2]) > 1e-3);  // a spurious spin
   BOOST_TEST(std::abs(sequential[0] - after[0]) > 1e-3);
+}
+
+BOOST_AUTO_TEST_CASE(HoldingOneCornerDoesNotCloseTheOtherAgain) {
+  // A's right edge against B's left one at two corners (as at a zero gap): the upper one, to be
+  // held, separates slowly (1e-4 m/s) and spins A; the lower one has just been struck to rest
+  // (k = 0: ġ = 0). Closing the upper one alone pulls A's edge round and leaves the lower one
+  // closing again; keeping the lower one, both end at ġ = 0 exactly (the 2 x 2 closed form), the
+  // lower one by a push (impulse > 0). Radii of gyration of 10 m (slabs long along the facade, as
+  // at a street): a pull at one corner moves the slab more than it turns it.
+  FreePair pair;
+  pair.j_a = pair.m_a * 100.0;
+  pair.j_b = pair.m_b * 100.0;
+  const Candidate lower{1, {1, 1}, 3.0, 0, 1, 1, 3, Point2(0, 0), Point2(0, 10), Point2(0, 0), Point2(-1, 0)};
+  const Candidate upper{1, {1, 1}, 3.0, 0, 1, 2, 3, Point2(0, 10), Point2(0, 10), Point2(0, 0), Point2(-1, 0)};
+  Vector6d before;  // A backing off at 5e-5 m/s while it turns anticlockwise at 1e-5 rad/s about (-5, 5)
+  before << -5e-5, 0, 1e-5, 0, 0, 0;
+  const ContactRow low0 = pair.row(lower, before, 0.0), up0 = pair.row(upper, before, 0.0);
+  BOOST_TEST_REQUIRE(std::abs(low0.gap_rate_mps) <= 1e-12);
+  BOOST_TEST_REQUIRE(up0.gap_rate_mps == 1e-4, tt::tolerance(1e-9));
+
+  const ImpulseSolution plain = closing_impulses({up0.jacobian}, pair.inverse(), before);
+  BOOST_TEST(pair.row(lower, before + plain.velocity_change, 0.0).gap_rate_mps < -1e-5);  // closing again
+
+  const ImpulseSolution kept =
+      closing_impulses_keeping({up0.jacobian}, {{low0.jacobian, 0.0}}, pair.inverse(), before);
+  const Vector6d after = before + kept.velocity_change;
+  BOOST_TEST(std::abs(pair.row(upper, after, 0.0).gap_rate_mps) <= 1e-15);
+  BOOST_TEST(std::abs(pair.row(lower, after, 0.0).gap_rate_mps) <= 1e-15);
+  BOOST_TEST_REQUIRE(kept.impulses_kNs.size() == 2u);
+  BOOST_TEST(kept.impulses_kNs[1] > 0.0);
+  Eigen::Matrix<double, 2, 6> g;
+  g << up0.jacobian, low0.jacobian;
+  const Eigen::Matrix2d w = g * pair.inverse().asDiagonal() * g.transpose();
+  const Eigen::Vector2d closed_form = w.inverse() * -(g * before);
+  BOOST_TEST(kept.impulses_kNs[0] == closed_form[0], tt::tolerance(1e-10));
+  BOOST_TEST(kept.impulses_kNs[1] == closed_form[1], tt::tolerance(1e-10));
+  BOOST_TEST((pair.momentum(after) - pair.momentum(before)).norm() <= 1e-12);
+
+  // A neighbour the closing leaves open is not touched: the held rows' own closing, bit for bit.
+  const ImpulseSolution open =
+      closing_impulses_keeping({up0.jacobian}, {{low0.jacobian, -1.0}}, pair.inverse(), before);
+  BOOST_TEST(open.impulses_kNs[0] == plain.impulses_kNs[0]);
+  BOOST_TEST(open.impulses_kNs[1] == 0.0);
+  BOOST_TEST((open.velocity_change - plain.velocity_change).norm() == 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(SeparatingContactTakesNoImpulse) {

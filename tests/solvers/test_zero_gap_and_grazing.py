@@ -15,6 +15,12 @@
 3. The paper scene 1 µm below its critical gap: the one grazing impact is found, and the largest
    overlap reported is one the computed motion has (below the 1e-8 m touch band), not the
    -1e-6 m the slabs would have reached without the impact.
+4. Struck to rest beside a held corner (issue 46): the paper scene at zero gap with k = 0, and the
+   long pulse at zero gap with k = 0.2 (validation/extreme/cases/pulse-gap-0.toml). No impact with
+   k = 0 may leave its contact closing (ġ⁺ below -1e-12 m/s): bringing the held corner of the same
+   slabs to rest must not pull the struck one in again, which was struck again 1 nm deeper each
+   time, 5 nm in all. The largest overlap is at most the allowance (a masked pair that never
+   reopened is caught at its floor root, 1 nm down; 2 % for the floor's own start below zero).
 """
 import csv
 import json
@@ -136,6 +142,20 @@ def main():
         overlap = summary["statistics"]["max_interpenetration_m"]
         check(summary["status"] == "completed" and len(impacts) == 1 and overlap <= TOUCH_BAND_M,
               f"grazing -1e-6 {method}: {summary['status']}, {len(impacts)} impact(s), largest overlap {overlap:.2e} m")
+
+        for scene, args, name in ((paper, ["--gap", "0", "--restitution", "0"], "paper gap 0 k 0"),
+                                  (ROOT / "validation" / "extreme" / "cases" / "pulse-gap-0.toml",
+                                   ["--restitution", "0.2"], "pulse gap 0 k 0.2")):
+            folder = out / f"{name.replace(' ', '-')}-{method}"
+            summary, _ = run(pounding, scene, folder, "--method", method, *args)
+            overlap = summary["statistics"]["max_interpenetration_m"]
+            with open(folder / "impacts.csv") as f:
+                closing = min((float(r["separation_velocity_mps"]) for r in csv.DictReader(f)), default=0.0)
+            plastic = "--restitution" in args and args[args.index("--restitution") + 1] == "0"
+            check(summary["status"] == "completed" and overlap <= 1.02 * ALLOWANCE_M
+                  and (not plastic or closing >= -ROUND_OFF_MPS),
+                  f"{name} {method}: {summary['status']}, largest overlap {overlap:.3e} m (at most "
+                  f"{1.02 * ALLOWANCE_M:.2e}), most closing separation {closing:.2e} m/s")
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
 

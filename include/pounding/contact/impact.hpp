@@ -64,6 +64,23 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& of
 ImpulseSolution closing_impulses(const std::vector<Eigen::RowVectorXd>& rows, const Eigen::VectorXd& inverse_mass,
                                  const Eigen::VectorXd& velocities);
 
+/// A contact of the group that is not held, in closing_impulses_keeping: its ġ may not fall below
+/// `min_rate_mps` (m/s; its rebound after the impact, or 0: not closing).
+struct KeptRow {
+  Eigen::RowVectorXd jacobian;
+  double min_rate_mps = 0.0;
+};
+
+/// closing_impulses for `held`, while the group's other contacts `kept` keep what the impact
+/// gave them: a mixed complementarity problem, the held rows brought to ġ = 0 by impulses of
+/// either sign, each kept row pushed (impulse ≥ 0) only as far as it would otherwise fall below its
+/// minimum rate (the sparsest such set, by enumeration over the kept rows, least squares where
+/// rows depend). Where the held rows' own closing leaves every kept row at or above its minimum
+/// it is that closing, bit for bit. The impulses are held rows first, then kept ones.
+/// @pre rows, `inverse_mass` and `velocities` of one size; at most 12 kept rows.
+ImpulseSolution closing_impulses_keeping(const std::vector<Eigen::RowVectorXd>& held, const std::vector<KeptRow>& kept,
+                                         const Eigen::VectorXd& inverse_mass, const Eigen::VectorXd& velocities);
+
 /// Kinetic energy ½ q̇ᵀ M q̇ of the group (kJ).
 double kinetic_energy(const Eigen::VectorXd& velocities, const Eigen::VectorXd& inverse_mass);
 
