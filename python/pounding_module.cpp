@@ -237,7 +237,7 @@ py::array_t<double> contact_force_table(const Run& run) {
     const pounding::solvers::ContactForceSample& f = samples[r];
     const double values[] = {f.t_s,    static_cast<double>(f.candidate), static_cast<double>(f.level),
                              static_cast<double>(f.striking_building), static_cast<double>(f.vertex),
-                             static_cast<double>(f.struck_edge), f.gap_m, f.gap_rate_mps, f.force_kN};
+                             static_cast<double>(f.edge), f.gap_m, f.gap_rate_mps, f.force_kN};
     return values[c];
   });
 }

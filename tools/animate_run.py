@@ -194,9 +194,10 @@ def film(folder, level, scale, fps, speed, start, end, requested_format, out):
             shape.set_xy(placed(slab["outline"], slab["centre"], u, v, phi, scale))
             moved.append((u, v, phi))
         flashing = [i for i in impacts if i["t_s"] <= time_s < i["t_s"] + flash_s]
-        striking = [slabs[i["striking_building"] - 1] for i in flashing]
-        points = [placed([np.asarray(i["vertex_rest"]) + slab["shift"]], slab["centre"],
-                         *moved[i["striking_building"] - 1], scale)[0] for i, slab in zip(flashing, striking)]
+        # vertex_rest belongs to the striking slab, or (slab to column, level 0) to the struck column
+        owners = [(i["struck_building"] if i["level"] == 0 else i["striking_building"]) - 1 for i in flashing]
+        points = [placed([np.asarray(i["vertex_rest"]) + slabs[b]["shift"]], slabs[b]["centre"], *moved[b], scale)[0]
+                  for i, b in zip(flashing, owners)]
         stars.set_offsets(np.array(points).reshape(-1, 2))
         stars.set_sizes([80 + 320 * i["impulse_kNs"] / largest_impulse for i in flashing])
         so_far = sum(1 for i in impacts if i["t_s"] <= time_s)

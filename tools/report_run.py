@@ -139,15 +139,21 @@ def key_numbers(summary):
     return table(("quantity", "value"), rows, text_columns=("quantity", "value"))
 
 
+def who(contact):
+    """'B1 vertex 3', 'B1 vertex 3 on B3' (a row) or, slab to column, "B1's slab on B2 column 4"."""
+    if contact["level"] == 0:
+        return f"B{contact['striking_building']}'s slab on B{contact['struck_building']} column {contact['column']}"
+    on = f" on B{contact['struck_building']}" if "struck_building" in contact else ""
+    return f"B{contact['striking_building']} vertex {contact['vertex']}{on}"
+
+
 def impacts_table(summary):
     impacts = summary["impacts"]
     if not impacts:
         return '<p>No impact.</p><table id="impacts"><tbody></tbody></table>'
     header = ("t [s]", "level", "striking", "corner at rest [m]", "struck edge", "approach [m/s]",
               "separation [m/s]", "impulse [kN·s]", "peak force [kN]", "energy lost [kJ]", "starts hold")
-    rows = [(f"{i['t_s']:.9f}", i["level"],
-             f"B{i['striking_building']} vertex {i['vertex']}"
-             + (f" on B{i['struck_building']}" if "struck_building" in i else ""),
+    rows = [(f"{i['t_s']:.9f}", i["level"], who(i),
              text(f"({i['vertex_rest'][0]:g}, {i['vertex_rest'][1]:g})"), i["struck_edge"],
              number(i["approach_velocity_mps"], 5), number(i["separation_velocity_mps"], 5),
              number(i["impulse_kNs"], 5), number(i["peak_force_kN"], 5), number(i["energy_lost_kJ"], 5),
@@ -163,7 +169,7 @@ def sustained_table(summary):
     if not holds:
         return "<p>No sustained contact.</p>"
     header = ("level", "striking", "start [s]", "release [s]", "release reason", "largest force [kN]")
-    rows = [(c["level"], f"B{c['striking_building']} vertex {c['vertex']}", f"{c['start_s']:.6f}",
+    rows = [(c["level"], who(c), f"{c['start_s']:.6f}",
              f"{c['release_s']:.6f}", text(c["release_reason"]), number(c["max_force_kN"], 5)) for c in holds]
     return table(header, rows, text_columns=("release reason",))
 

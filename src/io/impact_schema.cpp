@@ -60,25 +60,26 @@ const std::vector<ImpactField>& impact_fields() {
        "contact level (1-based; summary.json's levels gives its floors and elevation); 0 slab to column"},
       {"floors", "", {"b1", "b2"}, Type::integer,
        [](const ImpactRecord& i) { return std::vector{double(i.floors[0]), double(i.floors[1])}; },
-       "the floor of building 1 and of building 2 at that level; slab to column: the slab's floor and the "
-       "column's storey"},
+       "the floor of building 1 and of building 2 at that level; slab to column: the striking slab's floor and the "
+       "struck column's storey, in building order"},
       {"elevation", "m", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.elevation_m}; },
        "the level's elevation above the ground; slab to column: the striking slab's"},
       {"striking_building", "", {}, Type::integer,
        [](const ImpactRecord& i) { return std::vector{double(i.striking_building)}; },
-       "the building whose slab vertex strikes (1 or 2; a row: 1-based in the scene); slab to column: the column's "
-       "building"},
+       "the building whose slab strikes (1 or 2; a row: 1-based in the scene): it owns the striking vertex, or, slab "
+       "to column, the slab that strikes the column"},
       {"struck_building", "", {}, Type::integer,
-       [](const ImpactRecord& i) { return std::vector{double(solvers::struck_building(i))}; },
-       "rows: the other building of the pair (1-based), whose edge is struck; `floors` are those of the pair's "
-       "lower-numbered building and of its higher-numbered one",
-       false, true},
+       [](const ImpactRecord& i) { return std::vector{double(i.struck_building)}; },
+       "the other building of the pair (1-based), whose slab edge or (slab to column) column is struck; in a row, "
+       "`floors` are those of the pair's lower-numbered building and of its higher-numbered one",
+       ImpactField::kRow | ImpactField::kSlabToColumn},
       {"vertex", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.vertex)}; },
        "the striking vertex's 1-based number in its slab outline; 0 for a column point"},
       {"vertex_rest", "m", {"x", "y"}, Type::real, [](const ImpactRecord& i) { return pair(i.vertex_rest); },
        "that vertex at rest (plan x, y); slab to column: the column's point on its facade"},
-      {"struck_edge", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.struck_edge)}; },
-       "the struck edge's 1-based number in the other slab's outline (edge n runs from vertex n to n + 1)"},
+      {"struck_edge", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.edge)}; },
+       "the struck edge's 1-based number in the other slab's outline (edge n runs from vertex n to n + 1); slab to "
+       "column: the striking slab's edge that meets the column"},
       {"point", "m", {"x", "y"}, Type::real, [](const ImpactRecord& i) { return pair(i.point); },
        "where the vertex meets the edge at the impact (plan x, y)"},
       {"approach_velocity", "mps", {}, Type::real,
@@ -99,20 +100,21 @@ const std::vector<ImpactField>& impact_fields() {
        [](const ImpactRecord& i) { return std::vector{i.starts_hold ? 1.0 : 0.0}; },
        "true (1) when the pair is held in sustained contact after it"},
       {"column", "", {}, Type::integer, [](const ImpactRecord& i) { return std::vector{double(i.column)}; },
-       "slab to column (level 0): the struck column's 1-based number in its building's list (the striking "
-       "building: the column point takes the vertex's role, the slab's edge the struck edge's); 0 slab to slab",
-       true},
+       "slab to column (level 0): the struck column's 1-based number in the struck building's list; 0 slab to slab",
+       ImpactField::kSlabToColumn},
       {"height_ratio", "", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.height_ratio}; },
        "slab to column: where the slab meets the column, as a fraction of its storey's height from the floor below",
-       true},
+       ImpactField::kSlabToColumn},
       {"column_shear", "kN", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.column_shear_kN}; },
-       "slab to column: the larger end shear the peak force causes in the fixed-fixed column", true},
+       "slab to column: the larger end shear the peak force causes in the fixed-fixed column",
+       ImpactField::kSlabToColumn},
       {"column_moment", "kNm", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.column_moment_kNm}; },
-       "slab to column: the largest bending moment (an end or under the load) the peak force causes in it", true},
+       "slab to column: the largest bending moment (an end or under the load) the peak force causes in it",
+       ImpactField::kSlabToColumn},
       {"column_shear_ratio", "", {}, Type::real, [](const ImpactRecord& i) { return std::vector{i.column_shear_ratio}; },
        "slab to column: column_shear_kN over the column building's column_shear_capacity_kN (above 1: the "
        "column fails in shear, which this model does not follow); empty (CSV) or null (JSON) when no capacity is given",
-       true},
+       ImpactField::kSlabToColumn},
   };
   // clang-format on
   return kFields;
@@ -128,7 +130,10 @@ ImpactFieldSet impact_field_set(const std::vector<contact::Candidate>& candidate
 std::vector<const ImpactField*> impact_fields(ImpactFieldSet set) {
   std::vector<const ImpactField*> fields;
   for (const ImpactField& field : impact_fields()) {
-    if ((set.slab_to_column || !field.slab_to_column) && (set.row || !field.row)) fields.push_back(&field);
+    const bool wanted = field.scenes == ImpactField::kEveryScene ||
+                        (set.slab_to_column && (field.scenes & ImpactField::kSlabToColumn)) ||
+                        (set.row && (field.scenes & ImpactField::kRow));
+    if (wanted) fields.push_back(&field);
   }
   return fields;
 }

@@ -119,8 +119,13 @@ json output_schema_json() {
   for (const ImpactField& f : impact_fields()) {
     impacts.push_back(
         {{"key", f.json_key()}, {"csv_columns", f.csv_columns()}, {"unit", f.unit}, {"description", f.description}});
-    if (f.slab_to_column) impacts.back()["only_when"] = "slabs can strike columns";
-    if (f.row) impacts.back()["only_when"] = "a row: a contact pair other than buildings 1 and 2";
+    if (f.scenes == (ImpactField::kSlabToColumn | ImpactField::kRow)) {
+      impacts.back()["only_when"] = "slabs can strike columns, or a row: a contact pair other than buildings 1 and 2";
+    } else if (f.scenes == ImpactField::kSlabToColumn) {
+      impacts.back()["only_when"] = "slabs can strike columns";
+    } else if (f.scenes == ImpactField::kRow) {
+      impacts.back()["only_when"] = "a row: a contact pair other than buildings 1 and 2";
+    }
   }
   json peaks = json::array();
   for (const PeakField& f : peak_fields()) {

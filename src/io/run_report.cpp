@@ -34,23 +34,28 @@ std::string where(int level, const std::array<int, 2>& floors, double elevation_
   return fmt::format("level {} (B{} floor {}, B{} floor {}, {:.6g} m)", level, buildings[0], floors[0], buildings[1],
                      floors[1], elevation_m);
 }
-template <class Located>
-std::string where(const Located& r) {
-  if (r.level == 0) {  // slab to column: the column point's building is the striking one
-    const int columns = r.striking_building, slab = solvers::struck_building(r);
-    return fmt::format("slab to column (B{} floor {}, {:.6g} m, on B{}'s storey {})", slab, solvers::floor_of(r, slab),
-                       r.elevation_m, columns, solvers::floor_of(r, columns));
+std::string where(const solvers::ContactIdentity& r) {
+  if (r.level == 0) {  // slab to column: the slab's building strikes the column's
+    return fmt::format("slab to column (B{} floor {}, {:.6g} m, on B{}'s storey {})", r.striking_building,
+                       solvers::floor_of(r, r.striking_building), r.elevation_m, r.struck_building,
+                       solvers::floor_of(r, r.struck_building));
   }
   return where(r.level, r.floors, r.elevation_m, r.buildings);
+}
+
+/// "B1 vertex 3" or, slab to column, "B1's slab on B2 column 4": who is in contact.
+std::string who(const solvers::ContactIdentity& r) {
+  if (r.level == 0) return fmt::format("B{}'s slab on B{} column {}", r.striking_building, r.struck_building, r.column);
+  return fmt::format("B{} vertex {}", r.striking_building, r.vertex);
 }
 
 /// "B1 vertex 3 strikes" or, slab to column, "B1's slab strikes B2 column 4 at 0.5 of the storey".
 std::string striker(const solvers::ImpactRecord& r) {
   if (r.level == 0) {
-    return fmt::format("B{}'s slab strikes B{} column {} at {:.3g} of the storey height", solvers::struck_building(r),
-                       r.striking_building, r.column, r.height_ratio);
+    return fmt::format("B{}'s slab strikes B{} column {} at {:.3g} of the storey height", r.striking_building,
+                       r.struck_building, r.column, r.height_ratio);
   }
-  return fmt::format("B{} vertex {} strikes", r.striking_building, r.vertex);
+  return fmt::format("{} strikes", who(r));
 }
 
 /// Per struck column (building, column, storey): its slab-to-column impacts and the largest
@@ -59,7 +64,7 @@ void append_column_demands(const std::vector<solvers::ImpactRecord>& impacts, st
   std::map<std::array<int, 3>, std::pair<int, const solvers::ImpactRecord*>> worst;  // count, largest force
   for (const solvers::ImpactRecord& i : impacts) {
     if (i.level != 0) continue;
-    auto& [count, largest] = worst[{i.striking_building, i.column, solvers::floor_of(i, i.striking_building)}];
+    auto& [count, largest] = worst[{i.struck_building, i.column, solvers::floor_of(i, i.struck_building)}];
     ++count;
     if (largest == nullptr || i.peak_force_kN > largest->peak_force_kN) largest = &i;
   }
@@ -103,12 +108,12 @@ void append_contacts(const analysis::RunReport& report, std::string& text) {
   append_column_demands(r.impacts, text);
   fmt::format_to(out, "Touches (contact without impact): {}\n", r.touches.size());
   for (const auto& t : r.touches) {
-    fmt::format_to(out, "  t = {:.6f} s, {}, B{} vertex {}\n", t.t_s, where(t), t.striking_building, t.vertex);
+    fmt::format_to(out, "  t = {:.6f} s, {}, {}\n", t.t_s, where(t), who(t));
   }
   fmt::format_to(out, "Sustained contacts: {}\n", r.sustained_contacts.size());
   for (const auto& s : r.sustained_contacts) {
-    fmt::format_to(out, "  {}, B{} vertex {}: {:.6f} s to {:.6f} s ({}), max force {:.1f} kN\n", where(s),
-                   s.striking_building, s.vertex, s.start_s, s.release_s, s.release_reason, s.max_force_kN);
+    fmt::format_to(out, "  {}, {}: {:.6f} s to {:.6f} s ({}), max force {:.1f} kN\n", where(s), who(s), s.start_s,
+                   s.release_s, s.release_reason, s.max_force_kN);
   }
 }
 

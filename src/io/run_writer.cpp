@@ -38,6 +38,17 @@ json at_level(const Located& where, const json& fields, bool row = false) {
   return located;
 }
 
+/// `before`, then who strikes whom as the impacts name it (striking_building; struck_building in a
+/// row or where slabs can strike columns; vertex; column where slabs can strike columns), then `after`.
+json who(const solvers::ContactIdentity& c, ImpactFieldSet set, json before, const json& after) {
+  before["striking_building"] = c.striking_building;
+  if (set.row || set.slab_to_column) before["struck_building"] = c.struck_building;
+  before["vertex"] = c.vertex;
+  if (set.slab_to_column) before["column"] = c.column;
+  before.update(after);
+  return before;
+}
+
 json levels_json(const std::vector<contact::Level>& levels, bool row) {
   json list = json::array();
   for (const contact::Level& l : levels) {
@@ -294,30 +305,25 @@ json run_json_elastic(const analysis::RunReport& report, const Provenance& prove
     if (level > 0) by_level[std::to_string(level)] = count;  // lowest level first; 0 is slab to column
   }
   const bool row = !report.pairs.empty();
+  const ImpactFieldSet fields = impact_field_set(report.candidates);
   json touches = json::array(), sustained = json::array();
   for (const auto& t : r.touches) {
     touches.push_back(at_level(t,
-                               {{"t_s", t.t_s},
-                                {"striking_building", t.striking_building},
-                                {"vertex", t.vertex},
-                                {"point", point(t.point)},
-                                {"gap_rate_mps", t.gap_rate_mps},
-                                {"gap_m", t.gap_m}},
+                               who(t, fields, {{"t_s", t.t_s}},
+                                   {{"point", point(t.point)}, {"gap_rate_mps", t.gap_rate_mps}, {"gap_m", t.gap_m}}),
                                row));
   }
   for (const auto& s : r.sustained_contacts) {
     sustained.push_back(at_level(s,
-                                 {{"striking_building", s.striking_building},
-                                  {"vertex", s.vertex},
-                                  {"start_s", s.start_s},
-                                  {"release_s", s.release_s},
-                                  {"release_reason", s.release_reason},
-                                  {"max_force_kN", s.max_force_kN},
-                                  {"max_gap_drift_m", s.max_gap_drift_m},
-                                  {"impulse_kNs", s.impulse_kNs}},
+                                 who(s, fields, json::object(),
+                                     {{"start_s", s.start_s},
+                                      {"release_s", s.release_s},
+                                      {"release_reason", s.release_reason},
+                                      {"max_force_kN", s.max_force_kN},
+                                      {"max_gap_drift_m", s.max_gap_drift_m},
+                                      {"impulse_kNs", s.impulse_kNs}}),
                                  row));
   }
-  const ImpactFieldSet fields = impact_field_set(report.candidates);
   json summary = {{"scene", report.scene},
                   {"method", r.method},
                   {"status", solvers::to_string(r.status)},
@@ -445,7 +451,7 @@ void write_contact_forces_header(std::ostream& out) {
 
 void write_contact_force_row(const solvers::ContactForceSample& f, std::ostream& out) {
   out << fmt::format("{},{},{},{},{},{},{},{},{}\n", f.t_s, f.candidate, f.level, f.striking_building, f.vertex,
-                     f.struck_edge, f.gap_m, f.gap_rate_mps, f.force_kN);
+                     f.edge, f.gap_m, f.gap_rate_mps, f.force_kN);
 }
 
 void remove_history_files(const std::filesystem::path& folder) {

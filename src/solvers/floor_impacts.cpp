@@ -74,42 +74,39 @@ FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const
   return contacts;
 }
 
+ContactIdentity contact_identity(const contact::Candidate& c, std::size_t index) {
+  const auto [striker, struck] = contact::striker_and_struck(c);
+  return {.candidate = index,
+          .level = c.level,
+          .buildings = {c.pair[0] + 1, c.pair[1] + 1},
+          .floors = c.floors,
+          .elevation_m = c.elevation_m,
+          .striking_building = striker + 1,
+          .struck_building = struck + 1,
+          .vertex = contact::vertex_number(c),
+          .edge = c.edge_index + 1,
+          .column = c.column ? static_cast<int>(c.column_index) + 1 : 0};
+}
+
 TouchRecord touch_record(const dynamics::CoupledSystem& system, double t, std::size_t index,
                          const contact::GapState& gap) {
-  const contact::Candidate& c = system.candidates()[index];
-  return {t,
-          c.level,
-          c.floors,
-          c.elevation_m,
-          c.striking_building + 1,
-          contact::vertex_number(c),
-          index,
-          gap.contact_point,
-          gap.gap_rate_mps,
-          gap.gap_m,
-          {c.pair[0] + 1, c.pair[1] + 1}};
+  TouchRecord r{contact_identity(system.candidates()[index], index)};
+  r.t_s = t;
+  r.point = gap.contact_point;
+  r.gap_rate_mps = gap.gap_rate_mps;
+  r.gap_m = gap.gap_m;
+  return r;
 }
 
 ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,
                        const contact::GapState& gap) {
   const contact::Candidate& c = system.candidates()[index];
-  ImpactRecord r;
+  ImpactRecord r{contact_identity(c, index)};
   r.t_s = t;
-  r.level = c.level;
-  r.floors = c.floors;
-  r.elevation_m = c.elevation_m;
-  r.striking_building = c.striking_building + 1;
-  r.buildings = {c.pair[0] + 1, c.pair[1] + 1};
-  r.vertex = contact::vertex_number(c);
-  r.struck_edge = c.edge_index + 1;
-  r.candidate = index;
   r.vertex_rest = c.vertex_rest;
   r.point = gap.contact_point;
   r.approach_velocity_mps = -gap.gap_rate_mps;
-  if (c.column) {
-    r.column = static_cast<int>(c.column_index) + 1;
-    r.height_ratio = c.height_ratio;
-  }
+  if (c.column) r.height_ratio = c.height_ratio;
   return r;
 }
 

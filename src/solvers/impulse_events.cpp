@@ -133,15 +133,7 @@ void ImpulseEvents::handle_event(double t, VectorXd& y, const std::vector<std::s
 
 void ImpulseEvents::hold(std::size_t i, double t) {
   if (!states_.hold(i)) return;
-  const contact::Candidate& c = system_.candidates()[i];
-  SustainedContactRecord record;
-  record.level = c.level;
-  record.floors = c.floors;
-  record.elevation_m = c.elevation_m;
-  record.striking_building = c.striking_building + 1;
-  record.buildings = {c.pair[0] + 1, c.pair[1] + 1};
-  record.vertex = c.vertex_index + 1;
-  record.candidate = i;
+  SustainedContactRecord record{contact_identity(system_.candidates()[i], i)};
   record.start_s = t;
   hold_record_[i] = static_cast<int>(result_.sustained_contacts.size());
   result_.sustained_contacts.push_back(record);

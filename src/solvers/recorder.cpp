@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "pounding/solvers/floor_impacts.hpp"
 #include "pounding/solvers/history_schema.hpp"
 #include "pounding/solvers/root_finding.hpp"
 
@@ -96,17 +97,13 @@ void Recorder::append_row(const Instant& at) {
   std::vector<ContactForceSample> forces;
   if (kinematics_.dynamics().contact_forces) {
     for (const ContactForce& f : kinematics_.dynamics().contact_forces(t, y)) {
-      const contact::Candidate& c = system_.candidates()[f.candidate];
       const contact::GapState gap = system_.gap(y, f.candidate);
-      forces.push_back({.t_s = t,
-                        .candidate = f.candidate,
-                        .level = c.level,
-                        .striking_building = c.striking_building + 1,
-                        .vertex = contact::vertex_number(c),
-                        .struck_edge = c.edge_index + 1,
-                        .gap_m = gap.gap_m,
-                        .gap_rate_mps = gap.gap_rate_mps,
-                        .force_kN = f.force_kN});
+      ContactForceSample& sample = forces.emplace_back(
+          ContactForceSample{contact_identity(system_.candidates()[f.candidate], f.candidate)});
+      sample.t_s = t;
+      sample.gap_m = gap.gap_m;
+      sample.gap_rate_mps = gap.gap_rate_mps;
+      sample.force_kN = f.force_kN;
     }
   }
   if (sink_ != nullptr) {

@@ -197,7 +197,7 @@ BOOST_AUTO_TEST_CASE(ARowsImpactsNameTheirPairAndItsFloorsAndTheEnergyCloses) {
     const contact::Candidate& c = report.candidates.at(impact.candidate);
     BOOST_TEST((impact.buildings == std::array{c.pair[0] + 1, c.pair[1] + 1}));
     BOOST_TEST(impact.striking_building == c.striking_building + 1);
-    BOOST_TEST(solvers::struck_building(impact) == c.struck_building + 1);
+    BOOST_TEST(impact.struck_building == c.struck_building + 1);
     BOOST_TEST(impact.floors == c.floors);
     between_b2_b3 += impact.buildings == std::array{2, 3};
   }

@@ -42,9 +42,9 @@ opens; no force returns before a gap opens. Checked:
      measured 3.5e-13 s, 4.8e-13 s, 5.0e-11, 6.2e-11);
   2. per law and program tolerance, the program against the peer: the same number of impacts,
      each matched by the slab's elevation, the column point and the onset, with level 0, the
-     struck edge the slab's, floors_b* the slab's floor and the column's storey, and the column's
-     building as striking_building (the program names the column point the contact's "vertex",
-     vertex_rest); and within (measured kelvin / hertzdamp / variant):
+     slab's building as striking_building and the column's as struck_building, struck_edge the
+     slab's edge, floors_b* the slab's floor and the column's storey (the column point is the
+     impact's vertex_rest); and within (measured kelvin / hertzdamp / variant):
                           rtol 1e-10 (the scene's)           rtol 1e-12
        onset              1e-7 s (1.1e-8 / 8.9e-9)           2e-9 s (2.9e-10 / 2.5e-10 / 1.6e-10)
        duration           1e-7 s (9.0e-9 / 8.0e-9)           2e-9 s (2.2e-10 / 1.9e-10 / 1.1e-10)
@@ -668,9 +668,9 @@ def check_program(program, out, law, label, times, accel, failures, buildings=BU
                                                   [x[:1] + x[1] + x[2:] for x in own], rtol=0, atol=1e-9):
         failures.append(f"{name}: the program's candidates {listed}, the peer's {own}")
     # The program's impacts matched to the peer's contacts by the slab's elevation, the column
-    # point and the onset. The program names a slab-to-column contact as a slab one: the column
-    # point is the "vertex" (vertex_rest), its building the striking one, the slab's edge the
-    # struck edge, floors_b* the slab's floor and the column's storey.
+    # point and the onset. A slab-to-column impact names the slab's building striking_building
+    # and the column's struck_building; the column point is its vertex_rest, the slab's edge its
+    # struck_edge, floors_b* the slab's floor and the column's storey.
     rows = []
     for c in peer.contacts:
         cand = peer.cands[c["candidate"]]
@@ -685,12 +685,12 @@ def check_program(program, out, law, label, times, accel, failures, buildings=BU
         rows.append((c, r))
         floors = [0, 0]
         floors[cand.A], floors[cand.B] = cand.f, cand.j + 1
-        got = (int(r["level"]), int(r["striking_building"]), int(r["struck_edge"]), int(r["floors_b1"]),
-               int(r["floors_b2"]))
-        want = (0, cand.B + 1, cand.edge_index + 1, floors[0], floors[1])
+        got = (int(r["level"]), int(r["striking_building"]), int(r["struck_building"]), int(r["struck_edge"]),
+               int(r["floors_b1"]), int(r["floors_b2"]))
+        want = (0, cand.A + 1, cand.B + 1, cand.edge_index + 1, floors[0], floors[1])
         if got != want:
-            failures.append(f"{name}: the contact at {c['t_s']:.9f} s: (level, striking building, struck edge, "
-                            f"floors_b1, floors_b2) {got}, expected {want}")
+            failures.append(f"{name}: the contact at {c['t_s']:.9f} s: (level, striking building, struck building, "
+                            f"struck edge, floors_b1, floors_b2) {got}, expected {want}")
     print(f"{name}: the program has {len(impacts)} impacts, the peer {len(peer.contacts)} contacts "
           f"({sum(c['released_by'] == 'force' for c in peer.contacts)} released by the force, "
           f"{sum(c['acts_again'] for c in peer.contacts)} acting again before the gap opened)")

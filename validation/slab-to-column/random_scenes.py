@@ -414,8 +414,7 @@ def check_impacts(case, info, pairs, cands, rows, summary, problems):
         try:
             t, column, ratio = r["t_s"], int(r["column"]), float(r["height_ratio"])
             shear, moment, force = float(r["column_shear_kN"]), float(r["column_moment_kNm"]), float(r["peak_force_kN"])
-            b = int(r["striking_building"])
-            a = 3 - b
+            a, b = int(r["striking_building"]), int(r["struck_building"])  # the slab's building, the column's
             slab_floor, storey = int(r[f"floors_b{a}"]), int(r[f"floors_b{b}"])
         except (KeyError, ValueError) as error:
             problems.append(f"level-0 impact row unreadable: {error}")

@@ -107,6 +107,15 @@ bool faces(const model::Point2& q1, const model::Point2& normal, const model::Po
 /// point, which is no slab vertex.
 inline std::size_t vertex_number(const Candidate& c) { return c.column ? 0 : c.vertex_index + 1; }
 
+/// The buildings as the outputs name them (0-based in the scene): the one whose slab strikes, then
+/// the one struck. Slab to slab these are the gap's striking and struck buildings; slab to column
+/// the slab's building strikes (the gap's struck_building, which owns the edge) and the column's
+/// is struck.
+inline std::array<int, 2> striker_and_struck(const Candidate& c) {
+  return c.column ? std::array{c.struck_building, c.striking_building}
+                  : std::array{c.striking_building, c.struck_building};
+}
+
 /// Whether any candidate is slab to column (the outputs then carry the column's fields).
 bool has_column_pairs(const std::vector<Candidate>& candidates);
 

@@ -27,11 +27,11 @@ struct ImpactField {
   /// The field's value (a scalar) or values (one per component) for an impact.
   std::vector<double> (*values)(const solvers::ImpactRecord& impact) = nullptr;
   std::string_view description{};  // one line, for `pounding outputs` and the docs
-  /// Written only by runs with slab-to-column candidates (contact::has_column_pairs), so that
-  /// other runs' files keep their columns.
-  bool slab_to_column = false;
-  /// Written only by runs with contact pairs other than buildings 1 and 2 (rows).
-  bool row = false;
+  /// The scenes whose runs write the field: every scene's (kEveryScene), or only those with
+  /// slab-to-column candidates (contact::has_column_pairs) and/or rows (contact pairs other than
+  /// buildings 1 and 2), so that other runs' files keep their columns.
+  enum Scenes : unsigned { kEveryScene = 0, kSlabToColumn = 1, kRow = 2 };
+  unsigned scenes = kEveryScene;
 
   /// The JSON key: `name_unit` for a scalar with a unit, else `name`.
   std::string json_key() const;
@@ -39,16 +39,13 @@ struct ImpactField {
   std::vector<std::string> csv_columns() const;
 };
 
-/// The fields in output order: t_s, level, floors, elevation_m, striking_building, vertex (the
-/// slab-outline number, 1-based), vertex_rest, struck_edge, point, approach_velocity_mps,
-/// separation_velocity_mps, impulse_kNs, energy_lost_kJ, starts_sustained_contact, then the
-/// slab-to-column fields column, height_ratio, column_shear_kN, column_moment_kNm.
+/// Every field, in output order (`pounding outputs` lists them).
 const std::vector<ImpactField>& impact_fields();
 
 /// Which of the fields marked for some scenes only a run writes.
 struct ImpactFieldSet {
   bool slab_to_column = false;  // the slab-to-column fields
-  bool row = false;             // the row fields (struck_building)
+  bool row = false;             // the row fields
 };
 /// The set a run with `candidates` writes: slab_to_column when any is slab to column
 /// (contact::has_column_pairs), row when any pairs buildings other than 1 and 2.

@@ -40,6 +40,10 @@ std::set<std::vector<int>> level_groups(const dynamics::CoupledSystem& system, c
 FloorContacts gather_floor_contacts(const dynamics::CoupledSystem& system, const dynamics::VectorXd& y,
                                     const std::vector<int>& levels, double restitution, const TakeContact& take);
 
+/// Candidate `index` as the outputs name it (ContactIdentity: 1-based, the slab's building striking
+/// a column).
+ContactIdentity contact_identity(const contact::Candidate& c, std::size_t index);
+
 /// An impact of candidate `index` at t where `gap` was evaluated: where it is (level, floors,
 /// vertex, edge, contact point) and its approach velocity; the caller fills in the outcome.
 ImpactRecord impact_at(const dynamics::CoupledSystem& system, double t, std::size_t index,

@@ -32,16 +32,28 @@ enum class RunStatus {
 inline constexpr double kCollapseDriftRatio = 0.1;
 std::string_view to_string(RunStatus status);
 
-struct ImpactRecord {
+/// Which contact an impact, touch, sustained contact or force sample is at, numbered as the
+/// outputs number it (1-based). Slab to slab, the striking building's slab vertex meets the struck
+/// building's slab edge; slab to column (level 0), the striking building's slab meets the struck
+/// building's column, `edge` is the slab's edge that meets it and `vertex` is 0.
+struct ContactIdentity {
+  std::size_t candidate = 0;           // index into the candidate list
+  int level = 0;                       // 1-based level (floors at a common elevation); 0 slab to column
+  std::array<int, 2> buildings{1, 2};  // the pair (1-based, first < second)
+  std::array<int, 2> floors{0, 0};     // buildings[k]'s floor at the level; slab to column: the slab's
+                                       // floor and the column's storey
+  double elevation_m = 0.0;            // the level's elevation (m); slab to column: the slab's
+  int striking_building = 0;           // the building whose slab strikes (one of `buildings`)
+  int struck_building = 0;             // the other one: its slab edge, or its column, is struck
+  std::size_t vertex = 0;              // the striking vertex, in its slab's outline; 0 slab to column
+  std::size_t edge = 0;                // slab to slab: the struck edge of the struck slab's outline;
+                                       // slab to column: the striking slab's edge that meets the column
+  int column = 0;                      // slab to column: the struck column, in its building's list; else 0
+};
+
+struct ImpactRecord : ContactIdentity {
   double t_s = 0.0;
-  int level = 0;                      // 1-based level (floors at a common elevation)
-  std::array<int, 2> floors{0, 0};    // the level's floor of the pair's first building and of its second
-  double elevation_m = 0.0;           // the level's elevation (m)
-  int striking_building = 0;          // 1-based: 1 or 2 (a row: of `buildings`)
-  std::size_t vertex = 0;             // 1-based index in the striking slab's outline
-  std::size_t struck_edge = 0;        // 1-based edge of the struck slab
-  std::size_t candidate = 0;          // index into the candidate list
-  model::Point2 vertex_rest;          // the striking vertex at rest (m)
+  model::Point2 vertex_rest;          // the striking vertex at rest (m); slab to column: the column's point
   model::Point2 point;                // contact point at impact (m)
   double approach_velocity_mps = 0.0;    // −ġ⁻ > 0
   double separation_velocity_mps = 0.0;  // ġ⁺ (= k·approach for a lone contact)
@@ -52,59 +64,34 @@ struct ImpactRecord {
   double duration_s = 0.0;
   double peak_force_kN = 0.0;
   bool starts_hold = false;           // the pair was then held in sustained contact
-  // Slab to column (level 0; the striking building is the column's, floors[its index] the
-  // struck storey): the column's 1-based number in its building's list, the height ratio ξ up
-  // that storey, and the end shear and largest moment the peak force causes in the fixed–fixed
-  // column (contact::column_demand). Zero for slab to slab.
-  int column = 0;
+  // Slab to column: the height ratio ξ up the struck column's storey, and the end shear and
+  // largest moment the peak force causes in the fixed–fixed column (contact::column_demand).
+  // Zero for slab to slab.
   double height_ratio = 0.0;
   double column_shear_kN = 0.0;
   double column_moment_kNm = 0.0;
   /// column_shear_kN over the column building's column_shear_capacity_kN; NaN when it gives none.
   double column_shear_ratio = std::numeric_limits<double>::quiet_NaN();
-  std::array<int, 2> buildings{1, 2};  // the pair (1-based, first < second): floors[k] is buildings[k]'s
 };
 
-struct TouchRecord {  // contact with ġ ≥ 0: no impulse
+struct TouchRecord : ContactIdentity {  // contact with ġ ≥ 0: no impulse
   double t_s = 0.0;
-  int level = 0;                      // as in ImpactRecord
-  std::array<int, 2> floors{0, 0};
-  double elevation_m = 0.0;
-  int striking_building = 0;
-  std::size_t vertex = 0;
-  std::size_t candidate = 0;
   model::Point2 point;
   double gap_rate_mps = 0.0;
   double gap_m = 0.0;
-  std::array<int, 2> buildings{1, 2};  // as in ImpactRecord
 };
 
-struct SustainedContactRecord {
-  int level = 0;                      // as in ImpactRecord
-  std::array<int, 2> floors{0, 0};
-  double elevation_m = 0.0;
-  int striking_building = 0;
-  std::size_t vertex = 0;
-  std::size_t candidate = 0;
+struct SustainedContactRecord : ContactIdentity {
   double start_s = 0.0;
   double release_s = 0.0;
   std::string release_reason;       // "tensile force", "slid off the edge", "end of run", ...
   double max_force_kN = 0.0;
   double max_gap_drift_m = 0.0;     // max |g| while held
   double impulse_kNs = 0.0;         // impulse shares taken while held, when impacts struck its floor
-  std::array<int, 2> buildings{1, 2};  // as in ImpactRecord
 };
 
-/// An impact's, touch's or sustained contact's other building of the pair (1-based): the struck one.
-template <class Located>
-int struck_building(const Located& r) {
-  return r.striking_building == r.buildings[0] ? r.buildings[1] : r.buildings[0];
-}
-/// Its floor of `building` (1-based, one of the pair).
-template <class Located>
-int floor_of(const Located& r, int building) {
-  return r.floors[building == r.buildings[0] ? 0 : 1];
-}
+/// A located contact's floor of `building` (1-based, one of the pair).
+inline int floor_of(const ContactIdentity& r, int building) { return r.floors[building == r.buildings[0] ? 0 : 1]; }
 
 struct Peak {
   double value = 0.0;  // max |x| (signed value at that instant)
@@ -245,13 +232,8 @@ struct SolverStatistics {
 /// The normal force of one contact at a history sample (contacts_history.csv): a compliant law's
 /// force, or for the impulse law the force λ holding a sustained contact. Contacts without force
 /// at that instant have no sample.
-struct ContactForceSample {
+struct ContactForceSample : ContactIdentity {
   double t_s = 0.0;
-  std::size_t candidate = 0;        // index into the candidate list
-  int level = 0;                    // as in ImpactRecord
-  int striking_building = 0;        // 1 or 2
-  std::size_t vertex = 0;           // 1-based, in the striking slab's outline
-  std::size_t struck_edge = 0;      // 1-based, of the struck slab
   double gap_m = 0.0;               // signed gap g (< 0: overlap)
   double gap_rate_mps = 0.0;        // ġ
   double force_kN = 0.0;            // > 0 pushes the slabs apart
