@@ -195,25 +195,12 @@ solvers::RunBudget run_budget(const GapCommand& command) {
   return budget;
 }
 
-/// `gap --records`: the needed gap under every record of the set, then the set's statistics.
-/// Returns 3 when a record failed (its row says why; the others are still written).
-int run_record_set(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
-  const std::vector<analysis::RecordEntry> records = io::read_record_list(command.records, scene.excitation);
-  const std::string folder =
-      command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-records") : command.out_dir;
-  io::require_writable_folder(folder, "--out");
-  // The scene's own record is not run: the rows name theirs.
-  analysis::Scene without_record = scene;
-  without_record.excitation.file.clear();
-  without_record.excitation.second.reset();
-  const io::Provenance provenance = io::make_provenance(without_record, command_line);
-  const unsigned threads = command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency());
-  fmt::print("Needed gap of '{}' under {} records ({}; contact-free runs, CVODE rtol {:g}, {} at a time):\n",
-             scene.name, records.size(), command.records, analysis::resolve(scene.solver).rtol,
-             std::min<std::size_t>(threads, records.size()));
+/// The needed gap of `scene` under every record of `records`, `threads` at a time, with a
+/// progress line; then its rows and statistics printed.
+analysis::RecordSetResult run_set(const GapCommand& command, const analysis::Scene& scene,
+                                  const std::vector<analysis::RecordEntry>& records, unsigned threads) {
   const auto start = std::chrono::steady_clock::now();
   int done = 0, failed = 0;
-  const InterruptRequests interrupts;
   const analysis::RecordSetResult set = analysis::record_set_gaps(
       scene, records, threads,
       [&](const analysis::RecordGap& r) {
@@ -225,9 +212,125 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
   fmt::print(stderr, "\n");
   print_record_rows(set);
   print_set_statistics(set);
-  io::write_record_set(scene.name, set, provenance, folder);
-  fmt::print("Wrote {0}/records.csv and records.json ({1:.1f} s for the set)\n", folder, set.wall_time_s);
+  return set;
+}
+
+/// What `gap --records` shares for a scene of two and a row: the list read against the scene's
+/// excitation, the folder, the provenance (the scene's own record is not run: the rows name theirs)
+/// and the thread count.
+struct RecordSetJob {
+  std::vector<analysis::RecordEntry> records;
+  std::string folder;
+  io::Provenance provenance;
+  unsigned threads = 1;
+};
+
+RecordSetJob record_set_job(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
+  RecordSetJob job{io::read_record_list(command.records, scene.excitation),
+                   command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-records") : command.out_dir,
+                   {},
+                   command.threads ? command.threads : std::max(1u, std::thread::hardware_concurrency())};
+  io::require_writable_folder(job.folder, "--out");
+  analysis::Scene without_record = scene;
+  without_record.excitation.file.clear();
+  without_record.excitation.second.reset();
+  job.provenance = io::make_provenance(without_record, command_line);
+  fmt::print("Needed gap of '{}' under {} records ({}; contact-free runs, CVODE rtol {:g}, {} at a time):\n",
+             scene.name, job.records.size(), command.records, analysis::resolve(scene.solver).rtol,
+             std::min<std::size_t>(job.threads, job.records.size()));
+  return job;
+}
+
+/// `gap --records`: the needed gap under every record of the set, then the set's statistics.
+/// Returns 3 when a record failed (its row says why; the others are still written).
+int run_record_set(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
+  const RecordSetJob job = record_set_job(command, scene, command_line);
+  const InterruptRequests interrupts;
+  const analysis::RecordSetResult set = run_set(command, scene, job.records, job.threads);
+  io::write_record_set(scene.name, set, job.provenance, job.folder);
+  fmt::print("Wrote {0}/records.csv and records.json ({1:.1f} s for the set)\n", job.folder, set.wall_time_s);
   return set.failed == 0 ? 0 : 3;
+}
+
+/// A statistic of a record set in rows.json: null where it does not exist.
+nlohmann::ordered_json statistic_json(const analysis::SetStatistic& s) {
+  auto value = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); };
+  return {{"count", s.count}, {"mean", value(s.mean)}, {"median", value(s.median)},
+          {"p84_lognormal", value(s.p84_lognormal)}};
+}
+
+/// A row's neighbouring pair, as the gap runs take it: its own scene of two, facing along x.
+struct RowPair {
+  analysis::BuildingPair pair;
+  double turned_deg = 0.0;  // how far its plan was turned to face along x
+  analysis::Scene scene;
+  std::string name;         // "B1:B2", in the scene's names
+  std::string folder;       // its files: FOLDER/<first>-<second>/
+};
+
+/// Every pair of the row turned first, so that a pair the analysis cannot take stops the command
+/// before any file is written; a spectral scaling at a building's period is the row's (its slots
+/// are the row's).
+std::vector<RowPair> row_pairs(const analysis::Scene& scene, const std::string& folder) {
+  const std::optional<excitation::SaScaling> row_scaling = analysis::resolved_excitation(scene).scale_to_sa;
+  std::vector<RowPair> pairs;
+  for (const analysis::BuildingPair& pair : scene.pairs()) {
+    RowPair& p = pairs.emplace_back(RowPair{pair});
+    p.scene = scene.pair_scene_facing_x(pair, p.turned_deg);
+    if (row_scaling && row_scaling->building != 0) {
+      p.scene.excitation.scale_to_sa = row_scaling;
+      p.scene.excitation.scale_to_sa->building = 0;  // at the period resolved for the row
+    }
+    p.name = fmt::format("{}:{}", p.scene.buildings[0].name, p.scene.buildings[1].name);
+    p.folder = fmt::format("{}/{}-{}", folder, io::folder_name(p.scene.buildings[0].name),
+                           io::folder_name(p.scene.buildings[1].name));
+  }
+  return pairs;
+}
+
+std::string turn_note(double turned_deg) {
+  return turned_deg == 0.0 ? std::string()
+                           : fmt::format("; the plan turned by {:g} deg so that they face along x", turned_deg);
+}
+
+/// `gap --records` on a row: each pair's needed gap under every record (its own contact-free
+/// runs, as for the scene's record), its rows and statistics, each pair's records.csv and
+/// records.json in FOLDER/<first>-<second>/, and rows.json with each pair's statistics. Returns 3
+/// when a record failed for some pair.
+int run_row_record_set(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
+  const RecordSetJob job = record_set_job(command, scene, command_line);
+  const std::vector<RowPair> pairs = row_pairs(scene, job.folder);
+  const InterruptRequests interrupts;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  int failed = 0;
+  for (const RowPair& p : pairs) {
+    fmt::print("Pair {} (gap {:.6g} m{}):\n", p.name, p.pair.gap_m, turn_note(p.turned_deg));
+    const analysis::RecordSetResult set =
+        run_set(command, p.scene, analysis::pair_records(scene, job.records, p.turned_deg), job.threads);
+    io::write_record_set(p.scene.name, set, job.provenance, p.folder);
+    failed += set.failed;
+    list.push_back({{"pair", p.name},
+                    {"buildings", {p.pair.first + 1, p.pair.second + 1}},
+                    {"gap_m", p.pair.gap_m},
+                    {"plan_turned_deg", p.turned_deg},
+                    {"records", set.records.size()},
+                    {"failed", set.failed},
+                    {"needed_gap_m", statistic_json(set.needed_gap_m)},
+                    {"abs_m", statistic_json(set.abs_m)},
+                    {"srss_m", statistic_json(set.srss_m)},
+                    {"ddc_m", statistic_json(set.ddc_m)},
+                    {"worst_record", set.worst < 0 ? nlohmann::ordered_json(nullptr)
+                                                   : nlohmann::ordered_json(set.records[set.worst].record)},
+                    {"folder", p.folder}});
+  }
+  io::write_json(nlohmann::ordered_json{{"scene", scene.name},
+                                        {"records", command.records},
+                                        {"pairs", list},
+                                        {"provenance", io::provenance_json(job.provenance)}},
+                 job.folder + "/rows.json");
+  fmt::print("Wrote {0}/rows.json and each pair's records.csv and records.json in {0}/<first>-<second>/\n",
+             job.folder);
+  return failed == 0 ? 0 : 3;
 }
 
 }  // namespace
@@ -236,63 +339,44 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
 /// buildings move independently, so a pair's clearance history is that of its two-building scene),
 /// each pair's files in FOLDER/<first>-<second>/, and rows.json summing them up.
 int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const std::string& command_line) {
-  if (!command.records.empty() || command.curve > 0 || command.all_angles || command.amplification) {
+  if (command.curve > 0 || command.all_angles || command.amplification) {
     throw InputError("SCENE", command.scene,
-                     "is a row: its gaps are found pair by pair; --records, --curve, --all-angles and "
-                     "--amplification take scenes of two buildings (run them on one pair's scene)");
+                     "is a row: its gaps are found pair by pair; --curve, --all-angles and --amplification take "
+                     "scenes of two buildings (run them on one pair's scene)");
   }
+  if (!command.records.empty()) return run_row_record_set(command, scene, command_line);
   const std::string folder = command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-gap") : command.out_dir;
   io::require_writable_folder(folder, "--out");
   const io::Provenance provenance = io::make_provenance(scene, command_line);
   const InterruptRequests interrupts;
-  // Every pair turned first, so that a pair the analysis cannot take stops the command before any
-  // file is written; a spectral scaling at a building's period is the row's (its slots are the row's).
-  const std::optional<excitation::SaScaling> row_scaling = analysis::resolved_excitation(scene).scale_to_sa;
-  std::vector<std::pair<analysis::BuildingPair, double>> turns;  // each pair and its turn (deg)
-  std::vector<analysis::Scene> scenes;
-  for (const analysis::BuildingPair& pair : scene.pairs()) {
-    double turned_deg = 0.0;
-    scenes.push_back(scene.pair_scene_facing_x(pair, turned_deg));
-    if (row_scaling && row_scaling->building != 0) {
-      scenes.back().excitation.scale_to_sa = row_scaling;
-      scenes.back().excitation.scale_to_sa->building = 0;  // at the period resolved for the row
-    }
-    turns.emplace_back(pair, turned_deg);
-  }
+  const std::vector<RowPair> row = row_pairs(scene, folder);
   nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
   bool completed = true;
-  for (std::size_t k = 0; k < scenes.size(); ++k) {
-    const analysis::Scene& two = scenes[k];
-    const auto& [pair, turned_deg] = turns[k];
-    const std::string name = fmt::format("{}:{}", two.buildings[0].name, two.buildings[1].name);
-    const analysis::NeededGap gap = analysis::needed_gap(two, run_budget(command));
-    fmt::print("Pair {} (gap {:.6g} m{}): needed gap {}", name, pair.gap_m,
-               turned_deg == 0.0 ? std::string()
-                                 : fmt::format("; the plan turned by {:g} deg so that they face along x", turned_deg),
+  for (const RowPair& p : row) {
+    const analysis::NeededGap gap = analysis::needed_gap(p.scene, run_budget(command));
+    fmt::print("Pair {} (gap {:.6g} m{}): needed gap {}", p.name, p.pair.gap_m, turn_note(p.turned_deg),
                metres(gap.needed_gap_m));
     if (gap.candidate >= 0) {  // named by the row's building numbers
       std::vector<contact::Candidate> governing{gap.candidates[static_cast<std::size_t>(gap.candidate)]};
-      contact::place_in_pair(governing, {pair.first, pair.second}, 0);
+      contact::place_in_pair(governing, {p.pair.first, p.pair.second}, 0);
       fmt::print(" at t = {:.6f} s, {}{}", gap.t_s, contact::describe(governing.front()),
-                 turned_deg == 0.0 ? "" : " (in the turned plan's coordinates)");
+                 p.turned_deg == 0.0 ? "" : " (in the turned plan's coordinates)");
     }
     fmt::print("\n");
-    print_levels(gap, row_pair_names(two));
-    print_rules(gap, row_pair_names(two));
+    print_levels(gap, row_pair_names(p.scene));
+    print_rules(gap, row_pair_names(p.scene));
     const bool done = gap.status == solvers::RunStatus::completed;
     completed = completed && done;
     if (!done) fmt::print("Stopped at t = {:.3f} s ({}): a lower bound\n", gap.end_s, solvers::to_string(gap.status));
-    const std::string pair_folder =
-        fmt::format("{}/{}-{}", folder, io::folder_name(two.buildings[0].name), io::folder_name(two.buildings[1].name));
-    io::write_gap(two.name, gap, {}, provenance, pair_folder);
-    pairs.push_back({{"pair", name},
-                     {"buildings", {pair.first + 1, pair.second + 1}},
-                     {"gap_m", pair.gap_m},
-                     {"plan_turned_deg", turned_deg},
+    io::write_gap(p.scene.name, gap, {}, provenance, p.folder);
+    pairs.push_back({{"pair", p.name},
+                     {"buildings", {p.pair.first + 1, p.pair.second + 1}},
+                     {"gap_m", p.pair.gap_m},
+                     {"plan_turned_deg", p.turned_deg},
                      {"needed_gap_m", std::isfinite(gap.needed_gap_m) ? nlohmann::json(gap.needed_gap_m) : nullptr},
                      {"t_s", gap.candidate < 0 ? nlohmann::json(nullptr) : nlohmann::json(gap.t_s)},
                      {"status", solvers::to_string(gap.status)},
-                     {"folder", pair_folder}});
+                     {"folder", p.folder}});
   }
   io::write_json(
       nlohmann::ordered_json{{"scene", scene.name}, {"pairs", pairs}, {"provenance", io::provenance_json(provenance)}},

@@ -88,6 +88,20 @@ SetStatistic set_statistic(const std::vector<double>& values) {
   return s;
 }
 
+std::vector<RecordEntry> pair_records(const Scene& row, const std::vector<RecordEntry>& records, double turned_deg) {
+  std::vector<RecordEntry> turned;
+  Scene shaken = row;
+  for (const RecordEntry& entry : records) {
+    shaken.excitation = entry.excitation;
+    RecordEntry& pair_entry = turned.emplace_back(entry);
+    pair_entry.excitation = resolved_excitation(shaken);
+    if (pair_entry.excitation.scale_to_sa) pair_entry.excitation.scale_to_sa->building = 0;  // its period resolved
+    pair_entry.excitation.direction_deg = std::fmod(pair_entry.excitation.direction_deg + turned_deg, 360.0);
+    pair_entry.choice = {};
+  }
+  return turned;
+}
+
 RecordSetResult record_set_gaps(const Scene& scene, const std::vector<RecordEntry>& records, unsigned threads,
                                 const std::function<void(const RecordGap&)>& progress,
                                 const solvers::RunBudget& budget) {

@@ -34,6 +34,10 @@ Checked:
      Also: printed G = rows.json's (5e-7 m, six decimals), each pair folder's gap.json = rows.json
      (1e-12 m), plan_turned_deg 0 for pairs facing along x and 90 or 270 for Corner:North, row-of-three
      B1:B2's needed gap = the paper scene's (1e-12 m);
+  3b. gap --records on a row: each pair's needed gap under each record of a list (the corner block under
+     El Centro, and the same along 30 degrees at 0.25 g) is what `pounding gap` finds for that pair on
+     the row scene shaken so (1e-9 m): the quarter-turned pair's record direction turned with its plan;
+     rows.json's per-pair counts and statistics;
   4. independence: the paper's two buildings (kelvin, 0.2 m) with a third building 5 m beyond B2 (no
      neighbour) give the two-building scene's impacts: same count, levels, vertices and columns (no
      struck_building), onsets within 1e-6 s and impulses within 1e-5 relative (not bit for bit: the
@@ -475,6 +479,50 @@ def brackets(work):
     return measured
 
 
+def record_sets(work):
+    print("-- 3b. gap --records on a row: each pair's needed gap under each record")
+    # The corner block (its Corner:North pair is turned a quarter to face along x) under two records:
+    # El Centro as the list gives it (the whole 0.02 s record, the scene's scaling to 0.32 g and
+    # direction, 35 degrees), and the same along 30 degrees scaled to 0.25 g. Each pair's gap under each must be the one
+    # `pounding gap` finds on the row scene shaken so (rows.json, 1e-9 m): the record's direction
+    # turned with the pair's plan, its scaling the row's.
+    base = absolute((ROWS / "corner-block.toml").read_text())
+    base = re.sub(r"^dt_s = .*\n^duration_s = .*\n", "", base, flags=re.M)
+    scene = write(work, "corner-block-whole-record.toml", base)
+    check(re.search(r"^direction_deg = 35", base, re.M) is not None, "the corner block is shaken along 35 degrees")
+    turned = write(work, "corner-block-30deg.toml",
+                   re.sub(r"^direction_deg = .*$", "direction_deg = 30.0", base, flags=re.M)
+                   .replace("scale_to_pga_g = 0.32", "scale_to_pga_g = 0.25"))
+    listing = write(work, "two-records.txt", f"{RECORD}\n{RECORD} direction_deg=30 pga_g=0.25\n")
+    folder = fresh(work / "records")
+    done = pounding("gap", scene, "--records", listing, "--out", folder)
+    rows_json = folder / "rows.json"
+    if done.returncode != 0 or not rows_json.is_file():
+        check(False, f"gap --records on the corner block: exit {done.returncode}, rows.json written")
+        return
+    summary = json.loads(rows_json.read_text())
+    check([p["pair"] for p in summary["pairs"]] == ["Corner:East", "Corner:North"]
+          and all(p["records"] == 2 and p["failed"] == 0 for p in summary["pairs"]),
+          f"rows.json: pairs {[(p['pair'], p['records'], p['failed']) for p in summary['pairs']]}")
+    for k, single in enumerate((scene, turned)):
+        one = fresh(work / f"records-single-{k}")
+        pounding("gap", single, "--out", one)
+        expected = {p["pair"]: p["needed_gap_m"] for p in json.loads((one / "rows.json").read_text())["pairs"]}
+        for p in summary["pairs"]:
+            first, second = p["pair"].split(":")
+            got = json.loads((folder / f"{first}-{second}" / "records.json").read_text())["records"][k]["needed_gap_m"]
+            check(abs(got - expected[p["pair"]]) <= 1e-9,
+                  f"gap --records, {p['pair']} under record {k + 1}: {got:.9f} m, pounding gap on {single.name}: "
+                  f"{expected[p['pair']]:.9f} m")
+        if k == 1:
+            north = json.loads((folder / "Corner-North" / "records.json").read_text())["records"]
+            check(abs(north[0]["needed_gap_m"] - north[1]["needed_gap_m"]) > 1e-3,
+                  "the quarter-turned pair's gap changes with the record's direction "
+                  f"({north[0]['needed_gap_m']:.6f} m, {north[1]['needed_gap_m']:.6f} m)")
+    stats = summary["pairs"][1]["needed_gap_m"]
+    check(stats["count"] == 2 and stats["median"] is not None, f"rows.json statistics of Corner:North: {stats}")
+
+
 def independence(work):
     print("-- 4. a building beyond the margin changes nothing")
     paper_text = absolute(PAPER.read_text())
@@ -837,6 +885,7 @@ def main():
     refusals(work / "refusals")
     gap_placement(work / "placement")
     bracket = brackets(work / "brackets")
+    record_sets(work / "record-sets")
     independent = independence(work / "independence")
     symmetric = symmetry(work / "symmetry")
     energy = outputs(work / "outputs")

@@ -69,6 +69,13 @@ struct RecordSetResult {
   double wall_time_s = 0.0;
 };
 
+/// A row's record set as one of its pairs sees it, run on the pair's own scene
+/// (Scene::pair_scene_facing_x, whose plan is turned by `turned_deg`): each record's shaking
+/// direction turned with the plan, and a spectral scaling at a building's period resolved for the
+/// whole row, so that every pair is shaken by the motion the row is. (Each entry's `choice` is
+/// left empty: it no longer applies to the pair's scene.)
+std::vector<RecordEntry> pair_records(const Scene& row, const std::vector<RecordEntry>& records, double turned_deg);
+
 /// Runs needed_gap(scene) with each record's excitation, `threads` runs at a time (0: every
 /// core); `progress` is called after each record (from any thread, one call at a time). The
 /// results do not depend on `threads`: the runs share nothing but the (copied) scene. `budget`
