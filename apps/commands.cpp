@@ -317,7 +317,19 @@ int run_run(const RunCommand& command, const std::string& command_line) {
 }
 
 int run_study(const StudyCommand& command, const std::string& command_line) {
-  const analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps});
+  analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps});
+  if (!command.pair.empty()) {
+    try {
+      const analysis::BuildingPair pair = scene.named_pair(command.pair, "--pair");
+      if (scene.is_row()) {
+        fmt::print("Pair {} of the row '{}', studied alone (its own scene of two: the other buildings left out)\n",
+                   command.pair, scene.name);
+        scene = scene.pair_scene(pair);
+      }
+    } catch (const InputError& error) {
+      throw error.in_context(command.scene);
+    }
+  }
   analysis::StudyOptions options;
   options.repeat = command.repeat;
   options.quick = command.quick;
@@ -327,7 +339,7 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
       command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");
   const io::Provenance provenance = io::make_provenance(scene, command_line);
-  fmt::print("Work-precision study of '{}' at gap {} m; every run against {}; run time = median of {}\n", scene.name,
+  fmt::print("Work-precision study of '{}' at gap {:.6g} m; every run against {}; run time = median of {}\n", scene.name,
              scene.contact.gap_m, analysis::study_reference(scene), options.repeat);
   fmt::print("Impact-time errors: before the first sustained contact, and over impacts faster than 1 cm/s.\n");
   fmt::print("Errors at or below twice the reference's own error estimate are shown as 'at ref'.\n");

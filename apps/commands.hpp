@@ -69,6 +69,7 @@ struct RunCommand {
 struct StudyCommand {
   std::string scene;
   std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
+  std::string pair;     // --pair NAME:NAME: a row's pair, studied alone (its own scene of two)
   int repeat = 3;
   bool quick = false;   // a short ladder (for smoke tests)
   std::string out_dir;  // empty: out/<scene name>-study

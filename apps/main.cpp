@@ -225,6 +225,8 @@ int main(int argc, char** argv) {
       app.add_subcommand("study", "Error against run time of every solution path, measured against the exact path");
   add_scene_argument(*study_app, study.scene);
   add_gap_option(*study_app, study.gaps);
+  study_app->add_option("--pair", study.pair,
+                        "A row: the neighbouring pair NAME:NAME to study, alone (its own scene of two buildings)");
   study_app->add_option("--repeat", study.repeat, "Timed runs per setting; the median is reported")
       ->capture_default_str()->check(CLI::Range(1, kMaxStudyRepeats));
   study_app->add_flag("--quick", study.quick, "A short ladder: rtol 1e-6 and 1e-8, dt 0.05 and 0.01 s");

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Films a `pounding run` folder: the two slabs of one level in plan, moving.
+"""Films a `pounding run` folder: the two slabs of one level in plan, moving (a row: every
+building's slab at that level's elevation, each pair's gap widened along its direction).
 
 Each slab is drawn where history.csv puts it: its outline at rest moved rigidly by the slab's
 (u, v, φ) about its centre of mass, with the motion multiplied by --scale so that centimetres show
@@ -53,10 +54,19 @@ def building_label(plan, b):
 
 
 def default_level(summary):
-    """The history level with the most impacts (the higher one of a tie), else the top one."""
+    """The history level with the most impacts (the higher one of a tie), else the top one. A row:
+    a level at the elevation whose levels (one per pair) have most impacts together, the higher
+    elevation of a tie."""
     written = summary["history_levels"]
     impacts = {int(level): count for level, count in summary["impacts_by_level"].items()}
-    return max(written, key=lambda level: (impacts.get(level, 0), level))
+    if not summary.get("pairs"):
+        return max(written, key=lambda level: (impacts.get(level, 0), level))
+    elevation = {entry["level"]: entry["elevation_m"] for entry in summary["levels"]}
+    at = {}
+    for level in written:
+        at.setdefault(round(elevation[level], 6), []).append(level)
+    best = max(at, key=lambda z: (sum(impacts.get(level, 0) for level in at[z]), z))
+    return min(at[best])
 
 
 def placed(rest_points, centre, u, v, phi, scale=1.0):
@@ -68,32 +78,61 @@ def placed(rest_points, centre, u, v, phi, scale=1.0):
 
 
 def level_motion(summary, columns, plan, level):
-    """Per building (0, 1): its outline, centre of mass and the u, v, φ columns of its floor at `level`."""
-    floors = next(entry["floors"] for entry in summary["levels"] if entry["level"] == level)
-    slabs = []
-    for b, building in enumerate(plan["buildings"]):
-        prefix = f"B{b + 1}_f{floors[b]}_"
-        slabs.append({"shift": np.zeros(2), "outline": np.asarray(building["slab"], dtype=float),
-                      "centre": np.asarray(building["centre_of_mass"], dtype=float),
-                      "u": columns[prefix + "u_m"], "v": columns[prefix + "v_m"], "phi": columns[prefix + "phi_rad"]})
-    return floors, slabs
+    """The slabs the film shows, by building (0-based): for two buildings the level's floors; in a
+    row every building's floor at the level's elevation (the levels there, one per pair, name
+    them). Returns the levels shown and, per building, its floor, outline, centre of mass and the
+    u, v, φ columns of that floor."""
+    chosen = next(entry for entry in summary["levels"] if entry["level"] == level)
+    if summary.get("pairs"):
+        levels = [entry for entry in summary["levels"] if abs(entry["elevation_m"] - chosen["elevation_m"]) < 1e-6
+                  and entry["level"] in summary["history_levels"]]
+    else:
+        levels = [{**chosen, "buildings": [1, 2]}]
+    floors = {}
+    for entry in levels:
+        for building, floor in zip(entry["buildings"], entry["floors"]):
+            floors[building - 1] = floor
+    slabs = {}
+    for b in sorted(floors):
+        building, prefix = plan["buildings"][b], f"B{b + 1}_f{floors[b]}_"
+        slabs[b] = {"floor": floors[b], "shift": np.zeros(2), "outline": np.asarray(building["slab"], dtype=float),
+                    "centre": np.asarray(building["centre_of_mass"], dtype=float),
+                    "u": columns[prefix + "u_m"], "v": columns[prefix + "v_m"], "phi": columns[prefix + "phi_rad"]}
+    return [entry["level"] for entry in levels], slabs
+
+
+def shifted(slab, shift):
+    return {**slab, "outline": slab["outline"] + shift, "centre": slab["centre"] + shift, "shift": slab["shift"] + shift}
 
 
 def widen_gap(slabs, gap_m, scale):
     """Shifts building 2 along x, away from building 1, so that the gap at rest is scale × gap_m."""
     away = np.sign(slabs[1]["centre"][0] - slabs[0]["centre"][0]) or 1.0
-    shift = np.array([away * (scale - 1.0) * gap_m, 0.0])
-    slabs[1] = {**slabs[1], "outline": slabs[1]["outline"] + shift, "centre": slabs[1]["centre"] + shift,
-                "shift": shift}
+    slabs[1] = shifted(slabs[1], np.array([away * (scale - 1.0) * gap_m, 0.0]))
+
+
+def widen_row_gaps(slabs, pairs, scale):
+    """A row: each pair's second building, and every building beyond it, moved along the pair's
+    direction so that the pair's gap at rest is scale × its gap (as --gap places a row)."""
+    shifts, todo = {0: np.zeros(2)}, [0]
+    while todo:
+        first = todo.pop()
+        for p in pairs:
+            a, b = (x - 1 for x in p["buildings"])
+            if a == first and b not in shifts:
+                shifts[b] = shifts[a] + (scale - 1.0) * p["gap_m"] * np.asarray(p["direction"], dtype=float)
+                todo.append(b)
+    for b in slabs:
+        slabs[b] = shifted(slabs[b], shifts.get(b, np.zeros(2)))
 
 
 def default_scale(slabs):
     """The largest corner displacement of either slab over the run drawn as 1/8 of the plan's
     extent, rounded to two significant digits; 1 for slabs that never move."""
-    corners = np.vstack([s["outline"] for s in slabs])
+    corners = np.vstack([s["outline"] for s in slabs.values()])
     extent = np.max(np.ptp(corners, axis=0))
     largest = 0.0
-    for slab in slabs:
+    for slab in slabs.values():
         for corner in slab["outline"]:
             arm = corner - slab["centre"]
             c, s = np.cos(slab["phi"]), np.sin(slab["phi"])
@@ -143,37 +182,39 @@ def film(folder, level, scale, fps, speed, start, end, requested_format, out):
     plan = read_plan(folder)
     if not summary["history_levels"]:
         refuse(f"{folder}/history.csv holds no level")
-    if summary.get("pairs"):  # a row (docs/guide/rows.md)
-        refuse(f"{folder} is a row of {len(summary['peaks'])} buildings: the film shows one level of two buildings "
-               "(draw the row with `pounding plan` and tools/plot_plan.py --impacts)")
+    row = bool(summary.get("pairs"))  # a row (docs/guide/rows.md): every building at the level's elevation
     level = level or default_level(summary)
     if level not in summary["history_levels"]:
         refuse(f"--level {level}: {folder}/history.csv holds levels {summary['history_levels']}")
-    floors, slabs = level_motion(summary, columns, plan, level)
+    levels, slabs = level_motion(summary, columns, plan, level)
     scale = scale or default_scale(slabs)
-    widen_gap(slabs, summary["gap_m"], scale)
+    if row:
+        widen_row_gaps(slabs, summary["pairs"], scale)
+    else:
+        widen_gap(slabs, summary["gap_m"], scale)
     t = columns["t_s"]
     times = frame_times(t, start, end, fps, speed)
     extension, writer = choose_writer(requested_format, out, fps)
     out = out or folder / f"level{level}.{extension}"
 
-    impacts = [i for i in summary["impacts"] if i["level"] == level]
-    holds = [c for c in summary["sustained_contacts"] if c["level"] == level]
+    impacts = [i for i in summary["impacts"] if i["level"] in levels]
+    holds = [c for c in summary["sustained_contacts"] if c["level"] in levels]
     largest_impulse = max((i["impulse_kNs"] for i in impacts), default=0.0) or 1.0
     flash_s = FLASH_FILM_S * speed
 
     fig, ax = plt.subplots(figsize=(7.2, 6.0))
-    shapes = []
-    for b, slab in enumerate(slabs):
+    shapes = {}
+    for b, slab in slabs.items():
+        colour = COLOURS[b % len(COLOURS)]
         ax.add_patch(Polygon(slab["outline"], closed=True, fill=False, edgecolor="0.6", ls="--", lw=0.8))
-        shape = Polygon(slab["outline"], closed=True, facecolor=COLOURS[b], alpha=0.35, edgecolor=COLOURS[b], lw=1.5,
-                        label=f"{building_label(plan, b)}, floor {floors[b]}")
+        shape = Polygon(slab["outline"], closed=True, facecolor=colour, alpha=0.35, edgecolor=colour, lw=1.5,
+                        label=f"{building_label(plan, b)}, floor {slab['floor']}")
         ax.add_patch(shape)
-        shapes.append(shape)
+        shapes[b] = shape
     stars = ax.scatter([], [], marker="*", color="red", zorder=5, label="impact (size: impulse)")
     clock = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=10, family="monospace")
-    margin = 0.1 * np.max(np.ptp(np.vstack([s["outline"] for s in slabs]), axis=0))
-    corners = np.vstack([s["outline"] for s in slabs])
+    corners = np.vstack([s["outline"] for s in slabs.values()])
+    margin = 0.1 * np.max(np.ptp(corners, axis=0))
     ax.set_xlim(corners[:, 0].min() - margin, corners[:, 0].max() + margin)
     ax.set_ylim(corners[:, 1].min() - margin, corners[:, 1].max() + 2 * margin)
     ax.set_aspect("equal")
@@ -182,34 +223,36 @@ def film(folder, level, scale, fps, speed, start, end, requested_format, out):
     ax.grid(alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
     elevation = next(entry["elevation_m"] for entry in summary["levels"] if entry["level"] == level)
-    ax.set_title(f"{summary['scene']}: level {level} ({elevation:g} m), gap {summary['gap_m']:g} m, "
-                 f"k = {summary['restitution']:g}, {summary['method']}\nmotion and gap drawn × {scale:g}; rest outlines dashed",
-                 fontsize=10)
+    where = (f"{len(slabs)} buildings at {elevation:g} m, gaps "
+             + ", ".join(f"{p['names'][0]}:{p['names'][1]} {p['gap_m']:g} m" for p in summary["pairs"])
+             if row else f"level {level} ({elevation:g} m), gap {summary['gap_m']:g} m")
+    ax.set_title(f"{summary['scene']}: {where}, k = {summary['restitution']:g}, {summary['method']}\n"
+                 f"motion and gaps drawn × {scale:g}; rest outlines dashed", fontsize=10)
     fig.tight_layout()
 
     def draw(time_s):
-        moved = []
-        for slab, shape in zip(slabs, shapes):
+        moved = {}
+        for b, slab in slabs.items():
             u, v, phi = (np.interp(time_s, t, slab[key]) for key in ("u", "v", "phi"))
-            shape.set_xy(placed(slab["outline"], slab["centre"], u, v, phi, scale))
-            moved.append((u, v, phi))
+            shapes[b].set_xy(placed(slab["outline"], slab["centre"], u, v, phi, scale))
+            moved[b] = (u, v, phi)
         flashing = [i for i in impacts if i["t_s"] <= time_s < i["t_s"] + flash_s]
-        # vertex_rest belongs to the striking slab, or (slab to column, level 0) to the struck column
-        owners = [(i["struck_building"] if i["level"] == 0 else i["striking_building"]) - 1 for i in flashing]
-        points = [placed([np.asarray(i["vertex_rest"]) + slabs[b]["shift"]], slabs[b]["centre"], *moved[b], scale)[0]
-                  for i, b in zip(flashing, owners)]
+        points = [placed([np.asarray(i["vertex_rest"]) + slabs[i["striking_building"] - 1]["shift"]],
+                         slabs[i["striking_building"] - 1]["centre"], *moved[i["striking_building"] - 1], scale)[0]
+                  for i in flashing]
         stars.set_offsets(np.array(points).reshape(-1, 2))
         stars.set_sizes([80 + 320 * i["impulse_kNs"] / largest_impulse for i in flashing])
         so_far = sum(1 for i in impacts if i["t_s"] <= time_s)
         held = any(c["start_s"] <= time_s < c["release_s"] for c in holds)
         clock.set_text(f"t = {time_s:7.3f} s   impacts so far: {so_far}" + ("   sustained contact" if held else ""))
-        return [*shapes, stars, clock]
+        return [*shapes.values(), stars, clock]
 
     player = animation.FuncAnimation(fig, draw, frames=times, blit=False)
     player.save(out, writer=writer, dpi=90)
     plt.close(fig)
     print(f"Wrote {out}: {len(times)} frames at {fps:g} fps ({len(times) / fps:.1f} s of film) for "
-          f"{times[0]:.3f}–{times[-1]:.3f} s simulated, level {level}, motion × {scale:g}, "
+          f"{times[0]:.3f}–{times[-1]:.3f} s simulated, level {level}{' and its elevation' if row else ''}, "
+          f"motion × {scale:g}, "
           f"{sum(1 for i in impacts if times[0] <= i['t_s'] <= times[-1])} impacts shown")
 
 

@@ -2,7 +2,8 @@
 """Writes one self-contained HTML page of a `pounding run` folder: report.html.
 
 The page holds the run's key numbers (gap, k, contact law, impacts, first impact, energy residual,
-run time), the plan and elevation of the scene (plan.json), the histories of the level with most
+run time), the plan and elevation of the scene (plan.json; a row's with its impacts marked, then
+each pair's results and each building's demands), the histories of the level with most
 impacts (tools/plot_run.py's figure), the impacts and sustained contacts, the peaks of every
 floor, the energy balance, the solver's statistics, the settings given and used, the warnings and
 the provenance. Figures are embedded as PNG data and nothing is fetched from elsewhere, so the file
@@ -174,6 +175,48 @@ def sustained_table(summary):
     return table(header, rows, text_columns=("release reason",))
 
 
+def pairs_table(summary):
+    """A row: per neighbouring pair, its gap and direction, impacts (count, first, the largest
+    impulse, approach speed and force), the energy its contacts took and its sustained contacts."""
+    header = ("pair", "gap [m]", "direction", "impacts", "first impact [s]", "largest impulse [kN·s]",
+              "largest approach [m/s]", "largest force [kN]", "energy lost [kJ]", "sustained contacts")
+    rows = []
+    for p in summary["pairs"]:
+        on = [i for i in summary["impacts"] if sorted((i["striking_building"], i["struck_building"])) == p["buildings"]]
+        holds = [c for c in summary["sustained_contacts"] if c["buildings"] == p["buildings"]]
+        largest = lambda key: number(max((i[key] for i in on), default=0.0), 5)  # noqa: E731
+        rows.append((text(f"{p['names'][0]}:{p['names'][1]}"), number(p["gap_m"]),
+                     text(f"({p['direction'][0] + 0.0:g}, {p['direction'][1] + 0.0:g})"), len(on),
+                     f"{min(i['t_s'] for i in on):.6f}" if on else "–", largest("impulse_kNs"),
+                     largest("approach_velocity_mps"), largest("peak_force_kN"),
+                     number(sum(i["energy_lost_kJ"] for i in on), 5), len(holds)))
+    return table(header, rows, "pairs", text_columns=("pair", "direction"))
+
+
+def demands_table(summary):
+    """Per building: its largest storey drift ratios and accelerations, where and when, and (where
+    columns yield) the largest storey ductility."""
+    ductility = {}
+    for b in summary.get("yielding", {}).get("buildings", []):
+        ductility[b["building"]] = max(((max(s["peak_ductility_x"], s["peak_ductility_y"]), s["storey"])
+                                        for s in b["storeys"]), default=None)
+
+    def largest(floors, key):
+        best = max((f for f in floors if key in f), key=lambda f: abs(f[key]["value"]), default=None)
+        return f"{number(abs(best[key]['value']), 4)} (floor {best['floor']}, {best[key]['t_s']:.3f} s)" if best else "–"
+
+    header = ("building", "largest drift x", "largest drift y", "largest |a_x| [m/s²]", "largest |u| [m]",
+              "largest ductility")
+    rows = []
+    for b, building in enumerate(summary["peaks"], start=1):
+        floors = building["floors"]
+        mu = ductility.get(b)
+        rows.append((text(building["building"]), largest(floors, "drift_x"), largest(floors, "drift_y"),
+                     largest(floors, "ax_abs_mps2"), largest(floors, "u_m"),
+                     f"{mu[0]:.3g} (storey {mu[1]})" if mu else "–"))
+    return table(header, rows, "demands", text_columns=header)
+
+
 def peaks_tables(summary):
     """Per building, one row a floor: every scalar peak (value at time), whatever the run computed."""
     parts = []
@@ -191,13 +234,33 @@ def dictionary_table(values, unit_note=""):
     return table(("quantity", "value"), rows, text_columns=("quantity", "value")) + unit_note
 
 
+def plan_html(summary, plan):
+    """The plan and elevation; a row's plan marks where its impacts struck."""
+    impacts = None
+    if summary.get("pairs"):
+        impacts = [(i["point"][0], i["point"][1], i["striking_building"] - 1) for i in summary["impacts"]]
+    return figure_html(plan_figure(plan, impacts), "plan and elevation")
+
+
+def row_sections(summary):
+    """A row: its pairs' results and its buildings' demands (two buildings: none)."""
+    if not summary.get("pairs"):
+        return []
+    return ["<h2>Pairs</h2>", pairs_table(summary),
+            "<h2>Demands per building</h2>",
+            '<p class="note">Drift ratios of the storey below a floor at its centre of mass; absolute '
+            "accelerations (impulse law: the smooth part); ductility: the largest of a storey's columns.</p>",
+            demands_table(summary)]
+
+
 def page(folder, summary, plan):
     warnings = "".join(f"<li>{text(w)}</li>" for w in summary["warnings"]) or "<li>none</li>"
     sections = [
         f"<h1>pounding run: {text(summary['scene'])}</h1>",
         f'<p class="note">{text(folder.resolve())}</p>',
         "<h2>Key numbers</h2>", key_numbers(summary),
-        "<h2>Plan and elevation</h2>", figure_html(plan_figure(plan), "plan and elevation"),
+        "<h2>Plan and elevation</h2>", plan_html(summary, plan),
+        *row_sections(summary),
         "<h2>Histories</h2>", history_figure_html(folder, summary),
         f"<h2>Impacts ({summary['impact_count']})</h2>", impacts_table(summary),
         "<h2>Sustained contacts</h2>", sustained_table(summary),

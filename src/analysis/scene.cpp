@@ -489,6 +489,23 @@ int Scene::building_index(const std::string& building_name, const std::string& k
                    fmt::format("names no building (the buildings are {})", building_names(*this)));
 }
 
+BuildingPair Scene::named_pair(const std::string& names, const std::string& key) const {
+  std::string listed;
+  for (const BuildingPair& p : pairs()) {
+    listed += fmt::format("{}{}:{}", listed.empty() ? "" : ", ", buildings[static_cast<std::size_t>(p.first)].name,
+                          buildings[static_cast<std::size_t>(p.second)].name);
+  }
+  const std::size_t colon = names.find(':');
+  if (colon == std::string::npos || names.find(':', colon + 1) != std::string::npos) {
+    throw InputError(key, names, fmt::format("expected NAME:NAME, a neighbouring pair ({})", listed));
+  }
+  const int a = building_index(names.substr(0, colon), key), b = building_index(names.substr(colon + 1), key);
+  for (const BuildingPair& p : pairs()) {
+    if ((p.first == a && p.second == b) || (p.first == b && p.second == a)) return p;
+  }
+  throw InputError(key, names, fmt::format("names no neighbouring pair (the pairs are {})", listed));
+}
+
 void Scene::set_pair_gap(const std::string& first, const std::string& second, double gap_m) {
   const std::string key = pair_gap_key(first, second);
   const int a = building_index(first, key), b = building_index(second, key);

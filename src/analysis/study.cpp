@@ -207,18 +207,27 @@ bool yields(const Scene& scene) {
                      [](const model::BuildingDefinition& b) { return b.hysteresis.yields(); });
 }
 
+bool exact_runs(const Scene& scene) {
+  return !yields(scene) && supports(contact_law_info(scene.contact.law), reference_method());
+}
+
 std::string study_reference(const Scene& scene) {
-  return yields(scene) ? fmt::format("cvode-bdf rtol {:g}", kYieldingReferenceRtol)
-                       : std::string(reference_method().name);
+  return exact_runs(scene) ? std::string(reference_method().name)
+                           : fmt::format("cvode-bdf rtol {:g}", kCvodeReferenceRtol);
+}
+
+/// Whether `method` runs the scene: its columns (yielding or not) and its contact law.
+bool runs_scene(const MethodInfo& method, const Scene& scene) {
+  return (!yields(scene) || method.yielding_columns) && supports(contact_law_info(scene.contact.law), method);
 }
 
 namespace {
 
-/// The reference run: the exact path with the scene's settings for it, or, for yielding columns
-/// (which it cannot run), cvode-bdf at `rtol` (atol rtol/100 m) in the physical form.
-Scene reference_scene(const Scene& scene, double rtol = kYieldingReferenceRtol) {
+/// The reference run: the exact path with the scene's settings for it, or, where it cannot run
+/// the scene, cvode-bdf at `rtol` (atol rtol/100 m) in the physical form.
+Scene reference_scene(const Scene& scene, double rtol = kCvodeReferenceRtol) {
   Scene reference = scene;
-  if (!yields(scene)) {
+  if (exact_runs(scene)) {
     reference.solver = with_method(scene.solver, reference_method().name);
   } else {
     reference.solver = with_method(scene.solver, "cvode-bdf");
@@ -235,7 +244,8 @@ Scene reference_scene(const Scene& scene, double rtol = kYieldingReferenceRtol) 
 void require_study_scene(const Scene& scene) {
   if (!scene.is_row()) return;
   throw InputError("building", fmt::format("{} buildings", scene.buildings.size()),
-                   "form a row, and the study's report is written for one pair and one gap: study one pair's scene",
+                   "form a row, and the study's report is written for one pair and one gap: choose one with "
+                   "--pair NAME:NAME (Python: one of Scene.pair_scenes())",
                    scene.file.string());
 }
 
@@ -267,8 +277,8 @@ StudyResult run_study(const Scene& given, const StudyOptions& options,
   run_scene(reference);  // warm the process up (caches, page faults) before anything is timed
   study.reference = timed(reference, study.reference_run_time_s);
   Scene looser = reference;
-  if (yields(scene)) {
-    looser = reference_scene(scene, 10 * kYieldingReferenceRtol);
+  if (!exact_runs(scene)) {
+    looser = reference_scene(scene, 10 * kCvodeReferenceRtol);
   } else {
     looser.solver.hold_rtol = std::min(resolve(reference.solver).hold_rtol * 100, 1e-6);
   }
@@ -300,11 +310,11 @@ StudyResult run_study(const Scene& given, const StudyOptions& options,
   study.interrupted = study.reference.status == solvers::RunStatus::interrupted;
 
   for (const MethodInfo& method : methods()) {
-    if (method.reference || (yields(scene) && !method.yielding_columns)) continue;
+    if (method.reference || !runs_scene(method, scene)) continue;
     for (const StudySeries& series : method.series) {
       for (double value : options.quick ? method.quick_ladder : method.ladder) {
-        const bool is_reference = yields(scene) && method.name == "cvode-bdf" && series.event_location.empty() &&
-                                  value == kYieldingReferenceRtol;
+        const bool is_reference = !exact_runs(scene) && method.name == "cvode-bdf" &&
+                                  series.event_location.empty() && value == kCvodeReferenceRtol;
         if (is_reference) continue;  // the reference's own run: no error to measure
         Scene variant = scene;
         variant.solver = with_method(scene.solver, method.name);  // the scene's settings this method uses
@@ -322,7 +332,7 @@ StudyResult run_study(const Scene& given, const StudyOptions& options,
   }
   if (yields(scene)) return study;  // both ladders are the exact path's or elastic ones (run_study's header)
   add_stiffness_ladder(scene, options, study, timed, stiffness_progress);
-  add_truncation_ladder(scene, study, timed, options.match_window_s);
+  if (exact_runs(scene)) add_truncation_ladder(scene, study, timed, options.match_window_s);
   return study;
 }
 

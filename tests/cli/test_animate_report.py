@@ -12,7 +12,10 @@ Animation (tools/animate_run.py):
   |drawn gap| <= (s² - s) Σ φ² r_max over both slabs (about 0.04 m here, where the rest gap is drawn
   as s × 0.2 m and widening nothing would leave it at -(s - 1) × 0.2 m);
 - a GIF of 0.4 s at --speed 0.1 and --fps 10 has 0.4 × 10 / 0.1 + 1 = 41 frames;
-- MP4: with ffmpeg a file whose first box is `ftyp`, without it --format mp4 exits 2 naming ffmpeg.
+- MP4: with ffmpeg a file whose first box is `ftyp`, without it --format mp4 exits 2 naming ffmpeg;
+- a row (the row of three): the film shows all three buildings at the level's elevation, and with
+  each pair's gap widened × scale along its direction the drawn striking corner is on the drawn
+  struck edge at each impact of both pairs there, within the same bound.
 Report (tools/report_run.py): report.html fetches nothing (no http(s) source, no link or external
 script), its impacts table has summary.json's impact count, a run without history or impacts also
 makes one; with CHROMIUM (Debian's chromium, headless) the page's own check, run by the browser
@@ -67,13 +70,13 @@ def check_plan(run, work):
 
 def check_kinematics(run, plan):
     summary, columns = plot_run.read_run(run)
-    floors, slabs = animate_run.level_motion(summary, columns, plan, 7)
+    _, slabs = animate_run.level_motion(summary, columns, plan, 7)
     worst = 0.0
     for b in (1, 2):
         peaks = summary["peaks"][b - 1]
         slab = slabs[b - 1]
         for number, rest in zip(peaks["contact_vertices"], peaks["contact_vertices_rest"]):
-            prefix = f"B{b}_f{floors[b - 1]}_vtx{number}_"
+            prefix = f"B{b}_f{slab['floor']}_vtx{number}_"
             moved = np.array([animate_run.placed([rest], slab["centre"], u, v, phi)[0]
                               for u, v, phi in zip(slab["u"], slab["v"], slab["phi"])])
             worst = max(worst, np.max(np.abs(moved - rest - np.column_stack([columns[prefix + "dx_m"],
@@ -83,12 +86,17 @@ def check_kinematics(run, plan):
 
 
 def drawn_gap(summary, columns, slabs, impact, scale):
-    """Signed distance of the drawn striking corner from the drawn struck edge's line at the impact."""
-    drawn = [dict(s) for s in slabs]
-    animate_run.widen_gap(drawn, summary["gap_m"], scale)
+    """Signed distance of the drawn striking corner from the drawn struck edge's line at the impact,
+    with the gaps widened as the film widens them (a row: each pair's along its direction)."""
+    drawn = {b: dict(s) for b, s in slabs.items()}
+    if summary.get("pairs"):
+        animate_run.widen_row_gaps(drawn, summary["pairs"], scale)
+    else:
+        animate_run.widen_gap(drawn, summary["gap_m"], scale)
     row = int(np.argmin(np.abs(columns["t_s"] - impact["t_s"])))
     candidate = next(c for c in summary["candidates"] if c["level"] == impact["level"]
-                     and c["striking_building"] == impact["striking_building"] and c["vertex"] == impact["vertex"])
+                     and c["striking_building"] == impact["striking_building"] and c["vertex"] == impact["vertex"]
+                     and c["struck_building"] == impact.get("struck_building", c["struck_building"]))
 
     def place(b, point):
         slab = drawn[b - 1]
@@ -100,7 +108,7 @@ def drawn_gap(summary, columns, slabs, impact, scale):
     # Drawing R(sφ) where the motion is s(R(φ) - I) misplaces a point at arm r by (s² - s) φ² r / 2 to
     # second order; twice that over both slabs bounds the drawn gap of slabs that really touch.
     bound = sum((scale**2 - scale) * s["phi"][row] ** 2 * np.max(np.linalg.norm(s["outline"] - s["centre"], axis=1))
-                for s in drawn)
+                for s in drawn.values())
     return float(np.cross(along, corner - q1)), bound
 
 
@@ -143,6 +151,37 @@ def check_report(run, impacts, figures):
           f"{run.name}: headless Chromium runs the page's check: {said.group(1) if said else 'no render check'}")
 
 
+def check_row_film(work):
+    """A row's film: every building at the level's elevation, each pair's gap widened along its
+    direction, so that the drawn striking corner is on the drawn struck edge at each impact there."""
+    scene = work / "row-of-three.toml"
+    scene.write_text((ROOT / "examples" / "rows" / "row-of-three.toml").read_text()
+                     .replace('"../records/', f'"{ROOT}/examples/records/'))
+    run = work / "row"
+    pounding("run", scene, "--out", run)
+    pounding("plan", scene, "--out", work / "row-plan", "--no-plot")
+    summary, columns = plot_run.read_run(run)
+    plan = json.loads((work / "row-plan" / "plan.json").read_text())
+    # The highest elevation where both pairs have a level (B3 has fewer storeys than B1 and B2).
+    elevations = [e["elevation_m"] for e in summary["levels"]]
+    level = max((e for e in summary["levels"] if elevations.count(e["elevation_m"]) == 2),
+                key=lambda e: e["elevation_m"])["level"]
+    levels, slabs = animate_run.level_motion(summary, columns, plan, level)
+    check(sorted(slabs) == [0, 1, 2] and len(levels) == 2,
+          f"the row's film at level {level} shows buildings {sorted(slabs)} on levels {levels}")
+    scale = animate_run.default_scale(slabs)
+    gaps = [drawn_gap(summary, columns, slabs, i, scale) for i in summary["impacts"] if i["level"] in levels]
+    worst = max((abs(g) / bound for g, bound in gaps), default=0.0)
+    check(gaps and worst <= 1.0, f"row drawn × {scale:g}: the striking corner is on the struck edge at each of the "
+                                 f"{len(gaps)} impacts at level {level}'s elevation, both pairs, within the bound "
+                                 f"({worst:.2f} of it)")
+    done = pounding("animate", run, "--level", level, "--start", 4.0, "--end", 7.0, "--fps", 5, "--format", "gif")
+    from PIL import Image
+    film = run / f"level{level}.gif"
+    frames = Image.open(film).n_frames if film.is_file() else 0
+    check(frames == 16, f"the row's GIF has 3 s x 5 fps + 1 = 16 frames ({frames}); says: {done.stdout.strip()}")
+
+
 def check_refusals(run, work):
     done = pounding("animate", work, expect=2)
     check("summary.json" in done.stderr, f"a folder without a run is refused: {done.stderr.strip()}")
@@ -171,6 +210,7 @@ def main():
         check_report(run, summary["impact_count"], 2)
         check_report(quiet, 0, 1)
         check_refusals(run, work)
+        check_row_film(work)
     if not CHROMIUM:
         print("note: no Chromium given: the page was not opened in a browser")
     print("FAILED: " + "; ".join(failures) if failures else "all checks passed")

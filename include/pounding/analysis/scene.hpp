@@ -133,6 +133,9 @@ struct Scene {
   Scene pair_scene_facing_x(const BuildingPair& pair, double& turned_deg) const;
   /// A building's index by name. @throws InputError(`key`) naming the buildings when none has it.
   int building_index(const std::string& building_name, const std::string& key) const;
+  /// The neighbouring pair named "NAME:NAME" (either order). @throws InputError(`key`, text)
+  /// naming the neighbouring pairs when the text is not two names or they are no such pair.
+  BuildingPair named_pair(const std::string& names, const std::string& key) const;
 
   /// output.floor_history as {building (0-based), floor}. @pre valid.
   std::vector<std::array<int, 2>> history_other_floors() const;

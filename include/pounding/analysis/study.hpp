@@ -108,22 +108,26 @@ struct StudyResult {
   bool interrupted = false;
 };
 
-/// The reference of a scene whose columns yield: the exact path cannot run them, so cvode-bdf at
-/// this rtol (atol rtol/100 m), its own error estimated by the same at 10 times the rtol.
-inline constexpr double kYieldingReferenceRtol = 1e-12;
+/// The reference of a scene the exact path cannot run (columns that yield, a compliant contact
+/// law): cvode-bdf at this rtol (atol rtol/100 m), its own error estimated by the same at 10
+/// times the rtol.
+inline constexpr double kCvodeReferenceRtol = 1e-12;
 
 /// True when a building's columns yield.
 bool yields(const Scene& scene);
-/// The study's reference for `scene`: "exact", or "cvode-bdf rtol 1e-12" for yielding columns.
+/// True when the exact path runs the scene: elastic columns and a contact law it takes.
+bool exact_runs(const Scene& scene);
+/// The study's reference for `scene`: "exact", or "cvode-bdf rtol 1e-12" where exact_runs() is false.
 std::string study_reference(const Scene& scene);
 
 /// Runs every series of every method of the registry over its ladder against the reference
 /// method (the exact path, with the scene's settings for it), then every compliant law over its
 /// stiffness ladder on each method that runs it (what each method pays as contacts stiffen), then
 /// the reference truncated at each cut-off of truncation_ladder() (what leaving modes out costs).
-/// For a scene whose columns yield, the reference is study_reference()'s, only the methods that
-/// run yielding columns have rows, and both ladders are left out (the stiffness ladder's runs
-/// are elastic in what they measure, the truncation ladder is the exact path's).
+/// For a scene the exact path cannot run, the reference is study_reference()'s and only the
+/// methods that run the scene (yielding columns, its contact law) have rows; the truncation ladder
+/// (the exact path's) is left out, and for yielding columns the stiffness ladder too (its runs are
+/// elastic in what they measure).
 /// `progress` and `stiffness_progress` are called with each finished row (for printing as it
 /// goes). After an interrupt request no further run starts. @throws InputError as
 /// require_study_scene.
