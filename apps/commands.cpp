@@ -32,17 +32,16 @@ namespace pounding::cli {
 namespace {
 
 void print_modes_table(const analysis::BuildingSummary& building, int count) {
-  fmt::print("{} ({} storeys, {} DOF, frame factor {:.8f}{})\n", building.name, building.storeys,
-             building.dof, building.frame_factor, building.frame_factor_solved ? ", solved" : "");
-  fmt::print("  {:>4}  {:>10}  {:>10}  {:>8}  {:>8}  {:>8}  {:>8}\n", "mode", "T [s]", "f [Hz]",
-             "dominant", "Meff,x", "Meff,y", "Meff,rz");
+  fmt::print("{} ({} storeys, {} DOF, frame factor {:.8f}{})\n", building.name, building.storeys, building.dof,
+             building.frame_factor, building.frame_factor_solved ? ", solved" : "");
+  fmt::print("  {:>4}  {:>10}  {:>10}  {:>8}  {:>8}  {:>8}  {:>8}\n", "mode", "T [s]", "f [Hz]", "dominant", "Meff,x",
+             "Meff,y", "Meff,rz");
   const int shown = std::min<int>(count, static_cast<int>(building.modes.size()));
   for (int k = 0; k < shown; ++k) {
     const model::Mode& mode = building.modes[k];
-    fmt::print("  {:>4}  {:>10.5f}  {:>10.5f}  {:>8}  {:>7.1f}%  {:>7.1f}%  {:>7.1f}%\n", k + 1,
-               mode.period_s, 1.0 / mode.period_s, model::to_string(mode.dominant),
-               100 * mode.effective_mass_ratio_x, 100 * mode.effective_mass_ratio_y,
-               100 * mode.effective_mass_ratio_rz);
+    fmt::print("  {:>4}  {:>10.5f}  {:>10.5f}  {:>8}  {:>7.1f}%  {:>7.1f}%  {:>7.1f}%\n", k + 1, mode.period_s,
+               1.0 / mode.period_s, model::to_string(mode.dominant), 100 * mode.effective_mass_ratio_x,
+               100 * mode.effective_mass_ratio_y, 100 * mode.effective_mass_ratio_rz);
   }
 }
 
@@ -173,11 +172,10 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
   const auto& spec = scene.excitation;
   const auto& t = motion.time_s();
   fmt::print("Excitation: {} ({})\n", spec.file.string(), format_name(spec.read.format));
-  fmt::print("  {} samples from {:.4f} s to {:.4f} s (first step {:.4f} s)\n", t.size(), t.front(),
-             t.back(), t[1] - t[0]);
-  fmt::print("  peak |a_g| = {:.4f} m/s² = {:.4f} g at t = {:.4f} s, direction β = {} deg\n",
-             motion.peak_mps2(), motion.peak_mps2() / spec.g_mps2, motion.peak_time_s(),
-             spec.direction_deg);
+  fmt::print("  {} samples from {:.4f} s to {:.4f} s (first step {:.4f} s)\n", t.size(), t.front(), t.back(),
+             t[1] - t[0]);
+  fmt::print("  peak |a_g| = {:.4f} m/s² = {:.4f} g at t = {:.4f} s, direction β = {} deg\n", motion.peak_mps2(),
+             motion.peak_mps2() / spec.g_mps2, motion.peak_time_s(), spec.direction_deg);
   print_spectral_scaling(scene, motion);
   if (!spec.second) return;
   fmt::print("  second component (H2): {} ({}), on the pair's common time base ({} samples)\n",
@@ -339,8 +337,8 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
       command.out_dir.empty() ? "out/" + io::folder_name(scene.name + "-study") : command.out_dir;
   io::require_writable_folder(folder, "--out");
   const io::Provenance provenance = io::make_provenance(scene, command_line);
-  fmt::print("Work-precision study of '{}' at gap {:.6g} m; every run against {}; run time = median of {}\n", scene.name,
-             scene.contact.gap_m, analysis::study_reference(scene), options.repeat);
+  fmt::print("Work-precision study of '{}' at gap {:.6g} m; every run against {}; run time = median of {}\n",
+             scene.name, scene.contact.gap_m, analysis::study_reference(scene), options.repeat);
   fmt::print("Impact-time errors: before the first sustained contact, and over impacts faster than 1 cm/s.\n");
   fmt::print("Errors at or below twice the reference's own error estimate are shown as 'at ref'.\n");
   fmt::print("{:<16} {:>10} {:>9} {:>8} {:>7} {:>4} {:>5} {:>13} {:>11} {:>11} {:>9} {:>10} {:>10} {:>12}\n", "method",
@@ -349,12 +347,13 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
   auto at_reference = [](bool at, double value) { return at ? std::string("at ref") : fmt::format("{:.3e}", value); };
   auto print_row = [&](const analysis::StudyRow& r) {
     const analysis::RunErrors& e = r.errors;
-    fmt::print("{:<16} {:>10.0e} {:>9.4f} {:>8} {:>7} {:>4} {:>5} {:>13.3e} {:>11} {:>11.3e} {:>9.2e} {:>10} {:>10.3e} "
-               "{:>12.3e}{}\n",
-               r.method, r.value, r.run_time_s, r.steps, r.impacts, e.missing, e.extra, e.impact_time_before_hold_s,
-               at_reference(r.impact_time_at_reference, e.impact_time_all_s), e.impact_time_s, e.impulse_relative,
-               at_reference(r.history_u_at_reference, e.history_u_m), e.history_v_m, e.history_phi_rad,
-               r.status == "completed" ? "" : "  " + r.status);
+    fmt::print(
+        "{:<16} {:>10.0e} {:>9.4f} {:>8} {:>7} {:>4} {:>5} {:>13.3e} {:>11} {:>11.3e} {:>9.2e} {:>10} {:>10.3e} "
+        "{:>12.3e}{}\n",
+        r.method, r.value, r.run_time_s, r.steps, r.impacts, e.missing, e.extra, e.impact_time_before_hold_s,
+        at_reference(r.impact_time_at_reference, e.impact_time_all_s), e.impact_time_s, e.impulse_relative,
+        at_reference(r.history_u_at_reference, e.history_u_m), e.history_v_m, e.history_phi_rad,
+        r.status == "completed" ? "" : "  " + r.status);
   };
   bool ladder_started = false;
   auto print_stiffness_row = [&](const analysis::StiffnessRow& r) {
@@ -373,8 +372,9 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
   const analysis::StudyResult study = analysis::run_study(scene, options, print_row, print_stiffness_row);
   io::write_study(study, provenance, folder);
   if (!study.truncation_rows.empty()) {
-    fmt::print("Truncation ladder: the exact path keeping the modes below a cut-off, the rest static, against the "
-               "full one\n");
+    fmt::print(
+        "Truncation ladder: the exact path keeping the modes below a cut-off, the rest static, against the "
+        "full one\n");
     fmt::print("{:>11} {:>7} {:>9} {:>8} {:>7} {:>4} {:>5} {:>13} {:>11} {:>11} {:>11}\n", "cutoff[Hz]", "modes",
                "run [s]", "steps", "impacts", "miss", "extra", "pre-hold [s]", "all [s]", "u err [m]", "peak u [m]");
     for (const analysis::TruncationRow& r : study.truncation_rows) {
@@ -387,9 +387,10 @@ int run_study(const StudyCommand& command, const std::string& command_line) {
     }
   }
   if (study.interrupted) {
-    fmt::print("Interrupted after {} of the study's runs; wrote them to {}/study.csv, stiffness.csv, truncation.csv "
-               "and study.json\n",
-               study.rows.size() + study.stiffness_rows.size() + study.truncation_rows.size(), folder);
+    fmt::print(
+        "Interrupted after {} of the study's runs; wrote them to {}/study.csv, stiffness.csv, truncation.csv "
+        "and study.json\n",
+        study.rows.size() + study.stiffness_rows.size() + study.truncation_rows.size(), folder);
     return 3;
   }
   const bool exact_reference = study.reference_method == analysis::reference_method().name;
@@ -428,17 +429,18 @@ int run_check(const CheckCommand& command) {
     const auto& b = buildings[i];
     const auto& definition = scene.buildings[i];
     total_dof += b.dof;
-    fmt::print("Building {} '{}': {}, {} DOF, total mass {:.1f} t, frame factor "
-               "{:.8f}{}\n",
-               i + 1, b.name, storeys_text(definition), b.dof, b.total_mass_t,
-               b.frame_factor, b.frame_factor_solved ? " (solved for the target period)" : "");
+    fmt::print(
+        "Building {} '{}': {}, {} DOF, total mass {:.1f} t, frame factor "
+        "{:.8f}{}\n",
+        i + 1, b.name, storeys_text(definition), b.dof, b.total_mass_t, b.frame_factor,
+        b.frame_factor_solved ? " (solved for the target period)" : "");
     fmt::print("  floor mass {:.1f} t (top {:.1f} t), polar moment {:.1f} t·m² (top {:.1f} t·m²)\n",
-               definition.mass_t.front(), definition.mass_t.back(),
-               definition.polar_moment_tm2.front(), definition.polar_moment_tm2.back());
-    fmt::print("  T1 = {:.4f} s, T2 = {:.4f} s, T3 = {:.4f} s; Rayleigh a0 = {:.5f} 1/s, "
-               "a1 = {:.6f} s\n",
-               b.modes[0].period_s, b.modes[1].period_s, b.modes[2].period_s, b.rayleigh.a0_per_s,
-               b.rayleigh.a1_s);
+               definition.mass_t.front(), definition.mass_t.back(), definition.polar_moment_tm2.front(),
+               definition.polar_moment_tm2.back());
+    fmt::print(
+        "  T1 = {:.4f} s, T2 = {:.4f} s, T3 = {:.4f} s; Rayleigh a0 = {:.5f} 1/s, "
+        "a1 = {:.6f} s\n",
+        b.modes[0].period_s, b.modes[1].period_s, b.modes[2].period_s, b.rayleigh.a0_per_s, b.rayleigh.a1_s);
     if (definition.p_delta)
       fmt::print("  P-Δ: storeys lowered by the gravity load above them (g = {} m/s²)\n", definition.g_mps2);
     const model::HystereticLaw& law = definition.hysteresis;
@@ -458,11 +460,11 @@ int run_check(const CheckCommand& command) {
              hysteretic_states > 0 ? fmt::format(", {} of them Bouc-Wen's z", hysteretic_states) : std::string());
   print_levels(scene);
   print_excitation(scene, motion);
-  const std::string law = scene.contact.law == "impulse"
-                              ? std::string()
-                              : fmt::format(", law {} (stiffness {} {})", scene.contact.law,
-                                            scene.contact.used_stiffness(),
-                                            analysis::contact_law_info(scene.contact.law).stiffness_unit);
+  const std::string law =
+      scene.contact.law == "impulse"
+          ? std::string()
+          : fmt::format(", law {} (stiffness {} {})", scene.contact.law, scene.contact.used_stiffness(),
+                        analysis::contact_law_info(scene.contact.law).stiffness_unit);
   fmt::print("Contact: {}, restitution k = {}{}\n",
              scene.is_row() ? std::string("gaps per pair (above)") : fmt::format("gap {} m", scene.contact.gap_m),
              scene.contact.restitution, law);
@@ -543,10 +545,10 @@ int run_laws(const LawsCommand& command) {
     const nlohmann::json rebound =
         law.rebound ? nlohmann::json(law.rebound(command.restitution)) : nlohmann::json(nullptr);
     if (!command.json) {
-      const std::string stiffness =
-          law.stiffness_key.empty() ? "no stiffness"
-                                    : fmt::format("default {} = {:g} {} ({})", law.stiffness_key, law.default_stiffness,
-                                                  law.stiffness_unit, law.stiffness_source);
+      const std::string stiffness = law.stiffness_key.empty()
+                                        ? "no stiffness"
+                                        : fmt::format("default {} = {:g} {} ({})", law.stiffness_key,
+                                                      law.default_stiffness, law.stiffness_unit, law.stiffness_source);
       // Without a closed form the rebound depends on the masses and the approach speed: say where it is measured.
       const std::string rebound_text =
           law.rebound

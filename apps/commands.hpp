@@ -34,8 +34,8 @@ struct OutputsCommand {
 };
 
 struct LawsCommand {
-  bool json = false;          // the contact-law registry as JSON on stdout (for scripts)
-  double restitution = 0.5;   // e for each law's closed-form rebound
+  bool json = false;         // the contact-law registry as JSON on stdout (for scripts)
+  double restitution = 0.5;  // e for each law's closed-form rebound
 };
 
 struct CheckCommand {
@@ -51,25 +51,25 @@ struct RunCommand {
   std::optional<double> restitution;
   std::optional<std::string> contact_law;
   std::optional<double> contact_stiffness;  // in the law's unit (contact_laws.hpp)
-  excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
+  excitation::RecordChoice record;          // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
   std::map<analysis::Setting, analysis::SettingValue> settings;  // the [solver] options given (--rtol, --dt, ...)
   std::optional<std::string> halving;                            // on | off
-  std::optional<std::string> history;  // on | off: replaces output.history
-  std::optional<std::string> peaks;    // none, all or a comma-separated list of groups: replaces output.peaks
-  std::string out_dir;  // empty: out/<scene name, made safe as a folder name>
+  std::optional<std::string> history;                            // on | off: replaces output.history
+  std::optional<std::string> peaks;  // none, all or a comma-separated list of groups: replaces output.peaks
+  std::string out_dir;               // empty: out/<scene name, made safe as a folder name>
   // Limits of the run (analysis::RunLimits); unset: its defaults.
   std::optional<long> max_steps;
   std::optional<double> max_wall_time_s;
   std::optional<double> max_history_values;
-  bool no_progress = false;  // no progress line even on a terminal
+  bool no_progress = false;             // no progress line even on a terminal
   bool contact_free_reference = false;  // --contact-free-reference: sets output.contact_free_reference
 };
 
 struct StudyCommand {
   std::string scene;
   std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
-  std::string pair;     // --pair NAME:NAME: a row's pair, studied alone (its own scene of two)
+  std::string pair;               // --pair NAME:NAME: a row's pair, studied alone (its own scene of two)
   int repeat = 3;
   bool quick = false;   // a short ladder (for smoke tests)
   std::string out_dir;  // empty: out/<scene name>-study
@@ -80,36 +80,36 @@ struct GapCommand {
   std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
   std::optional<double> rtol;
   std::optional<double> atol;
-  excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
-  std::string records;   // --records: a list file or a folder of .AT2 files; empty: the scene's record
-  int curve = 0;         // gaps of the severity curve; 0: none
-  unsigned threads = 0;  // runs at a time (curve, records); 0: every core
+  excitation::RecordChoice record;        // --record, --scale, --pga-g, ...
+  std::string records;                    // --records: a list file or a folder of .AT2 files; empty: the scene's record
+  int curve = 0;                          // gaps of the severity curve; 0: none
+  unsigned threads = 0;                   // runs at a time (curve, records); 0: every core
   std::optional<double> max_wall_time_s;  // each contact-free run's budget (s); default one hour
   std::optional<double> amplification;    // yielding scenes: also the code rules from elastic peaks × this
   bool all_angles = false;                // also the needed gap over every angle of incidence
-  std::string out_dir;   // empty: out/<scene name>-gap (out/<scene name>-records with --records)
+  std::string out_dir;                    // empty: out/<scene name>-gap (out/<scene name>-records with --records)
 };
 
 struct SpectrumCommand {
-  std::vector<std::string> records;        // one spectrum each; two with --rotd: also the pair's RotD
-  std::optional<std::string> format;       // peer-at2, columns, single; default: peer-at2 for .AT2, else columns
-  std::string units = "g";                 // of the records' accelerations
-  std::optional<double> dt_s;              // single: the sample spacing; others: re-spaces
-  std::vector<int> accel_columns;          // one for every record, or one per record (a pair from one file)
+  std::vector<std::string> records;   // one spectrum each; two with --rotd: also the pair's RotD
+  std::optional<std::string> format;  // peer-at2, columns, single; default: peer-at2 for .AT2, else columns
+  std::string units = "g";            // of the records' accelerations
+  std::optional<double> dt_s;         // single: the sample spacing; others: re-spaces
+  std::vector<int> accel_columns;     // one for every record, or one per record (a pair from one file)
   double damping_ratio = 0.05;
-  std::vector<double> periods_s;           // empty: 0.01–10 s, 61 log-spaced
+  std::vector<double> periods_s;  // empty: 0.01–10 s, 61 log-spaced
   bool rotd = false;
   double angle_step_deg = 1.0;
-  std::string scene;                       // empty: no building periods marked
+  std::string scene;  // empty: no building periods marked
   std::string out_dir = "out/spectrum";
-  bool no_plot = false;                    // skip spectrum.png (drawn by tools/plot_spectrum.py)
+  bool no_plot = false;  // skip spectrum.png (drawn by tools/plot_spectrum.py)
 };
 
 struct PlanCommand {
   std::string scene;
   std::vector<std::string> gaps;  // --gap: building 2 moved along x, or a row's pair NAME:NAME=m
-  std::string out_dir;          // empty: out/<scene name>-plan
-  bool no_plot = false;         // skip plan.png (drawn by tools/plot_plan.py)
+  std::string out_dir;            // empty: out/<scene name>-plan
+  bool no_plot = false;           // skip plan.png (drawn by tools/plot_plan.py)
 };
 
 /// `pounding animate RUN_DIR`: the slabs of one level in plan, moving (tools/animate_run.py).

@@ -160,8 +160,9 @@ void print_set_statistics(const analysis::RecordSetResult& set) {
   row("mean", &analysis::SetStatistic::mean);
   row("median", &analysis::SetStatistic::median);
   row("84th pct (lognormal)", &analysis::SetStatistic::p84_lognormal);
-  fmt::print("  84th percentile = exp(m + s), m and s the mean and the sample standard deviation (divisor n - 1) "
-             "of ln x over the records\n");
+  fmt::print(
+      "  84th percentile = exp(m + s), m and s the mean and the sample standard deviation (divisor n - 1) "
+      "of ln x over the records\n");
   if (set.worst >= 0) {
     const analysis::RecordGap& worst = set.records[static_cast<std::size_t>(set.worst)];
     fmt::print("Worst record: {}, needed gap {} at floors {}/{}, t = {:.3f} s\n", worst.record,
@@ -255,7 +256,9 @@ int run_record_set(const GapCommand& command, const analysis::Scene& scene, cons
 /// A statistic of a record set in rows.json: null where it does not exist.
 nlohmann::ordered_json statistic_json(const analysis::SetStatistic& s) {
   auto value = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); };
-  return {{"count", s.count}, {"mean", value(s.mean)}, {"median", value(s.median)},
+  return {{"count", s.count},
+          {"mean", value(s.mean)},
+          {"median", value(s.median)},
           {"p84_lognormal", value(s.p84_lognormal)}};
 }
 
@@ -264,8 +267,8 @@ struct RowPair {
   analysis::BuildingPair pair;
   double turned_deg = 0.0;  // how far its plan was turned to face along x
   analysis::Scene scene;
-  std::string name;         // "B1:B2", in the scene's names
-  std::string folder;       // its files: FOLDER/<first>-<second>/
+  std::string name;    // "B1:B2", in the scene's names
+  std::string folder;  // its files: FOLDER/<first>-<second>/
 };
 
 /// Every pair of the row turned first, so that a pair the analysis cannot take stops the command
@@ -328,8 +331,7 @@ int run_row_record_set(const GapCommand& command, const analysis::Scene& scene, 
                                         {"pairs", list},
                                         {"provenance", io::provenance_json(job.provenance)}},
                  job.folder + "/rows.json");
-  fmt::print("Wrote {0}/rows.json and each pair's records.csv and records.json in {0}/<first>-<second>/\n",
-             job.folder);
+  fmt::print("Wrote {0}/rows.json and each pair's records.csv and records.json in {0}/<first>-<second>/\n", job.folder);
   return failed == 0 ? 0 : 3;
 }
 
@@ -439,9 +441,10 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
   const bool completed = gap.status == solvers::RunStatus::completed &&
                          (!gap.all_angles || gap.all_angles->status == solvers::RunStatus::completed);
   if (!completed) {
-    fmt::print("Stopped at t = {:.3f} s ({}: {}): the figures above cover the record up to there only; the needed "
-               "gap is a lower bound\n",
-               gap.end_s, solvers::to_string(gap.status), gap.status_detail);
+    fmt::print(
+        "Stopped at t = {:.3f} s ({}: {}): the figures above cover the record up to there only; the needed "
+        "gap is a lower bound\n",
+        gap.end_s, solvers::to_string(gap.status), gap.status_detail);
   }
 
   std::vector<analysis::SeverityPoint> curve;
@@ -449,11 +452,10 @@ int run_gap(const GapCommand& command, const std::string& command_line) {
     fmt::print("Severity below the needed gap: {} runs ({})\n", command.curve, scene.solver.method);
     int done = 0;
     try {
-      curve = analysis::severity_curve(scene, gap.needed_gap_m, command.curve, command.threads,
-                                       [&](const analysis::SeverityPoint& p) {
-                                         fmt::print(stderr, "\r  {}/{} runs done (gap {:.4f} m)", ++done,
-                                                    command.curve, p.gap_m);
-                                       });
+      curve = analysis::severity_curve(
+          scene, gap.needed_gap_m, command.curve, command.threads, [&](const analysis::SeverityPoint& p) {
+            fmt::print(stderr, "\r  {}/{} runs done (gap {:.4f} m)", ++done, command.curve, p.gap_m);
+          });
     } catch (const InputError& error) {
       if (error.key() != "count") throw;
       throw InputError("--curve", error.value(), error.reason());

@@ -142,7 +142,8 @@ int main(int argc, char** argv) {
   add_scene_argument(*modes_app, modes.scene);
   modes_app->add_option("--json", modes.json_file, "Also write the modes as JSON to this file");
   modes_app->add_option("--count", modes.count, "Modes printed per building")
-      ->capture_default_str()->check(CLI::Range(1, 10000));
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
 
   pounding::cli::MethodsCommand methods;
   CLI::App* methods_app = app.add_subcommand("methods", "The solution paths and the settings each uses");
@@ -228,7 +229,8 @@ int main(int argc, char** argv) {
   study_app->add_option("--pair", study.pair,
                         "A row: the neighbouring pair NAME:NAME to study, alone (its own scene of two buildings)");
   study_app->add_option("--repeat", study.repeat, "Timed runs per setting; the median is reported")
-      ->capture_default_str()->check(CLI::Range(1, kMaxStudyRepeats));
+      ->capture_default_str()
+      ->check(CLI::Range(1, kMaxStudyRepeats));
   study_app->add_flag("--quick", study.quick, "A short ladder: rtol 1e-6 and 1e-8, dt 0.05 and 0.01 s");
   study_app->add_option("--out", study.out_dir, "Output folder (default out/<scene name>-study)");
 
@@ -240,13 +242,15 @@ int main(int argc, char** argv) {
   gap_app->add_option("--rtol", gap.rtol, "Relative tolerance of the run (default: the scene's)");
   gap_app->add_option("--atol", gap.atol, "Absolute tolerance of the run, m and rad (default: the scene's)");
   add_record_options(*gap_app, gap.record);
-  CLI::Option* curve = gap_app->add_option("--curve", gap.curve,
-                                           "Also run N gaps from 0 towards the needed gap: the severity table")
-                           ->check(CLI::Range(2, 1000));
-  gap_app->add_option("--records", gap.records,
-                      "The needed gap under every record of a list file (a path and options a line) or of a "
-                      "folder's .AT2 files, with the set's statistics")
-      ->excludes(curve)->excludes("--record");
+  CLI::Option* curve =
+      gap_app->add_option("--curve", gap.curve, "Also run N gaps from 0 towards the needed gap: the severity table")
+          ->check(CLI::Range(2, 1000));
+  gap_app
+      ->add_option("--records", gap.records,
+                   "The needed gap under every record of a list file (a path and options a line) or of a "
+                   "folder's .AT2 files, with the set's statistics")
+      ->excludes(curve)
+      ->excludes("--record");
   gap_app->add_option("--threads", gap.threads, "Runs of --curve or --records at a time (default: every core)");
   gap_app->add_option(
       "--max-wall-time", gap.max_wall_time_s,
@@ -267,8 +271,9 @@ int main(int argc, char** argv) {
 
   pounding::cli::SpectrumCommand spectrum;
   CLI::App* spectrum_app = app.add_subcommand(
-      "spectrum", "Elastic response spectra (Sd, PSV, PSA) of records, exact for piecewise-linear records; RotD50 and "
-                  "RotD100 of a pair; a scene's building periods marked");
+      "spectrum",
+      "Elastic response spectra (Sd, PSV, PSA) of records, exact for piecewise-linear records; RotD50 and "
+      "RotD100 of a pair; a scene's building periods marked");
   spectrum_app->add_option("records", spectrum.records, "Record files (one spectrum each)")->required();
   spectrum_app->add_option("--format", spectrum.format,
                            "Format of the records: peer-at2, columns or single (default: peer-at2 for .AT2 files, "
@@ -279,9 +284,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   spectrum_app->add_option("--record-dt", spectrum.dt_s,
                            "single: the records' sample spacing (s); other formats: re-spaces them");
-  spectrum_app->add_option("--record-column", spectrum.accel_columns,
-                           "Column of the acceleration (from 1): one for every record, or one per record, "
-                           "comma-separated (a pair from one file: 1,2)")
+  spectrum_app
+      ->add_option("--record-column", spectrum.accel_columns,
+                   "Column of the acceleration (from 1): one for every record, or one per record, "
+                   "comma-separated (a pair from one file: 1,2)")
       ->delimiter(',');
   spectrum_app->add_option("--damping", spectrum.damping_ratio, "Critical damping ratio of the oscillators, in [0, 1)")
       ->capture_default_str();
@@ -364,17 +370,19 @@ int main(int argc, char** argv) {
 
   pounding::cli::SweepCommand sweep;
   CLI::App* sweep_app = app.add_subcommand(
-      "sweep", "Runs of every scene x record x gap x restitution x method x contact law of a sweep file, on Dask "
-               "(python3 -m pounding.sweep), into one table; a sweep started again skips the runs done");
+      "sweep",
+      "Runs of every scene x record x gap x restitution x method x contact law of a sweep file, on Dask "
+      "(python3 -m pounding.sweep), into one table; a sweep started again skips the runs done");
   sweep_app->add_option("sweep_file", sweep.sweep_file, "Sweep file (TOML)")->required();
-  CLI::Option* workers = sweep_app->add_option("--workers", sweep.workers,
-                                               "Worker processes of a LocalCluster (default: every core)")
-                             ->check(CLI::Range(1, 4096));
+  CLI::Option* workers =
+      sweep_app->add_option("--workers", sweep.workers, "Worker processes of a LocalCluster (default: every core)")
+          ->check(CLI::Range(1, 4096));
   CLI::Option* serial =
       sweep_app->add_flag("--serial", sweep.serial, "No Dask: the runs one after another in one process")
           ->excludes(workers);
   sweep_app->add_option("--scheduler", sweep.scheduler, "Address of a running Dask scheduler (tcp://HOST:8786)")
-      ->excludes(workers)->excludes(serial);
+      ->excludes(workers)
+      ->excludes(serial);
   sweep_app->add_option("--out", sweep.out_dir, "Output folder (default: the file's out, else out/<sweep file name>)");
   sweep_app->add_flag("--no-progress,--quiet", sweep.no_progress, "No progress bar");
 

@@ -35,10 +35,9 @@ pounding::excitation::ExcitationSpec spec_from(std::uint8_t format, std::uint8_t
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace pounding;
   if (size < 2) return 0;
-  static const std::filesystem::path file =
-      fuzz::fixture_folder() / ("fuzzed-record-" + std::to_string(::getpid()));
-  std::ofstream(file, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data + 2),
-                                                                 static_cast<std::streamsize>(size - 2));
+  static const std::filesystem::path file = fuzz::fixture_folder() / ("fuzzed-record-" + std::to_string(::getpid()));
+  std::ofstream(file, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data + 2), static_cast<std::streamsize>(size - 2));
   excitation::ExcitationSpec spec = spec_from(data[0], data[1]);
   spec.file = file;
   try {

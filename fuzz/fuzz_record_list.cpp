@@ -14,8 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace pounding;
   static const std::filesystem::path list =
       fuzz::fixture_folder() / ("fuzzed-list-" + std::to_string(::getpid()) + ".txt");
-  std::ofstream(list, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data),
-                                                                 static_cast<std::streamsize>(size));
+  std::ofstream(list, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   excitation::ExcitationSpec scene;  // as a scene naming the PEER fixture would have it
   scene.file = fuzz::fixture_folder() / "record.AT2";
   scene.scale_to_pga_g = 0.3;

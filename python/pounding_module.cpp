@@ -235,9 +235,15 @@ py::array_t<double> contact_force_table(const Run& run) {
   const auto& samples = run.report.result.history.contact_forces;
   return matrix(samples.size(), kContactForceColumns.size(), [&](std::size_t r, std::size_t c) {
     const pounding::solvers::ContactForceSample& f = samples[r];
-    const double values[] = {f.t_s,    static_cast<double>(f.candidate), static_cast<double>(f.level),
-                             static_cast<double>(f.striking_building), static_cast<double>(f.vertex),
-                             static_cast<double>(f.edge), f.gap_m, f.gap_rate_mps, f.force_kN};
+    const double values[] = {f.t_s,
+                             static_cast<double>(f.candidate),
+                             static_cast<double>(f.level),
+                             static_cast<double>(f.striking_building),
+                             static_cast<double>(f.vertex),
+                             static_cast<double>(f.edge),
+                             f.gap_m,
+                             f.gap_rate_mps,
+                             f.force_kN};
     return values[c];
   });
 }

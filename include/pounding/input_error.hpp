@@ -42,8 +42,8 @@ std::string format_value(double value);
 struct Range {
   double min;
   double max;
-  std::string_view unit = {};  // as printed after the bounds, e.g. "m" or "s"
-  bool min_open = false;       // (min, …]: the bound itself is refused (e.g. a mass of 0)
+  std::string_view unit = {};   // as printed after the bounds, e.g. "m" or "s"
+  bool min_open = false;        // (min, …]: the bound itself is refused (e.g. a mass of 0)
   std::string_view shown = {};  // the interval as stated instead of the bounds' digits, e.g. "[-1/3, 0]"
 };
 

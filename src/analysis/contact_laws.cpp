@@ -112,8 +112,7 @@ double contact_damping(const ContactLawInfo& law, double restitution) {
     case contact::ContactLaw::impulse: return 0.0;
     case contact::ContactLaw::kelvin: return contact::kelvin_damping_ratio(restitution);
     case contact::ContactLaw::hertzdamp: return contact::hertzdamp_normalised_damping(restitution);
-    case contact::ContactLaw::hertzdamp_ye:
-      return contact::hertzdamp_ye_normalised_damping(restitution);
+    case contact::ContactLaw::hertzdamp_ye: return contact::hertzdamp_ye_normalised_damping(restitution);
     case contact::ContactLaw::jankowski: return contact::jankowski_damping_ratio(restitution);
   }
   return 0.0;

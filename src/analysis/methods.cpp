@@ -207,8 +207,11 @@ solvers::IntegratorFactory in_form(const UsedSettings& used, const dynamics::Cou
 
 template <solvers::CvodeMethod kMethod>
 solvers::IntegratorFactory cvode_factory(const UsedSettings& used, const dynamics::CoupledSystem& system) {
-  const solvers::CvodeSettings settings{.method = kMethod, .rtol = used.rtol, .atol = used.atol,
-                                        .newton_solver = newton_solver(used), .atol_vector = atol_vector(used, system)};
+  const solvers::CvodeSettings settings{.method = kMethod,
+                                        .rtol = used.rtol,
+                                        .atol = used.atol,
+                                        .newton_solver = newton_solver(used),
+                                        .atol_vector = atol_vector(used, system)};
   return in_form(used, system, settings,
                  [](solvers::OdeFunctions& functions, const solvers::CvodeSettings& s, double t0,
                     const Eigen::VectorXd& y0) -> IntegratorPtr {
@@ -218,8 +221,11 @@ solvers::IntegratorFactory cvode_factory(const UsedSettings& used, const dynamic
 
 template <solvers::ArkodeMethod kMethod>
 solvers::IntegratorFactory arkode_factory(const UsedSettings& used, const dynamics::CoupledSystem& system) {
-  const solvers::ArkodeSettings settings{.method = kMethod, .rtol = used.rtol, .atol = used.atol,
-                                         .order = used.order, .newton_solver = newton_solver(used),
+  const solvers::ArkodeSettings settings{.method = kMethod,
+                                         .rtol = used.rtol,
+                                         .atol = used.atol,
+                                         .order = used.order,
+                                         .newton_solver = newton_solver(used),
                                          .atol_vector = atol_vector(used, system)};
   return in_form(used, system, settings,
                  [](solvers::OdeFunctions& functions, const solvers::ArkodeSettings& s, double t0,
@@ -227,7 +233,8 @@ solvers::IntegratorFactory arkode_factory(const UsedSettings& used, const dynami
 }
 
 solvers::IntegratorFactory exact_factory(const UsedSettings& used, const dynamics::CoupledSystem& system) {
-  const solvers::ExactSettings settings{.hold_rtol = used.hold_rtol, .hold_atol = used.hold_rtol / 100,
+  const solvers::ExactSettings settings{.hold_rtol = used.hold_rtol,
+                                        .hold_atol = used.hold_rtol / 100,
                                         .hold_atol_vector = atol_vector(used, system),
                                         .modes_cutoff_hz = used.modes_cutoff_hz};
   // Rayleigh damping is classical, so free flight runs in modal form (ModalExactIntegrator).

@@ -57,8 +57,8 @@ double shift_sign(const contact::Candidate& c) { return c.striking_building == 1
 
 /// One pair seen at the gap where it just touches.
 struct Touch {
-  double gap_m = 0.0;     // the touch gap G(t)
-  double rate = 0.0;      // −b dG/dt: the pair's ġ in that geometry (negative while G rises)
+  double gap_m = 0.0;  // the touch gap G(t)
+  double rate = 0.0;   // −b dG/dt: the pair's ġ in that geometry (negative while G rises)
   bool on_segment = false;
 };
 

@@ -412,8 +412,15 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   const UsedSettings used = resolve(scene.solver, &system);
   check_modes_kept(scene, used, system);
   require_yielding_supported(scene, used);
-  RunReport report{scene.name, scene.contact.gap_m, scene.contact.restitution, scene.solver, used,
-                   scene.contact.hold_velocity_mps, system.levels(), system.candidates(), {}};
+  RunReport report{scene.name,
+                   scene.contact.gap_m,
+                   scene.contact.restitution,
+                   scene.solver,
+                   used,
+                   scene.contact.hold_velocity_mps,
+                   system.levels(),
+                   system.candidates(),
+                   {}};
   report.contact_law = law.name;
   if (scene.is_row()) {
     report.pairs = scene.pairs();

@@ -250,7 +250,8 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
     if (level < 1 || static_cast<std::size_t>(level) > levels) {
       throw InputError(key, std::to_string(level),
                        fmt::format("lists levels (floor pairs at a common elevation, as `pounding check` "
-                                   "prints them), numbered 1..{}", levels));
+                                   "prints them), numbered 1..{}",
+                                   levels));
     }
     if (!seen.insert(level).second) throw InputError(key, std::to_string(level), "is listed twice");
   }
@@ -288,7 +289,8 @@ void validate_pair(const Scene& scene) {
   if (std::abs(*clearance - scene.contact.gap_m) > kGapTolerance_m) {
     throw InputError("contact.gap_m", format_value(scene.contact.gap_m),
                      fmt::format("disagrees with the slab outlines, whose clear distance along x "
-                                 "is {} m", *clearance));
+                                 "is {} m",
+                                 *clearance));
   }
 }
 

@@ -40,8 +40,8 @@ void compare_histories(const solvers::History& a, const solvers::History& b, Run
   const auto rows_a = grid_rows(a, a.interval_s), rows_b = grid_rows(b, b.interval_s);
   for (std::size_t c = 1; c < a.columns.size(); ++c) {
     const std::string& name = a.columns[c];
-    double* worst = name.ends_with("_u_m") ? &errors.history_u_m
-                    : name.ends_with("_v_m") ? &errors.history_v_m
+    double* worst = name.ends_with("_u_m")       ? &errors.history_u_m
+                    : name.ends_with("_v_m")     ? &errors.history_v_m
                     : name.ends_with("_phi_rad") ? &errors.history_phi_rad
                                                  : nullptr;
     if (!worst) continue;
@@ -102,8 +102,8 @@ RunErrors compare_runs(const solvers::RunResult& reference, const solvers::RunRe
     if (a.t_s < first_hold_s) errors.impact_time_before_hold_s = std::max(errors.impact_time_before_hold_s, best_dt);
     if (a.approach_velocity_mps >= kFastImpact_mps) {
       errors.impact_time_s = std::max(errors.impact_time_s, best_dt);
-      errors.impulse_relative = std::max(errors.impulse_relative,
-                                         std::abs(run.impacts[best].impulse_kNs - a.impulse_kNs) / a.impulse_kNs);
+      errors.impulse_relative =
+          std::max(errors.impulse_relative, std::abs(run.impacts[best].impulse_kNs - a.impulse_kNs) / a.impulse_kNs);
     }
   }
   errors.extra = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
@@ -313,8 +313,8 @@ StudyResult run_study(const Scene& given, const StudyOptions& options,
     if (method.reference || !runs_scene(method, scene)) continue;
     for (const StudySeries& series : method.series) {
       for (double value : options.quick ? method.quick_ladder : method.ladder) {
-        const bool is_reference = !exact_runs(scene) && method.name == "cvode-bdf" &&
-                                  series.event_location.empty() && value == kCvodeReferenceRtol;
+        const bool is_reference = !exact_runs(scene) && method.name == "cvode-bdf" && series.event_location.empty() &&
+                                  value == kCvodeReferenceRtol;
         if (is_reference) continue;  // the reference's own run: no error to measure
         Scene variant = scene;
         variant.solver = with_method(scene.solver, method.name);  // the scene's settings this method uses

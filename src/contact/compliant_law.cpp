@@ -11,16 +11,11 @@ namespace pounding::contact {
 
 std::string_view to_string(ContactLaw law) {
   switch (law) {
-    case ContactLaw::impulse:
-      return "impulse";
-    case ContactLaw::kelvin:
-      return "kelvin";
-    case ContactLaw::hertzdamp:
-      return "hertzdamp";
-    case ContactLaw::hertzdamp_ye:
-      return "hertzdamp-ye";
-    case ContactLaw::jankowski:
-      return "jankowski";
+    case ContactLaw::impulse: return "impulse";
+    case ContactLaw::kelvin: return "kelvin";
+    case ContactLaw::hertzdamp: return "hertzdamp";
+    case ContactLaw::hertzdamp_ye: return "hertzdamp-ye";
+    case ContactLaw::jankowski: return "jankowski";
   }
   return "?";
 }
@@ -121,13 +116,10 @@ double CompliantContact::own_overlap_slope(double own_overlap_m) const {
 double CompliantContact::first_switch(double overlap_m, double rate_mps) const {
   switch (law_) {
     case ContactLaw::impulse:
-    case ContactLaw::kelvin:
-      return stiffness_ * overlap_m + damping_ * rate_mps;
+    case ContactLaw::kelvin: return stiffness_ * overlap_m + damping_ * rate_mps;
     case ContactLaw::hertzdamp:
-    case ContactLaw::hertzdamp_ye:
-      return stiffness_ + damping_ * rate_mps;
-    case ContactLaw::jankowski:
-      return rate_mps;
+    case ContactLaw::hertzdamp_ye: return stiffness_ + damping_ * rate_mps;
+    case ContactLaw::jankowski: return rate_mps;
   }
   return 0.0;
 }
@@ -141,16 +133,10 @@ double CompliantContact::switch_rate(double, double rate_mps, double accel_mps2)
   double rate = 0.0;
   switch (law_) {
     case ContactLaw::impulse:
-    case ContactLaw::kelvin:
-      rate = stiffness_ * rate_mps + damping_ * accel_mps2;
-      break;
+    case ContactLaw::kelvin: rate = stiffness_ * rate_mps + damping_ * accel_mps2; break;
     case ContactLaw::hertzdamp:
-    case ContactLaw::hertzdamp_ye:
-      rate = damping_ * accel_mps2;
-      break;
-    case ContactLaw::jankowski:
-      rate = accel_mps2;
-      break;
+    case ContactLaw::hertzdamp_ye: rate = damping_ * accel_mps2; break;
+    case ContactLaw::jankowski: rate = accel_mps2; break;
   }
   return switched_ ? -rate : rate;
 }

@@ -54,8 +54,8 @@ GapState evaluate_gap(const Candidate& c, const SlabMotion& a, const SlabMotion&
   s.struck_row << -n.x(), -n.y(), -cross(arm_q + d, n);
   // g̈ = d̈·n + 2 ḋ·ṅ + d·n̈; the parts without accelerations are the centripetal terms of P and
   // Q1, the Coriolis-like 2 ḋ·ṅ, and −φ̇_B² d·n from n̈.
-  s.curvature_mps2 = -spin_a * spin_a * arm_p.dot(n) + spin_b * spin_b * arm_q.dot(n) +
-                     2.0 * d_dot.dot(n_dot) - spin_b * spin_b * d.dot(n);
+  s.curvature_mps2 = -spin_a * spin_a * arm_p.dot(n) + spin_b * spin_b * arm_q.dot(n) + 2.0 * d_dot.dot(n_dot) -
+                     spin_b * spin_b * d.dot(n);
   return s;
 }
 

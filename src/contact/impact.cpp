@@ -182,8 +182,7 @@ LcpSolution solve_lcp(const Eigen::MatrixXd& w_matrix, const Eigen::VectorXd& of
   LcpSolution solution;
   if (offset.size() == 0) return solution;
   const Lcp lcp{w_matrix, offset};
-  const double tolerance =
-      1e-12 * (offset.cwiseAbs().maxCoeff() + 1e-12) * (1.0 + w_matrix.diagonal().maxCoeff());
+  const double tolerance = 1e-12 * (offset.cwiseAbs().maxCoeff() + 1e-12) * (1.0 + w_matrix.diagonal().maxCoeff());
   if (offset.size() <= static_cast<Eigen::Index>(kMaxEnumerated)) {
     solution.x = enumerate(lcp, tolerance);
     if (solution.x.size() == 0) solution = gauss_seidel(lcp);

@@ -341,8 +341,8 @@ void CoupledSystem::add_contact_force(ConstVectorRef y, std::size_t index, doubl
 }
 
 Eigen::SparseMatrix<double> CoupledSystem::contact_force_rows(ConstVectorRef y, std::size_t index,
-                                                             double stiffness_kN_per_m,
-                                                             double damping_kNs_per_m) const {
+                                                              double stiffness_kN_per_m,
+                                                              double damping_kNs_per_m) const {
   std::vector<std::pair<int, double>> row;  // G's entries: (index in q, value)
   for (const RowBlock& block : row_blocks(candidates_[index], gap(y, index))) {
     for (int k = 0; k < 3; ++k) row.emplace_back(block.first + k, block.row[k]);

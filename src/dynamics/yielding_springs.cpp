@@ -82,12 +82,9 @@ double YieldingSprings::slip(const Eigen::Ref<const Eigen::VectorXd>& y, const S
   const YieldingSpring& spring = springs_[j];
   if (spring.bouc_wen) return drift(y.head(dof_), j) - spring.yield_drift_m * y[spring.z_index];
   switch (states[j].branch) {
-    case SpringBranch::elastic:
-      return states[j].slip_m;
-    case SpringBranch::yielding_up:
-      return drift(y.head(dof_), j) - spring.yield_drift_m;
-    case SpringBranch::yielding_down:
-      return drift(y.head(dof_), j) + spring.yield_drift_m;
+    case SpringBranch::elastic: return states[j].slip_m;
+    case SpringBranch::yielding_up: return drift(y.head(dof_), j) - spring.yield_drift_m;
+    case SpringBranch::yielding_down: return drift(y.head(dof_), j) + spring.yield_drift_m;
   }
   return 0.0;
 }
@@ -168,12 +165,9 @@ double YieldingSprings::witness(const Eigen::Ref<const Eigen::VectorXd>& y, cons
                                 std::size_t j) const {
   if (springs_[j].bouc_wen) return 1.0;
   switch (states[j].branch) {
-    case SpringBranch::elastic:
-      return springs_[j].yield_drift_m - std::abs(drift(y.head(dof_), j) - states[j].slip_m);
-    case SpringBranch::yielding_up:
-      return drift(y.segment(dof_, dof_), j);
-    case SpringBranch::yielding_down:
-      return -drift(y.segment(dof_, dof_), j);
+    case SpringBranch::elastic: return springs_[j].yield_drift_m - std::abs(drift(y.head(dof_), j) - states[j].slip_m);
+    case SpringBranch::yielding_up: return drift(y.segment(dof_, dof_), j);
+    case SpringBranch::yielding_down: return -drift(y.segment(dof_, dof_), j);
   }
   return 1.0;
 }

@@ -20,10 +20,8 @@ double unit_to_mps2(AccelUnits units, double g_mps2) {
     case AccelUnits::g: return g_mps2;
     case AccelUnits::m_per_s2: return 1.0;
     case AccelUnits::cm_per_s2: return 0.01;
-    case AccelUnits::in_per_s2:
-      return 0.0254;  // exact, by the definition of the inch
-    case AccelUnits::ft_per_s2:
-      return 0.3048;
+    case AccelUnits::in_per_s2: return 0.0254;  // exact, by the definition of the inch
+    case AccelUnits::ft_per_s2: return 0.3048;
   }
   return 1.0;
 }
@@ -360,8 +358,8 @@ SaScaling parse_sa_scaling(const std::string& text, const std::string& key) {
 }
 
 NonFiniteTime::NonFiniteTime(double t_s)
-    : std::domain_error(fmt::format("the ground motion was asked for at t = {} s: the solution is no longer finite",
-                                    t_s)) {}
+    : std::domain_error(
+          fmt::format("the ground motion was asked for at t = {} s: the solution is no longer finite", t_s)) {}
 
 std::optional<AccelUnits> parse_accel_units(std::string_view name) {
   if (name == "g") return AccelUnits::g;

@@ -34,9 +34,7 @@ std::vector<Line> read_lines(const std::filesystem::path& file) {
   return lines;
 }
 
-bool is_blank(const std::string& text) {
-  return text.find_first_not_of(" \t") == std::string::npos;
-}
+bool is_blank(const std::string& text) { return text.find_first_not_of(" \t") == std::string::npos; }
 
 bool is_comment(const std::string& text) {
   const auto first = text.find_first_not_of(" \t");
@@ -85,10 +83,9 @@ class Parser {
     return value;
   }
 
-  InputError error(const Line& line, std::size_t field, const std::string& value,
-                   const std::string& reason) const {
-    const std::string key = field == 0 ? fmt::format("line {}", line.number)
-                                       : fmt::format("line {}, field {}", line.number, field);
+  InputError error(const Line& line, std::size_t field, const std::string& value, const std::string& reason) const {
+    const std::string key =
+        field == 0 ? fmt::format("line {}", line.number) : fmt::format("line {}, field {}", line.number, field);
     return InputError(key, "'" + value + "'", reason, file_);
   }
 
@@ -111,8 +108,7 @@ struct At2Header {
 
 At2Header parse_at2_header(const Line& line, const Parser& parser) {
   // Older PEER style: "NPTS=  1559, DT= .02000 SEC"; NGA-West2: "  5372    0.0100    NPTS, DT".
-  static const std::regex older(R"(NPTS\s*=\s*([^,\s]+)\s*,?\s*DT\s*=\s*([^,\s]+))",
-                                std::regex::icase);
+  static const std::regex older(R"(NPTS\s*=\s*([^,\s]+)\s*,?\s*DT\s*=\s*([^,\s]+))", std::regex::icase);
   static const std::regex west2(R"(^\s*(\S+)[\s,]+(\S+)\s+NPTS\s*,\s*DT)", std::regex::icase);
   // std::regex backtracks: bound the text it sees (a real header line is under 80 characters).
   constexpr std::size_t kMaxHeaderLength = 200;
@@ -122,8 +118,7 @@ At2Header parse_at2_header(const Line& line, const Parser& parser) {
   }
   std::smatch match;
   if (!std::regex_search(line.text, match, older) && !std::regex_search(line.text, match, west2)) {
-    throw parser.error(line, 0, line.text,
-                       "expected the PEER header line 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT'");
+    throw parser.error(line, 0, line.text, "expected the PEER header line 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT'");
   }
   At2Header header;
   const double npts = parser.number(match[1].str(), line, 0);
@@ -142,8 +137,7 @@ At2Header parse_at2_header(const Line& line, const Parser& parser) {
 RecordSamples read_peer_at2(const std::vector<Line>& lines, const Parser& parser) {
   constexpr std::size_t kHeaderLines = 4;
   if (lines.size() < kHeaderLines) {
-    throw parser.error(fmt::format("a PEER AT2 file needs {} header lines, found {}",
-                                   kHeaderLines, lines.size()));
+    throw parser.error(fmt::format("a PEER AT2 file needs {} header lines, found {}", kHeaderLines, lines.size()));
   }
   const At2Header header = parse_at2_header(lines[3], parser);
   RecordSamples samples;
@@ -161,9 +155,9 @@ RecordSamples read_peer_at2(const std::vector<Line>& lines, const Parser& parser
     parser.check_count(samples.accel.size(), lines[i]);
   }
   if (static_cast<long>(samples.accel.size()) != header.npts) {
-    throw parser.error(lines[3], 0, fmt::format("NPTS={}", header.npts),
-                       fmt::format("the header announces {} values but the file holds {}",
-                                   header.npts, samples.accel.size()));
+    throw parser.error(
+        lines[3], 0, fmt::format("NPTS={}", header.npts),
+        fmt::format("the header announces {} values but the file holds {}", header.npts, samples.accel.size()));
   }
   samples.time_s = times_from_spacing(samples.accel.size(), header.dt_s);
   return samples;
@@ -178,20 +172,17 @@ const std::string& field_at(const std::vector<std::string>& fields, int column, 
   return fields[column - 1];
 }
 
-RecordSamples read_columns(const std::vector<Line>& lines, const RecordReadOptions& options,
-                           const Parser& parser) {
+RecordSamples read_columns(const std::vector<Line>& lines, const RecordReadOptions& options, const Parser& parser) {
   const int accel_column = options.accel_column.value_or(2);
   RecordSamples samples;
   for (const Line& line : lines) {
     if (is_blank(line.text) || is_comment(line.text)) continue;
     const auto fields = split_fields(line.text);
-    const double t = parser.number(field_at(fields, options.time_column, line, parser), line,
-                                   options.time_column);
+    const double t = parser.number(field_at(fields, options.time_column, line, parser), line, options.time_column);
     const double a = parser.number(field_at(fields, accel_column, line, parser), line, accel_column);
     if (!samples.time_s.empty() && !(t > samples.time_s.back())) {
       throw parser.error(line, options.time_column, fields[options.time_column - 1],
-                         fmt::format("times must increase (previous sample at {} s)",
-                                     samples.time_s.back()));
+                         fmt::format("times must increase (previous sample at {} s)", samples.time_s.back()));
     }
     samples.time_s.push_back(t);
     samples.accel.push_back(a);
@@ -200,8 +191,7 @@ RecordSamples read_columns(const std::vector<Line>& lines, const RecordReadOptio
   return samples;
 }
 
-RecordSamples read_single(const std::vector<Line>& lines, const RecordReadOptions& options,
-                          const Parser& parser) {
+RecordSamples read_single(const std::vector<Line>& lines, const RecordReadOptions& options, const Parser& parser) {
   RecordSamples samples;
   for (const Line& line : lines) {
     if (is_blank(line.text) || is_comment(line.text)) continue;

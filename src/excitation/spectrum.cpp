@@ -285,8 +285,7 @@ std::vector<RotDOrdinate> rotd_spectrum(const AccelerationHistory& first, const 
   return ordinates;
 }
 
-double scale_to_psa(const AccelerationHistory& history, double period_s, double damping_ratio,
-                    double target_psa_mps2) {
+double scale_to_psa(const AccelerationHistory& history, double period_s, double damping_ratio, double target_psa_mps2) {
   if (!(target_psa_mps2 > 0.0) || !std::isfinite(target_psa_mps2)) {
     throw InputError("target_psa", format_value(target_psa_mps2), "must be positive (m/s²)");
   }

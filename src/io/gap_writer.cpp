@@ -92,9 +92,8 @@ void write_records_csv(const analysis::RecordSetResult& set, std::ostream& out) 
     out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.record), csv_text(r.source),
                        r.status, csv_text(r.message), csv_number(r.pga_g), csv_number(r.duration_s),
                        csv_number(r.needed_gap_m), csv_level(r.level), csv_level(r.floors[0]), csv_level(r.floors[1]),
-                       csv_number(r.t_s),
-                       csv_number(r.rules.abs_m), csv_number(r.rules.srss_m), csv_number(r.rules.ddc_m), r.steps,
-                       r.wall_time_s);
+                       csv_number(r.t_s), csv_number(r.rules.abs_m), csv_number(r.rules.srss_m),
+                       csv_number(r.rules.ddc_m), r.steps, r.wall_time_s);
   }
 }
 
@@ -220,8 +219,11 @@ json gap_json(const std::string& scene, const analysis::NeededGap& gap,
   if (!curve.empty()) {
     json points = json::array();
     for (const analysis::SeverityPoint& p : curve) {
-      points.push_back({{"gap_m", p.gap_m}, {"status", p.status}, {"impacts", p.impacts},
-                        {"max_impulse_kNs", p.max_impulse_kNs}, {"max_approach_mps", p.max_approach_mps},
+      points.push_back({{"gap_m", p.gap_m},
+                        {"status", p.status},
+                        {"impacts", p.impacts},
+                        {"max_impulse_kNs", p.max_impulse_kNs},
+                        {"max_approach_mps", p.max_approach_mps},
                         {"energy_lost_kJ", p.energy_lost_kJ}});
     }
     document["curve"] = points;

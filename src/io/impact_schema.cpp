@@ -19,8 +19,7 @@ std::string suffixed(std::string name, std::string_view suffix) {
 
 std::string csv_text(Type type, double value) {
   switch (type) {
-    case Type::real:
-      return std::isnan(value) ? std::string() : fmt::format("{}", value);  // NaN: not given
+    case Type::real: return std::isnan(value) ? std::string() : fmt::format("{}", value);  // NaN: not given
     case Type::integer: return fmt::format("{}", static_cast<long long>(value));
     case Type::flag: return value != 0.0 ? "1" : "0";
   }

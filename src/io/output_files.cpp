@@ -123,11 +123,11 @@ std::string folder_name(std::string_view scene_name) {
   constexpr std::size_t kMaxLength = 100;
   std::string name;
   for (char c : scene_name.substr(0, kMaxLength)) {
-    const bool safe = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
-                      c == '_' || c == '.';
+    const bool safe =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
     name += safe ? c : '_';
   }
-  if (name.empty()) name.assign(1, '_');  // assign: GCC 12 warns (-Wrestrict, a false positive) on = "_"
+  if (name.empty()) name.assign(1, '_');        // assign: GCC 12 warns (-Wrestrict, a false positive) on = "_"
   if (name.front() == '.') name.front() = '_';  // neither "." nor ".." nor a hidden folder
   return name;
 }

@@ -67,12 +67,9 @@ const std::vector<PeakField>& peak_fields() {
 
 bool asked(const solvers::OutputSelection& outputs, Group group) {
   switch (group) {
-    case Group::displacements:
-      return outputs.displacement_peaks;
-    case Group::accelerations:
-      return outputs.acceleration_peaks;
-    case Group::drifts:
-      return outputs.drift_peaks;
+    case Group::displacements: return outputs.displacement_peaks;
+    case Group::accelerations: return outputs.acceleration_peaks;
+    case Group::drifts: return outputs.drift_peaks;
   }
   return false;
 }

@@ -232,9 +232,9 @@ std::vector<analysis::RecordEntry> read_record_list(const std::filesystem::path&
     throw InputError("--records", list_or_folder.string(), "no such record list or folder");
   }
   if (records.empty()) {
-    throw InputError("--records", list_or_folder.string(),
-                     std::filesystem::is_directory(list_or_folder) ? "the folder holds no .AT2 file"
-                                                                   : "the list names no record");
+    throw InputError(
+        "--records", list_or_folder.string(),
+        std::filesystem::is_directory(list_or_folder) ? "the folder holds no .AT2 file" : "the list names no record");
   }
   return records;
 }

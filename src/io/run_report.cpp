@@ -288,12 +288,12 @@ std::string brief_report(const analysis::RunReport& report) {
 std::string full_report(const analysis::RunReport& report) {
   const solvers::RunResult& r = report.result;
   const analysis::ContactLawInfo& info = analysis::contact_law_info(report.contact_law);
-  const std::string law = info.stiffness_key.empty()
-                              ? std::string()
-                              : fmt::format(", {} law k_c = {:.6g} {}, {} = {:.4g}", report.contact_law,
-                                            report.contact_stiffness, info.stiffness_unit,
-                                            info.damping_key == "damping_ratio" ? "xi" : "xi v0/k_h",
-                                            report.contact_damping);
+  const std::string law =
+      info.stiffness_key.empty()
+          ? std::string()
+          : fmt::format(", {} law k_c = {:.6g} {}, {} = {:.4g}", report.contact_law, report.contact_stiffness,
+                        info.stiffness_unit, info.damping_key == "damping_ratio" ? "xi" : "xi v0/k_h",
+                        report.contact_damping);
   std::string text =
       fmt::format("Run '{}' with {} ({}), {}, k = {}{}: {}{}\n", report.scene, r.method, method_settings_text(report),
                   gaps_text(report), report.restitution, law, solvers::to_string(r.status),

@@ -119,8 +119,10 @@ json peaks_json(const std::vector<solvers::BuildingPeaks>& peaks, const solvers:
       }
       floors.push_back(floor);
     }
-    list.push_back({{"building", building.name}, {"contact_vertices", building.contact_vertices},
-                    {"contact_vertices_rest", vertices}, {"floors", floors}});
+    list.push_back({{"building", building.name},
+                    {"contact_vertices", building.contact_vertices},
+                    {"contact_vertices_rest", vertices},
+                    {"floors", floors}});
   }
   return list;
 }
@@ -265,8 +267,9 @@ json accelerations_json(const analysis::RunReport& report) {
                              "their impulses are in impacts (impulse_kNs)"
                            : "the contact forces are part of the accelerations"},
           {"g_mps2", report.g_mps2},
-          {"peaks_located", "on the dense output: turning points of the rate (exact in free motion, a central "
-                            "difference while contact forces act), and every step end, event and sample"},
+          {"peaks_located",
+           "on the dense output: turning points of the rate (exact in free motion, a central "
+           "difference while contact forces act), and every step end, event and sample"},
           {"drift_peaks_located", "on the dense output: turning points, and every step end, event and sample"}};
 }
 
@@ -289,8 +292,10 @@ json settings_json(const analysis::RunReport& report) {
   for (const analysis::SettingEntry& e : analysis::used_entries(report.used))
     used[std::string(e.key)] = setting_json(e.value);
   if (const auto& c = report.used.atol_components) {
-    used["atol_per_component"] = {{"u_m", c->displacement_m}, {"v_m", c->displacement_m},
-                                  {"phi_rad", c->rotation_rad}, {"rates_factor_per_s", c->rate_per_s}};
+    used["atol_per_component"] = {{"u_m", c->displacement_m},
+                                  {"v_m", c->displacement_m},
+                                  {"phi_rad", c->rotation_rad},
+                                  {"rates_factor_per_s", c->rate_per_s}};
   }
   if (report.used.method->event_driven) used["hold_velocity_mps"] = report.hold_velocity_mps;
   return {{"given", given}, {"used", used}, {"not_used", report.solver.not_used}};
@@ -444,14 +449,14 @@ void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& 
 }
 
 void write_contact_forces_header(std::ostream& out) {
-  write_csv_header({"t_s", "candidate", "level", "striking_building", "vertex", "struck_edge", "gap_m", "gap_rate_mps",
-                    "force_kN"},
-                   out);
+  write_csv_header(
+      {"t_s", "candidate", "level", "striking_building", "vertex", "struck_edge", "gap_m", "gap_rate_mps", "force_kN"},
+      out);
 }
 
 void write_contact_force_row(const solvers::ContactForceSample& f, std::ostream& out) {
-  out << fmt::format("{},{},{},{},{},{},{},{},{}\n", f.t_s, f.candidate, f.level, f.striking_building, f.vertex,
-                     f.edge, f.gap_m, f.gap_rate_mps, f.force_kN);
+  out << fmt::format("{},{},{},{},{},{},{},{},{}\n", f.t_s, f.candidate, f.level, f.striking_building, f.vertex, f.edge,
+                     f.gap_m, f.gap_rate_mps, f.force_kN);
 }
 
 void remove_history_files(const std::filesystem::path& folder) {

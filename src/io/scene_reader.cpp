@@ -166,9 +166,7 @@ class TableReader {
     if (!node) return std::nullopt;
     return number_of(*node, key_path(key));
   }
-  double number_or(std::string_view key, double fallback) {
-    return optional_number(key).value_or(fallback);
-  }
+  double number_or(std::string_view key, double fallback) { return optional_number(key).value_or(fallback); }
 
   int integer_of(const toml::node& node, const std::string& key) const {
     if (!node.is_integer()) throw error(node, key, "expected a whole number");
@@ -312,8 +310,8 @@ std::vector<model::Column> read_columns(TableReader& table) {
     const std::string key = table.key_path("columns");
     const toml::array& array = table.array_of(*node, key);
     if (array.size() > model::kMaxColumns) {
-      throw table.error(*node, key, fmt::format("{} columns: a storey may have at most {}", array.size(),
-                                                model::kMaxColumns));
+      throw table.error(*node, key,
+                        fmt::format("{} columns: a storey may have at most {}", array.size(), model::kMaxColumns));
     }
     for (std::size_t i = 0; i < array.size(); ++i) {
       const auto v = table.numbers_of(array[i], fmt::format("{}[{}]", key, i + 1), 4);
@@ -397,8 +395,7 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
                       "give either frame_factor or target_period_s, not both");
   }
   if (!factor && !period) {
-    throw InputError(table.key_path("frame_factor"), "missing",
-                     "give frame_factor or target_period_s", table.file());
+    throw InputError(table.key_path("frame_factor"), "missing", "give frame_factor or target_period_s", table.file());
   }
   if (factor) b.frame_factor = table.number_of(*factor, table.key_path("frame_factor"));
   if (period) b.target_period_s = table.number_of(*period, table.key_path("target_period_s"));
@@ -454,8 +451,9 @@ model::BuildingDefinition read_building(TableReader table) {
     const std::string key = table.key_path("slab");
     const toml::array& vertices = table.array_of(table.require("slab"), key);
     if (vertices.size() > model::kMaxSlabVertices) {
-      throw table.error(vertices, key, fmt::format("{} vertices: a slab may have at most {}", vertices.size(),
-                                                   model::kMaxSlabVertices));
+      throw table.error(
+          vertices, key,
+          fmt::format("{} vertices: a slab may have at most {}", vertices.size(), model::kMaxSlabVertices));
     }
     std::vector<Point2> points;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
@@ -473,8 +471,7 @@ model::BuildingDefinition read_building(TableReader table) {
       const std::string key = damping->key_path("modes");
       const toml::array& array = damping->array_of(*modes, key);
       if (array.size() != 2) throw damping->error(*modes, key, "expected two mode numbers");
-      b.damping.modes = {damping->integer_of(array[0], key + "[1]"),
-                         damping->integer_of(array[1], key + "[2]")};
+      b.damping.modes = {damping->integer_of(array[0], key + "[1]"), damping->integer_of(array[1], key + "[2]")};
     }
     damping->finish();
   }
@@ -577,15 +574,9 @@ analysis::SolverSettings read_solver(std::optional<TableReader> table) {
   for (const analysis::SettingSpec& spec : analysis::setting_specs()) {
     std::optional<analysis::SettingValue> value;
     switch (spec.member.index()) {  // the setting's type (SettingSpec::member)
-      case 0:
-        value = table->optional_integer(spec.key);
-        break;
-      case 1:
-        value = table->optional_number(spec.key);
-        break;
-      default:
-        value = table->optional_string(spec.key);
-        break;
+      case 0: value = table->optional_integer(spec.key); break;
+      case 1: value = table->optional_number(spec.key); break;
+      default: value = table->optional_string(spec.key); break;
     }
     if (value) solver.set(spec.id, *value);
   }
@@ -810,8 +801,7 @@ std::optional<std::array<std::string, 2>> apply_gap_text(analysis::Scene& scene,
 
 }  // namespace
 
-analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& file,
-                            const SceneOverrides& overrides) {
+analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& file, const SceneOverrides& overrides) {
   const toml::table document = parse_toml(text, file.string());
   analysis::Scene scene = read_document(document, file);
   // The file's own data is checked first so that an override is never blamed for it, and an

@@ -35,8 +35,12 @@ void write_rotd_csv(std::ostream& out, const SpectrumReport& report) {
 ordered_json record_json(const RecordSpectrum& record, double g_mps2) {
   ordered_json ordinates = ordered_json::array();
   for (const excitation::SpectrumOrdinate& o : record.ordinates) {
-    ordinates.push_back({{"period_s", o.period_s}, {"sd_m", o.sd_m}, {"psv_mps", o.psv_mps},
-                         {"psa_mps2", o.psa_mps2}, {"psa_g", o.psa_mps2 / g_mps2}, {"peak_time_s", o.peak_time_s}});
+    ordinates.push_back({{"period_s", o.period_s},
+                         {"sd_m", o.sd_m},
+                         {"psv_mps", o.psv_mps},
+                         {"psa_mps2", o.psa_mps2},
+                         {"psa_g", o.psa_mps2 / g_mps2},
+                         {"peak_time_s", o.peak_time_s}});
   }
   return {{"file", std::filesystem::absolute(record.file).lexically_normal().string()},
           {"sha256", record.sha256},
@@ -57,7 +61,9 @@ ordered_json report_json(const SpectrumReport& report) {
   if (!report.rotd.empty()) {
     ordered_json rotd = ordered_json::array();
     for (const excitation::RotDOrdinate& o : report.rotd) {
-      rotd.push_back({{"period_s", o.period_s}, {"rotd50_sd_m", o.rotd50_sd_m}, {"rotd100_sd_m", o.rotd100_sd_m},
+      rotd.push_back({{"period_s", o.period_s},
+                      {"rotd50_sd_m", o.rotd50_sd_m},
+                      {"rotd100_sd_m", o.rotd100_sd_m},
                       {"rotd50_psa_g", o.rotd50_psa_mps2 / report.g_mps2},
                       {"rotd100_psa_g", o.rotd100_psa_mps2 / report.g_mps2},
                       {"rotd100_angle_deg", o.rotd100_angle_deg}});
@@ -86,8 +92,7 @@ void write_spectrum(const std::filesystem::path& folder, const SpectrumReport& r
   if (!report.rotd.empty()) {
     write_atomically(folder / "rotd.csv", [&](std::ostream& out) { write_rotd_csv(out, report); });
   }
-  write_atomically(folder / "spectrum.json",
-                   [&](std::ostream& out) { out << report_json(report).dump(2) << '\n'; });
+  write_atomically(folder / "spectrum.json", [&](std::ostream& out) { out << report_json(report).dump(2) << '\n'; });
 }
 
 }  // namespace pounding::io

@@ -19,25 +19,38 @@ const char* kCsvHeader =
 
 /// The error columns a study row and a truncation row share, in their CSV order.
 nlohmann::json errors_json(const analysis::RunErrors& e) {
-  return {{"matched", e.matched}, {"missing", e.missing}, {"extra", e.extra},
-          {"impact_time_error_s", e.impact_time_s}, {"impact_time_error_all_s", e.impact_time_all_s},
+  return {{"matched", e.matched},
+          {"missing", e.missing},
+          {"extra", e.extra},
+          {"impact_time_error_s", e.impact_time_s},
+          {"impact_time_error_all_s", e.impact_time_all_s},
           {"impact_time_error_before_hold_s", e.impact_time_before_hold_s},
-          {"impulse_relative_error", e.impulse_relative}, {"history_u_error_m", e.history_u_m},
-          {"history_v_error_m", e.history_v_m}, {"history_phi_error_rad", e.history_phi_rad},
-          {"peak_u_error_m", e.peak_u_m}, {"peak_v_error_m", e.peak_v_m}, {"peak_phi_error_rad", e.peak_phi_rad}};
+          {"impulse_relative_error", e.impulse_relative},
+          {"history_u_error_m", e.history_u_m},
+          {"history_v_error_m", e.history_v_m},
+          {"history_phi_error_rad", e.history_phi_rad},
+          {"peak_u_error_m", e.peak_u_m},
+          {"peak_v_error_m", e.peak_v_m},
+          {"peak_phi_error_rad", e.peak_phi_rad}};
 }
 
 std::string errors_csv(const analysis::RunErrors& e) {
   return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}", e.matched, e.missing, e.extra, e.impact_time_s,
-                     e.impact_time_all_s, e.impact_time_before_hold_s, e.impulse_relative, e.history_u_m,
-                     e.history_v_m, e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad);
+                     e.impact_time_all_s, e.impact_time_before_hold_s, e.impulse_relative, e.history_u_m, e.history_v_m,
+                     e.history_phi_rad, e.peak_u_m, e.peak_v_m, e.peak_phi_rad);
 }
 
 nlohmann::json row_json(const analysis::StudyRow& row) {
-  nlohmann::json json = {{"method", row.method}, {"setting", row.setting}, {"value", row.value},
-                         {"status", row.status}, {"run_time_s", row.run_time_s}, {"steps", row.steps},
-                         {"rhs_evaluations", row.rhs_evaluations}, {"restarts", row.restarts},
-                         {"impacts", row.impacts}, {"impact_time_at_reference", row.impact_time_at_reference},
+  nlohmann::json json = {{"method", row.method},
+                         {"setting", row.setting},
+                         {"value", row.value},
+                         {"status", row.status},
+                         {"run_time_s", row.run_time_s},
+                         {"steps", row.steps},
+                         {"rhs_evaluations", row.rhs_evaluations},
+                         {"restarts", row.restarts},
+                         {"impacts", row.impacts},
+                         {"impact_time_at_reference", row.impact_time_at_reference},
                          {"history_u_at_reference", row.history_u_at_reference}};
   json.update(errors_json(row.errors));
   return json;
@@ -57,10 +70,16 @@ const char* kStiffnessCsvHeader =
     "peak_force_kN\n";
 
 nlohmann::json stiffness_row_json(const analysis::StiffnessRow& row) {
-  return {{"law", row.law}, {"method", row.method}, {"stiffness", row.stiffness},
-          {"stiffness_unit", row.stiffness_unit}, {"status", row.status}, {"run_time_s", row.run_time_s},
-          {"steps", row.steps}, {"rhs_evaluations", row.rhs_evaluations},
-          {"jacobian_evaluations", row.jacobian_evaluations}, {"impacts", row.impacts},
+  return {{"law", row.law},
+          {"method", row.method},
+          {"stiffness", row.stiffness},
+          {"stiffness_unit", row.stiffness_unit},
+          {"status", row.status},
+          {"run_time_s", row.run_time_s},
+          {"steps", row.steps},
+          {"rhs_evaluations", row.rhs_evaluations},
+          {"jacobian_evaluations", row.jacobian_evaluations},
+          {"impacts", row.impacts},
           {"peak_force_kN", row.peak_force_kN}};
 }
 
@@ -78,9 +97,13 @@ const char* kTruncationCsvHeader =
     "history_u_error_m,history_v_error_m,history_phi_error_rad,peak_u_error_m,peak_v_error_m,peak_phi_error_rad\n";
 
 nlohmann::json truncation_row_json(const analysis::TruncationRow& row) {
-  nlohmann::json json = {{"modes_cutoff_hz", row.cutoff_hz}, {"modes_kept", row.modes_kept},
-                         {"modes_total", row.modes_total}, {"status", row.status}, {"run_time_s", row.run_time_s},
-                         {"steps", row.steps}, {"impacts", row.impacts}};
+  nlohmann::json json = {{"modes_cutoff_hz", row.cutoff_hz},
+                         {"modes_kept", row.modes_kept},
+                         {"modes_total", row.modes_total},
+                         {"status", row.status},
+                         {"run_time_s", row.run_time_s},
+                         {"steps", row.steps},
+                         {"impacts", row.impacts}};
   json.update(errors_json(row.errors));
   return json;
 }

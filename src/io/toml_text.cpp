@@ -13,8 +13,8 @@ std::size_t sequence_length(unsigned char lead) {
 
 /// The code point of the well-formed sequence at text[i] of `length` bytes.
 std::uint32_t decode(std::string_view text, std::size_t i, std::size_t length) {
-  std::uint32_t code = length == 1 ? static_cast<unsigned char>(text[i])
-                                   : static_cast<unsigned char>(text[i]) & (0xFFu >> (length + 1));
+  std::uint32_t code =
+      length == 1 ? static_cast<unsigned char>(text[i]) : static_cast<unsigned char>(text[i]) & (0xFFu >> (length + 1));
   for (std::size_t k = 1; k < length; ++k) code = (code << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
   return code;
 }

@@ -24,8 +24,8 @@ constexpr Range kYoungsModulus{1e6, 1e9, "kPa"};
 constexpr Range kShearCapacity{0.0, 1e6, "kN", true};
 constexpr Range kFrameFactor{1e-4, 10.0, "", true};
 constexpr Range kTargetPeriod{0.02, 20.0, "s"};
-constexpr double kMaxStoreyStiffness = 1e16;  // torsional entries reach k·r², 1e12 kN/m · (100 m)²
-constexpr double kMinCentreOfMassInset_m = 1e-3;  // a CM on the slab's edge is a typo
+constexpr double kMaxStoreyStiffness = 1e16;        // torsional entries reach k·r², 1e12 kN/m · (100 m)²
+constexpr double kMinCentreOfMassInset_m = 1e-3;    // a CM on the slab's edge is a typo
 constexpr double kColumnOutsideTolerance_m = 1e-6;  // columns on the slab's edge are usual
 constexpr double kRepeatedColumnDistance_m = 1e-6;  // closer columns are one column given twice
 
@@ -44,8 +44,7 @@ std::string point_text(const Point2& p) { return fmt::format("[{}, {}]", p.x(), 
 
 void validate_slab(const BuildingDefinition& b) {
   if (b.slab.size() < 3) {
-    throw InputError("slab", fmt::format("{} vertices", b.slab.size()),
-                     "a slab needs at least 3 vertices");
+    throw InputError("slab", fmt::format("{} vertices", b.slab.size()), "a slab needs at least 3 vertices");
   }
   if (b.slab.size() > kMaxSlabVertices) {
     throw InputError("slab", fmt::format("{} vertices", b.slab.size()),
@@ -274,12 +273,9 @@ void BuildingDefinition::validate() const {
 
 const char* to_string(HystereticLaw::Kind kind) {
   switch (kind) {
-    case HystereticLaw::Kind::elastic:
-      return "elastic";
-    case HystereticLaw::Kind::bilinear:
-      return "bilinear";
-    case HystereticLaw::Kind::bouc_wen:
-      return "bouc-wen";
+    case HystereticLaw::Kind::elastic: return "elastic";
+    case HystereticLaw::Kind::bilinear: return "bilinear";
+    case HystereticLaw::Kind::bouc_wen: return "bouc-wen";
   }
   return "?";
 }
@@ -288,24 +284,21 @@ double uniform_polar_moment(const Polygon& slab, double mass_t) {
   return mass_t * slab.polar_area_moment_about_centroid() / slab.signed_area();
 }
 
-Eigen::Vector2d column_stiffness(const Column& column, double elastic_modulus_kPa,
-                                 double storey_height_m, double frame_factor) {
+Eigen::Vector2d column_stiffness(const Column& column, double elastic_modulus_kPa, double storey_height_m,
+                                 double frame_factor) {
   const double b = column.b_m, h = column.h_m;
   const double bending = 12.0 * elastic_modulus_kPa / std::pow(storey_height_m, 3);
   return frame_factor * bending * Eigen::Vector2d(h * b * b * b / 12.0, b * h * h * h / 12.0);
 }
 
-Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns,
-                                              const Point2& centre_of_mass,
-                                              double elastic_modulus_kPa, double storey_height_m,
-                                              double frame_factor) {
+Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns, const Point2& centre_of_mass,
+                                              double elastic_modulus_kPa, double storey_height_m, double frame_factor) {
   Eigen::Matrix3d storey = Eigen::Matrix3d::Zero();
   for (const Column& column : columns) {
     const Point2 arm = column.position_m - centre_of_mass;
     Eigen::Matrix<double, 2, 3> t;
     t << 1.0, 0.0, -arm.y(), 0.0, 1.0, arm.x();
-    const Eigen::Vector2d k =
-        column_stiffness(column, elastic_modulus_kPa, storey_height_m, frame_factor);
+    const Eigen::Vector2d k = column_stiffness(column, elastic_modulus_kPa, storey_height_m, frame_factor);
     storey += t.transpose() * k.asDiagonal() * t;
   }
   return storey;
@@ -386,8 +379,8 @@ Building make_building(const BuildingDefinition& definition) {
 
   building.modes = modal_analysis(building.mass_diagonal, building.stiffness);
   const auto [i, j] = definition.damping.modes;
-  building.rayleigh = fit_rayleigh(building.modes[i - 1].omega_rad_s, building.modes[j - 1].omega_rad_s,
-                                   definition.damping.ratio);
+  building.rayleigh =
+      fit_rayleigh(building.modes[i - 1].omega_rad_s, building.modes[j - 1].omega_rad_s, definition.damping.ratio);
   building.damping = building.rayleigh.a0_per_s * Eigen::MatrixXd(building.mass_diagonal.asDiagonal()) +
                      building.rayleigh.a1_s * building.stiffness;
   return building;

@@ -16,8 +16,7 @@ std::string_view to_string(ModeComponent component) {
   return "?";
 }
 
-std::vector<Mode> modal_analysis(const Eigen::VectorXd& mass_diagonal,
-                                 const Eigen::MatrixXd& stiffness) {
+std::vector<Mode> modal_analysis(const Eigen::VectorXd& mass_diagonal, const Eigen::MatrixXd& stiffness) {
   // With M diagonal, K φ = ω² M φ becomes the standard symmetric problem
   // (M^-½ K M^-½) ψ = ω² ψ with φ = M^-½ ψ, which is mass-normalised when ψ is unit.
   const Eigen::VectorXd inv_sqrt_mass = mass_diagonal.cwiseSqrt().cwiseInverse();

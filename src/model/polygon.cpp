@@ -28,21 +28,18 @@ bool segments_meet(const Point2& a1, const Point2& a2, const Point2& b1, const P
   const int o1 = orientation(a1, a2, b1), o2 = orientation(a1, a2, b2);
   const int o3 = orientation(b1, b2, a1), o4 = orientation(b1, b2, a2);
   if (o1 != o2 && o3 != o4 && o1 != 0 && o2 != 0 && o3 != 0 && o4 != 0) return true;
-  return on_segment(a1, a2, b1) || on_segment(a1, a2, b2) || on_segment(b1, b2, a1) ||
-         on_segment(b1, b2, a2);
+  return on_segment(a1, a2, b1) || on_segment(a1, a2, b2) || on_segment(b1, b2, a1) || on_segment(b1, b2, a2);
 }
 
 /// Segments cross at a single interior point of both (a proper crossing).
-bool segments_cross_properly(const Point2& a1, const Point2& a2, const Point2& b1,
-                             const Point2& b2) {
+bool segments_cross_properly(const Point2& a1, const Point2& a2, const Point2& b1, const Point2& b2) {
   const int o1 = orientation(a1, a2, b1), o2 = orientation(a1, a2, b2);
   const int o3 = orientation(b1, b2, a1), o4 = orientation(b1, b2, a2);
   return o1 * o2 < 0 && o3 * o4 < 0;
 }
 
 /// Distances t ≥ 0... along direction ±x from `origin` to the non-horizontal edges of `target`.
-void horizontal_hits(const Point2& origin, double direction, const Polygon& target,
-                     double& best) {
+void horizontal_hits(const Point2& origin, double direction, const Polygon& target, double& best) {
   for (std::size_t i = 0; i < target.size(); ++i) {
     const Point2& a = target.vertex(i);
     const Point2& b = target.edge_end(i);

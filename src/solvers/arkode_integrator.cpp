@@ -213,7 +213,7 @@ class ArkodeIntegrator final : public SundialsIntegrator {
     return c;
   }
 
-  sundials::Matrix matrix_;                                // DIRK with the dense Newton solver
+  sundials::Matrix matrix_;  // DIRK with the dense Newton solver
   sundials::LinearSolver dense_;
   std::unique_ptr<SecondOrderLinearSolver> second_order_;  // DIRK with the reduced Newton solver
   IntegratorCounters baseline_;
@@ -223,8 +223,8 @@ class ArkodeIntegrator final : public SundialsIntegrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_arkode_integrator(OdeFunctions& functions, const ArkodeSettings& settings,
-                                                   double t0, const Eigen::VectorXd& y0) {
+std::unique_ptr<Integrator> make_arkode_integrator(OdeFunctions& functions, const ArkodeSettings& settings, double t0,
+                                                   const Eigen::VectorXd& y0) {
   if (settings.method == ArkodeMethod::erk) {
     assert(settings.order == 0 || settings.order == 5);
     return std::make_unique<ArkodeIntegrator<ErkApi>>(functions, settings, t0, y0);

@@ -65,7 +65,7 @@ void CvodeIntegrator::restart(double t, const Eigen::VectorXd& y) {
   check(CVodeReInit(memory_.get(), t, y_.get()), "CVodeReInit");
   stepped_since_restart_ = false;
   if (second_order_) {
-    second_order_->invalidate();  // the contact phase, so the Jacobian, changed
+    second_order_->invalidate();                                   // the contact phase, so the Jacobian, changed
     factorizations_at_restart_ = second_order_->factorizations();  // CVODE's counters restart too
   }
 }

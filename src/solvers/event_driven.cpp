@@ -30,8 +30,7 @@ std::string_view to_string(RunStatus status) {
     case RunStatus::time_limit: return "time_limit";
     case RunStatus::interrupted: return "interrupted";
     case RunStatus::non_finite: return "non_finite";
-    case RunStatus::collapse:
-      return "collapse";
+    case RunStatus::collapse: return "collapse";
   }
   return "?";
 }
@@ -234,7 +233,7 @@ class EventDrivenRun final : public OdeFunctions {
   CornerCover cover_;  // covered and live candidates, updated at every check
   YieldStates yields_;
   WitnessLayout witnesses_;
-  std::vector<std::vector<int>> gap_components_;   // per candidate, the components of y its gap reads
+  std::vector<std::vector<int>> gap_components_;  // per candidate, the components of y its gap reads
   VectorXd forces_;
   Recorder recorder_;
   RunResult result_;
@@ -296,8 +295,8 @@ void EventDrivenRun::count_event(double t) {
   while (!recent_events_.empty() && recent_events_.front() < t - 1.0) recent_events_.pop_front();
   if (static_cast<double>(recent_events_.size()) > options_.max_events_per_s) {
     result_.status = RunStatus::event_limit;
-    result_.status_detail = fmt::format("more than {} events within one simulated second before t = {} s",
-                                        options_.max_events_per_s, t);
+    result_.status_detail =
+        fmt::format("more than {} events within one simulated second before t = {} s", options_.max_events_per_s, t);
     stop_ = true;
   }
 }

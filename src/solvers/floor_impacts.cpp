@@ -120,8 +120,7 @@ contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, d
 double record_floor_outcome(const dynamics::CoupledSystem& system, double t, const FloorContacts& contacts,
                             const contact::ImpulseSolution& solution, const dynamics::VectorXd& y_before,
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
-                            const std::vector<bool>& holds, const std::vector<bool>& were_held,
-                            RunResult& result) {
+                            const std::vector<bool>& holds, const std::vector<bool>& were_held, RunResult& result) {
   const std::vector<Slab>& slabs = contacts.slabs;
   const dynamics::VectorXd v_after = system.slab_velocities(y_after, slabs);
   for (std::size_t k = 0; k < contacts.members.size(); ++k) {

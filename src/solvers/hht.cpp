@@ -14,8 +14,8 @@
 
 namespace pounding::solvers {
 
-HhtStepper::HhtStepper(Eigen::VectorXd mass_diagonal, Eigen::MatrixXd damping, Eigen::MatrixXd stiffness,
-                       Force force, double alpha)
+HhtStepper::HhtStepper(Eigen::VectorXd mass_diagonal, Eigen::MatrixXd damping, Eigen::MatrixXd stiffness, Force force,
+                       double alpha)
     : mass_(std::move(mass_diagonal)),
       damping_(std::move(damping)),
       stiffness_(std::move(stiffness)),
@@ -347,8 +347,10 @@ State HhtRun::settle(const State& s) {
     in_contact[i] = g.gap_m <= tol && on_edge(y, i, g);
     touching[i] = in_contact[i] && g.gap_m <= 0.0;
     if (!in_contact[i]) continue;
-    if (approaching(g)) levels.insert(system_.candidates()[i].level);
-    else if (touching[i] && !touching_[i] && g.gap_m >= -tol) new_touches.insert(i);
+    if (approaching(g))
+      levels.insert(system_.candidates()[i].level);
+    else if (touching[i] && !touching_[i] && g.gap_m >= -tol)
+      new_touches.insert(i);
   }
   bool changed = false;
   const TakeContact take = [&](std::size_t i, const contact::GapState&) { return in_contact[i]; };
@@ -415,8 +417,8 @@ State HhtRun::interpolate(const State& s, const State& trial, const std::vector<
   for (std::size_t candidate : overlaps) {
     const double g_start = gap_at(s.t_s, candidate);
     if (!(g_start > 0.0)) return halve(s, h);  // in the tolerance band already
-    t_contact = std::min(t_contact, find_root([&](double t) { return gap_at(t, candidate); }, s.t_s, trial.t_s,
-                                              g_start, gap_at(trial.t_s, candidate)));
+    t_contact = std::min(t_contact, find_root([&](double t) { return gap_at(t, candidate); }, s.t_s, trial.t_s, g_start,
+                                              gap_at(trial.t_s, candidate)));
   }
   const State redone = stepper_.step(s, t_contact - s.t_s);
   ++trial_steps_;
@@ -465,12 +467,8 @@ RunResult HhtRun::run(const std::string& method) {
         accept(s, trial);
         s = settle(trial);
         break;
-      case HhtEventLocation::halving:
-        s = halve(s, h);
-        break;
-      case HhtEventLocation::interpolate:
-        s = interpolate(s, trial, overlaps);
-        break;
+      case HhtEventLocation::halving: s = halve(s, h); break;
+      case HhtEventLocation::interpolate: s = interpolate(s, trial, overlaps); break;
     }
   }
   result_.end_s = s.t_s;

@@ -347,7 +347,6 @@ void ModalExactIntegrator::interpolate(double t, Eigen::Ref<Eigen::VectorXd> y) 
   }
 }
 
-
 void ModalExactIntegrator::interpolate_components(double t, const std::vector<int>& indices,
                                                   Eigen::Ref<Eigen::VectorXd> y) {
   if (held_phase_) return held_->interpolate(t, y);

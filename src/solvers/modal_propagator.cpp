@@ -14,7 +14,7 @@ constexpr double kClosedFormSize = 0.25;
 /// By Cayley–Hamilton Xʲ = aⱼ I + bⱼ X with a scalar recurrence, so each series is two scalar sums.
 OscillatorStep taylor_step(double omega, double zeta, double tau, double size) {
   const double trace = -2.0 * zeta * omega * tau, det = omega * omega * tau * tau;
-  double a = 1.0, b = 0.0;  // Xʲ/j! = a I + b X
+  double a = 1.0, b = 0.0;                                            // Xʲ/j! = a I + b X
   double a0 = 0.0, b0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;  // e^X, φ₁(X), φ₂(X) as (a, b)
   double remainder = 1.0;  // size^(j+1)/(j + 1)!: bounds the balanced norm of the next term
   for (int j = 0;; ++j) {

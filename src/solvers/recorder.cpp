@@ -98,8 +98,8 @@ void Recorder::append_row(const Instant& at) {
   if (kinematics_.dynamics().contact_forces) {
     for (const ContactForce& f : kinematics_.dynamics().contact_forces(t, y)) {
       const contact::GapState gap = system_.gap(y, f.candidate);
-      ContactForceSample& sample = forces.emplace_back(
-          ContactForceSample{contact_identity(system_.candidates()[f.candidate], f.candidate)});
+      ContactForceSample& sample =
+          forces.emplace_back(ContactForceSample{contact_identity(system_.candidates()[f.candidate], f.candidate)});
       sample.t_s = t;
       sample.gap_m = gap.gap_m;
       sample.gap_rate_mps = gap.gap_rate_mps;

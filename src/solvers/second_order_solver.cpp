@@ -23,9 +23,7 @@ bool is_diagonal(const Eigen::Ref<const Eigen::MatrixXd>& block) {
   return true;
 }
 
-SecondOrderLinearSolver* self(SUNLinearSolver solver) {
-  return static_cast<SecondOrderLinearSolver*>(solver->content);
-}
+SecondOrderLinearSolver* self(SUNLinearSolver solver) { return static_cast<SecondOrderLinearSolver*>(solver->content); }
 
 }  // namespace
 
@@ -162,8 +160,8 @@ int SecondOrderLinearSolver::solve(SUNLinearSolver solver, SUNMatrix, N_Vector x
     }
     if (me->diagonal_) {
       // x may alias b: x₂ first from b, then x₁ from b₁ and x₂.
-      out.tail(n) = (rhs.tail(n).array() + g * me->a21_diagonal_.array() * rhs.head(n).array()) /
-                    me->reduced_diagonal_.array();
+      out.tail(n) =
+          (rhs.tail(n).array() + g * me->a21_diagonal_.array() * rhs.head(n).array()) / me->reduced_diagonal_.array();
       out.head(n) = rhs.head(n) + g * out.tail(n);
       return SUNLS_SUCCESS;
     }

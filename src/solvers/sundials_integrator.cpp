@@ -46,8 +46,8 @@ int SundialsIntegrator::root_callback(double t, N_Vector y, double* g, void* sel
   }
 }
 
-int SundialsIntegrator::jacobian_callback(double t, N_Vector y, N_Vector, SUNMatrix jac, void* self, N_Vector,
-                                          N_Vector, N_Vector) {
+int SundialsIntegrator::jacobian_callback(double t, N_Vector y, N_Vector, SUNMatrix jac, void* self, N_Vector, N_Vector,
+                                          N_Vector) {
   auto* me = static_cast<SundialsIntegrator*>(self);
   try {
     const Eigen::Index n = static_cast<Eigen::Index>(SUNDenseMatrix_Rows(jac));

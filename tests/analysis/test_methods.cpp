@@ -34,9 +34,7 @@ void give(analysis::SolverSettings& s, const analysis::MethodInfo& method, Setti
     case Setting::contact_tolerance_m: s.contact_tolerance_m = 1e-3; break;
     case Setting::max_halvings: s.max_halvings = 10; break;
     case Setting::event_location: s.event_location = "interpolate"; break;
-    case Setting::max_events_per_s:
-      s.max_events_per_s = 500.0;
-      break;
+    case Setting::max_events_per_s: s.max_events_per_s = 500.0; break;
   }
 }
 

@@ -19,8 +19,7 @@ bool contact_at(analysis::Scene scene, double gap_m) {
   scene.set_gap(gap_m);
   const analysis::RunReport report = analysis::run_scene(scene);
   BOOST_REQUIRE(report.result.status == solvers::RunStatus::completed);
-  return !report.result.impacts.empty() || !report.result.touches.empty() ||
-         !report.result.sustained_contacts.empty();
+  return !report.result.impacts.empty() || !report.result.touches.empty() || !report.result.sustained_contacts.empty();
 }
 
 analysis::Scene tight(const char* file) {

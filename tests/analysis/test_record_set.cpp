@@ -118,8 +118,8 @@ BOOST_AUTO_TEST_CASE(RunWithRecordOptionsEqualsASceneThatNamesTheRecord) {
   const std::filesystem::path records = kExamples / "records";
   const std::filesystem::path paper_file = kExamples / "paper" / "paper.toml";
   const analysis::Scene by_options = io::read_scene(
-      paper_file, {.gap_m = 0.28,
-                   .record = {.file = records / "northridge1994_newhall360_peer_RSN1044.AT2", .pga_g = 0.4}});
+      paper_file,
+      {.gap_m = 0.28, .record = {.file = records / "northridge1994_newhall360_peer_RSN1044.AT2", .pga_g = 0.4}});
 
   std::ifstream in(paper_file);
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

@@ -35,9 +35,7 @@ struct FreePair {
     r.restitution = k;
     return r;
   }
-  Eigen::Vector2d momentum(const Vector6d& v) const {
-    return m_a * v.head<2>() + m_b * v.segment<2>(3);
-  }
+  Eigen::Vector2d momentum(const Vector6d& v) const { return m_a * v.head<2>() + m_b * v.segment<2>(3); }
   // About the origin: Σ m (c × v) + J φ̇.
   double angular_momentum(const Vector6d& v) const {
     auto cross = [](Point2 r, Eigen::Vector2d w) { return r.x() * w.y() - r.y() * w.x(); };
@@ -142,8 +140,7 @@ BOOST_AUTO_TEST_CASE(HoldingOneCornerDoesNotCloseTheOtherAgain) {
   const ImpulseSolution plain = closing_impulses({up0.jacobian}, pair.inverse(), before);
   BOOST_TEST(pair.row(lower, before + plain.velocity_change, 0.0).gap_rate_mps < -1e-5);  // closing again
 
-  const ImpulseSolution kept =
-      closing_impulses_keeping({up0.jacobian}, {{low0.jacobian, 0.0}}, pair.inverse(), before);
+  const ImpulseSolution kept = closing_impulses_keeping({up0.jacobian}, {{low0.jacobian, 0.0}}, pair.inverse(), before);
   const Vector6d after = before + kept.velocity_change;
   BOOST_TEST(std::abs(pair.row(upper, after, 0.0).gap_rate_mps) <= 1e-15);
   BOOST_TEST(std::abs(pair.row(lower, after, 0.0).gap_rate_mps) <= 1e-15);

@@ -45,8 +45,8 @@ bool mentions(const std::string& text, std::initializer_list<std::string> parts)
 
 BOOST_AUTO_TEST_CASE(ReadsOlderPeerHeader) {
   TempDir dir;
-  const auto samples = read_record(
-      dir.write("a.AT2", kOlderHeader + "  .1000E-01  -.2000E-01  .3E-1\n  .4D-02  -5.0E-03\n"), at2());
+  const auto samples =
+      read_record(dir.write("a.AT2", kOlderHeader + "  .1000E-01  -.2000E-01  .3E-1\n  .4D-02  -5.0E-03\n"), at2());
   BOOST_TEST(samples.accel == std::vector<double>({0.01, -0.02, 0.03, 0.004, -0.005}),
              tt::per_element() /* exact parse */);
   BOOST_TEST(samples.time_s[4] == 0.04, tt::tolerance(1e-15));
@@ -68,8 +68,8 @@ BOOST_AUTO_TEST_CASE(AcceptsCrlfAndMissingFinalNewline) {
   const auto samples = read_record(dir.write("c.AT2", crlf), at2());
   BOOST_TEST(samples.accel == std::vector<double>({1, 2, 3, 4, 5}), tt::per_element());
 
-  const auto columns = read_record(dir.write("c.txt", "# t a\r\n0 1\r\n0.5 2\r\n1.0 3"),
-                                   {.format = RecordFormat::columns});
+  const auto columns =
+      read_record(dir.write("c.txt", "# t a\r\n0 1\r\n0.5 2\r\n1.0 3"), {.format = RecordFormat::columns});
   BOOST_TEST(columns.time_s == std::vector<double>({0, 0.5, 1.0}), tt::per_element());
 }
 
@@ -104,8 +104,7 @@ BOOST_AUTO_TEST_CASE(NonPositiveTimeStepIsRefused) {
 
 BOOST_AUTO_TEST_CASE(EmptyAndMissingFilesAreRefused) {
   TempDir dir;
-  BOOST_TEST(mentions(error_of(dir.write("h.txt", ""), {.format = RecordFormat::columns}),
-                      {"h.txt", "no samples"}));
+  BOOST_TEST(mentions(error_of(dir.write("h.txt", ""), {.format = RecordFormat::columns}), {"h.txt", "no samples"}));
   BOOST_TEST(mentions(error_of(dir.write("h.AT2", ""), at2()), {"h.AT2", "header lines"}));
   BOOST_TEST(mentions(error_of(dir.path() / "absent.AT2", at2()), {"absent.AT2", "cannot open"}));
 }
@@ -122,9 +121,9 @@ BOOST_AUTO_TEST_CASE(ColumnsNeedIncreasingTimesAndTheAskedColumn) {
   TempDir dir;
   BOOST_TEST(mentions(error_of(dir.write("k.txt", "0 1\n0.1 2\n0.1 3\n"), {.format = RecordFormat::columns}),
                       {"line 3, field 1", "'0.1'", "increase"}));
-  BOOST_TEST(mentions(error_of(dir.write("l.txt", "0 1\n0.1 2\n"),
-                               {.format = RecordFormat::columns, .accel_column = 3}),
-                      {"line 1", "column 3"}));
+  BOOST_TEST(
+      mentions(error_of(dir.write("l.txt", "0 1\n0.1 2\n"), {.format = RecordFormat::columns, .accel_column = 3}),
+               {"line 1", "column 3"}));
 }
 
 BOOST_AUTO_TEST_CASE(ColumnsAndSingleSelectTheAskedComponent) {

@@ -21,9 +21,7 @@ const std::filesystem::path kElCentro = kExamples / "records" / "elcentro1940_ns
 
 /// The paper scene's excitation: El Centro as peer-at2 in g, re-spaced 0.05 s, cut to 12.2 s,
 /// scaled to 0.32 g.
-excitation::ExcitationSpec paper_excitation() {
-  return io::read_scene(kExamples / "paper" / "paper.toml").excitation;
-}
+excitation::ExcitationSpec paper_excitation() { return io::read_scene(kExamples / "paper" / "paper.toml").excitation; }
 
 /// Requires that reading `list` fails with an InputError at `file:line` naming `field` and `value`.
 void require_list_error(const std::string& list, int line, const std::string& field, const std::string& value) {

@@ -156,7 +156,8 @@ BOOST_AUTO_TEST_CASE(brief_and_full_reports) {
   BOOST_TEST(brief.find('\n') == std::string::npos);
   BOOST_TEST(brief.starts_with("paper: cvode-bdf, completed, "));
   BOOST_TEST(brief.find(fmt::format("{} impacts, first at t = {:.6f} s", r.impacts.size(), r.impacts.front().t_s)) !=
-             std::string::npos, brief);
+                 std::string::npos,
+             brief);
   const std::string full = io::full_report(report);
   BOOST_TEST(full.ends_with("\n"));
   BOOST_TEST(

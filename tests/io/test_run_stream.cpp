@@ -92,7 +92,7 @@ BOOST_AUTO_TEST_CASE(streamed_files_equal_the_in_memory_writers) {
 BOOST_AUTO_TEST_CASE(an_unfinished_stream_leaves_partial_files_and_no_summary) {
   const fs::path folder = scratch("unfinished");
   std::ofstream(folder / "summary.json") << "{}\n";  // an earlier run's
-  io::StreamedRunFiles files(folder, 3600.0);       // no timed flush: rows must reach disk anyway
+  io::StreamedRunFiles files(folder, 3600.0);        // no timed flush: rows must reach disk anyway
   files.history_columns({"t_s", "B1_f1_u_m"});
   for (int k = 0; k < 20000; ++k) files.history_row(0.01 * k, Eigen::VectorXd::Constant(1, 1e-3 * k));
   solvers::ImpactRecord impact;
@@ -105,7 +105,7 @@ BOOST_AUTO_TEST_CASE(an_unfinished_stream_leaves_partial_files_and_no_summary) {
   BOOST_TEST(history.starts_with("t_s,B1_f1_u_m\n0,0\n"));
   BOOST_TEST(lines(history) > 15000u);  // all but what the stream's buffer still holds
   const std::string impacts = contents(folder / "impacts.csv.partial");
-  BOOST_TEST(lines(impacts) == 2u);     // header and the impact: flushed at once
+  BOOST_TEST(lines(impacts) == 2u);  // header and the impact: flushed at once
   BOOST_TEST(impacts.find("\n1.5,") != std::string::npos);
 
   files.abandon();  // a refused run: the streamed files go

@@ -206,8 +206,7 @@ BOOST_AUTO_TEST_CASE(BadStoreyHeightListsAreRefusedEntryByEntry) {
 BOOST_AUTO_TEST_CASE(RestitutionOutsideUnitIntervalIsRefused) {
   BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = 1.5")),
                       {"scene.toml", "contact.restitution", "1.5", "[0, 1]"}));
-  BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = -0.1")),
-                      {"contact.restitution", "-0.1"}));
+  BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = -0.1")), {"contact.restitution", "-0.1"}));
   BOOST_TEST(mentions(error_of(kScene, {.restitution = 2.0}), {"--restitution", "2", "[0, 1]"}));
 }
 
@@ -256,8 +255,8 @@ BOOST_AUTO_TEST_CASE(MissingRecordIsRefused) {
 }
 
 BOOST_AUTO_TEST_CASE(UnknownFormatAndUnitsAreRefused) {
-  BOOST_TEST(mentions(error_of(edited("format = \"columns\"", "format = \"csv\"")),
-                      {"excitation.format", "csv", "peer-at2"}));
+  BOOST_TEST(
+      mentions(error_of(edited("format = \"columns\"", "format = \"csv\"")), {"excitation.format", "csv", "peer-at2"}));
   BOOST_TEST(mentions(error_of(edited("units = \"m/s2\"", "units = \"gal\"")), {"excitation.units", "gal"}));
 }
 

@@ -86,8 +86,7 @@ BOOST_AUTO_TEST_CASE(OneStoreyEccentricMassMatchesClosedForm) {
 
   const double p = m * (k_theta_s + e * e * ky) + J * ky;
   const double disc = std::sqrt(p * p - 4 * m * J * ky * k_theta_s);
-  std::vector<double> expected = {kTwoPi / std::sqrt(kx / m),
-                                  kTwoPi / std::sqrt((p - disc) / (2 * m * J)),
+  std::vector<double> expected = {kTwoPi / std::sqrt(kx / m), kTwoPi / std::sqrt((p - disc) / (2 * m * J)),
                                   kTwoPi / std::sqrt((p + disc) / (2 * m * J))};
   std::sort(expected.rbegin(), expected.rend());
   const std::vector<Mode>& modes = building.modes;
@@ -109,8 +108,7 @@ BOOST_AUTO_TEST_CASE(TwoStoreyShearBuildingMatchesClosedFormFrequencies) {
   b.mass_t = {10.0, 8.0};
   b.polar_moment_tm2 = {100.0, 80.0};
   b.columns.clear();
-  b.storey_stiffness = {Eigen::Vector3d(2000, 9000, 5e5).asDiagonal(),
-                        Eigen::Vector3d(1500, 7000, 4e5).asDiagonal()};
+  b.storey_stiffness = {Eigen::Vector3d(2000, 9000, 5e5).asDiagonal(), Eigen::Vector3d(1500, 7000, 4e5).asDiagonal()};
   const Building building = make_building(b);
 
   const double m1 = 10, m2 = 8, k1 = 2000, k2 = 1500;
@@ -140,8 +138,8 @@ BOOST_AUTO_TEST_CASE(RayleighCoefficientsReproduceTheRatioAtBothChosenModes) {
   };
   BOOST_TEST(modal_ratio(1) == 0.05, tt::tolerance(1e-10));
   BOOST_TEST(modal_ratio(3) == 0.05, tt::tolerance(1e-10));
-  BOOST_TEST(modal_ratio(2) < 0.05);   // between the anchors Rayleigh damping dips
-  BOOST_TEST(modal_ratio(6) > 0.05);   // and above them it grows
+  BOOST_TEST(modal_ratio(2) < 0.05);  // between the anchors Rayleigh damping dips
+  BOOST_TEST(modal_ratio(6) > 0.05);  // and above them it grows
 }
 
 BOOST_AUTO_TEST_CASE(FrameFactorIsSolvedForTheTargetPeriod) {
@@ -158,8 +156,7 @@ BOOST_AUTO_TEST_CASE(FrameFactorIsSolvedForTheTargetPeriod) {
 
 BOOST_AUTO_TEST_CASE(UniformPolarMomentOfRectangleIsMassTimesDiagonalSquaredOverTwelve) {
   const Polygon slab({{-24, 0}, {0, 0}, {0, 20}, {-24, 20}});
-  BOOST_TEST(uniform_polar_moment(slab, 555.0) == 555.0 * (24.0 * 24 + 20 * 20) / 12,
-             tt::tolerance(1e-12));
+  BOOST_TEST(uniform_polar_moment(slab, 555.0) == 555.0 * (24.0 * 24 + 20 * 20) / 12, tt::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_CASE(ColumnsAtOnePointCannotResistTorsion) {

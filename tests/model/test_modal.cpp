@@ -8,8 +8,7 @@ namespace tt = boost::test_tools;
 using namespace pounding::model;
 
 BOOST_AUTO_TEST_CASE(ModesAreMassNormalisedAndSolveTheEigenproblem) {
-  const Building building =
-      make_building(pounding::testing::square_building(3, 10.0, 200.0, 3000.0, Point2(1.2, 0.8)));
+  const Building building = make_building(pounding::testing::square_building(3, 10.0, 200.0, 3000.0, Point2(1.2, 0.8)));
   const Eigen::MatrixXd mass = building.mass_diagonal.asDiagonal();
   for (const Mode& mode : modal_analysis(building.mass_diagonal, building.stiffness)) {
     BOOST_TEST(mode.shape.dot(mass * mode.shape) == 1.0, tt::tolerance(1e-12));
@@ -34,8 +33,7 @@ BOOST_AUTO_TEST_CASE(EffectiveMassRatiosOfAllModesSumToOne) {
 }
 
 BOOST_AUTO_TEST_CASE(PeriodsComeLongestFirst) {
-  const Building building =
-      make_building(pounding::testing::square_building(5, 10.0, 200.0, 3000.0, Point2(1.0, 1.0)));
+  const Building building = make_building(pounding::testing::square_building(5, 10.0, 200.0, 3000.0, Point2(1.0, 1.0)));
   const auto modes = modal_analysis(building.mass_diagonal, building.stiffness);
   for (std::size_t k = 1; k < modes.size(); ++k) BOOST_TEST(modes[k].period_s <= modes[k - 1].period_s);
 }

@@ -79,7 +79,6 @@ BOOST_AUTO_TEST_CASE(HorizontalClearanceUsesTheNearestPointsOfSlantedEdges) {
 }
 
 BOOST_AUTO_TEST_CASE(SlabsAtDifferentHeightsHaveNoClearance) {
-  const auto clearance =
-      pounding::model::horizontal_clearance(rectangle(-5, 0, 0, 10), rectangle(1, 11, 5, 20));
+  const auto clearance = pounding::model::horizontal_clearance(rectangle(-5, 0, 0, 10), rectangle(1, 11, 5, 20));
   BOOST_TEST(!clearance.has_value());
 }

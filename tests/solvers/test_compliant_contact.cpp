@@ -133,9 +133,7 @@ BOOST_AUTO_TEST_CASE(KelvinContactMatchesClosedFormOnCvodeBdf) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(KelvinContactMatchesClosedFormOnArkodeDirk) {
-  check_closed_form(0.5, arkode_dirk(1e-10, 1e-12));
-}
+BOOST_AUTO_TEST_CASE(KelvinContactMatchesClosedFormOnArkodeDirk) { check_closed_form(0.5, arkode_dirk(1e-10, 1e-12)); }
 
 BOOST_AUTO_TEST_CASE(CriticallyDampedContactForPlasticRestitution) {
   // e = 0 → ξ = 1: δ = v₀ t e^{−ωt}, F ∝ 2 − ωt, released at ωt = 2 rebounding at e⁻² v₀.
@@ -227,8 +225,7 @@ BOOST_AUTO_TEST_CASE(CompliantLawsAreRefusedWhereTheyCannotRun) {
     }
   }
   // A law key given for the impulse law is refused like an inapplicable solver setting.
-  BOOST_CHECK_THROW(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_stiffness = 1e6}),
-                    InputError);
+  BOOST_CHECK_THROW(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_stiffness = 1e6}), InputError);
   BOOST_CHECK_THROW(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string("hertz")}),
                     InputError);
 }
@@ -252,8 +249,8 @@ BOOST_AUTO_TEST_CASE(ContactJacobianMatchesFiniteDifferences) {
   const std::size_t index = 0;
   const int n = system.dof();
   Eigen::VectorXd y = Eigen::VectorXd::Zero(system.state_size());
-  y[system.floor_index(0, 1)] = 0.0102;       // building 1 overlaps building 2 by 0.2 mm
-  y[system.floor_index(0, 1) + 2] = 1e-4;     // and both turn a little
+  y[system.floor_index(0, 1)] = 0.0102;    // building 1 overlaps building 2 by 0.2 mm
+  y[system.floor_index(0, 1) + 2] = 1e-4;  // and both turn a little
   y[system.floor_index(1, 1) + 2] = -2e-4;
   y[n + system.floor_index(0, 1)] = 0.3;
   y[n + system.floor_index(1, 1) + 2] = 0.01;

@@ -160,8 +160,10 @@ BOOST_AUTO_TEST_CASE(DriftRatiosAreRelativeDisplacementOverStoreyHeight) {
         const std::string name = corner == 0 ? prefix + "drift_" : prefix + "c" + std::to_string(corner) + "_drift_";
         BOOST_TEST(row[static_cast<Eigen::Index>(column(h, name + "x"))] == drift.x(), tt::tolerance(1e-12));
         BOOST_TEST(row[static_cast<Eigen::Index>(column(h, name + "y"))] == drift.y(), tt::tolerance(1e-12));
-        if (corner == 0) largest_x = std::max(largest_x, std::abs(drift.x()));
-        else largest_corner = std::max({largest_corner, std::abs(drift.x()), std::abs(drift.y())});
+        if (corner == 0)
+          largest_x = std::max(largest_x, std::abs(drift.x()));
+        else
+          largest_corner = std::max({largest_corner, std::abs(drift.x()), std::abs(drift.y())});
       }
     }
     BOOST_TEST(largest_x > 1e-3);  // the scene pounds: drifts of some per mille at least

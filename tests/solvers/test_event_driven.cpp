@@ -19,7 +19,10 @@ double bisect(F f, double a, double b) {
   const bool rising = f(a) < 0.0;
   for (int i = 0; i < 200; ++i) {
     const double m = 0.5 * (a + b);
-    if ((f(m) < 0.0) == rising) a = m; else b = m;
+    if ((f(m) < 0.0) == rising)
+      a = m;
+    else
+      b = m;
   }
   return 0.5 * (a + b);
 }
@@ -30,8 +33,7 @@ double bisect(F f, double a, double b) {
 // milliseconds. a_g = −A pushes both towards +x.
 struct Pressed {
   static constexpr double gap = 0.01, accel = 1.0;
-  dynamics::CoupledSystem system =
-      two_slabs({1.0, 1e4, 0.0}, diamond(gap), {1e9, 0.01, 0.9}, gap, 1.0, -accel);
+  dynamics::CoupledSystem system = two_slabs({1.0, 1e4, 0.0}, diamond(gap), {1e9, 0.01, 0.9}, gap, 1.0, -accel);
   double effective_gap() const {
     const double omega = 2 * std::numbers::pi / 0.01;
     return gap + accel / (omega * omega);
@@ -60,8 +62,8 @@ BOOST_AUTO_TEST_CASE(ContactTimeMatchesDampedOscillatorClosedForm) {
   BOOST_TEST_REQUIRE(!result.impacts.empty());
   BOOST_TEST(std::abs(result.impacts[0].t_s - t_contact) < 1e-9);
   BOOST_TEST(result.impacts[0].approach_velocity_mps == u_dot(t_contact), tt::tolerance(1e-7));
-  BOOST_TEST(result.impacts[0].separation_velocity_mps ==
-                 0.5 * result.impacts[0].approach_velocity_mps, tt::tolerance(1e-9));
+  BOOST_TEST(result.impacts[0].separation_velocity_mps == 0.5 * result.impacts[0].approach_velocity_mps,
+             tt::tolerance(1e-9));
 }
 
 BOOST_AUTO_TEST_CASE(GrazingContactIsATouchNotAnImpact) {

@@ -19,9 +19,10 @@ constexpr double kOmega = 2.0 * std::numbers::pi;  // 1 Hz
 
 /// A single-DOF oscillator u'' + 2ζω u' + ω² u = 0 with the HHT stepper.
 HhtStepper oscillator(double zeta, double alpha) {
-  return HhtStepper(Eigen::VectorXd::Ones(1), Eigen::MatrixXd::Constant(1, 1, 2 * zeta * kOmega),
-                    Eigen::MatrixXd::Constant(1, 1, kOmega * kOmega),
-                    [](double, Eigen::Ref<Eigen::VectorXd> f) { f.setZero(); }, alpha);
+  return HhtStepper(
+      Eigen::VectorXd::Ones(1), Eigen::MatrixXd::Constant(1, 1, 2 * zeta * kOmega),
+      Eigen::MatrixXd::Constant(1, 1, kOmega * kOmega), [](double, Eigen::Ref<Eigen::VectorXd> f) { f.setZero(); },
+      alpha);
 }
 
 /// u(t) after n steps of size h from u = 1, u' = 0.
@@ -166,8 +167,8 @@ HhtStepper two_dof(double alpha) {
   k << 300.0, -100.0, -100.0, 200.0;
   const Eigen::Vector2d m(1.0, 2.0);
   const Eigen::MatrixXd c = 0.2 * Eigen::MatrixXd(m.asDiagonal()) + 0.002 * k;
-  return HhtStepper(m, c, k, [](double t, Eigen::Ref<Eigen::VectorXd> f) { f << std::sin(7 * t), 2 * std::cos(3 * t); },
-                    alpha);
+  return HhtStepper(
+      m, c, k, [](double t, Eigen::Ref<Eigen::VectorXd> f) { f << std::sin(7 * t), 2 * std::cos(3 * t); }, alpha);
 }
 
 }  // namespace
@@ -202,8 +203,10 @@ BOOST_AUTO_TEST_CASE(AlgorithmicDissipationIsWhatTheStepRemovesFromTheDiscreteWo
     }
     BOOST_TEST_MESSAGE("alpha " << alpha << ": total algorithmic dissipation " << total);
     BOOST_TEST(largest < 1e-11);
-    if (alpha == 0.0) BOOST_TEST(std::abs(total) < 1e-14);
-    else BOOST_TEST(total > 0.0);
+    if (alpha == 0.0)
+      BOOST_TEST(std::abs(total) < 1e-14);
+    else
+      BOOST_TEST(total > 0.0);
   }
 }
 
@@ -220,8 +223,10 @@ BOOST_AUTO_TEST_CASE(FreeVibrationLosesExactlyTheAlgorithmicDissipation) {
       s = next;
     }
     BOOST_TEST(std::abs(dissipated - (initial - energy(s))) < 1e-12 * initial);
-    if (alpha < 0.0) BOOST_TEST(dissipated > 1e-3 * initial);
-    else BOOST_TEST(std::abs(dissipated) < 1e-15 * initial);
+    if (alpha < 0.0)
+      BOOST_TEST(dissipated > 1e-3 * initial);
+    else
+      BOOST_TEST(std::abs(dissipated) < 1e-15 * initial);
   }
 }
 
@@ -324,8 +329,8 @@ BOOST_AUTO_TEST_CASE(TwoSlabsInsideTheToleranceThatNeverTouchTakeNoImpacts) {
   // published rule (in the band and ġ < 0) logged an "impact" at every closing step end and
   // restarted the integrator; a pair that neither touches nor closes within a step takes none.
   const double gap = 5e-5;
-  const auto system = testing::two_slabs({100.0, 0.5, 0.05}, testing::box(gap, 0, 10 + gap, 10), {100.0, 0.5, 0.05},
-                                         gap, 3.0);
+  const auto system =
+      testing::two_slabs({100.0, 0.5, 0.05}, testing::box(gap, 0, 10 + gap, 10), {100.0, 0.5, 0.05}, gap, 3.0);
   solvers::HhtOptions options;
   options.dt_s = 0.002;
   Eigen::VectorXd y = Eigen::VectorXd::Zero(system.state_size());
@@ -368,8 +373,8 @@ BOOST_AUTO_TEST_CASE(SlabsThatOverlapBrieflyInYCannotPassCornerByCorner) {
   // impact velocity. Not 10⁹ t as elsewhere: this square slab's torsional storey stiffness,
   // 2·10¹⁶ kN·m/rad, would exceed the range scenes are held to, docs/scene-format.md.)
   const double gap = 0.0737;
-  const auto system = testing::two_slabs({1.0, 1e4, 0.0}, testing::box(gap, 9.99, 10 + gap, 19.99), {1e8, 0.01, 0.9},
-                                         gap, 0.2);
+  const auto system =
+      testing::two_slabs({1.0, 1e4, 0.0}, testing::box(gap, 9.99, 10 + gap, 19.99), {1e8, 0.01, 0.9}, gap, 0.2);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(system.state_size());
   y[system.dof() + system.floor_index(0, 1)] = 1.0;
   y[system.dof() + system.floor_index(0, 1) + 1] = -0.12;

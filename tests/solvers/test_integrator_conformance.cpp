@@ -165,7 +165,6 @@ std::vector<Method> methods() {
   };
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // The problems: independent unit-mass oscillators x_i'' = f_i − k_i x_i − c_i x_i', y = (x, x').
 
@@ -359,7 +358,7 @@ BOOST_DATA_TEST_CASE(CountersRunFromTheLastRestart, bdata::make(methods()), meth
   take_steps(10);
   const IntegratorCounters after = integrator->counters();
   BOOST_TEST(after.steps == 10);
-  BOOST_TEST(after.rhs_evaluations >= 1);  // the exact path fits its forcing once per record segment
+  BOOST_TEST(after.rhs_evaluations >= 1);             // the exact path fits its forcing once per record segment
   BOOST_TEST(after.root_evaluations >= after.steps);  // g at every step's end
   // Ten steps' worth, not 160: nothing carried over from before the restart.
   BOOST_TEST(after.rhs_evaluations <= before.rhs_evaluations);

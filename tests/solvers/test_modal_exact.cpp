@@ -66,8 +66,8 @@ enum class Form { modal, state_space };
 solvers::RunResult run_exact(const std::string& file, Form form, const io::SceneOverrides& overrides = {}) {
   const analysis::Scene scene = io::read_scene(file, overrides);
   const dynamics::CoupledSystem system = analysis::build_system(scene);
-  const solvers::IntegratorFactory factory = [&](solvers::OdeFunctions& f, double t0, const Eigen::VectorXd& y0)
-      -> std::unique_ptr<solvers::Integrator> {
+  const solvers::IntegratorFactory factory = [&](solvers::OdeFunctions& f, double t0,
+                                                 const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
     if (form == Form::modal) return std::make_unique<solvers::ModalExactIntegrator>(f, system, t0, y0);
     return std::make_unique<pounding::testing::StateSpaceExactIntegrator>(f, t0, y0);
   };

@@ -91,8 +91,8 @@ BOOST_AUTO_TEST_CASE(TruncatedFreeFlightDiffersFromTheFullOneByTheDroppedModesTr
     solvers::EventOptions options;
     options.steps_per_period = analysis::method_info("exact").steps_per_period;
     options.modes_cutoff_hz = cutoff_hz;
-    const solvers::IntegratorFactory factory = [&](solvers::OdeFunctions& f, double t0, const Eigen::VectorXd& y0)
-        -> std::unique_ptr<solvers::Integrator> {
+    const solvers::IntegratorFactory factory = [&](solvers::OdeFunctions& f, double t0,
+                                                   const Eigen::VectorXd& y0) -> std::unique_ptr<solvers::Integrator> {
       return std::make_unique<solvers::ModalExactIntegrator>(f, system, t0, y0,
                                                              solvers::ExactSettings{.modes_cutoff_hz = cutoff_hz});
     };

@@ -103,7 +103,12 @@ struct Newton {
       : context(pounding::solvers::sundials::make_context()),
         state(pounding::solvers::sundials::make_vector(2 * kDof, context.get())),
         x(pounding::solvers::sundials::make_vector(2 * kDof, context.get())),
-        solver(chain, [this] { return NewtonData{0.0, state.get(), gamma}; }, context.get(), error) {
+        solver(
+            chain,
+            [this] {
+              return NewtonData{0.0, state.get(), gamma};
+            },
+            context.get(), error) {
     N_VConst(0.0, state.get());
   }
   /// x solving (I − γJ) x = b, x aliasing b as CVODE does.
@@ -132,7 +137,12 @@ VectorXd solve(Chain& chain, double gamma, const VectorXd& b) {
   pounding::solvers::sundials::Vector x = pounding::solvers::sundials::make_vector(2 * kDof, context.get());
   N_VConst(0.0, state.get());
   std::string error;
-  SecondOrderLinearSolver solver(chain, [&] { return NewtonData{0.0, state.get(), gamma}; }, context.get(), error);
+  SecondOrderLinearSolver solver(
+      chain,
+      [&] {
+        return NewtonData{0.0, state.get(), gamma};
+      },
+      context.get(), error);
   Eigen::Map<VectorXd>(N_VGetArrayPointer(x.get()), 2 * kDof) = b;
   const int flag = SUNLinSolSolve(solver.get(), nullptr, x.get(), x.get(), 0.0);
   BOOST_TEST_REQUIRE(flag == SUNLS_SUCCESS, error);
@@ -166,7 +176,12 @@ BOOST_AUTO_TEST_CASE(RefactorsCorrectlyWhenThePatternChangesAndChangesBack) {
   Chain chain(true);
   const double gamma = 0.05;
   std::string error;
-  SecondOrderLinearSolver solver(chain, [&] { return NewtonData{0.0, state.get(), gamma}; }, context.get(), error);
+  SecondOrderLinearSolver solver(
+      chain,
+      [&] {
+        return NewtonData{0.0, state.get(), gamma};
+      },
+      context.get(), error);
   const VectorXd b = VectorXd::LinSpaced(2 * kDof, 0.5, 3.0).array().cos();
   for (bool long_range : {true, false, false, true}) {
     chain.set_long_range(long_range);
@@ -185,9 +200,9 @@ BOOST_AUTO_TEST_CASE(ALinearPhaseEvaluatesItsJacobianOnceWhateverGammaDoes) {
   // system from the one J evaluated at the phase's first factorisation, on all three paths.
   const VectorXd b = VectorXd::LinSpaced(2 * kDof, -2.0, 1.0).array().sin();
   const std::vector<double> gammas = {1e-3, 3e-2, 1e-4, 0.2, 1e-2};
-  for (auto [sparse, rows, path] : {std::tuple{true, acceleration_rows(), "sparse"},
-                                    std::tuple{false, acceleration_rows(), "dense"},
-                                    std::tuple{false, modal_rows(), "dense diagonal"}}) {
+  for (auto [sparse, rows, path] :
+       {std::tuple{true, acceleration_rows(), "sparse"}, std::tuple{false, acceleration_rows(), "dense"},
+        std::tuple{false, modal_rows(), "dense diagonal"}}) {
     Chain chain(sparse, rows);
     chain.set_linear(true);
     Newton newton(chain);

@@ -36,8 +36,7 @@ class TempDir {
 
 /// A square slab of side `side_m` centred on the origin with one column at each corner and the
 /// CM at `cm`; uniform storeys. Frame factor 1.
-inline model::BuildingDefinition square_building(int storeys, double side_m, double mass_t,
-                                                 double polar_moment_tm2,
+inline model::BuildingDefinition square_building(int storeys, double side_m, double mass_t, double polar_moment_tm2,
                                                  model::Point2 cm = model::Point2::Zero()) {
   model::BuildingDefinition b;
   b.name = "test";

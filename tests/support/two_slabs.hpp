@@ -50,8 +50,8 @@ inline model::Polygon diamond(double x_left) {
 
 /// Building 1 on [−10, 0] × [0, 10]; building 2's slab as given; excitation a_g(t) constant
 /// `ground_accel_mps2` along x over [0, duration].
-inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab,
-                                         const SlabSpec& right, double gap_m, excitation::GroundMotion motion) {
+inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab, const SlabSpec& right,
+                                         double gap_m, excitation::GroundMotion motion) {
   const model::Polygon left_slab = box(-10, 0, 0, 10);
   std::vector<model::Building> buildings{slab_building("A", left_slab, left), slab_building("B", right_slab, right)};
   contact::PairGeometry geometry{{left_slab, right_slab}, {left_slab.centroid(), right_slab.centroid()}};
@@ -60,9 +60,8 @@ inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Poly
   return dynamics::CoupledSystem(std::move(buildings), std::move(motion), levels, std::move(candidates));
 }
 
-inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab,
-                                         const SlabSpec& right, double gap_m, double duration_s,
-                                         double ground_accel_mps2 = 0.0) {
+inline dynamics::CoupledSystem two_slabs(const SlabSpec& left, const model::Polygon& right_slab, const SlabSpec& right,
+                                         double gap_m, double duration_s, double ground_accel_mps2 = 0.0) {
   return two_slabs(left, right_slab, right, gap_m,
                    excitation::GroundMotion({0.0, duration_s}, {ground_accel_mps2, ground_accel_mps2}, 0.0));
 }

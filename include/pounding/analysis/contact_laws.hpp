@@ -15,13 +15,13 @@ namespace pounding::analysis {
 
 struct ContactLawInfo {
   std::string_view name;
-  std::string_view description;          // one line
+  std::string_view description;  // one line
   contact::ContactLaw law;
   /// The [contact] key of the law's stiffness (empty: the law has none); it names the unit.
   std::string_view stiffness_key;
-  std::string_view stiffness_unit;       // "kN/m" or "kN/m^1.5"
-  double default_stiffness = 0.0;        // in stiffness_unit
-  std::string_view stiffness_source;     // where the default comes from
+  std::string_view stiffness_unit;    // "kN/m" or "kN/m^1.5"
+  double default_stiffness = 0.0;     // in stiffness_unit
+  std::string_view stiffness_source;  // where the default comes from
   /// What contact_damping() gives: "damping_ratio" (kelvin's and jankowski's ξ) or
   /// "normalised_damping" (hertzdamp's ξδ̇₀/k_h); empty for impulse.
   std::string_view damping_key;

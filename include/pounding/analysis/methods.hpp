@@ -61,8 +61,8 @@ struct SettingMember {
 /// the table in docs/scene-format.md come from its row (the way Drake visits DRAKE_NVP fields).
 struct SettingSpec {
   Setting id;
-  std::string_view key;          // [solver] key, the key in summary.json and the Python keyword
-  std::string_view option;       // `pounding run` option that sets it
+  std::string_view key;     // [solver] key, the key in summary.json and the Python keyword
+  std::string_view option;  // `pounding run` option that sets it
   std::variant<SettingMember<int>, SettingMember<double>, SettingMember<std::string>> member;  // its type
   SettingValue default_value;                 // what a run uses when it is not given (order: the method's first)
   std::optional<Range> range = std::nullopt;  // numbers: the values accepted (integers are whole numbers in it)
@@ -89,12 +89,12 @@ struct SolverSettings {
   std::string method = "cvode-bdf";  // a name of the registry (methods())
   std::optional<int> order;          // ARKODE table order (MethodInfo::orders)
   std::optional<double> rtol;
-  std::optional<double> atol;        // m: the slab displacements; rotations and rates derive from it (ComponentAtol)
-  std::optional<std::string> newton; // reduced | dense
-  std::optional<std::string> form;   // physical | modal: the state the SUNDIALS methods integrate
-  std::optional<double> hold_rtol;   // exact: held stretches
+  std::optional<double> atol;         // m: the slab displacements; rotations and rates derive from it (ComponentAtol)
+  std::optional<std::string> newton;  // reduced | dense
+  std::optional<std::string> form;    // physical | modal: the state the SUNDIALS methods integrate
+  std::optional<double> hold_rtol;    // exact: held stretches
   std::optional<double> modes_cutoff_hz;  // exact: keep modes below this (Hz), the rest quasi-static
-  std::optional<double> dt_s;        // hht
+  std::optional<double> dt_s;             // hht
   std::optional<double> alpha;
   std::optional<double> contact_tolerance_m;
   std::optional<int> max_halvings;
@@ -126,8 +126,8 @@ struct SolverSettings {
 ///              within atol for every mode.
 struct ComponentAtol {
   double displacement_m = 0.0;
-  std::vector<double> rotation_rad;      // per building
-  double rate_per_s = 0.0;               // ω₁ (rad/s)
+  std::vector<double> rotation_rad;  // per building
+  double rate_per_s = 0.0;           // ω₁ (rad/s)
   /// The vector over the state (q, q̇) of `system`.
   Eigen::VectorXd vector(const dynamics::CoupledSystem& system) const;
 };
@@ -177,10 +177,10 @@ struct StudySeries {
 
 struct MethodInfo {
   std::string_view name;
-  std::string_view description;  // one line
+  std::string_view description;     // one line
   std::vector<Setting> settings{};  // those that apply, in enum order
-  std::vector<int> orders{};      // table orders offered, the default first; empty: no `order`
-  bool event_driven = true;       // false: fixed steps (run_hht)
+  std::vector<int> orders{};        // table orders offered, the default first; empty: no `order`
+  bool event_driven = true;         // false: fixed steps (run_hht)
   /// Event-driven: the integrator with `used`'s settings on `system`'s state. Null for hht.
   solvers::IntegratorFactory (*factory)(const UsedSettings& used, const dynamics::CoupledSystem& system) = nullptr;
   double steps_per_period = 0.0;  // root bracketing of event-driven runs; 0: EventOptions' default
@@ -192,7 +192,7 @@ struct MethodInfo {
   bool yielding_columns = false;
   Setting ladder_setting = Setting::rtol;
   std::vector<double> ladder{}, quick_ladder{};  // the study's settings (quick: `study --quick`)
-  std::vector<StudySeries> series{};         // one per line of the study plot
+  std::vector<StudySeries> series{};             // one per line of the study plot
 };
 
 /// Every method, the default first.

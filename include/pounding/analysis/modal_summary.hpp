@@ -15,7 +15,7 @@ struct BuildingSummary {
   int storeys = 0;
   int dof = 0;
   double total_mass_t = 0.0;
-  double frame_factor = 1.0;       // the one used (solved when a target period was given)
+  double frame_factor = 1.0;  // the one used (solved when a target period was given)
   bool frame_factor_solved = false;
   model::RayleighCoefficients rayleigh;
   std::vector<model::Mode> modes;  // all 3N, longest period first

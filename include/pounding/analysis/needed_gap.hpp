@@ -59,7 +59,7 @@ struct LevelGap {
 
 /// The first translational mode along x (the direction of the gap) of one building.
 struct GapMode {
-  int mode = 1;              // 1-based, longest period first
+  int mode = 1;  // 1-based, longest period first
   double period_s = 0.0;
   double damping_ratio = 0.0;  // Rayleigh ratio at that mode
 };
@@ -115,18 +115,18 @@ struct NeededGap {
   double scene_gap_m = 0.0;
   double needed_gap_m = 0.0;  // the largest over the levels
   double t_s = 0.0;
-  int level = 0;             // 1-based level of the governing pair (0: none, or a slab facing columns)
-  long entry = -1;           // index into `levels` of the governing pair's entry (−1: no pair ever closes)
-  long candidate = -1;       // index into `candidates`
+  int level = 0;        // 1-based level of the governing pair (0: none, or a slab facing columns)
+  long entry = -1;      // index into `levels` of the governing pair's entry (−1: no pair ever closes)
+  long candidate = -1;  // index into `candidates`
   std::vector<contact::Candidate> candidates;  // the scene's (its gap and candidate margin)
-  std::vector<bool> counted;  // per candidate: false if widening the gap does not open it (b ≤ 0.1)
+  std::vector<bool> counted;                   // per candidate: false if widening the gap does not open it (b ≤ 0.1)
   std::vector<LevelGap> levels;
   std::array<GapMode, 2> modes;
-  double rho = 0.0;          // CQC coefficient of the two modes
-  GapRules rules;            // each rule's largest value over the levels
-  long extrema = 0;          // touch-gap maxima located (root returns on the pairs' rates)
-  bool yielding = false;     // some building's columns yield: the contact-free run is nonlinear
-  long yield_events = 0;     // the yielding columns' branch changes in the contact-free run
+  double rho = 0.0;       // CQC coefficient of the two modes
+  GapRules rules;         // each rule's largest value over the levels
+  long extrema = 0;       // touch-gap maxima located (root returns on the pairs' rates)
+  bool yielding = false;  // some building's columns yield: the contact-free run is nonlinear
+  long yield_events = 0;  // the yielding columns' branch changes in the contact-free run
   std::optional<AmplifiedElastic> amplified_elastic;  // add_amplified_elastic()
   std::optional<AllAngles> all_angles;                // add_all_angles()
   long steps = 0;
@@ -143,7 +143,7 @@ struct NeededGap {
 };
 
 struct NeededGapOptions {
-  bool adams = false;   // CVODE Adams instead of BDF
+  bool adams = false;  // CVODE Adams instead of BDF
   double rtol = std::get<double>(spec(Setting::rtol).default_value);
   double atol = std::get<double>(spec(Setting::atol).default_value);  // m, rad and their rates
   double history_interval_s = 0.01;
@@ -179,9 +179,9 @@ void add_amplified_elastic(const Scene& scene, double factor, NeededGap& gap, co
 
 /// A code rule against the needed gap: unconservative when it asks for less.
 struct RuleVerdict {
-  const char* rule = "";       // "ABS", "SRSS", "DDC"
-  double value_m = 0.0;        // the rule's largest value over the levels
-  double margin_m = 0.0;       // value − needed gap: negative = unconservative by that much
+  const char* rule = "";  // "ABS", "SRSS", "DDC"
+  double value_m = 0.0;   // the rule's largest value over the levels
+  double margin_m = 0.0;  // value − needed gap: negative = unconservative by that much
   bool unconservative() const { return margin_m < 0.0; }
 };
 std::vector<RuleVerdict> rule_verdicts(const NeededGap& gap);
@@ -191,11 +191,11 @@ std::vector<RuleVerdict> rule_verdicts(const GapRules& rules, double needed_gap_
 /// What a gap short of the needed one costs: one full event-driven run at that gap.
 struct SeverityPoint {
   double gap_m = 0.0;
-  std::string status;              // the run's status ("completed", ...)
+  std::string status;  // the run's status ("completed", ...)
   long impacts = 0;
   double max_impulse_kNs = 0.0;
   double max_approach_mps = 0.0;
-  double energy_lost_kJ = 0.0;     // Σ over impacts
+  double energy_lost_kJ = 0.0;  // Σ over impacts
   double wall_time_s = 0.0;
 };
 

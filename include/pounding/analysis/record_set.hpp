@@ -34,13 +34,13 @@ struct RecordGap {
   std::string source;
   std::string status = "failed";  // "completed" | "failed" | "interrupted" | "time_limit" (message says where)
   std::string message;
-  double pga_g = kNaN;            // processed peak |a_g|
-  double duration_s = kNaN;       // of the processed record
-  double needed_gap_m = kNaN;     // −inf if no pair ever closes
-  int level = 0;                  // governing level (0: none, or a slab facing columns)
-  bool closes = false;            // some pair closes (NeededGap::entry ≥ 0)
+  double pga_g = kNaN;              // processed peak |a_g|
+  double duration_s = kNaN;         // of the processed record
+  double needed_gap_m = kNaN;       // −inf if no pair ever closes
+  int level = 0;                    // governing level (0: none, or a slab facing columns)
+  bool closes = false;              // some pair closes (NeededGap::entry ≥ 0)
   std::array<int, 2> floors{0, 0};  // its floors of building 1 and 2 (slab to column: the slab's floor and the storey)
-  double t_s = kNaN;              // when the governing pair closes most
+  double t_s = kNaN;                // when the governing pair closes most
   GapRules rules{kNaN, kNaN, kNaN};
   long steps = 0;
   double wall_time_s = 0.0;
@@ -52,19 +52,19 @@ struct RecordGap {
 /// Values that are not positive and finite (a record under which no pair closes) are left out.
 struct SetStatistic {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  int count = 0;             // values used
+  int count = 0;  // values used
   double mean = kNaN;
   double median = kNaN;
-  double log_mean = kNaN;    // m
-  double log_std = kNaN;     // s (needs two values)
+  double log_mean = kNaN;  // m
+  double log_std = kNaN;   // s (needs two values)
   double p84_lognormal = kNaN;
 };
 SetStatistic set_statistic(const std::vector<double>& values);
 
 struct RecordSetResult {
-  std::vector<RecordGap> records;  // in the order of the set
+  std::vector<RecordGap> records;                   // in the order of the set
   SetStatistic needed_gap_m, abs_m, srss_m, ddc_m;  // over the completed records
-  long worst = -1;                 // index of the record with the largest needed gap (−1: none)
+  long worst = -1;                                  // index of the record with the largest needed gap (−1: none)
   int failed = 0;
   double wall_time_s = 0.0;
 };

@@ -38,21 +38,21 @@ solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used);
 /// What one run may cost (README, "Limits"): checked against an estimate before the run starts,
 /// and enforced while it runs (the run then ends with status step_limit or time_limit).
 struct RunLimits {
-  long max_steps = 10'000'000;           // integrator steps (hht: trial steps, halvings included)
-  double max_wall_time_s = 3600.0;       // wall-clock time of the run (s)
-  double max_history_values = 2e7;       // history.csv values (rows × columns): 2e7 ≈ 450 MB on disk (≈ 23 B a
-                                         // value), 160 MB in memory when the caller keeps the history (no sink)
+  long max_steps = 10'000'000;      // integrator steps (hht: trial steps, halvings included)
+  double max_wall_time_s = 3600.0;  // wall-clock time of the run (s)
+  double max_history_values = 2e7;  // history.csv values (rows × columns): 2e7 ≈ 450 MB on disk (≈ 23 B a
+                                    // value), 160 MB in memory when the caller keeps the history (no sink)
   /// @throws InputError naming the field (limits.max_steps, ...) unless each is positive.
   void validate() const;
 };
 
 /// What a run of the scene needs at least, from the scene alone (no integration).
 struct WorkEstimate {
-  int dof = 0;                   // both buildings
-  double duration_s = 0.0;       // simulated time
-  double history_rows = 0.0;     // regular samples (event rows come on top); 0 without history
+  int dof = 0;                // both buildings
+  double duration_s = 0.0;    // simulated time
+  double history_rows = 0.0;  // regular samples (event rows come on top); 0 without history
   double history_columns = 0.0;
-  double min_steps = 0.0;        // hht: duration/Δt; event-driven: duration over the largest step allowed
+  double min_steps = 0.0;  // hht: duration/Δt; event-driven: duration over the largest step allowed
   double history_values() const { return history_rows * history_columns; }
 };
 
@@ -92,11 +92,11 @@ struct RunReport {
   std::vector<contact::Level> levels;
   std::vector<contact::Candidate> candidates;
   solvers::RunResult result;
-  std::string contact_law = "impulse";     // contact_laws.hpp
-  double contact_stiffness = 0.0;  // used by compliant laws, in the law's unit; 0 for impulse
+  std::string contact_law = "impulse";  // contact_laws.hpp
+  double contact_stiffness = 0.0;       // used by compliant laws, in the law's unit; 0 for impulse
   /// The law's damping from the restitution (contact_damping() in contact_laws.hpp); 0 for impulse.
   double contact_damping = 0.0;
-  double g_mps2 = 9.81;                     // the scene's gravity: accelerations are also reported in g
+  double g_mps2 = 9.81;  // the scene's gravity: accelerations are also reported in g
   std::vector<RunWarning> warnings = {};
   /// With output.contact_free_reference: the same run with no contact candidates (its peaks and
   /// springs; no history).

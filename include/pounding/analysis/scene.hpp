@@ -30,15 +30,15 @@ struct ContactSettings {
   /// A row (three or more buildings): the neighbouring pairs' gaps as the file states them, each
   /// checked against the outlines (which decide the gaps); optional, any subset of the pairs.
   std::vector<PairGap> gaps;
-  double restitution = 0.5;        // Newton coefficient k ∈ [0, 1]
-  double candidate_margin_m = 1.0; // reach of the candidate search beyond gap and edge ends (m)
-  double hold_velocity_mps = 1e-3; // sticking threshold: slower separations of pressed pairs are held
-  double hold_height_m = 1e-8;     // a pair whose next flight would rise less than this is held too
+  double restitution = 0.5;         // Newton coefficient k ∈ [0, 1]
+  double candidate_margin_m = 1.0;  // reach of the candidate search beyond gap and edge ends (m)
+  double hold_velocity_mps = 1e-3;  // sticking threshold: slower separations of pressed pairs are held
+  double hold_height_m = 1e-8;      // a pair whose next flight would rise less than this is held too
   // Floors of the two buildings whose elevations differ by at most this stand at one level and
   // can touch (m). 1 mm: far above the round-off of summed storey heights, far below any
   // storey height or slab thickness, so only floors the file puts at one height match.
   double level_tolerance_m = 1e-3;
-  std::string law = "impulse";     // a name of contact_laws() (contact_laws.hpp)
+  std::string law = "impulse";  // a name of contact_laws() (contact_laws.hpp)
   /// "on": a slab between two floors of the other building meets that building's facade columns
   /// (docs/model.md §6b); "off": such slabs are left out (only common levels touch).
   std::string slab_to_column = "on";
@@ -58,7 +58,7 @@ struct ContactSettings {
 /// `pounding settings` and docs/scene-format.md's [contact] table come from its row. The
 /// defaults are ContactSettings' initialisers (a required key has none).
 struct ContactSettingSpec {
-  std::string_view key;     // [contact] key, as `contact.<key>` in errors and summary.json
+  std::string_view key;       // [contact] key, as `contact.<key>` in errors and summary.json
   std::string_view option{};  // the `run`/`check` option that replaces it; empty: none
   std::variant<double ContactSettings::*, std::optional<double> ContactSettings::*, std::string ContactSettings::*>
       member;
@@ -80,8 +80,8 @@ inline constexpr std::array<std::string_view, 3> kPeakGroups{"displacements", "a
 
 /// What `pounding run` records besides impacts and the energy audit (always), and how.
 struct OutputSettings {
-  bool history = true;               // history.csv and contacts_history.csv; false: neither computed nor written
-  std::vector<int> history_floors;   // levels (1-based, as `check` lists them); empty: every level
+  bool history = true;              // history.csv and contacts_history.csv; false: neither computed nor written
+  std::vector<int> history_floors;  // levels (1-based, as `check` lists them); empty: every level
   /// [output.floor_history]: more floors to write, by building name: any floor of either
   /// building (a roof above the other building, a floor with no counterpart), after the levels'
   /// slabs; one already written with a level is not repeated.

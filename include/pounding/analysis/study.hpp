@@ -30,7 +30,7 @@ struct RunErrors {
   /// max |Δt| over matched impacts before the reference's first sustained contact: there the
   /// exact path is exact to round-off, so this ranks methods below the reference's hold error.
   double impact_time_before_hold_s = 0.0;
-  double impulse_relative = 0.0;                    // max |ΔI|/I_ref over matched impacts > 1 cm/s
+  double impulse_relative = 0.0;                                       // max |ΔI|/I_ref over matched impacts > 1 cm/s
   double history_u_m = 0.0, history_v_m = 0.0, history_phi_rad = 0.0;  // max over contact floors
   double peak_u_m = 0.0, peak_v_m = 0.0, peak_phi_rad = 0.0;           // max over all floors
 };
@@ -59,26 +59,26 @@ struct StudyRow {
 struct StiffnessRow {
   std::string law;
   std::string method;
-  double stiffness = 0.0;       // in the law's unit (stiffness_unit)
-  std::string stiffness_unit;   // "kN/m" or "kN/m^1.5"
+  double stiffness = 0.0;      // in the law's unit (stiffness_unit)
+  std::string stiffness_unit;  // "kN/m" or "kN/m^1.5"
   std::string status;
-  double run_time_s = 0.0;      // median wall time of the solver over the repeats
+  double run_time_s = 0.0;  // median wall time of the solver over the repeats
   long steps = 0, rhs_evaluations = 0, jacobian_evaluations = 0;
   std::size_t impacts = 0;
-  double peak_force_kN = 0.0;   // the largest contact force of the run
+  double peak_force_kN = 0.0;  // the largest contact force of the run
 };
 
 /// One rung of the truncation ladder: the exact path keeping each building's modes below a
 /// cut-off (solver.modes_cutoff_hz), the rest as their static response, against the full one.
 struct TruncationRow {
-  double cutoff_hz = 0.0;      // 0: every mode (the full exact path, timed like the others)
-  int modes_kept = 0;          // of both buildings together
+  double cutoff_hz = 0.0;  // 0: every mode (the full exact path, timed like the others)
+  int modes_kept = 0;      // of both buildings together
   int modes_total = 0;
   std::string status;
-  double run_time_s = 0.0;     // median wall time of the solver over the repeats
+  double run_time_s = 0.0;  // median wall time of the solver over the repeats
   long steps = 0;
   std::size_t impacts = 0;
-  RunErrors errors;            // against the reference (the full exact path)
+  RunErrors errors;  // against the reference (the full exact path)
 };
 
 /// The truncation ladder's cut-offs (Hz): 2, 5, 10 and 15, then 0 (every mode). The paper scene's

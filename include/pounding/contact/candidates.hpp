@@ -37,12 +37,12 @@ struct Candidate {
   double elevation_m = 0.0;         // the level's elevation (m)
   int striking_building = 0;        // owns the vertex P (0-based in the scene; one of `pair`)
   int struck_building = 1;          // the other one of `pair`: owns the edge Q1→Q2
-  std::size_t vertex_index = 0;   // index of P in the striking slab's outline
-  std::size_t edge_index = 0;     // edge i runs from vertex i to vertex i + 1
-  model::Point2 vertex_rest;      // P
-  model::Point2 edge_start_rest;  // Q1
-  model::Point2 edge_end_rest;    // Q2
-  model::Point2 normal_rest;      // outward unit normal of the struck edge at rest
+  std::size_t vertex_index = 0;     // index of P in the striking slab's outline
+  std::size_t edge_index = 0;       // edge i runs from vertex i to vertex i + 1
+  model::Point2 vertex_rest;        // P
+  model::Point2 edge_start_rest;    // Q1
+  model::Point2 edge_end_rest;      // Q2
+  model::Point2 normal_rest;        // outward unit normal of the struck edge at rest
   // Slab to column only (level 0): the column `column_index` (0-based in its building's list)
   // spans its storey from `lower_floor` (0: the ground) to floors[striking_building], of height
   // `storey_height_m`; the slab meets it at `height_ratio` ξ ∈ (0, 1) up that storey, where the

@@ -26,11 +26,11 @@ struct SlabMotion {
 /// Sign convention: g > 0 separated, g = 0 contact, g < 0 overlap; ġ < 0 approaching.
 struct GapState {
   double gap_m = 0.0;
-  double gap_rate_mps = 0.0;          // ġ = G q̇
-  double segment_param = 0.0;         // projection of P on Q1Q2: 0 at Q1, 1 at Q2 (a corner
-                                      // candidate's: on its edge less kCornerEdgeInset_m at each end)
-  model::Point2 contact_point;        // current position of P (m)
-  model::Point2 normal;               // current outward unit normal of the struck edge
+  double gap_rate_mps = 0.0;    // ġ = G q̇
+  double segment_param = 0.0;   // projection of P on Q1Q2: 0 at Q1, 1 at Q2 (a corner
+                                // candidate's: on its edge less kCornerEdgeInset_m at each end)
+  model::Point2 contact_point;  // current position of P (m)
+  model::Point2 normal;         // current outward unit normal of the struck edge
   /// ġ = striking_row · q̇_striking + struck_row · q̇_struck. striking_row = (n_x, n_y, ρ_A × n),
   /// struck_row = −(n_x, n_y, ρ_B × n), ρ = arm from each slab's CM to the current P.
   Eigen::RowVector3d striking_row;
@@ -38,7 +38,7 @@ struct GapState {
   /// Slab to column: striking_row is over the column's upper floor, times its weight N₂, and this
   /// over its lower floor, times N₁ (zero for the ground, which does not move).
   Eigen::RowVector3d striking_lower_row = Eigen::RowVector3d::Zero();
-  double curvature_mps2 = 0.0;        // h in g̈ = G q̈ + h (centripetal and normal-rotation terms)
+  double curvature_mps2 = 0.0;  // h in g̈ = G q̈ + h (centripetal and normal-rotation terms)
 
   bool on_segment(double tolerance = kOnSegmentTolerance) const {
     return segment_param >= -tolerance && segment_param <= 1.0 + tolerance;

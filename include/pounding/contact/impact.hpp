@@ -27,10 +27,10 @@ struct ContactRow {
 double single_impulse(const ContactRow& contact, const Eigen::VectorXd& inverse_mass);
 
 struct ImpulseSolution {
-  std::vector<double> impulses_kNs;            // one per contact, ≥ 0
-  Eigen::VectorXd velocity_change;             // Δq̇ = M⁻¹ Gᵀ I, over the group's velocities
-  bool exact = true;                            // false when the iterative fallback was used
-  double lcp_residual = 0.0;                    // the fallback's residual (LcpSolution::residual)
+  std::vector<double> impulses_kNs;  // one per contact, ≥ 0
+  Eigen::VectorXd velocity_change;   // Δq̇ = M⁻¹ Gᵀ I, over the group's velocities
+  bool exact = true;                 // false when the iterative fallback was used
+  double lcp_residual = 0.0;         // the fallback's residual (LcpSolution::residual)
 };
 
 /// Contacts on one group of slabs at one instant, solved together as the linear complementarity
@@ -42,9 +42,9 @@ struct ImpulseSolution {
 ImpulseSolution solve_impulses(const std::vector<ContactRow>& contacts, const Eigen::VectorXd& inverse_mass);
 
 struct LcpSolution {
-  Eigen::VectorXd x;      // ≥ 0
-  Eigen::VectorXd w;      // W x + offset ≥ 0, xᵢ wᵢ = 0
-  bool exact = true;      // false when the iterative fallback was used
+  Eigen::VectorXd x;  // ≥ 0
+  Eigen::VectorXd w;  // W x + offset ≥ 0, xᵢ wᵢ = 0
+  bool exact = true;  // false when the iterative fallback was used
   /// The fallback's residual max_i |min(W_ii x_i, w_i)| / max_i |offset_i| (dimensionless; 0 when
   /// exact): how far the sweeps left the complementarity conditions, relative to the problem.
   double residual = 0.0;

@@ -15,9 +15,9 @@ double kelvin_damping_ratio(double restitution);
 /// the formula for ξ would put it (the dashpot pulls in between). So the rebound exceeds e:
 /// 0.550 for e = 0.5, 0.253 for e = 0.1, exp(−2) = 0.135 for e = 0 (docs/model.md).
 struct KelvinRelease {
-  double omega_time = 0.0;    // ω t* of the release
-  double rebound = 0.0;       // −δ̇(t*)/v₀: the effective restitution
-  double overlap_ratio = 0.0; // ω δ(t*)/v₀: the overlap left at release
+  double omega_time = 0.0;     // ω t* of the release
+  double rebound = 0.0;        // −δ̇(t*)/v₀: the effective restitution
+  double overlap_ratio = 0.0;  // ω δ(t*)/v₀: the overlap left at release
 };
 /// @pre damping_ratio ∈ [0, 1].
 KelvinRelease kelvin_release(double damping_ratio);

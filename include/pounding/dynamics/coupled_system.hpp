@@ -187,8 +187,8 @@ class CoupledSystem {
   double kinetic_energy(ConstVectorRef y) const;
   /// With `springs`: the energy the yielding springs store (YieldingSprings::stored_energy_change).
   double strain_energy(ConstVectorRef y, const SpringStates* springs = nullptr) const;
-  double damping_power(ConstVectorRef y) const;            // q̇ᵀ C q̇ ≥ 0
-  double input_power(double t, ConstVectorRef y) const;    // −q̇ᵀ M Σ_c r_c a_c(t)
+  double damping_power(ConstVectorRef y) const;          // q̇ᵀ C q̇ ≥ 0
+  double input_power(double t, ConstVectorRef y) const;  // −q̇ᵀ M Σ_c r_c a_c(t)
 
   static constexpr double hold_time_constant_s = 1e-2;
 
@@ -219,11 +219,11 @@ class CoupledSystem {
   std::vector<contact::Candidate> candidates_;
   int dof_ = 0;
   std::vector<int> offset_;  // per building: the index in q of its floor 1's u
-  VectorXd mass_;          // diagonal of M, size n
-  MatrixXd stiffness_;     // block-diagonal K
-  MatrixXd damping_;       // block-diagonal C
-  MatrixXd influence_;     // r_c as columns: (cos β, sin β, 0) per floor, and a pair's (−sin β, cos β, 0)
-  MatrixXd a_matrix_;      // A
+  VectorXd mass_;            // diagonal of M, size n
+  MatrixXd stiffness_;       // block-diagonal K
+  MatrixXd damping_;         // block-diagonal C
+  MatrixXd influence_;       // r_c as columns: (cos β, sin β, 0) per floor, and a pair's (−sin β, cos β, 0)
+  MatrixXd a_matrix_;        // A
   // K and C couple only a storey's two floors: the free motion and the energies use them sparse,
   // O(n) instead of the dense A's O(n²).
   Eigen::SparseMatrix<double> stiffness_sparse_, damping_sparse_;

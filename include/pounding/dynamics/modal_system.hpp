@@ -24,10 +24,10 @@ class ModalSystem {
   const CoupledSystem& system() const { return system_; }
   int dof() const { return system_.dof(); }
   int state_size() const { return system_.state_size(); }
-  const VectorXd& omega_rad_s() const { return omega_rad_s_; }        // ωᵢ
+  const VectorXd& omega_rad_s() const { return omega_rad_s_; }  // ωᵢ
   /// Γᵢc = φᵢᵀ M r_c (√t): a row per mode, a column per ground-motion component.
   const MatrixXd& participation() const { return participation_; }
-  const VectorXd& damping_per_s() const { return damping_per_s_; }    // 2ζᵢωᵢ
+  const VectorXd& damping_per_s() const { return damping_per_s_; }  // 2ζᵢωᵢ
 
   /// Free motion ż = (η̇, −Ω²η − 2ZΩη̇ − Γ a_g(t)): O(n).
   void rhs(double t, ConstVectorRef z, Eigen::Ref<VectorXd> z_dot) const;
@@ -53,9 +53,9 @@ class ModalSystem {
 
  private:
   const CoupledSystem& system_;
-  std::vector<MatrixXd> shapes_;          // Φ_b, columns the modes, per building
-  std::vector<MatrixXd> inverse_;         // Φ_bᵀ M_b
-  MatrixXd shape_full_, inverse_full_;    // block-diagonal over both buildings (Jacobian maps)
+  std::vector<MatrixXd> shapes_;        // Φ_b, columns the modes, per building
+  std::vector<MatrixXd> inverse_;       // Φ_bᵀ M_b
+  MatrixXd shape_full_, inverse_full_;  // block-diagonal over both buildings (Jacobian maps)
   VectorXd omega_rad_s_, damping_per_s_;
   MatrixXd participation_;
 };

@@ -25,7 +25,7 @@ std::optional<AccelUnits> parse_accel_units(std::string_view name);
 inline constexpr double kMaxRecordDuration_s = 3600.0;  // record times lie in [0, this]
 inline constexpr double kMinSampleSpacing_s = 1e-5;     // dt_s in [this, kMaxSampleSpacing_s]: 100 kHz
 inline constexpr double kMaxSampleSpacing_s = 1.0;
-inline constexpr double kMaxPeakAccel_g = 10.0;         // processed peak |a_g|; recorded peaks stay below 5 g
+inline constexpr double kMaxPeakAccel_g = 10.0;               // processed peak |a_g|; recorded peaks stay below 5 g
 inline constexpr double kGravityRange_mps2[2] = {9.0, 10.5};  // g_mps2: Earth's 9.78…9.83, or 10 for hand checks
 
 /// The second horizontal component of a pair (H2), acting along direction_deg + 90°: its own
@@ -67,8 +67,8 @@ struct SaScaling {
   std::optional<DesignSpectrum> design;  // the range form's target
   double from = 1.0, to = 1.0;           // the range form's periods, as multiples of period_s
   std::optional<double> period_s;        // a period given in s (1 for a range in s), or the building's once resolved
-  int building = 0;                // 1 or 2: that building's T1; 3: the longer T1 of both; 0: period_s given
-  std::string text;                // as written, for messages
+  int building = 0;                      // 1 or 2: that building's T1; 3: the longer T1 of both; 0: period_s given
+  std::string text;                      // as written, for messages
 
   /// The periods (s) the factor is fitted at: period_s, or the range's log-spaced ones. @pre period_s set.
   std::vector<double> periods_s() const;

@@ -35,10 +35,10 @@ std::vector<double> default_periods_s();
 
 struct SpectrumOrdinate {
   double period_s = 0.0;
-  double sd_m = 0.0;        // peak |x|: spectral displacement
-  double psv_mps = 0.0;     // ω·Sd
-  double psa_mps2 = 0.0;    // ω²·Sd
-  double peak_time_s = 0.0; // when |x| peaks
+  double sd_m = 0.0;         // peak |x|: spectral displacement
+  double psv_mps = 0.0;      // ω·Sd
+  double psa_mps2 = 0.0;     // ω²·Sd
+  double peak_time_s = 0.0;  // when |x| peaks
 };
 
 /// The spectrum of one component.
@@ -71,7 +71,6 @@ std::pair<AccelerationHistory, AccelerationHistory> on_common_time_base(const Ac
 
 /// The factor that scales `history` so its PSA at `period_s` (damping ζ) equals `target_psa_mps2`.
 /// @throws InputError when the record's PSA there is zero or the target is not positive.
-double scale_to_psa(const AccelerationHistory& history, double period_s, double damping_ratio,
-                    double target_psa_mps2);
+double scale_to_psa(const AccelerationHistory& history, double period_s, double damping_ratio, double target_psa_mps2);
 
 }  // namespace pounding::excitation

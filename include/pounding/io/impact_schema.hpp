@@ -21,7 +21,7 @@ namespace pounding::io {
 struct ImpactField {
   enum class Type { real, integer, flag };
   std::string_view name;
-  std::string_view unit;                      // "s", "m", "mps", "kNs", "kJ"; empty: none
+  std::string_view unit;                     // "s", "m", "mps", "kNs", "kJ"; empty: none
   std::vector<std::string_view> components;  // empty: a scalar; else the array's components
   Type type = Type::real;
   /// The field's value (a scalar) or values (one per component) for an impact.

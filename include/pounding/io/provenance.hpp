@@ -13,16 +13,16 @@
 namespace pounding::io {
 
 struct Provenance {
-  std::string program_version;      // pounding::program_version()
-  std::string git_commit;           // pounding::git_commit(); empty: unknown
-  std::filesystem::path scene_file;  // absolute; empty for a scene built in code
-  std::string scene_sha256;          // 64 hex digits; empty with scene_file
-  std::filesystem::path record_file;  // absolute; empty when the scene names none
-  std::string record_sha256;          // empty with record_file
+  std::string program_version;         // pounding::program_version()
+  std::string git_commit;              // pounding::git_commit(); empty: unknown
+  std::filesystem::path scene_file;    // absolute; empty for a scene built in code
+  std::string scene_sha256;            // 64 hex digits; empty with scene_file
+  std::filesystem::path record_file;   // absolute; empty when the scene names none
+  std::string record_sha256;           // empty with record_file
   std::filesystem::path record2_file;  // a pair's second component (absolute); empty for one component
   std::string record2_sha256;          // empty with record2_file
-  std::string command_line;         // as typed, arguments quoted for a POSIX shell where needed; empty: not a CLI run
-  std::string date_utc;             // when the work started, ISO 8601 ("2026-11-21T19:42:44Z")
+  std::string command_line;  // as typed, arguments quoted for a POSIX shell where needed; empty: not a CLI run
+  std::string date_utc;      // when the work started, ISO 8601 ("2026-11-21T19:42:44Z")
 };
 
 /// The provenance of work on `scene` starting now: hashes its scene file (unless scene.file is

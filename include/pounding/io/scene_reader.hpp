@@ -14,19 +14,18 @@ namespace pounding::io {
 
 /// Values given on the command line that replace the file's.
 struct SceneOverrides {
-  std::optional<double> gap_m{};      // moves building 2 along x
+  std::optional<double> gap_m{};  // moves building 2 along x
   /// `--gap` as typed, each a gap in m (two buildings: as gap_m) or "NAME:NAME=m", a neighbouring
   /// pair's gap (Scene::set_pair_gap), applied in order after gap_m.
   std::vector<std::string> gaps{};
   std::optional<double> restitution{};
-  std::optional<std::string> contact_law{};              // --contact-law
-  std::optional<double> contact_stiffness{};             // --contact-stiffness, in the law's unit
+  std::optional<std::string> contact_law{};   // --contact-law
+  std::optional<double> contact_stiffness{};  // --contact-stiffness, in the law's unit
   /// Another record or scaling (`--record`, `--pga-g`, ...; excitation::with_record says what
   /// it keeps of the scene's). When set, the record is read once here, so that a record that
   /// cannot be read or scales beyond 10 g is refused before any run, naming the option.
   excitation::RecordChoice record{};
 };
-
 
 /// The largest scene file read (1 MiB): a scene is a page of text; more is the wrong file.
 inline constexpr std::uintmax_t kMaxSceneBytes = 1 << 20;

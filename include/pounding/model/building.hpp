@@ -100,17 +100,17 @@ inline constexpr Range kBoucWenN{1.0, 50.0};
 struct BuildingDefinition {
   std::string name;
   int storeys = 0;
-  std::vector<double> storey_height_m;         // one per storey, storey 1 (ground to floor 1) first
-  Polygon slab;                                // global plan coordinates at rest, CCW
-  Point2 centre_of_mass = Point2::Zero();      // global plan coordinates at rest (m)
-  std::vector<double> mass_t;                  // one per floor, floor 1 first
-  std::vector<double> polar_moment_tm2;        // about the CM, one per floor
+  std::vector<double> storey_height_m;     // one per storey, storey 1 (ground to floor 1) first
+  Polygon slab;                            // global plan coordinates at rest, CCW
+  Point2 centre_of_mass = Point2::Zero();  // global plan coordinates at rest (m)
+  std::vector<double> mass_t;              // one per floor, floor 1 first
+  std::vector<double> polar_moment_tm2;    // about the CM, one per floor
 
   // Storey stiffness, either from columns ...
   std::vector<Column> columns;
-  double E_kPa = 0.0;                          // Young's modulus of the columns
-  double frame_factor = 1.0;                   // ignored when target_period_s is set
-  std::optional<double> target_period_s;       // solve the frame factor for this T₁ (s)
+  double E_kPa = 0.0;                     // Young's modulus of the columns
+  double frame_factor = 1.0;              // ignored when target_period_s is set
+  std::optional<double> target_period_s;  // solve the frame factor for this T₁ (s)
   /// Each column's shear capacity (kN): slab-to-column impacts report their shear demand against
   /// it (docs/model.md §6b). Unset: no ratio.
   std::optional<double> column_shear_capacity_kN;
@@ -137,15 +137,13 @@ double uniform_polar_moment(const Polygon& slab, double mass_t);
 
 /// Lateral stiffnesses (kN/m) of one column fixed at both ends: k_x = 12 E (h b³/12)/H³,
 /// k_y = 12 E (b h³/12)/H³, times the frame factor.
-Eigen::Vector2d column_stiffness(const Column& column, double elastic_modulus_kPa,
-                                 double storey_height_m, double frame_factor);
+Eigen::Vector2d column_stiffness(const Column& column, double elastic_modulus_kPa, double storey_height_m,
+                                 double frame_factor);
 
 /// Storey stiffness about `centre_of_mass`: Σ Tᵀ diag(k_x, k_y) T, T = [[1,0,−Δy],[0,1,Δx]],
 /// for a storey of height `storey_height_m`.
-Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns,
-                                              const Point2& centre_of_mass,
-                                              double elastic_modulus_kPa, double storey_height_m,
-                                              double frame_factor);
+Eigen::Matrix3d storey_stiffness_from_columns(const std::vector<Column>& columns, const Point2& centre_of_mass,
+                                              double elastic_modulus_kPa, double storey_height_m, double frame_factor);
 
 /// The geometric (P-Δ) stiffness of storey j about the CM: −(g/H_j) diag(M_j, M_j, J_j), M_j and
 /// J_j the mass and polar moment of the floors it carries (j … N). A storey drift Δ tilts the load
@@ -176,12 +174,12 @@ RayleighCoefficients fit_rayleigh(double omega_i, double omega_j, double ratio);
 
 /// The assembled linear model of one building: M q̈ + C q̇ + K q = −M r a_g.
 struct Building {
-  BuildingDefinition definition;   // with frame_factor resolved
-  Eigen::VectorXd mass_diagonal;   // (m₁, m₁, J₁, m₂, …), size 3N
-  Eigen::MatrixXd stiffness;       // 3N×3N, symmetric positive definite
-  Eigen::MatrixXd damping;         // 3N×3N
+  BuildingDefinition definition;  // with frame_factor resolved
+  Eigen::VectorXd mass_diagonal;  // (m₁, m₁, J₁, m₂, …), size 3N
+  Eigen::MatrixXd stiffness;      // 3N×3N, symmetric positive definite
+  Eigen::MatrixXd damping;        // 3N×3N
   RayleighCoefficients rayleigh;
-  double frame_factor = 1.0;       // the one used (given, solved, or 1 for direct matrices)
+  double frame_factor = 1.0;  // the one used (given, solved, or 1 for direct matrices)
   /// All 3N modes of mass_diagonal and stiffness (model::modal_analysis), longest period first,
   /// solved once by make_building: every user of a building's modes reads these. Stale if M or K
   /// is changed afterwards.

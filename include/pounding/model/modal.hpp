@@ -11,7 +11,6 @@ namespace pounding::model {
 /// All 3N modes, longest period first. A built model::Building keeps its own (Building::modes):
 /// read those rather than solve the eigenproblem again. @pre mass_diagonal > 0, stiffness SPD.
 /// @throws std::runtime_error if the eigensolver fails.
-std::vector<Mode> modal_analysis(const Eigen::VectorXd& mass_diagonal,
-                                 const Eigen::MatrixXd& stiffness);
+std::vector<Mode> modal_analysis(const Eigen::VectorXd& mass_diagonal, const Eigen::MatrixXd& stiffness);
 
 }  // namespace pounding::model

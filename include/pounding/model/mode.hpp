@@ -13,7 +13,7 @@ std::string_view to_string(ModeComponent component);
 struct Mode {
   double omega_rad_s = 0.0;
   double period_s = 0.0;
-  Eigen::VectorXd shape;      // mass-normalised: φᵀ M φ = 1
+  Eigen::VectorXd shape;                      // mass-normalised: φᵀ M φ = 1
   ModeComponent dominant = ModeComponent::x;  // largest share of φᵀ M φ among u, v, φ DOFs
   // Effective modal mass as a fraction of the total: (φᵀ M r)² / Σ M_rr for r along x, y, rz.
   double effective_mass_ratio_x = 0.0;

@@ -20,7 +20,7 @@ enum class NewtonSolver { second_order, dense };
 struct CvodeSettings {
   CvodeMethod method = CvodeMethod::bdf;
   double rtol = 1e-8;
-  double atol = 1e-10;   // every component (m, rad and their rates) unless atol_vector is set
+  double atol = 1e-10;  // every component (m, rad and their rates) unless atol_vector is set
   NewtonSolver newton_solver = NewtonSolver::second_order;
   /// Per state component (CVodeSVtolerances); empty: atol for every one. @pre size 0 or the state's.
   Eigen::VectorXd atol_vector{};
@@ -44,12 +44,12 @@ class CvodeIntegrator final : public SundialsIntegrator {
   IntegratorCounters counters() override;
 
  private:
-  sundials::Matrix matrix_;                         // dense Newton solver only
-  sundials::LinearSolver linear_solver_;            // dense Newton solver only
+  sundials::Matrix matrix_;               // dense Newton solver only
+  sundials::LinearSolver linear_solver_;  // dense Newton solver only
   std::unique_ptr<SecondOrderLinearSolver> second_order_;
   long factorizations_at_restart_ = 0;  // counters() counts from the last restart, like CVODE's
-  bool stepped_since_restart_ = false;   // CVODE's linear-solver counters reset at the first step
-  sundials::IntegratorMemory memory_;    // last: freed first, before the solvers it refers to
+  bool stepped_since_restart_ = false;  // CVODE's linear-solver counters reset at the first step
+  sundials::IntegratorMemory memory_;   // last: freed first, before the solvers it refers to
 };
 
 }  // namespace pounding::solvers

@@ -47,7 +47,7 @@
 namespace pounding::solvers {
 
 struct EventOptions {
-  double restitution = 0.5;            // Newton k ∈ [0, 1]
+  double restitution = 0.5;  // Newton k ∈ [0, 1]
   /// impulse: velocity jumps and held contacts. kelvin, hertzdamp, jankowski: a force while the
   /// slabs overlap, its damping set by `restitution` (contact/compliant_law.hpp); no holds.
   contact::ContactLaw law = contact::ContactLaw::impulse;
@@ -78,7 +78,7 @@ struct EventOptions {
   /// A run with more events than this within one simulated second stops with event_limit.
   double max_events_per_s = 2000;
   long max_steps = 10'000'000;
-  RunBudget budget;                    // wall time; a run also stops when interrupted
+  RunBudget budget;  // wall time; a run also stops when interrupted
   /// Largest step (s). 0: automatic, the shortest damped period among the modes that move some
   /// candidate's gap by more than overlap_allowance_m with their present amplitude, divided by
   /// steps_per_period (GapModeBound), re-evaluated after every step and event. So no gap rate
@@ -98,9 +98,9 @@ struct EventOptions {
   /// whose energy_between is a closed form (the exact path's): the recorder's Gauss quadrature
   /// of the energy integrals needs short steps.
   bool clearance_steps = false;
-  Eigen::VectorXd initial_state;       // (q, q̇) at the record's start; empty: at rest
-  OutputSelection outputs;             // what the run records besides impacts and energy; default: all
-  std::vector<int> history_floors;     // levels (1-based) to write; empty: every level
+  Eigen::VectorXd initial_state;    // (q, q̇) at the record's start; empty: at rest
+  OutputSelection outputs;          // what the run records besides impacts and energy; default: all
+  std::vector<int> history_floors;  // levels (1-based) to write; empty: every level
   /// Other slabs to write as well, {building (0 or 1), floor (1-based)}: any floor of either
   /// building, after the levels' slabs (Recorder).
   std::vector<std::array<int, 2>> history_other_floors;

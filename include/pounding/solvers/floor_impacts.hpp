@@ -18,8 +18,8 @@ struct FloorContacts {
   std::vector<int> levels;                           // 1-based level indices, ascending
   std::vector<dynamics::CoupledSystem::Slab> slabs;  // the levels' slabs, each once
   std::vector<std::size_t> members;                  // candidate indices
-  std::vector<contact::GapState> states;     // at the impact instant
-  std::vector<contact::ContactRow> rows;     // impact-law rows (restitution per contact)
+  std::vector<contact::GapState> states;             // at the impact instant
+  std::vector<contact::ContactRow> rows;             // impact-law rows (restitution per contact)
 };
 
 using TakeContact = std::function<bool(std::size_t, const contact::GapState&)>;
@@ -65,7 +65,6 @@ contact::ImpulseSolution apply_impulses(const dynamics::CoupledSystem& system, d
 double record_floor_outcome(const dynamics::CoupledSystem& system, double t, const FloorContacts& contacts,
                             const contact::ImpulseSolution& solution, const dynamics::VectorXd& y_before,
                             const dynamics::VectorXd& y_after, const std::set<std::size_t>& touched,
-                            const std::vector<bool>& holds, const std::vector<bool>& were_held,
-                            RunResult& result);
+                            const std::vector<bool>& holds, const std::vector<bool>& were_held, RunResult& result);
 
 }  // namespace pounding::solvers

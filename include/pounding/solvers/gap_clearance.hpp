@@ -43,12 +43,12 @@ class GapClearance {
 
  private:
   struct BuildingModes {
-    int offset = 0;                   // index in q of the building's first DOF
-    Eigen::MatrixXd projection;       // Φᵀ M: η = projection · q_b
+    int offset = 0;              // index in q of the building's first DOF
+    Eigen::MatrixXd projection;  // Φᵀ M: η = projection · q_b
     Eigen::VectorXd omega_rad_s;
-    Eigen::MatrixXd participation;    // |Γ| per mode, a column per ground-motion component
-    std::vector<int> floors;          // contact floors (1-based), in the order of the rows below
-    Eigen::MatrixXd rate_rows;        // |Φ_jk| over the contact floors' (u, v, φ): |q̇_j| ≤ rate_rows Â
+    Eigen::MatrixXd participation;      // |Γ| per mode, a column per ground-motion component
+    std::vector<int> floors;            // contact floors (1-based), in the order of the rows below
+    Eigen::MatrixXd rate_rows;          // |Φ_jk| over the contact floors' (u, v, φ): |q̇_j| ≤ rate_rows Â
     Eigen::MatrixXd displacement_rows;  // |Φ_jk| / ω_k: |q_j| ≤ displacement_rows Â
     // The rows times |Γ_c|, one per component: Â's growth per unit a_c τ.
     std::vector<Eigen::VectorXd> rate_growth, displacement_growth;
@@ -56,8 +56,8 @@ class GapClearance {
   struct Pair {
     int striking = 0, struck = 0;          // buildings
     int striking_row = 0, struck_row = 0;  // first bound row of the candidate's floor in each
-    double arm_striking_m = 0.0;   // r_A
-    double arm_struck_m = 0.0;     // r_AB
+    double arm_striking_m = 0.0;           // r_A
+    double arm_struck_m = 0.0;             // r_AB
   };
 
   std::vector<BuildingModes> buildings_;

@@ -36,7 +36,7 @@ class GapModeBound {
 
  private:
   struct OscillatingMode {
-    int offset = 0;                 // index in q of the building's first DOF
+    int offset = 0;  // index in q of the building's first DOF
     double omega_rad_s = 0.0;
     double damped_period_s = 0.0;
     Eigen::VectorXd mass_shape;     // M φ over the building's DOFs: η = (Mφ)ᵀ q

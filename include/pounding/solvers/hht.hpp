@@ -70,17 +70,17 @@ struct HhtOptions {
   int max_halvings = 30;
   HhtEventLocation location = HhtEventLocation::halving;
   double restitution = 0.5;
-  Eigen::VectorXd initial_state;      // (q, q̇) at the record's start; empty: at rest
-  OutputSelection outputs;            // what the run records besides impacts and energy; default: all
-  std::vector<int> history_floors;    // levels (1-based) to write; empty: every level
+  Eigen::VectorXd initial_state;    // (q, q̇) at the record's start; empty: at rest
+  OutputSelection outputs;          // what the run records besides impacts and energy; default: all
+  std::vector<int> history_floors;  // levels (1-based) to write; empty: every level
   std::vector<std::array<int, 2>> history_other_floors;  // as EventOptions'
 
   double history_interval_s = 0.01;
   /// Receives the history rows and impacts as they come (the history then holds no rows); null:
   /// the whole history is kept in the result. Must outlive the run.
   RunSink* sink = nullptr;
-  long max_steps = 10'000'000;        // trial steps (halvings included) before step_limit
-  RunBudget budget;                   // wall time; a run also stops when interrupted
+  long max_steps = 10'000'000;  // trial steps (halvings included) before step_limit
+  RunBudget budget;             // wall time; a run also stops when interrupted
   /// @pre dt_s, contact_tolerance_m > 0, alpha ∈ [−1/3, 0], max_halvings ∈ 0..60, restitution ∈
   ///   [0, 1] (user input is checked by analysis::SolverSettings::validate() and the scene).
   /// @throws InputError naming the field for history_interval_s, max_steps, budget.

@@ -55,8 +55,7 @@ struct StepOutcome {
 };
 
 struct IntegratorCounters {
-  long steps = 0, rhs_evaluations = 0, root_evaluations = 0, jacobian_evaluations = 0,
-       error_test_failures = 0;
+  long steps = 0, rhs_evaluations = 0, root_evaluations = 0, jacobian_evaluations = 0, error_test_failures = 0;
 };
 
 /// Work on the relative motion over a stretch of a step (kJ).

@@ -131,9 +131,9 @@ class ModalExactIntegrator final : public Integrator {
   // Contact floors' DOFs: per building, the local DOF indices and the matching rows of Φ.
   std::vector<std::vector<int>> contact_dofs_;
   std::vector<Eigen::MatrixXd> contact_shapes_;
-  std::vector<Eigen::MatrixXd> contact_static_;    // the same rows of the static correction R (a column per component)
-  bool truncated_ = false;                         // some mode is left out
-  Eigen::VectorXd contact_y_;  // NaN outside the contact floors
+  std::vector<Eigen::MatrixXd> contact_static_;  // the same rows of the static correction R (a column per component)
+  bool truncated_ = false;                       // some mode is left out
+  Eigen::VectorXd contact_y_;                    // NaN outside the contact floors
   StepCache step_cache_, probe_cache_;
   // Scratch, sized once, so that a step allocates nothing.
   std::vector<Eigen::VectorXd> contact_q_, contact_q_rate_;
@@ -142,7 +142,7 @@ class ModalExactIntegrator final : public Integrator {
   Eigen::VectorXd roots_end_, roots_probe_;
 
   Segment segment_;
-  ModalState end_;                    // the modal state at the last step's end ...
+  ModalState end_;                                             // the modal state at the last step's end ...
   double end_t_s_ = std::numeric_limits<double>::quiet_NaN();  // ... at this time (NaN: none)
   Eigen::VectorXd state_;
   Eigen::VectorXd roots_start_;

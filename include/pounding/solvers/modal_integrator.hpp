@@ -18,8 +18,8 @@ class ModalIntegrator final : public MappedIntegrator {
  public:
   /// `modes`, `physical` and `inner` must outlive the integrator; `inner` is called once, with
   /// the modal functions and z₀ = T⁻¹ y₀ (its tolerances apply to z: ModalSystem::atol).
-  ModalIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical, const IntegratorFactory& inner,
-                  double t0, const Eigen::VectorXd& y0);
+  ModalIntegrator(const dynamics::ModalSystem& modes, OdeFunctions& physical, const IntegratorFactory& inner, double t0,
+                  const Eigen::VectorXd& y0);
 
  private:
   /// The loop's functions seen in modal coordinates.
@@ -32,8 +32,8 @@ class ModalIntegrator final : public MappedIntegrator {
 
    private:
     const dynamics::ModalSystem& modes_;
-    Eigen::VectorXd y_, y_dot_;      // scratch: the physical state and rate
-    Eigen::MatrixXd jacobian_;       // scratch: the physical Jacobian (contact phases only)
+    Eigen::VectorXd y_, y_dot_;  // scratch: the physical state and rate
+    Eigen::MatrixXd jacobian_;   // scratch: the physical Jacobian (contact phases only)
   };
 
   void to_inner(double, const Eigen::VectorXd& y, Eigen::VectorXd& z) override { modes_.to_modal(y, z); }

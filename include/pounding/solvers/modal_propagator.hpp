@@ -10,9 +10,9 @@
 namespace pounding::solvers {
 
 struct OscillatorStep {
-  Eigen::Matrix2d free;    // e^{Fτ}, F = [[0, 1], [−ω², −2ζω]]
-  Eigen::Vector2d start;   // response to a unit constant load p₀ (η in m per m/s², η̇ in m/s per m/s²)
-  Eigen::Vector2d slope;   // response to a unit load rate s
+  Eigen::Matrix2d free;   // e^{Fτ}, F = [[0, 1], [−ω², −2ζω]]
+  Eigen::Vector2d start;  // response to a unit constant load p₀ (η in m per m/s², η̇ in m/s per m/s²)
+  Eigen::Vector2d slope;  // response to a unit load rate s
 };
 
 /// The oscillator's step over τ (s), exact to round-off (1e-13 relative, tests/solvers/

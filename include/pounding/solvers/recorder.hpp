@@ -67,8 +67,7 @@ class Recorder {
   void advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
                const std::function<dynamics::VectorXd(double)>& at,
                const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
-               const std::optional<StretchEnergy>& closed_form = std::nullopt,
-               const ComponentsAt& components_at = {});
+               const std::optional<StretchEnergy>& closed_form = std::nullopt, const ComponentsAt& components_at = {});
   /// Peaks are located on pieces of a stretch no longer than this (s; 0: whole stretches), for
   /// paths whose steps may span more than a quarter of the shortest oscillation period (the exact
   /// path's clearance steps): within a quarter period no rate changes sign twice unseen.

@@ -53,17 +53,17 @@ struct ContactIdentity {
 
 struct ImpactRecord : ContactIdentity {
   double t_s = 0.0;
-  model::Point2 vertex_rest;          // the striking vertex at rest (m); slab to column: the column's point
-  model::Point2 point;                // contact point at impact (m)
+  model::Point2 vertex_rest;             // the striking vertex at rest (m); slab to column: the column's point
+  model::Point2 point;                   // contact point at impact (m)
   double approach_velocity_mps = 0.0;    // −ġ⁻ > 0
   double separation_velocity_mps = 0.0;  // ġ⁺ (= k·approach for a lone contact)
-  double impulse_kNs = 0.0;           // compliant laws: ∫F dt over the contact
-  double energy_lost_kJ = 0.0;        // of the whole slab pair, shared by its simultaneous contacts
+  double impulse_kNs = 0.0;              // compliant laws: ∫F dt over the contact
+  double energy_lost_kJ = 0.0;           // of the whole slab pair, shared by its simultaneous contacts
   /// Compliant laws: onset (t_s) to release, and the largest force in between. 0 for the
   /// impulse law, whose impacts are instantaneous impulses with no finite force.
   double duration_s = 0.0;
   double peak_force_kN = 0.0;
-  bool starts_hold = false;           // the pair was then held in sustained contact
+  bool starts_hold = false;  // the pair was then held in sustained contact
   // Slab to column: the height ratio ξ up the struck column's storey, and the end shear and
   // largest moment the peak force causes in the fixed–fixed column (contact::column_demand).
   // Zero for slab to slab.
@@ -84,10 +84,10 @@ struct TouchRecord : ContactIdentity {  // contact with ġ ≥ 0: no impulse
 struct SustainedContactRecord : ContactIdentity {
   double start_s = 0.0;
   double release_s = 0.0;
-  std::string release_reason;       // "tensile force", "slid off the edge", "end of run", ...
+  std::string release_reason;  // "tensile force", "slid off the edge", "end of run", ...
   double max_force_kN = 0.0;
-  double max_gap_drift_m = 0.0;     // max |g| while held
-  double impulse_kNs = 0.0;         // impulse shares taken while held, when impacts struck its floor
+  double max_gap_drift_m = 0.0;  // max |g| while held
+  double impulse_kNs = 0.0;      // impulse shares taken while held, when impacts struck its floor
 };
 
 /// A located contact's floor of `building` (1-based, one of the pair).
@@ -140,16 +140,16 @@ struct BuildingPeaks {
   std::string name;
   std::vector<int> contact_vertices;                 // their 1-based numbers in the slab outline, ascending
   std::vector<model::Point2> contact_vertices_rest;  // the same vertices at rest; vertex_dx_m follows this order
-  std::vector<FloorPeaks> floors;                      // every floor of the building
+  std::vector<FloorPeaks> floors;                    // every floor of the building
 };
 
-struct EnergyAudit {  // relative motion, kJ, integrated along the run
-  double input_kJ = 0.0;          // ∫ −q̇ᵀ M r a_g dt
-  double kinetic_kJ = 0.0;        // at the end
-  double strain_kJ = 0.0;         // at the end
-  double damping_kJ = 0.0;        // ∫ q̇ᵀ C q̇ dt
-  double impact_loss_kJ = 0.0;    // Σ over impacts
-  double constraint_work_kJ = 0.0;  // ∫ λ ġ dt during holds (ideally 0)
+struct EnergyAudit {                        // relative motion, kJ, integrated along the run
+  double input_kJ = 0.0;                    // ∫ −q̇ᵀ M r a_g dt
+  double kinetic_kJ = 0.0;                  // at the end
+  double strain_kJ = 0.0;                   // at the end
+  double damping_kJ = 0.0;                  // ∫ q̇ᵀ C q̇ dt
+  double impact_loss_kJ = 0.0;              // Σ over impacts
+  double constraint_work_kJ = 0.0;          // ∫ λ ġ dt during holds (ideally 0)
   double algorithmic_dissipation_kJ = 0.0;  // HHT: energy its update removes (numerical damping); 0 elsewhere
   double hysteretic_kJ = 0.0;               // dissipated by the yielding columns; 0 when every column stays elastic
   double residual_kJ() const {
@@ -194,26 +194,26 @@ struct SolverStatistics {
   long root_evaluations = 0;
   long jacobian_evaluations = 0;
   long error_test_failures = 0;
-  long restarts = 0;            // re-initialisations after events
-  long events = 0;              // root returns handled (impacts, touches, releases, ...)
-  long interpolant_events = 0;  // contacts found inside a step from the interpolant (grazing)
-  long yield_events = 0;        // yielding columns' branch changes (yield, unload); not in `events`
+  long restarts = 0;               // re-initialisations after events
+  long events = 0;                 // root returns handled (impacts, touches, releases, ...)
+  long interpolant_events = 0;     // contacts found inside a step from the interpolant (grazing)
+  long yield_events = 0;           // yielding columns' branch changes (yield, unload); not in `events`
   long off_segment_crossings = 0;  // roots on an edge's extension: not contacts, ignored
   /// Corners (docs/model.md §5a): the corner candidates, how many of them were ever armed (a live
   /// root function), and the contacts handed round a corner to another candidate.
   long corner_candidates = 0;
   long corner_candidates_armed = 0;
   long corner_handovers = 0;
-  long iterative_lcp_solves = 0;   // impact and hold problems solved by Gauss–Seidel (docs/model.md §6)
+  long iterative_lcp_solves = 0;      // impact and hold problems solved by Gauss–Seidel (docs/model.md §6)
   double largest_lcp_residual = 0.0;  // their largest residual (contact::LcpSolution::residual)
   void note_lcp(bool exact, double residual) {
     if (exact) return;
     ++iterative_lcp_solves;
     largest_lcp_residual = std::max(largest_lcp_residual, residual);
   }
-  long halvings = 0;               // HHT: step halvings on overlap
-  double smallest_step_s = 0.0;    // HHT: the smallest step taken
-  long unresolved_contacts = 0;    // HHT: times a pair sank deeper than the tolerance at an accepted step end
+  long halvings = 0;             // HHT: step halvings on overlap
+  double smallest_step_s = 0.0;  // HHT: the smallest step taken
+  long unresolved_contacts = 0;  // HHT: times a pair sank deeper than the tolerance at an accepted step end
   /// The deepest overlap −g (m, ≥ 0) of a pair not held in sustained contact, seen at a step end,
   /// an event or a located minimum; when, and which candidate (−1: none overlapped).
   double max_interpenetration_m = 0.0;
@@ -234,9 +234,9 @@ struct SolverStatistics {
 /// at that instant have no sample.
 struct ContactForceSample : ContactIdentity {
   double t_s = 0.0;
-  double gap_m = 0.0;               // signed gap g (< 0: overlap)
-  double gap_rate_mps = 0.0;        // ġ
-  double force_kN = 0.0;            // > 0 pushes the slabs apart
+  double gap_m = 0.0;         // signed gap g (< 0: overlap)
+  double gap_rate_mps = 0.0;  // ġ
+  double force_kN = 0.0;      // > 0 pushes the slabs apart
 };
 
 /// Sampled time history: one row per sample, columns named in `columns` (units in the name).

@@ -75,18 +75,18 @@ class SecondOrderLinearSolver {
   /// Factors it from the dense jacobian_.
   void factor_dense(double gamma);
 
-  Eigen::MatrixXd jacobian_;  // dense path: the whole 2n × 2n Jacobian
-  Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;  // dense path, when not diagonal
-  bool sparse_ = false;                           // the last evaluation of J gave sparse rows
-  Eigen::SparseMatrix<double> sparse_rows_;       // [A21, A22], n × 2n
+  Eigen::MatrixXd jacobian_;                                     // dense path: the whole 2n × 2n Jacobian
+  Eigen::PartialPivLU<Eigen::MatrixXd> reduced_;                 // dense path, when not diagonal
+  bool sparse_ = false;                                          // the last evaluation of J gave sparse rows
+  Eigen::SparseMatrix<double> sparse_rows_;                      // [A21, A22], n × 2n
   Eigen::SparseMatrix<double> accel_by_w_, w_rate_by_velocity_;  // B (n × m) and C (m × n)
   Eigen::VectorXd w_rate_by_w_, w_factor_;                       // d, and D⁻¹ = 1/(1 − γ d) as factored
   Eigen::SparseLU<Eigen::SparseMatrix<double>> sparse_reduced_;
   std::vector<int> ordered_outer_, ordered_inner_;  // the pattern sparse_reduced_ was ordered for
-  bool diagonal_ = false;              // A21 and A22 diagonal: reduced_diagonal_ holds the matrix
-  Eigen::VectorXd reduced_diagonal_;   // 1 − γ diag A22 − γ² diag A21
+  bool diagonal_ = false;                           // A21 and A22 diagonal: reduced_diagonal_ holds the matrix
+  Eigen::VectorXd reduced_diagonal_;                // 1 − γ diag A22 − γ² diag A21
   Eigen::VectorXd a21_diagonal_, a22_diagonal_;
-  bool jacobian_current_ = false;      // J is this phase's (kept while the phase is linear)
+  bool jacobian_current_ = false;  // J is this phase's (kept while the phase is linear)
   double gamma_ = 0.0;
   double factored_t_s_ = 0.0;  // the Newton prediction's time at the last factorisation
   bool stale_ = true;
