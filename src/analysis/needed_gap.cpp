@@ -14,8 +14,9 @@
 #include "pounding/input_error.hpp"
 #include "pounding/model/mode.hpp"
 #include "pounding/solvers/cvode_integrator.hpp"
-#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/event_options.hpp"
 #include "pounding/solvers/gap_mode_bound.hpp"
+#include "pounding/solvers/simulator.hpp"
 #include "pounding/solvers/yield_states.hpp"
 #include "parallel.hpp"
 
@@ -75,72 +76,13 @@ struct FacingPoint {
   std::array<double, 2> weights{0.0, 1.0};
 };
 
-class FreeRun final : public solvers::OdeFunctions {
+/// The touch geometry of the pairs and facing points: where each pair just touches as the gap
+/// changes, and how far each facing point has moved towards the other building.
+class TouchGeometry {
  public:
-  FreeRun(const CoupledSystem& system, double scene_gap_m, std::vector<bool> counted, std::vector<FacingPoint> points,
-          std::vector<std::size_t> slots)
-      : system_(system),
-        scene_gap_m_(scene_gap_m),
-        counted_(std::move(counted)),
-        points_(std::move(points)),
-        slots_(std::move(slots)),
-        yields_(system.springs(), solvers::EventOptions{}.max_events_per_s) {}
-
-  int state_size() const override { return system_.state_size(); }
-  int root_count() const override { return static_cast<int>(counted_.size() + points_.size() + yields_.size()); }
-  // Yielding columns change the Jacobian at their branch changes.
-  bool is_linear() const override { return yields_.empty(); }
-  void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
-    system_.rhs(t, y, y_dot, yields_.states());
-  }
-  void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
-    if (yields_.empty()) {
-      jac = system_.jacobian();
-      return;
-    }
-    Eigen::SparseMatrix<double> rows;
-    system_.constrained_acceleration_jacobian(y, {}, rows, yields_.states());
-    system_.full_jacobian(y, rows, jac);
-  }
-  // Sparse, so that CVODE's Newton matrices cost O(n) to factor rather than O(n³).
-  bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
-    system_.constrained_acceleration_jacobian(y, {}, rows, yields_.states());
-    return true;
-  }
-  int extra_state_count() const override { return system_.springs().smooth_count(); }
-  void extra_state_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& accel_by_w,
-                            Eigen::SparseMatrix<double>& w_rate_by_velocity, VectorXd& w_rate_by_w) override {
-    system_.smooth_jacobian(y, {}, accel_by_w, w_rate_by_velocity, w_rate_by_w);
-  }
-
-  // Every root of the first two blocks falls through zero at a maximum: a pair's touch gap (−ġ at
-  // its touch geometry), a facing vertex's displacement towards the other building (its velocity
-  // that way). The last block: the yielding columns' branch changes (YieldStates).
-  void roots(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
-    for (std::size_t i = 0; i < counted_.size(); ++i)
-      g[static_cast<Eigen::Index>(i)] = counted_[i] ? touch(y, i).rate : 1.0;
-    for (std::size_t k = 0; k < points_.size(); ++k) {
-      g[static_cast<Eigen::Index>(counted_.size() + k)] = towards(y, points_[k]).second;
-    }
-    const auto first_spring = static_cast<Eigen::Index>(counted_.size() + points_.size());
-    for (std::size_t j = 0; j < yields_.size(); ++j)
-      g[first_spring + static_cast<Eigen::Index>(j)] = yields_.witness(y, j);
-  }
-
-  /// A yielding column whose drift passed kCollapseDriftRatio of its storey in state y, if any.
-  std::optional<std::size_t> collapsed(const VectorXd& y) { return yields_.observe(y); }
-  /// A yielding column switching more than EventOptions' max_events_per_s times a second, if any.
-  std::optional<std::size_t> chattering() const { return yields_.chattering(); }
-  const dynamics::YieldingSpring& spring(std::size_t j) const { return system_.springs()[j]; }
-
-  /// At a root at (t, y): switches the yielding columns whose witness crossed. @return how many
-  /// did (if any, the integrator must restart: the motion's equations changed).
-  int switch_springs(double t, const VectorXd& y) {
-    if (yields_.empty()) return 0;
-    VectorXd y_dot(system_.state_size());
-    rhs(t, y, y_dot);
-    return yields_.switch_branches(t, y, y_dot);
-  }
+  TouchGeometry(const CoupledSystem& system, double scene_gap_m, std::vector<FacingPoint> points,
+                std::vector<std::size_t> slots)
+      : system_(system), scene_gap_m_(scene_gap_m), points_(std::move(points)), slots_(std::move(slots)) {}
 
   Touch touch(const Eigen::Ref<const VectorXd>& y, std::size_t i) const {
     const contact::Candidate& c = system_.candidates()[i];
@@ -173,9 +115,6 @@ class FreeRun final : public solvers::OdeFunctions {
   std::size_t slot(std::size_t i) const { return slots_[i]; }
 
  private:
-  const CoupledSystem& system_;
-  double scene_gap_m_;
-  std::vector<bool> counted_;
   /// The x displacement (m) and its rate (m/s) of the point at `arm_rest` from the CM as `floor`
   /// of `building` carries it.
   std::pair<double, double> carried(const Eigen::Ref<const VectorXd>& y, int building, int floor,
@@ -185,9 +124,30 @@ class FreeRun final : public solvers::OdeFunctions {
     return {y[i] + arm.x() - arm_rest.x(), y[system_.dof() + i] - y[system_.dof() + i + 2] * arm.y()};
   }
 
+  const CoupledSystem& system_;
+  double scene_gap_m_;
   std::vector<FacingPoint> points_;
   std::vector<std::size_t> slots_;
-  solvers::YieldStates yields_;
+};
+
+/// The contact-free run's root functions, by name. Every pair and point root falls through zero
+/// at a maximum: a counted pair's touch gap (−ġ at its touch geometry), a facing point's
+/// displacement towards the other building (its velocity that way); then each yielding column
+/// spring's branch change (YieldStates).
+class FreeRunRoots {
+ public:
+  FreeRunRoots(std::size_t pairs, std::size_t points, std::size_t springs)
+      : pairs_(pairs), points_(points), springs_(springs) {}
+  int size() const { return static_cast<int>(pairs_ + points_ + springs_); }
+  Eigen::Index pair(std::size_t i) const { return static_cast<Eigen::Index>(i); }
+  Eigen::Index point(std::size_t k) const { return static_cast<Eigen::Index>(pairs_ + k); }
+  Eigen::Index spring(std::size_t j) const { return static_cast<Eigen::Index>(pairs_ + points_ + j); }
+  bool flagged(const std::vector<int>& flags, Eigen::Index root) const {
+    return flags[static_cast<std::size_t>(root)] != 0;
+  }
+
+ private:
+  std::size_t pairs_, points_, springs_;
 };
 
 std::vector<bool> counted_pairs(const CoupledSystem& system) {
@@ -267,25 +227,25 @@ GapMode gap_mode(const model::Building& building) {
 }
 
 /// Takes the pairs' touch gaps and the facing points' displacements at (t, y) into the result
-/// where they exceed what it holds: only the components in `found` (a root return), or all.
-void note_maxima(const FreeRun& run, double t, const VectorXd& y, const std::vector<bool>& counted,
-                 const std::vector<int>* found, NeededGap& result) {
-  const std::size_t n = counted.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!counted[i] || (found && (*found)[i] == 0)) continue;
+/// where they exceed what it holds: all of them, or only those whose root `found` flags (a root
+/// return, laid out as `roots`).
+void note_maxima(const TouchGeometry& geometry, double t, const VectorXd& y, const std::vector<bool>& counted,
+                 NeededGap& result, const FreeRunRoots* roots = nullptr, const std::vector<int>* found = nullptr) {
+  for (std::size_t i = 0; i < counted.size(); ++i) {
+    if (!counted[i] || (found && !roots->flagged(*found, roots->pair(i)))) continue;
     if (found) ++result.extrema;
-    const Touch touch = run.touch(y, i);
-    LevelGap& level = result.levels[run.slot(i)];
+    const Touch touch = geometry.touch(y, i);
+    LevelGap& level = result.levels[geometry.slot(i)];
     if (touch.on_segment && touch.gap_m > level.needed_gap_m) {
       level.needed_gap_m = touch.gap_m;
       level.t_s = t;
       level.candidate = static_cast<long>(i);
     }
   }
-  for (std::size_t k = 0; k < run.points().size(); ++k) {
-    if (found && (*found)[n + k] == 0) continue;
-    const FacingPoint& p = run.points()[k];
-    const double towards = run.towards(y, p).first;
+  for (std::size_t k = 0; k < geometry.points().size(); ++k) {
+    if (found && !roots->flagged(*found, roots->point(k))) continue;
+    const FacingPoint& p = geometry.points()[k];
+    const double towards = geometry.towards(y, p).first;
     LevelGap& level = result.levels[p.level_slot];
     if (towards > level.peak_towards_m[p.building]) {
       level.peak_towards_m[p.building] = towards;
@@ -294,94 +254,160 @@ void note_maxima(const FreeRun& run, double t, const VectorXd& y, const std::vec
   }
 }
 
-/// Integrates the free motion over the record, noting every maximum; samples the states every
-/// `interval_s` for the history.
-void integrate(const CoupledSystem& system, const NeededGapOptions& options, FreeRun& run,
+/// The contact-free run as a HybridSystem (solvers/simulator.hpp): the buildings' free motion
+/// with their yielding columns, its roots the maxima of the touch gaps and of the facing points'
+/// displacements (noted into the result) and the columns' branch changes (which restart it). The
+/// state is sampled every `history_interval_s` for the history.
+class FreeRunSystem final : public solvers::HybridSystem {
+ public:
+  FreeRunSystem(const CoupledSystem& system, const TouchGeometry& geometry, const std::vector<bool>& counted,
+                double history_interval_s, NeededGap& result, std::vector<VectorXd>& samples)
+      : system_(system),
+        geometry_(geometry),
+        counted_(counted),
+        yields_(system.springs(), solvers::EventOptions{}.max_events_per_s),
+        roots_(counted.size(), geometry.points().size(), yields_.size()),
+        bound_(system, kGapResolution_m, 4.0),
+        interval_s_(history_interval_s),
+        result_(result),
+        samples_(samples) {
+    for (int b = 0; b < system.building_count(); ++b) building_names_.push_back(system.building(b).definition.name);
+  }
+
+  int state_size() const override { return system_.state_size(); }
+  int root_count() const override { return roots_.size(); }
+  // Yielding columns change the Jacobian at their branch changes.
+  bool is_linear() const override { return yields_.empty(); }
+  void rhs(double t, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) override {
+    system_.rhs(t, y, y_dot, yields_.states());
+  }
+  void jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<Eigen::MatrixXd> jac) override {
+    if (yields_.empty()) {
+      jac = system_.jacobian();
+      return;
+    }
+    Eigen::SparseMatrix<double> rows;
+    system_.constrained_acceleration_jacobian(y, {}, rows, yields_.states());
+    system_.full_jacobian(y, rows, jac);
+  }
+  // Sparse, so that CVODE's Newton matrices cost O(n) to factor rather than O(n³).
+  bool acceleration_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& rows) override {
+    system_.constrained_acceleration_jacobian(y, {}, rows, yields_.states());
+    return true;
+  }
+  int extra_state_count() const override { return system_.springs().smooth_count(); }
+  void extra_state_jacobian(double, const Eigen::Ref<const VectorXd>& y, Eigen::SparseMatrix<double>& accel_by_w,
+                            Eigen::SparseMatrix<double>& w_rate_by_velocity, VectorXd& w_rate_by_w) override {
+    system_.smooth_jacobian(y, {}, accel_by_w, w_rate_by_velocity, w_rate_by_w);
+  }
+  void roots(double, const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> g) override {
+    for (std::size_t i = 0; i < counted_.size(); ++i)
+      g[roots_.pair(i)] = counted_[i] ? geometry_.touch(y, i).rate : 1.0;
+    for (std::size_t k = 0; k < geometry_.points().size(); ++k)
+      g[roots_.point(k)] = geometry_.towards(y, geometry_.points()[k]).second;
+    for (std::size_t j = 0; j < yields_.size(); ++j) g[roots_.spring(j)] = yields_.witness(y, j);
+  }
+
+  // The phases (simulator.hpp).
+  void start(double t0, VectorXd& y) override {
+    note_maxima(geometry_, t0, y, counted_, result_);
+    next_sample_s_ = t0;
+    t0_ = t0;
+  }
+  // As in the event-driven loop: a quarter of the shortest damped period among the modes that
+  // move a gap (so no rate changes sign twice in a step unseen).
+  void begin_phase(double, const VectorXd& y, solvers::Integrator& integrator) override {
+    integrator.set_max_step(bound_.max_step_s(y));
+  }
+  // A root function that stays at zero after a root (a column spring whose witness rests at zero)
+  // is an illegal input to CVODE's next root check; a restart there takes it as a root at the
+  // start, which CVODE leaves alone until it moves. Once at an instant, then a failure.
+  bool recover(double t, const VectorXd&, const std::string& failure) override {
+    if (failure.find("CV_ILL_INPUT") == std::string::npos || restarted_at_s_ == t) return false;
+    restarted_at_s_ = t;
+    return true;
+  }
+  void record(double, double t_b, const VectorXd&, solvers::Integrator& integrator) override {
+    VectorXd state(system_.state_size());
+    for (; next_sample_s_ <= t_b; next_sample_s_ = t0_ + static_cast<double>(samples_.size()) * interval_s_) {
+      integrator.interpolate(next_sample_s_, state);
+      samples_.push_back(state);
+      result_.history_t_s.push_back(next_sample_s_);
+    }
+  }
+  // A root: the maxima it marks, then the columns that switch branch (the equations change).
+  bool on_event(double t, VectorXd& y, const solvers::EventCause& cause) override {
+    note_maxima(geometry_, t, y, counted_, result_, &roots_, &cause.root_flags);
+    int switched = 0;
+    if (!yields_.empty()) {
+      VectorXd y_dot(system_.state_size());
+      rhs(t, y, y_dot);
+      switched = yields_.switch_branches(t, y, y_dot);
+      result_.yield_events += switched;
+    }
+    check_columns(t, y);
+    return switched > 0;
+  }
+  void after_step(double t, const VectorXd& y, solvers::Integrator& integrator) override {
+    check_columns(t, y);
+    if (!stopped_) integrator.set_max_step(bound_.max_step_s(y));
+  }
+  bool stopped() const override { return stopped_; }
+
+ private:
+  /// Ends the run if its yielding columns call for it (YieldStates::stop: collapse, chattering).
+  void check_columns(double t, const VectorXd& y) {
+    if (yields_.empty() || stopped_) return;
+    if (std::optional<solvers::YieldingStop> stop = yields_.stop(t, y, building_names_)) {
+      result_.status = stop->status;
+      result_.status_detail = std::move(stop->detail);
+      stopped_ = true;
+    }
+  }
+
+  const CoupledSystem& system_;
+  const TouchGeometry& geometry_;
+  const std::vector<bool>& counted_;
+  solvers::YieldStates yields_;
+  FreeRunRoots roots_;
+  solvers::GapModeBound bound_;
+  std::vector<std::string> building_names_;  // for the columns' messages
+  double interval_s_;
+  NeededGap& result_;
+  std::vector<VectorXd>& samples_;
+  double t0_ = 0.0, next_sample_s_ = 0.0;
+  double restarted_at_s_ = -std::numeric_limits<double>::infinity();
+  bool stopped_ = false;
+};
+
+/// Integrates the free motion over the record on CVODE (Adams or BDF as `options` say), noting
+/// every maximum into `result`; samples the states every options.history_interval_s.
+void integrate(const CoupledSystem& system, const NeededGapOptions& options, const TouchGeometry& geometry,
                const std::vector<bool>& counted, NeededGap& result, std::vector<VectorXd>& samples) {
-  const double interval_s = options.history_interval_s;
   solvers::CvodeSettings settings;
   settings.method = options.adams ? solvers::CvodeMethod::adams : solvers::CvodeMethod::bdf;
   settings.rtol = options.rtol;
   settings.atol = options.atol;
-  const double t0 = system.ground_motion().start_s(), t_end = system.ground_motion().end_s();
-  VectorXd y = VectorXd::Zero(system.state_size());
-  solvers::CvodeIntegrator integrator(run, settings, t0, y);
-  // As in the event-driven loop: a quarter of the shortest damped period among the modes that
-  // move a gap (so no rate changes sign twice in a step unseen), and never a step across a
-  // record sample (the forcing's slope changes there).
-  const solvers::GapModeBound bound(system, kGapResolution_m, 4.0);
-  integrator.set_max_step(bound.max_step_s(y));
-  auto set_next_stop = [&](double t) {
-    if (const auto next = system.ground_motion().next_sample_after(t)) integrator.set_stop_time(*next);
-  };
-  set_next_stop(t0);
-  note_maxima(run, t0, y, counted, nullptr, result);
-  double next_sample = t0;
-  VectorXd state(system.state_size());
-  double t = t0;
-  solvers::BudgetClock clock(options.budget);
-  solvers::RunResult stop;  // receives the reason when the budget or a signal ends the run
-  double restarted_at = -std::numeric_limits<double>::infinity();
-  while (t < t_end) {
-    if (clock.exhausted(t, stop)) {
-      result.status = stop.status;
-      result.status_detail = stop.status_detail;
-      break;
-    }
-    const solvers::StepOutcome outcome = integrator.step(t_end);
-    if (outcome.kind == solvers::StepKind::failure) {
-      // A root function that stays at zero after a root (a column spring whose witness rests at
-      // zero) is an illegal input to CVODE's next root check; a restart there takes it as a root
-      // at the start, which CVODE leaves alone until it moves. Once at an instant, then a failure.
-      if (outcome.failure.find("CV_ILL_INPUT") == std::string::npos || restarted_at == t) {
-        throw std::runtime_error(fmt::format("contact-free run failed after t = {} s: {}", t, outcome.failure));
-      }
-      result.steps += integrator.counters().steps;
-      integrator.restart(t, integrator.state());
-      set_next_stop(t);
-      restarted_at = t;
-      continue;
-    }
-    t = outcome.t_s;
-    for (; next_sample <= t; next_sample = t0 + static_cast<double>(samples.size()) * interval_s) {
-      integrator.interpolate(next_sample, state);
-      samples.push_back(state);
-      result.history_t_s.push_back(next_sample);
-    }
-    if (outcome.kind == solvers::StepKind::root) {
-      const std::vector<int> found = integrator.roots_found();
-      note_maxima(run, t, integrator.state(), counted, &found, result);
-      const VectorXd at_root = integrator.state();
-      if (const int switched = run.switch_springs(t, at_root); switched > 0) {
-        result.steps += integrator.counters().steps;  // restart() resets the integrator's counters
-        integrator.restart(t, at_root);
-        set_next_stop(t);
-        result.yield_events += switched;
-      }
-    }
-    if (outcome.kind == solvers::StepKind::stop_time) set_next_stop(t);
-    if (const auto j = run.collapsed(integrator.state())) {
-      const dynamics::YieldingSpring& s = run.spring(*j);
-      result.status = solvers::RunStatus::collapse;
-      result.status_detail = fmt::format("building {} storey {}, {}: drift beyond {:g} % of its storey at t = {} s",
-                                         s.building + 1, s.storey, s.column, 100.0 * solvers::kCollapseDriftRatio, t);
-      break;
-    }
-    if (const auto j = run.chattering()) {
-      const dynamics::YieldingSpring& s = run.spring(*j);
-      result.status = solvers::RunStatus::event_limit;
-      result.status_detail = fmt::format("building {} storey {}, {}: yields and unloads too often before t = {} s",
-                                         s.building + 1, s.storey, s.column, t);
-      break;
-    }
-    integrator.set_max_step(bound.max_step_s(integrator.state()));
+  FreeRunSystem run(system, geometry, counted, options.history_interval_s, result, samples);
+  solvers::Simulator simulator(run, system.ground_motion(), {.budget = options.budget});
+  const solvers::SimulatorOutcome outcome =
+      simulator.run(system.ground_motion().start_s(), VectorXd::Zero(system.state_size()),
+                    [&](solvers::OdeFunctions& functions, double t0, const VectorXd& y0) {
+                      return std::make_unique<solvers::CvodeIntegrator>(functions, settings, t0, y0);
+                    });
+  if (outcome.status == solvers::RunStatus::solver_failure) {
+    throw std::runtime_error(fmt::format("contact-free run failed {}", outcome.detail));
   }
-  note_maxima(run, t, integrator.state(), counted, nullptr, result);  // maxima still rising at the end
-  result.steps += integrator.counters().steps;
-  result.end_s = t;
+  if (outcome.status != solvers::RunStatus::completed) {
+    result.status = outcome.status;
+    result.status_detail = outcome.detail;
+  }
+  note_maxima(geometry, outcome.end_s, outcome.end_state, counted, result);  // maxima still rising at the end
+  result.steps += outcome.counters.steps;
+  result.end_s = outcome.end_s;
 }
 
-void fill_history(const FreeRun& run, const std::vector<VectorXd>& samples, NeededGap& result) {
+void fill_history(const TouchGeometry& run, const std::vector<VectorXd>& samples, NeededGap& result) {
   for (const LevelGap& level : result.levels) {
     std::vector<double> column;
     for (const VectorXd& y : samples) {
@@ -427,10 +453,10 @@ NeededGap sampled_needed_gap(const CoupledSystem& system, double scene_gap_m, co
                                result.modes[1].damping_ratio);
 
   std::vector<FacingPoint> points = facing_points(system, result.counted, slots);
-  FreeRun run(system, scene_gap_m, result.counted, std::move(points), std::move(slots));
+  const TouchGeometry geometry(system, scene_gap_m, std::move(points), std::move(slots));
   std::vector<VectorXd> samples;
-  integrate(system, options, run, result.counted, result, samples);
-  fill_history(run, samples, result);
+  integrate(system, options, geometry, result.counted, result, samples);
+  fill_history(geometry, samples, result);
   if (states) *states = std::move(samples);
 
   result.needed_gap_m = -std::numeric_limits<double>::infinity();
@@ -560,7 +586,7 @@ void superposed_envelope(const Scene& scene, const solvers::RunBudget& budget, A
   const NeededGap run_0 = sampled_needed_gap(along_0, scene.contact.gap_m, options, &states_0);
   note_status(run_0, all);
   note_status(sampled_needed_gap(along_90, scene.contact.gap_m, options, &states_90), all);
-  const FreeRun pairs(along_0, scene.contact.gap_m, run_0.counted, {}, {});  // a pair's touch gap is geometry alone
+  const TouchGeometry pairs(along_0, scene.contact.gap_m, {}, {});  // a pair's touch gap is geometry alone
   const std::size_t samples = std::min(states_0.size(), states_90.size());
   VectorXd state(along_0.state_size());
   all.method = "superposition";

@@ -16,6 +16,7 @@
 #include "pounding/solvers/floor_impacts.hpp"
 #include "pounding/solvers/missed_contacts.hpp"
 #include "pounding/solvers/recorder.hpp"
+#include "pounding/solvers/simulator.hpp"
 #include "pounding/solvers/yield_states.hpp"
 
 namespace pounding::solvers {
@@ -88,6 +89,13 @@ std::vector<std::vector<int>> gap_components(const dynamics::CoupledSystem& syst
   return components;
 }
 
+/// Every building's name, by scene index.
+std::vector<std::string> building_names(const dynamics::CoupledSystem& system) {
+  std::vector<std::string> names;
+  for (int b = 0; b < system.building_count(); ++b) names.push_back(system.building(b).definition.name);
+  return names;
+}
+
 /// Every building's slab outline size, by scene index (contact::link_corners).
 std::vector<std::size_t> outline_sizes(const dynamics::CoupledSystem& system) {
   std::vector<std::size_t> sizes;
@@ -95,9 +103,9 @@ std::vector<std::size_t> outline_sizes(const dynamics::CoupledSystem& system) {
   return sizes;
 }
 
-class EventDrivenRun final : public OdeFunctions {
+class EventDrivenSystem final : public HybridSystem {
  public:
-  EventDrivenRun(const dynamics::CoupledSystem& system, const EventOptions& options)
+  EventDrivenSystem(const dynamics::CoupledSystem& system, const EventOptions& options)
       : system_(system),
         options_(options),
         count_(system.candidates().size()),
@@ -105,6 +113,7 @@ class EventDrivenRun final : public OdeFunctions {
         cover_(system.candidates(), contact::link_corners(system.candidates(), outline_sizes(system)),
                options.contact_tolerance_m),
         yields_(system.springs(), options.max_events_per_s),
+        building_names_(building_names(system)),
         witnesses_(count_, yields_.size()),
         gap_components_(gap_components(system)),
         recorder_(system, recorded_dynamics(), {options.history_floors, options.history_other_floors},
@@ -156,6 +165,16 @@ class EventDrivenRun final : public OdeFunctions {
     for (std::size_t j = 0; j < yields_.size(); ++j) g[witnesses_.at_spring(j)] = yields_.witness(y, j);
   }
 
+  // The phases (simulator.hpp), each as the event-driven run takes it (event_driven.hpp).
+  void start(double t0, VectorXd& y) override;
+  void prepare(Integrator& integrator) override;
+  void begin_phase(double t, const VectorXd& y, Integrator& integrator) override;
+  std::optional<HiddenEvent> examine_step(double t_a, double t_b, const VectorXd& y_b, Integrator& integrator) override;
+  void record(double t_a, double t_b, const VectorXd& y_b, Integrator& integrator) override;
+  bool on_event(double t, VectorXd& y, const EventCause& cause) override;
+  void after_step(double t, const VectorXd& y, Integrator& integrator) override;
+  bool stopped() const override { return stop_; }
+
   RunResult run(const IntegratorFactory& make_integrator, const std::string& method);
 
  private:
@@ -179,23 +198,17 @@ class EventDrivenRun final : public OdeFunctions {
             .free_motion = [this] { return is_free_motion(); }};
   }
 
-  void start(double t, VectorXd& y);
-  bool step_once();
-  /// scan_missed_contacts over the step (prev_t_, t], whose ends' gaps are prev_gaps_ and gaps_;
+  /// scan_missed_contacts over the step (t_a, t_b], whose ends' gaps are prev_gaps_ and gaps_;
   /// its grazes become touches.
-  std::optional<MissedContact> missed_contact(double t);
+  std::optional<MissedContact> missed_contact(double t_a, double t_b, Integrator& integrator);
   /// Notes the overlap of every open, uncovered pair whose vertex is inside the other slab at
   /// (t, y), whose gaps are gaps_.
   void note_overlaps(double t, const VectorXd& y);
   /// The event at t: counted, handed to the law, recorded.
   void event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed);
-  /// Step limits and bookkeeping for a new smooth stretch starting at (t, y).
-  void begin_phase(double t, const VectorXd& y);
-  void restart(double t, const VectorXd& y);
-  /// The bookkeeping after a step that ends at (t, y) without an event; gaps_ holds y's gaps.
-  void after_step(double t, const VectorXd& y);
   /// `gaps`: every candidate's gap in state y.
-  void update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps);
+  void update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps,
+                         Integrator& integrator);
   /// True when options_.modes_cutoff_hz leaves out some mode of a building.
   bool drops_modes() const {
     const double cutoff_hz = options_.modes_cutoff_hz;
@@ -220,76 +233,43 @@ class EventDrivenRun final : public OdeFunctions {
   void count_event(double t);
   /// The yielding springs' branch changes at an event at (t, y) (YieldStates::switch_branches).
   void switch_springs(double t, const VectorXd& y);
-  /// Ends the run with RunStatus::collapse if `spring` (from YieldStates::observe) is set.
-  void check_collapse(double t, std::optional<std::size_t> spring);
-  void set_next_stop(double t);
-  void accumulate_counters();
+  /// Ends the run if its yielding columns call for it at (t, y) (YieldStates::stop: collapse,
+  /// chattering).
+  void check_columns(double t, const VectorXd& y);
+  /// The integrator's counters summed over the run, and its restarts, into the statistics.
+  void take_counters(const SimulatorOutcome& outcome);
 
   const dynamics::CoupledSystem& system_;
   const EventOptions& options_;
-  BudgetClock budget_{options_.budget};
   std::size_t count_;
   ContactStates states_;
   CornerCover cover_;  // covered and live candidates, updated at every check
   YieldStates yields_;
+  std::vector<std::string> building_names_;  // for the columns' messages
   WitnessLayout witnesses_;
   std::vector<std::vector<int>> gap_components_;  // per candidate, the components of y its gap reads
   VectorXd forces_;
   Recorder recorder_;
   RunResult result_;
   std::unique_ptr<LawEvents> law_;  // the contact law's policy; after what it refers to
-  std::unique_ptr<Integrator> integrator_;
   std::optional<EventStepBound> step_bound_;
   double current_max_step_s_ = 0.0;
-  double prev_t_ = 0.0;
-  VectorXd prev_y_;
-  // Every candidate's gap at prev_y_ and at the end of the step in progress: evaluated once per
-  // step for the checks that read them all (each gap takes the slabs' exact rotation).
+  // Every candidate's gap at the step's start and at its end: evaluated once per step for the
+  // checks that read them all (each gap takes the slabs' exact rotation).
   std::vector<contact::GapState> prev_gaps_, gaps_;
   std::deque<double> recent_events_;
   bool stop_ = false;
 };
 
-void EventDrivenRun::set_next_stop(double t) {
-  // Record samples are where the forcing's slope changes: never step across one, unless the
-  // integrator carries the forcing itself; then only the record's end bounds its steps.
-  const excitation::GroundMotion& motion = system_.ground_motion();
-  if (integrator_->steps_across_samples()) {
-    if (t < motion.end_s()) integrator_->set_stop_time(motion.end_s());
-  } else if (const auto next = motion.next_sample_after(t)) {
-    integrator_->set_stop_time(*next);
-  }
-}
-
-void EventDrivenRun::accumulate_counters() {
-  const IntegratorCounters c = integrator_->counters();
-  SolverStatistics& s = result_.statistics;
-  s.steps += c.steps;
-  s.rhs_evaluations += c.rhs_evaluations;
-  s.root_evaluations += c.root_evaluations;
-  s.jacobian_evaluations += c.jacobian_evaluations;
-  s.error_test_failures += c.error_test_failures;
-}
-
-void EventDrivenRun::begin_phase(double t, const VectorXd& y) {
+void EventDrivenSystem::begin_phase(double t, const VectorXd& y, Integrator& integrator) {
   current_max_step_s_ = -1.0;  // force update_step_bound to hand the integrator its bound
-  set_next_stop(t);
   evaluate_gaps(y, prev_gaps_);
   states_.watch_arrivals(prev_gaps_, [&](std::size_t i) { return law_->meets(i, y, prev_gaps_[i]); });
   cover_.update(prev_gaps_, states_);
-  update_step_bound(t, y, prev_gaps_);
-  prev_t_ = t;
-  prev_y_ = y;
+  update_step_bound(t, y, prev_gaps_, integrator);
 }
 
-void EventDrivenRun::restart(double t, const VectorXd& y) {
-  accumulate_counters();  // re-initialisation resets the integrator's own counters
-  integrator_->restart(t, y);
-  ++result_.statistics.restarts;
-  begin_phase(t, y);
-}
-
-void EventDrivenRun::count_event(double t) {
+void EventDrivenSystem::count_event(double t) {
   ++result_.statistics.events;
   recent_events_.push_back(t);
   while (!recent_events_.empty() && recent_events_.front() < t - 1.0) recent_events_.pop_front();
@@ -301,7 +281,8 @@ void EventDrivenRun::count_event(double t) {
   }
 }
 
-void EventDrivenRun::start(double t, VectorXd& y) {
+void EventDrivenSystem::start(double t, VectorXd& y) {
+  recorder_.sample(t, y);
   // CVODE does not report roots at the initial time: contacts that exist at rest (a zero gap)
   // are handled here as an event.
   std::vector<std::size_t> touching;
@@ -311,9 +292,24 @@ void EventDrivenRun::start(double t, VectorXd& y) {
   }
   if (!touching.empty()) event(t, y, {.gap = touching});
   switch_springs(t, y);  // a column started beyond its yield drift (an initial state) yields at once
+  // A truncated run's dropped modes move as R a_g, which GapClearance does not bound.
+  if (options_.max_step_s == 0.0 && options_.clearance_steps && options_.law == contact::ContactLaw::impulse &&
+      !drops_modes()) {
+    // Throws, as the exact path does, if a building's damping is not classical. Its steps may
+    // span whole record intervals: the peaks are located on quarter periods.
+    recorder_.set_peak_step(step_bound_->enable_clearance() / 4.0);
+  }
 }
 
-void EventDrivenRun::event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
+void EventDrivenSystem::prepare(Integrator& integrator) {
+  if (!integrator.steps_across_samples()) return;
+  // Its steps are bounded by the modes that move a gap only: the peaks of the others are
+  // located on pieces no longer than the record's spacing, as the physical form's steps are.
+  recorder_.split_energy_at_samples(true);
+  recorder_.set_peak_step(system_.ground_motion().sample_spacing_s());
+}
+
+void EventDrivenSystem::event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
   if (crossed.contacts()) {
     count_event(t);
     law_->on_event(t, y, crossed);
@@ -323,44 +319,32 @@ void EventDrivenRun::event(double t, VectorXd& y, const WitnessLayout::Crossed& 
   recorder_.sample(t, y);
 }
 
-void EventDrivenRun::switch_springs(double t, const VectorXd& y) {
+void EventDrivenSystem::switch_springs(double t, const VectorXd& y) {
   if (yields_.empty()) return;
   VectorXd y_dot(system_.state_size());
   rhs(t, y, y_dot);
-  const int switched = yields_.switch_branches(t, y, y_dot);
-  result_.statistics.yield_events += switched;
-  check_collapse(t, yields_.observe(y));
-  if (const auto j = yields_.chattering(); j && !stop_) {
-    const dynamics::YieldingSpring& s = system_.springs()[*j];
-    result_.status = RunStatus::event_limit;
-    result_.status_detail = fmt::format(
-        "{} storey {}, {} {}: more than {} yields and unloadings within one simulated second before t = {} s",
-        system_.building(s.building).definition.name, s.storey, s.column, s.direction == 0 ? "x" : "y",
-        options_.max_events_per_s, t);
-    stop_ = true;
-  }
+  result_.statistics.yield_events += yields_.switch_branches(t, y, y_dot);
+  check_columns(t, y);
 }
 
-void EventDrivenRun::check_collapse(double t, std::optional<std::size_t> spring) {
-  if (!spring || stop_) return;
-  const dynamics::YieldingSpring& s = system_.springs()[*spring];
-  result_.status = RunStatus::collapse;
-  result_.status_detail = fmt::format(
-      "{} storey {}, {} {}: drift beyond {:g} % of the {:g} m storey at t = {} s (the frame has failed; "
-      "the model's small rotations no longer hold)",
-      system_.building(s.building).definition.name, s.storey, s.column, s.direction == 0 ? "x" : "y",
-      100.0 * kCollapseDriftRatio, s.storey_height_m, t);
+void EventDrivenSystem::check_columns(double t, const VectorXd& y) {
+  if (yields_.empty()) return;
+  std::optional<YieldingStop> stop = yields_.stop(t, y, building_names_);
+  if (!stop || stop_) return;
+  result_.status = stop->status;
+  result_.status_detail = std::move(stop->detail);
   stop_ = true;
 }
 
-std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
-  if (t <= step_bound_->open_until_s()) return std::nullopt;  // every gap stayed above the touch band
+std::optional<MissedContact> EventDrivenSystem::missed_contact(double t_a, double t_b, Integrator& integrator) {
+  if (t_b <= step_bound_->open_until_s()) return std::nullopt;  // every gap stayed above the touch band
   // The step's interpolant, evaluated only in the components a candidate's gap reads.
   class Interpolant final : public StepGaps {
    public:
-    explicit Interpolant(EventDrivenRun& run) : run_(run), at_(run.system_.state_size()) {}
+    Interpolant(EventDrivenSystem& run, Integrator& integrator)
+        : run_(run), integrator_(integrator), at_(run.system_.state_size()) {}
     contact::GapState at(std::size_t i, double t_s) override {
-      run_.integrator_->interpolate_components(t_s, run_.gap_components_[i], at_);
+      integrator_.interpolate_components(t_s, run_.gap_components_[i], at_);
       return run_.system_.gap(at_, i);
     }
     double rate_round_off_mps(std::size_t i) override { return run_.system_.gap_rate_round_off_mps(at_, i); }
@@ -369,12 +353,13 @@ std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
     }
 
    private:
-    EventDrivenRun& run_;
+    EventDrivenSystem& run_;
+    Integrator& integrator_;
     VectorXd at_;
-  } path(*this);
+  } path(*this, integrator);
   std::vector<Graze> grazes;
   const std::optional<MissedContact> missed = scan_missed_contacts(
-      states_, path, prev_t_, t, prev_gaps_, gaps_,
+      states_, path, t_a, t_b, prev_gaps_, gaps_,
       {.contact_tolerance_m = options_.contact_tolerance_m, .overlap_allowance_m = options_.overlap_allowance_m},
       grazes, &cover_);
   for (const Graze& graze : grazes)
@@ -382,7 +367,8 @@ std::optional<MissedContact> EventDrivenRun::missed_contact(double t) {
   return missed;
 }
 
-void EventDrivenRun::update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps) {
+void EventDrivenSystem::update_step_bound(double t, const VectorXd& y, const std::vector<contact::GapState>& gaps,
+                                          Integrator& integrator) {
   VectorXd y_dot;
   auto gap_acceleration = [&](std::size_t i) {
     if (y_dot.size() == 0) {
@@ -393,12 +379,12 @@ void EventDrivenRun::update_step_bound(double t, const VectorXd& y, const std::v
   };
   const double bound = step_bound_->max_step_s(t, y, gaps, states_, cover_, gap_acceleration);
   if (bound != current_max_step_s_) {
-    integrator_->set_max_step(bound);
+    integrator.set_max_step(bound);
     current_max_step_s_ = bound;
   }
 }
 
-void EventDrivenRun::note_overlaps(double t, const VectorXd& y) {
+void EventDrivenSystem::note_overlaps(double t, const VectorXd& y) {
   for (std::size_t i = 0; i < count_; ++i) {
     // A held gap's drift is reported with its hold, a compliant one's penetration is the law's,
     // a covered one's point is in a contact in progress.
@@ -406,17 +392,57 @@ void EventDrivenRun::note_overlaps(double t, const VectorXd& y) {
   }
 }
 
-void EventDrivenRun::after_step(double t, const VectorXd& y) {
+void EventDrivenSystem::after_step(double t, const VectorXd& y, Integrator& integrator) {
   note_overlaps(t, y);
-  check_collapse(t, yields_.observe(y));
+  check_columns(t, y);
   states_.rearm(gaps_, [&](std::size_t i) { return law_->meets(i, y, gaps_[i]); });
   cover_.update(gaps_, states_);
   law_->after_step(t, y);
-  update_step_bound(t, y, gaps_);
+  update_step_bound(t, y, gaps_, integrator);
+  std::swap(prev_gaps_, gaps_);
 }
 
-void EventDrivenRun::add_rounded_through(const std::vector<contact::GapState>& gaps,
-                                         WitnessLayout::Crossed& crossed) const {
+std::optional<HiddenEvent> EventDrivenSystem::examine_step(double t_a, double t_b, const VectorXd& y_b,
+                                                           Integrator& integrator) {
+  evaluate_gaps(y_b, gaps_);
+  const std::optional<MissedContact> hidden = missed_contact(t_a, t_b, integrator);
+  if (!hidden) return std::nullopt;
+  return HiddenEvent{hidden->t_s, hidden->candidate};
+}
+
+void EventDrivenSystem::record(double t_a, double t_b, const VectorXd& y_b, Integrator& integrator) {
+  auto interpolated = [&](double time) {
+    VectorXd state(system_.state_size());
+    integrator.interpolate(time, state);
+    return state;
+  };
+  auto power = [&](double time, const VectorXd& state) { return law_->constraint_power(time, state); };
+  auto interpolate = [&](double time, VectorXd& state) { integrator.interpolate(time, state); };
+  auto components = [&](double time, const std::vector<int>& indices, VectorXd& state) {
+    integrator.interpolate_components(time, indices, state);
+  };
+  recorder_.advance(t_a, t_b, y_b, interpolated, power, integrator.energy_between(t_a, t_b), components);
+  law_->integrate(t_a, t_b, y_b, interpolate);
+}
+
+bool EventDrivenSystem::on_event(double t, VectorXd& y, const EventCause& cause) {
+  WitnessLayout::Crossed crossed;
+  if (cause.hidden) {  // a contact the step's interpolant showed: the gaps at its instant
+    ++result_.statistics.interpolant_events;
+    crossed.gap = {*cause.hidden};
+    std::vector<contact::GapState> at_event;
+    evaluate_gaps(y, at_event);
+    add_rounded_through(at_event, crossed);
+  } else {  // roots at the step's end, whose gaps examine_step evaluated
+    crossed = witnesses_.crossed(cause.root_flags);
+    add_rounded_through(gaps_, crossed);
+  }
+  event(t, y, crossed);
+  return true;  // velocities or contact states changed: the integrator restarts
+}
+
+void EventDrivenSystem::add_rounded_through(const std::vector<contact::GapState>& gaps,
+                                            WitnessLayout::Crossed& crossed) const {
   for (std::size_t i = 0; i < count_; ++i) {
     const contact::GapState& s = gaps[i];
     const bool rounded_through = s.gap_m <= 0.0 && s.gap_m > -options_.overlap_allowance_m;
@@ -428,7 +454,7 @@ void EventDrivenRun::add_rounded_through(const std::vector<contact::GapState>& g
   std::sort(crossed.gap.begin(), crossed.gap.end());
 }
 
-void EventDrivenRun::report_overlap() {
+void EventDrivenSystem::report_overlap() {
   // Every closing is located before the pair sinks in; an overlap deeper than the touch band means
   // a contact was passed over and everything after it is off, so the run must not say completed.
   const SolverStatistics& stats = result_.statistics;
@@ -443,118 +469,55 @@ void EventDrivenRun::report_overlap() {
       options_.contact_tolerance_m);
 }
 
-bool EventDrivenRun::step_once() {
-  if (budget_.exhausted(prev_t_, result_)) return false;
-  const double t_end = system_.ground_motion().end_s();
-  if (prev_t_ >= t_end) return false;  // an event exactly at the end: no stop time is left to obey
-  const StepOutcome outcome = integrator_->step(t_end);
-  if (outcome.kind == StepKind::failure) {
-    result_.status = RunStatus::solver_failure;
-    result_.status_detail = fmt::format("after t = {} s: {}", prev_t_, outcome.failure);
-    return false;
-  }
-  const double t = outcome.t_s;
-  VectorXd y = integrator_->state();
-  if (diverged(t, y, result_)) return false;
-  evaluate_gaps(y, gaps_);
-  auto interpolated = [&](double time) {
-    VectorXd state(system_.state_size());
-    integrator_->interpolate(time, state);
-    return state;
-  };
-  auto power = [&](double time, const VectorXd& state) { return law_->constraint_power(time, state); };
-  auto interpolate = [&](double time, VectorXd& state) { integrator_->interpolate(time, state); };
-  auto components = [&](double time, const std::vector<int>& indices, VectorXd& state) {
-    integrator_->interpolate_components(time, indices, state);
-  };
-
-  if (const std::optional<MissedContact> hidden = missed_contact(t)) {
-    ++result_.statistics.interpolant_events;
-    VectorXd y_event = interpolated(hidden->t_s);
-    recorder_.advance(prev_t_, hidden->t_s, y_event, interpolated, power,
-                      integrator_->energy_between(prev_t_, hidden->t_s), components);
-    law_->integrate(prev_t_, hidden->t_s, y_event, interpolate);
-    WitnessLayout::Crossed crossed{.gap = {hidden->candidate}};
-    std::vector<contact::GapState> at_event;
-    evaluate_gaps(y_event, at_event);
-    add_rounded_through(at_event, crossed);
-    event(hidden->t_s, y_event, crossed);
-    restart(hidden->t_s, y_event);
-    return !stop_;
-  }
-  recorder_.advance(prev_t_, t, y, interpolated, power, integrator_->energy_between(prev_t_, t), components);
-  law_->integrate(prev_t_, t, y, interpolate);
-
-  if (outcome.kind == StepKind::root) {
-    const std::vector<int> flags = integrator_->roots_found();
-    WitnessLayout::Crossed crossed = witnesses_.crossed(flags);
-    add_rounded_through(gaps_, crossed);
-    event(t, y, crossed);
-    restart(t, y);
-    return !stop_;
-  }
-  if (outcome.kind == StepKind::stop_time) set_next_stop(t);
-  after_step(t, y);
-  prev_t_ = t;
-  prev_y_ = y;
-  std::swap(prev_gaps_, gaps_);
-  if (result_.statistics.steps + integrator_->counters().steps > options_.max_steps) {
-    result_.status = RunStatus::step_limit;
-    result_.status_detail = fmt::format("more than {} steps by t = {} s", options_.max_steps, t);
-    return false;
-  }
-  return t < t_end;
-}
-
-RunResult EventDrivenRun::run(const IntegratorFactory& make_integrator, const std::string& method) {
+RunResult EventDrivenSystem::run(const IntegratorFactory& make_integrator, const std::string& method) {
   const auto clock_start = std::chrono::steady_clock::now();
   result_.method = method;
   const double t0 = system_.ground_motion().start_s();
   result_.start_s = t0;
   VectorXd y = options_.initial_state.size() ? options_.initial_state : VectorXd::Zero(system_.state_size());
   step_bound_.emplace(system_, options_);
-
-  recorder_.sample(t0, y);
-  start(t0, y);
+  Simulator simulator(*this, system_.ground_motion(), {.max_steps = options_.max_steps, .budget = options_.budget});
+  SimulatorOutcome outcome;
   try {
-    // A truncated run's dropped modes move as R a_g, which GapClearance does not bound.
-    if (options_.max_step_s == 0.0 && options_.clearance_steps && options_.law == contact::ContactLaw::impulse &&
-        !drops_modes()) {
-      // Throws, as the exact path does, if a building's damping is not classical. Its steps may
-      // span whole record intervals: the peaks are located on quarter periods.
-      recorder_.set_peak_step(step_bound_->enable_clearance() / 4.0);
-    }
-    integrator_ = make_integrator(*this, t0, y);
-    if (integrator_->steps_across_samples()) {
-      // Its steps are bounded by the modes that move a gap only: the peaks of the others are
-      // located on pieces no longer than the record's spacing, as the physical form's steps are.
-      recorder_.split_energy_at_samples(true);
-      recorder_.set_peak_step(system_.ground_motion().sample_spacing_s());
-    }
-    begin_phase(t0, y);
-    while (!stop_ && step_once()) {
-    }
-    accumulate_counters();
+    outcome = simulator.run(t0, std::move(y), make_integrator);
   } catch (const InputError&) {
     throw;  // bad settings are the caller's to report
   } catch (const std::exception& error) {
     // An integrator that cannot go on (a SUNDIALS call failing, a phase the exact path cannot
     // diagonalise) ends the run with what it has, and says why.
-    result_.status = RunStatus::solver_failure;
-    result_.status_detail = fmt::format("after t = {} s: {}", prev_t_, error.what());
+    outcome = simulator.outcome_so_far();
+    outcome.status = RunStatus::solver_failure;
+    outcome.detail = fmt::format("after t = {} s: {}", outcome.end_s, error.what());
   }
-  result_.end_s = prev_t_;
+  if (outcome.status != RunStatus::completed) {
+    result_.status = outcome.status;
+    result_.status_detail = outcome.detail;
+  }
+  take_counters(outcome);
+  const VectorXd& end_y = outcome.end_state;
+  result_.end_s = outcome.end_s;
   result_.statistics.corner_candidates = cover_.corner_count();
   result_.statistics.corner_candidates_armed = cover_.corner_armed();
   report_overlap();
-  law_->finish(prev_t_, prev_y_);
+  law_->finish(outcome.end_s, end_y);
   double hysteretic_kJ = 0.0;
-  if (!yields_.empty()) result_.springs = yields_.finish(prev_y_, recorder_.smooth_dissipated_kJ(), hysteretic_kJ);
-  recorder_.finish(prev_y_, result_, yields_.states());
+  if (!yields_.empty()) result_.springs = yields_.finish(end_y, recorder_.smooth_dissipated_kJ(), hysteretic_kJ);
+  recorder_.finish(end_y, result_, yields_.states());
   result_.energy.hysteretic_kJ = hysteretic_kJ;  // the audit's own terms come from the recorder
   result_.statistics.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return std::move(result_);
+}
+
+void EventDrivenSystem::take_counters(const SimulatorOutcome& outcome) {
+  const IntegratorCounters& c = outcome.counters;
+  SolverStatistics& s = result_.statistics;
+  s.steps += c.steps;
+  s.rhs_evaluations += c.rhs_evaluations;
+  s.root_evaluations += c.root_evaluations;
+  s.jacobian_evaluations += c.jacobian_evaluations;
+  s.error_test_failures += c.error_test_failures;
+  s.restarts += outcome.restarts;
 }
 
 }  // namespace
@@ -570,7 +533,7 @@ RunResult run_event_driven(const dynamics::CoupledSystem& system, const EventOpt
   if (options.law == contact::ContactLaw::impulse && contact::has_column_pairs(system.candidates())) {
     throw InputError("law", "impulse", "cannot resolve slab-to-column contacts: they need a compliant law");
   }
-  EventDrivenRun run(system, options);
+  EventDrivenSystem run(system, options);
   return run.run(make_integrator, method);
 }
 

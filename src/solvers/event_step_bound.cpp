@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/event_options.hpp"
 
 namespace pounding::solvers {
 

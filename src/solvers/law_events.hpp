@@ -1,7 +1,7 @@
 #pragma once
-// The event-driven run's two contact-law policies (internal to src/solvers). The loop
-// (event_driven.cpp) finds the events and owns the integrator; a policy decides what an event
-// does to the contacts and the velocities:
+// The event-driven run's two contact-law policies (internal to src/solvers). The loop (the
+// Simulator, driving the event-driven system of event_driven.cpp) finds the events and owns the
+// integrator; a policy decides what an event does to the contacts and the velocities:
 //   ImpulseEvents (impulse_events.cpp): velocity jumps solved per level as one complementarity
 //     problem, slow separations held closed by a constraint force, holds released on a tensile
 //     force or a slide off the edge;
@@ -17,7 +17,7 @@
 
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/contact_states.hpp"
-#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/event_options.hpp"
 #include "pounding/solvers/recorder.hpp"
 #include "pounding/solvers/run_result.hpp"
 

@@ -1,5 +1,7 @@
 #include "pounding/solvers/yield_states.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 namespace pounding::solvers {
@@ -75,6 +77,28 @@ std::optional<std::size_t> YieldStates::observe(const Eigen::VectorXd& y) {
     if (!collapsed && drift_m > kCollapseDriftRatio * springs_[j].storey_height_m) collapsed = j;
   }
   return collapsed;
+}
+
+std::optional<YieldingStop> YieldStates::stop(double t, const Eigen::VectorXd& y,
+                                              const std::vector<std::string>& building_names) {
+  auto where = [&](std::size_t j) {
+    const dynamics::YieldingSpring& s = springs_[j];
+    return fmt::format("{} storey {}, {} {}", building_names.at(static_cast<std::size_t>(s.building)), s.storey,
+                       s.column, s.direction == 0 ? "x" : "y");
+  };
+  if (const std::optional<std::size_t> j = observe(y)) {
+    return YieldingStop{RunStatus::collapse,
+                        fmt::format("{}: drift beyond {:g} % of the {:g} m storey at t = {} s (the frame has failed; "
+                                    "the model's small rotations no longer hold)",
+                                    where(*j), 100.0 * kCollapseDriftRatio, springs_[*j].storey_height_m, t)};
+  }
+  if (chattering_) {
+    return YieldingStop{
+        RunStatus::event_limit,
+        fmt::format("{}: more than {} yields and unloadings within one simulated second before t = {} s",
+                    where(*chattering_), max_switches_per_s_, t)};
+  }
+  return std::nullopt;
 }
 
 std::vector<SpringResult> YieldStates::finish(const Eigen::VectorXd& y, const std::vector<double>& smooth_dissipated_kJ,

@@ -14,6 +14,7 @@
 #include "pounding/io/scene_reader.hpp"
 #include "pounding/model/modal_basis.hpp"
 #include "../support/state_space_exact.hpp"
+#include "pounding/solvers/event_driven.hpp"
 #include "pounding/solvers/modal_exact_integrator.hpp"
 #include "pounding/solvers/modal_propagator.hpp"
 

@@ -20,7 +20,8 @@
 #include <vector>
 
 #include "pounding/input_error.hpp"
-#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/event_options.hpp"
+#include "pounding/solvers/integrator.hpp"
 
 namespace pounding::dynamics {
 class CoupledSystem;

@@ -8,7 +8,7 @@
 #include "pounding/analysis/scene.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
-#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/run_sink.hpp"
 #include "pounding/solvers/hht.hpp"
 #include "pounding/solvers/run_result.hpp"
 

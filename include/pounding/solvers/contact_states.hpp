@@ -145,12 +145,12 @@ class WitnessLayout {
   Eigen::Index at(Witness witness, std::size_t i) const {
     return static_cast<Eigen::Index>(static_cast<std::size_t>(witness) * count_ + i);
   }
-  /// The candidates whose witnesses an integrator flagged (roots_found(): non-zero = crossed).
   /// Index of yielding spring j's witness.
   Eigen::Index at_spring(std::size_t j) const { return static_cast<Eigen::Index>(3 * count_ + j); }
+  /// The candidates whose witnesses an integrator flagged (roots_found(): non-zero = crossed);
+  /// the springs' are YieldStates::switch_branches' to find.
   struct Crossed {
     std::vector<std::size_t> gap = {}, force = {}, edge = {};
-    bool springs = false;  // some spring's witness crossed
     bool contacts() const { return !gap.empty() || !force.empty() || !edge.empty(); }
   };
   Crossed crossed(const std::vector<int>& flags) const;

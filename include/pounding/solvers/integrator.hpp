@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -111,5 +113,9 @@ class Integrator {
   /// at the record's end instead of at every sample.
   virtual bool steps_across_samples() const { return false; }
 };
+
+/// Makes the integrator of a run: for `functions`, from (t0, y0).
+using IntegratorFactory =
+    std::function<std::unique_ptr<Integrator>(OdeFunctions& functions, double t0, const Eigen::VectorXd& y0)>;
 
 }  // namespace pounding::solvers

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "pounding/solvers/event_driven.hpp"
+#include "pounding/solvers/integrator.hpp"
 #include "pounding/solvers/integrator.hpp"
 
 namespace pounding::solvers {

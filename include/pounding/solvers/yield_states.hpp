@@ -13,12 +13,20 @@
 #include <Eigen/Core>
 #include <deque>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "pounding/dynamics/yielding_springs.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::solvers {
+
+/// A run's end called for by its yielding columns: its status and what the detail names (the
+/// building, storey, column and direction, and the instant).
+struct YieldingStop {
+  RunStatus status = RunStatus::collapse;  // collapse, or event_limit (a spring chattering)
+  std::string detail;
+};
 
 class YieldStates {
  public:
@@ -49,6 +57,10 @@ class YieldStates {
   /// Tracks the peak drifts at a state the run passed through (step ends, events). @return the
   /// index of a spring whose drift passed kCollapseDriftRatio of its storey height, if one did.
   std::optional<std::size_t> observe(const Eigen::VectorXd& y);
+  /// Why a run must end for its columns at (t, y), if it must: a drift past kCollapseDriftRatio
+  /// of its storey (collapse; observe() tracks the peaks), else a spring chattering (event_limit).
+  /// `building_names`: by the springs' building index.
+  std::optional<YieldingStop> stop(double t, const Eigen::VectorXd& y, const std::vector<std::string>& building_names);
   /// The per-spring results at the run's end (ending the yielding phases in progress), and the
   /// energy they dissipated (kJ). `smooth_dissipated_kJ`: per spring, what the audit integrated
   /// for the smooth ones (EnergyBalance::smooth_dissipated_kJ).
