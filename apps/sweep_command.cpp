@@ -27,12 +27,14 @@ namespace {
 #if defined(POUNDING_PYTHON_EXECUTABLE) && defined(POUNDING_PYTHON_DIR)
   const std::filesystem::path python = POUNDING_PYTHON_EXECUTABLE;
   const std::filesystem::path module_dir = POUNDING_PYTHON_DIR;
-  const std::string file = module.substr(module.find('.') + 1) + ".py";
+  // The module is a file (pounding/verify.py) or a package that -m runs (pounding/sweep/__main__.py).
+  const std::string name = module.substr(module.find('.') + 1);
   std::error_code error;
   if (!std::filesystem::is_regular_file(python, error)) {
     throw InputError("", python.string(), command + " needs this Python interpreter, the module's (not found)");
   }
-  if (!std::filesystem::is_regular_file(module_dir / "pounding" / file, error)) {
+  if (!std::filesystem::is_regular_file(module_dir / "pounding" / (name + ".py"), error) &&
+      !std::filesystem::is_regular_file(module_dir / "pounding" / name / "__main__.py", error)) {
     throw InputError("", (module_dir / "pounding").string(),
                      command + " needs the Python module built there (cmake --build build --target _pounding)");
   }

@@ -6,7 +6,7 @@ returning Python objects and numpy arrays instead of files.
     result.status, len(result.impacts), result.impacts_array["impulse_kNs"].max()
     result.history["B1_f7_u_m"]            # numpy array over result.history["t_s"]
     pounding.needed_gap(scene).needed_gap_m
-    pounding.sweep("examples/sweep/sweep.toml", workers=2)   # many runs on Dask (pounding/sweep.py)
+    pounding.sweep("examples/sweep/sweep.toml", workers=2)   # many runs on Dask (pounding/sweep/)
     pounding.modes(scene)[0]["shapes"], pounding.modes(scene)[0]["K"]   # mode shapes, M, K, C
     result.history_frame(), result.impacts_frame()   # pandas DataFrames (Debian python3-pandas)
 

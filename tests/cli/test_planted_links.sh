@@ -10,7 +10,7 @@ paper=$source_dir/examples/paper/paper.toml
 record=$source_dir/examples/records/elcentro1940_ns_0.02s.AT2
 # A build without the Python module (the sanitizer build) has no sweep and draws no spectrum.png.
 has_python=0
-[ -f "$(dirname "$pounding")/../python/pounding/sweep.py" ] && has_python=1
+[ -f "$(dirname "$pounding")/../python/pounding/sweep/__init__.py" ] && has_python=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0

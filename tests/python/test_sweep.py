@@ -288,7 +288,7 @@ def test_a_worker_without_the_module_is_named_without_tracebacks(tmp_path):
         assert done.returncode == 2, done.stderr
         assert "cannot import pounding (ModuleNotFoundError" in done.stderr, done.stderr
         named = done.stderr.split("PYTHONPATH=")[1].split(" ")[0]  # the submitting program's module folder
-        assert (pathlib.Path(named) / "pounding" / "sweep.py").is_file(), done.stderr
+        assert (pathlib.Path(named) / "pounding" / "sweep" / "__init__.py").is_file(), done.stderr
     finally:
         for process in (worker, scheduler):
             if process is not None:
