@@ -21,6 +21,23 @@ from setuptools.command.build_ext import build_ext
 ROOT = pathlib.Path(__file__).resolve().parent
 
 
+def require(module, package, why):
+    """Stops with a message naming what is missing, instead of setuptools' own
+    (`invalid command 'bdist_wheel'` without `wheel`)."""
+    try:
+        __import__(module)
+    except ImportError:
+        sys.exit(f"setup.py: Python {sys.version.split()[0]} ({sys.executable}) has no `{module}`, which {why}. "
+                 f"On Debian: apt-get install {package}, and make the virtual environment with "
+                 "`/usr/bin/python3 -m venv --system-site-packages DIR` so that it sees Debian's packages "
+                 "(README, Installing).")
+
+
+if any(command in sys.argv for command in ("bdist_wheel", "dist_info", "install", "develop", "editable_wheel")):
+    require("wheel", "python3-wheel", "pip needs to build the package's wheel")
+    require("numpy", "python3-numpy", "the module `pounding` needs (its results are numpy arrays)")
+
+
 def version():
     text = (ROOT / "CMakeLists.txt").read_text()
     return re.search(r"project\(pounding VERSION ([0-9.]+)", text).group(1)
