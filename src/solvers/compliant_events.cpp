@@ -72,14 +72,28 @@ class CompliantEvents final : public LawEvents {
     return open_[i]->law.switch_rate(-s.gap_m, -s.gap_rate_mps, -system_.gap_acceleration(y, y_dot, i));
   }
   void begin_contact(std::size_t i, double t, const VectorXd& y);
-  /// Contact i's point slid off its edge's end: candidate j carries it on, with its law and
-  /// record (one contact: docs/model.md §5a).
-  void hand_over(std::size_t i, std::size_t j, const VectorXd& y) {
+  /// Contact i's point slid off its edge's end at (t, y): candidate j carries it on, with its law
+  /// and record (one contact: docs/model.md §5a). Round the corner the force may already pull
+  /// (the next edge's normal has turned it): the contact is then released there at once, as at a
+  /// force root, for the element cannot pull.
+  void hand_over(std::size_t i, std::size_t j, double t, const VectorXd& y) {
     open_[j] = std::move(open_[i]);
     open_[i].reset();
     context_.mask(i, options_.reopen_gap_m, y);
     states_.start_acting(j);
     ++result_.statistics.corner_handovers;
+    contact::CompliantContact& law = open_[j]->law;
+    if (law.law() != contact::ContactLaw::jankowski && force_kN(j, y) < 0.0) {
+      law.toggle();
+      release(j, t, y);
+    }
+  }
+  /// Compliant contact i's force turned tensile at (t, y): released, the slabs flying apart while
+  /// they still overlap, until the gap opens.
+  void release(std::size_t i, double t, const VectorXd& y) {
+    states_.stop_acting(i);
+    open_[i]->record.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
+    open_[i]->record.duration_s = t - open_[i]->record.t_s;
   }
   void end_contact(std::size_t i, double t, const VectorXd& y);
 
@@ -93,7 +107,7 @@ void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Cross
   for (std::size_t i : crossed.edge) {
     if (!states_.is(i, ContactMode::compliant)) continue;
     if (const std::optional<std::size_t> j = context_.successor(i, y, true)) {
-      hand_over(i, *j, y);
+      hand_over(i, *j, t, y);
     } else {
       end_contact(i, t, y);
     }
@@ -105,9 +119,7 @@ void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Cross
     if (!acted && system_.gap(y, i).gap_m >= 0.0) continue;  // already open: the gap root ends it
     law.toggle();
     if (acted && !law.acts()) {
-      states_.stop_acting(i);  // tensile from here on: the slabs fly apart while still overlapping
-      open_[i]->record.separation_velocity_mps = system_.gap(y, i).gap_rate_mps;
-      open_[i]->record.duration_s = t - open_[i]->record.t_s;
+      release(i, t, y);  // tensile from here on
     } else if (!acted) {
       states_.start_acting(i);  // pushing again before the gap opened: the same contact goes on
     }                           // else a jankowski contact changed phase and acts on
