@@ -7,6 +7,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-packages.sh clang libclang-rt-14-dev llvm-14
 cmake -S . -B build-asan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+  -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -gline-tables-only" \
   -DPOUNDING_SANITIZE=ON -DPOUNDING_BUILD_FUZZERS=ON -DPOUNDING_BUILD_BENCHMARKS=OFF > /dev/null
 cmake --build build-asan -j "$(nproc)" "$@"

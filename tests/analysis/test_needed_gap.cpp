@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE needed_gap
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE candidates
 #include <boost/test/unit_test.hpp>
 
 #include "pounding/contact/candidates.hpp"

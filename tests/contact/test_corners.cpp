@@ -1,6 +1,5 @@
 // Corners (docs/model.md §4, §5a): corner candidates, their links, the inside test, and two
 // squares meeting corner to corner against the closed form.
-#define BOOST_TEST_MODULE corners
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE gap
 #include <boost/test/unit_test.hpp>
 
 #include "pounding/contact/gap.hpp"

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE constrained_jacobian
 // CoupledSystem::jacobian() and constrained_jacobian() against central differences of rhs()
 // and constrained_rhs(), with contacts held between two rotating two-storey slabs.
 //

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE record_list
 #include <boost/test/unit_test.hpp>
 
 #include <fmt/format.h>

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE run_outputs
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>

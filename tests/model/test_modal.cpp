@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE modal
 #include <boost/test/unit_test.hpp>
 
 #include "../support/fixtures.hpp"

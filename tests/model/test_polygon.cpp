@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE polygon
 #include <boost/test/unit_test.hpp>
 
 #include "pounding/model/polygon.hpp"

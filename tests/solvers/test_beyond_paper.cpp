@@ -1,7 +1,6 @@
 // Scenes beyond the published example (examples/beyond-paper/), each checked against an
 // independent computation: a direct solve of the constrained equations, CVODE at rtol 1e-12, or
 // the other methods.
-#define BOOST_TEST_MODULE beyond_paper
 #include <Eigen/Dense>
 #include <algorithm>
 #include <boost/test/unit_test.hpp>

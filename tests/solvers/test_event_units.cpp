@@ -1,7 +1,6 @@
 // The event-driven loop's units on their own: the contact state machine (ContactStates), the
 // root-vector layout (WitnessLayout), the scan for contacts inside a step (scan_missed_contacts)
 // against gap paths given in closed form, and the masked-flight step bound (EventStepBound).
-#define BOOST_TEST_MODULE event_units
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

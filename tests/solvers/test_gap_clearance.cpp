@@ -4,7 +4,6 @@
 // rotation, the struck slab's rotation) and in random states; and the exact path that steps
 // over the windows it proves open, on a scene whose gap dips below zero and recovers within a
 // step of the old bound, against the closed-form impact time.
-#define BOOST_TEST_MODULE gap_clearance
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

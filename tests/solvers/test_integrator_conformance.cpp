@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE integrator_conformance
 // One suite run over every Integrator behind the seam (integrator.hpp), like Drake's typed
 // generic_integrator_test: each case is a small hand-made OdeFunctions with a closed form, and
 // each contract of the seam (accuracy, interpolant, stop times, roots, restarts, counters) is

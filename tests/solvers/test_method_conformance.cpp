@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE method_conformance
 // The integrators the registry runs (analysis::methods(): each event-driven method's factory, in
 // each form and order it offers, the exact path's modal propagator among them) behind the
 // Integrator seam on a coupled system, against closed forms: two one-storey slabs with uncoupled

@@ -1,7 +1,6 @@
 // The exact path in modal form (ModalExactIntegrator): its oscillator step against a long-double
 // matrix exponential, its modal basis against the Rayleigh closed form, and its impacts against
 // the state-space exact path (pounding::testing::StateSpaceExactIntegrator) on the paper scene and a torsional scene.
-#define BOOST_TEST_MODULE modal_exact
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE modal_form
 // The SUNDIALS methods in modal form (dynamics::ModalSystem behind solvers::ModalIntegrator):
 // the modal rhs and Jacobian against the physical ones mapped through the modes (a random state,
 // to round-off), and whole runs against the physical form and the exact path (impacts).

@@ -1,7 +1,6 @@
 // Modal truncation of the exact path (solver.modes_cutoff_hz): the static correction against the
 // stiffness matrix, a truncated free flight against the closed form of what it leaves out (the
 // dropped modes' transients), and a cut-off above every mode against the full run.
-#define BOOST_TEST_MODULE modal_truncation
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/LU>

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE output_selection
 #include <boost/test/unit_test.hpp>
 
 #include <string>

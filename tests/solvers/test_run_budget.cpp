@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE run_budget
 #include <boost/test/unit_test.hpp>
 
 #include "../support/two_slabs.hpp"

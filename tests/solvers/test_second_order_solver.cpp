@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE second_order_solver
 // SecondOrderLinearSolver's solves of the Newton system (I − γJ) x = b, J = [[0, I], [A21, A22]],
 // against an independent dense LU of the whole 2n × 2n matrix, on both of its paths: the dense
 // Jacobian and the sparse rows [A21, A22] (OdeFunctions::acceleration_jacobian). The system is a

@@ -2,7 +2,6 @@
 // modes that move a gap, against closed forms on two uncoupled one-storey slabs, and on a
 // storey 1e6 times stiffer: the same impacts as under the old bound (a quarter of the shortest
 // natural period) for a small fraction of the steps.
-#define BOOST_TEST_MODULE step_bound
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE sundials_vectors
 // The vectors the integrators use (sv::make_vector) carry element-wise kernels compiled in
 // this project instead of the SUNDIALS library's. They must give bit for bit what the library's
 // serial vector gives, in every special case its N_VLinearSum and N_VScale take (a, b = ±1, a = ±b,

@@ -12,7 +12,6 @@
 // The four x-springs yield in the same instant (simultaneous branch changes). With P-Δ both
 // branches lose k_g = m g / H, so without hardening the post-yield branch is unstable (hyperbolic).
 
-#define BOOST_TEST_MODULE yielding
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <numbers>
@@ -116,9 +115,11 @@ BOOST_AUTO_TEST_CASE(BilinearOscillatorReleasedWithAVelocityFollowsItsClosedForm
         const double t_peak = sdof.t_yield() + sdof.post_yield_time();
         // A quarter of an elastic period after the peak: the swing's centre, before its far side.
         const double t_end = t_peak + 0.25 * 2.0 * std::numbers::pi / sdof.omega();
-        const auto system = system_of(
-            {.kind = model::HystereticLaw::Kind::bilinear, .yield_drift_m = sdof.d_y, .hardening_ratio = alpha}, t_end,
-            p_delta);
+        const auto system = system_of({.kind = model::HystereticLaw::Kind::bilinear,
+                                       .yield_drift_ratio = {},
+                                       .yield_drift_m = sdof.d_y,
+                                       .hardening_ratio = alpha},
+                                      t_end, p_delta);
         BOOST_TEST_REQUIRE(system.springs().size() == 8u);  // 4 columns × (x, y)
         solvers::EventOptions options;
         options.initial_state = Eigen::VectorXd::Zero(system.state_size());
@@ -162,8 +163,11 @@ BOOST_AUTO_TEST_CASE(PDeltaBeyondTheHardeningStopsTheRunAsACollapse) {
       const double lambda = std::sqrt(k_g / kMass_t), centre = sdof.plastic_force() / k_g;
       const bool runs_away = sdof.v_yield() >= lambda * (centre - sdof.d_y);
       BOOST_TEST(runs_away == (v0 > 3.0));  // the threshold is 3.06 m/s
-      const auto system = system_of(
-          {.kind = model::HystereticLaw::Kind::bilinear, .yield_drift_m = sdof.d_y, .hardening_ratio = 0.0}, 2.0, true);
+      const auto system = system_of({.kind = model::HystereticLaw::Kind::bilinear,
+                                     .yield_drift_ratio = {},
+                                     .yield_drift_m = sdof.d_y,
+                                     .hardening_ratio = 0.0},
+                                    2.0, true);
       solvers::EventOptions options;
       options.initial_state = Eigen::VectorXd::Zero(system.state_size());
       options.initial_state[system.dof()] = v0;
