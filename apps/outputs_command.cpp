@@ -1,6 +1,6 @@
 // `pounding outputs`: every output field (io::output_schema_json(): history.csv's columns,
-// impacts, per-floor peaks, the energy audit) as text, JSON, or the Markdown tables
-// docs/guide/output-columns.md holds (tools/doc_tables.py writes and checks them).
+// impacts, per-floor peaks, the energy audit, contacts_history.csv and yielding.csv) as text, JSON, or the Markdown
+// tables docs/guide/output-columns.md holds (tools/doc_tables.py writes and checks them).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -32,6 +32,7 @@ std::string name_of(const nlohmann::ordered_json& field) {
 std::string extra_of(const std::string& section, const nlohmann::ordered_json& field) {
   if (section == "history") return field["per"];
   if (section == "peaks") return field["group"];
+  if (section == "yielding") return field["kind"];
   if (section == "impacts")
     return fmt::format("{}", fmt::join(field["csv_columns"].get<std::vector<std::string>>(), ", "));
   return "";
@@ -39,10 +40,11 @@ std::string extra_of(const std::string& section, const nlohmann::ordered_json& f
 
 void print_markdown(const std::string& section, const nlohmann::ordered_json& fields) {
   static const std::map<std::string, std::string> kExtraHeading = {
-      {"history", "one per"}, {"peaks", "group"}, {"impacts", "impacts.csv columns"}};
+      {"history", "one per"}, {"peaks", "group"}, {"impacts", "impacts.csv columns"}, {"yielding", "kind"}};
   const auto extra = kExtraHeading.find(section);
   const bool has_extra = extra != kExtraHeading.end();
-  fmt::print("| {} | unit |{} meaning |\n|---|---|{}---|\n", section == "history" ? "column" : "key",
+  fmt::print("| {} | unit |{} meaning |\n|---|---|{}---|\n",
+             fields.empty() || fields[0].contains("column") ? "column" : "key",
              has_extra ? " " + extra->second + " |" : "", has_extra ? "---|" : "");
   for (const auto& field : fields) {
     const std::string extra_text = extra_of(section, field);
@@ -58,7 +60,9 @@ int run_outputs(const OutputsCommand& command) {
   const nlohmann::ordered_json schema = io::output_schema_json();
   if (command.markdown) {
     if (!schema.contains(*command.markdown)) {
-      throw InputError("--markdown", *command.markdown, "expected history, impacts, peaks or energy");
+      std::vector<std::string> sections;
+      for (const auto& [section, fields] : schema.items()) sections.push_back(section);
+      throw InputError("--markdown", *command.markdown, fmt::format("expected one of {}", fmt::join(sections, ", ")));
     }
     print_markdown(*command.markdown, schema[*command.markdown]);
     return 0;

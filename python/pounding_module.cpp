@@ -228,24 +228,12 @@ py::array_t<double> history_table(const Run& run) {
   });
 }
 
-/// contacts_history.csv's columns, in its order, and its rows (one per contact and instant).
-const std::vector<std::string> kContactForceColumns{
-    "t_s", "candidate", "level", "striking_building", "vertex", "struck_edge", "gap_m", "gap_rate_mps", "force_kN"};
+/// contacts_history.csv's rows (one per contact and instant), its columns contact_force_columns().
 py::array_t<double> contact_force_table(const Run& run) {
   const auto& samples = run.report.result.history.contact_forces;
-  return matrix(samples.size(), kContactForceColumns.size(), [&](std::size_t r, std::size_t c) {
-    const pounding::solvers::ContactForceSample& f = samples[r];
-    const double values[] = {f.t_s,
-                             static_cast<double>(f.candidate),
-                             static_cast<double>(f.level),
-                             static_cast<double>(f.striking_building),
-                             static_cast<double>(f.vertex),
-                             static_cast<double>(f.edge),
-                             f.gap_m,
-                             f.gap_rate_mps,
-                             f.force_kN};
-    return values[c];
-  });
+  const auto& columns = pounding::io::contact_force_columns();
+  return matrix(samples.size(), columns.size(),
+                [&](std::size_t r, std::size_t c) { return columns[c].value(samples[r]); });
 }
 
 Gap find_needed_gap(const Scene& scene, const pounding::solvers::RunBudget& budget, bool all_angles) {
@@ -582,7 +570,12 @@ PYBIND11_MODULE(_pounding, m) {
            })
       .def("history_columns", [](const Run& r) { return r.report.result.history.columns; })
       .def("history_table", &history_table)
-      .def("contact_force_columns", [](const Run&) { return kContactForceColumns; })
+      .def("contact_force_columns",
+           [](const Run&) {
+             std::vector<std::string> names;
+             for (const auto& c : pounding::io::contact_force_columns()) names.emplace_back(c.name);
+             return names;
+           })
       .def("contact_force_table", &contact_force_table)
       .def("yielding_csv", [](const Run& r) {
         std::ostringstream out;

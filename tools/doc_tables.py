@@ -14,7 +14,9 @@ TABLES = (("docs/scene-format.md", "settings", "solver"),
           ("docs/guide/output-columns.md", "outputs", "history"),
           ("docs/guide/output-columns.md", "outputs", "impacts"),
           ("docs/guide/output-columns.md", "outputs", "peaks"),
-          ("docs/guide/output-columns.md", "outputs", "energy"))
+          ("docs/guide/output-columns.md", "outputs", "energy"),
+          ("docs/guide/output-columns.md", "outputs", "contact_forces"),
+          ("docs/guide/output-columns.md", "outputs", "yielding"))
 
 
 def markers(command, section):

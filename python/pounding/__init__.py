@@ -353,11 +353,8 @@ class RunResult:
     def yielding_array(self):
         if self._yielding_array is None:
             rows = list(_csv.DictReader(_io.StringIO(self._run.yielding_csv())))
-            fields = [("building", _np.int64), ("storey", _np.int64), ("column", "U64"), ("direction", "U1")]
-            fields += [(name, _np.float64) for name in ("stiffness_kN_per_m", "hardening_ratio", "yield_drift_m",
-                                                        "peak_drift_m", "peak_ductility", "first_yield_t_s")]
-            fields += [("yield_count", _np.int64)]
-            fields += [(name, _np.float64) for name in ("hysteretic_kJ", "final_drift_m", "final_slip_m")]
+            dtype = {"integer": _np.int64, "real": _np.float64, "text": "U64"}
+            fields = [(c["column"], dtype[c["kind"]]) for c in output_schema()["yielding"]]
             array = _np.zeros(len(rows), dtype=fields)
             for name, _ in fields:
                 array[name] = [row[name] if row[name] != "" else "nan" for row in rows]

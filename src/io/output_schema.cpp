@@ -1,5 +1,9 @@
 #include "pounding/io/output_schema.hpp"
 
+#include <fmt/format.h>
+
+#include <cmath>
+
 #include "pounding/analysis/scene.hpp"
 #include "pounding/io/impact_schema.hpp"
 #include "pounding/solvers/history_schema.hpp"
@@ -102,6 +106,72 @@ const std::vector<EnergyField>& energy_fields() {
   return fields;
 }
 
+const std::vector<ContactForceColumn>& contact_force_columns() {
+  using solvers::ContactForceSample;
+  static const std::vector<ContactForceColumn> columns = {
+      {"t_s", "s", "time (an instant of history.csv)", [](const ContactForceSample& f) { return f.t_s; }},
+      {"candidate", "", "0-based index into summary.json's candidates",
+       [](const ContactForceSample& f) { return double(f.candidate); }},
+      {"level", "", "1-based level (floors at a common elevation); 0 slab to column",
+       [](const ContactForceSample& f) { return double(f.level); }},
+      {"striking_building", "", "the building whose slab strikes (1-based)",
+       [](const ContactForceSample& f) { return double(f.striking_building); }},
+      {"vertex", "", "the striking vertex's 1-based number in its slab outline; 0 slab to column",
+       [](const ContactForceSample& f) { return double(f.vertex); }},
+      {"struck_edge", "",
+       "the struck edge's 1-based number in the struck slab's outline (slab to column: the slab's edge)",
+       [](const ContactForceSample& f) { return double(f.edge); }},
+      {"gap_m", "m", "signed gap (< 0: overlap)", [](const ContactForceSample& f) { return f.gap_m; }},
+      {"gap_rate_mps", "mps", "rate of the gap", [](const ContactForceSample& f) { return f.gap_rate_mps; }},
+      {"force_kN", "kN",
+       "normal contact force, > 0 pushing the slabs apart (compliant laws: the law's; impulse law: the force holding a "
+       "sustained contact)",
+       [](const ContactForceSample& f) { return f.force_kN; }},
+  };
+  return columns;
+}
+
+const std::vector<YieldingColumn>& yielding_columns() {
+  using dynamics::YieldingSpring;
+  using solvers::SpringResult;
+  using Kind = YieldingColumn::Kind;
+  static const std::vector<YieldingColumn> columns = {
+      {"building", "", Kind::integer, "1-based building",
+       [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.building + 1); }},
+      {"storey", "", Kind::integer, "1-based storey, between floors storey - 1 and storey (0: the ground)",
+       [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.storey); }},
+      {"column", "", Kind::text, "the column's scene key, quoted (\"columns[3]\", \"column_grid[1] x[2] y[1]\")",
+       [](const YieldingSpring& s, const SpringResult&) { return fmt::format("\"{}\"", s.column); }},
+      {"direction", "", Kind::text, "x or y: the spring's direction of sway",
+       [](const YieldingSpring& s, const SpringResult&) { return std::string(s.direction == 0 ? "x" : "y"); }},
+      {"stiffness_kN_per_m", "kN/m", Kind::real, "initial stiffness k",
+       [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.stiffness_kN_per_m); }},
+      {"hardening_ratio", "", Kind::real, "post-yield over initial stiffness",
+       [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.hardening_ratio); }},
+      {"yield_drift_m", "m", Kind::real, "yield drift d_y",
+       [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.yield_drift_m); }},
+      {"peak_drift_m", "m", Kind::real, "largest absolute drift over the run",
+       [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.peak_drift_m); }},
+      {"peak_ductility", "", Kind::real, "peak drift over yield drift",
+       [](const YieldingSpring& s, const SpringResult& r) {
+         return fmt::format("{}", r.peak_drift_m / s.yield_drift_m);
+       }},
+      {"first_yield_t_s", "s", Kind::real, "when it first yielded; empty if it never did",
+       [](const YieldingSpring&, const SpringResult& r) {
+         return std::isfinite(r.first_yield_t_s) ? fmt::format("{}", r.first_yield_t_s) : std::string();
+       }},
+      {"yield_count", "", Kind::integer, "yielding phases",
+       [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.yield_count); }},
+      {"hysteretic_kJ", "kJ", Kind::real, "energy it dissipated",
+       [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.hysteretic_kJ); }},
+      {"final_drift_m", "m", Kind::real, "drift at the end of the run",
+       [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.final_drift_m); }},
+      {"final_slip_m", "m", Kind::real, "slip of its plastic part at the end (the drift at zero force for alpha = 0)",
+       [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.final_slip_m); }},
+  };
+  return columns;
+}
+
 json output_schema_json() {
   using solvers::HistoryQuantity;
   static constexpr std::string_view kPer[] = {"slab", "contact_vertex", "corner"};
@@ -136,7 +206,24 @@ json output_schema_json() {
     energy.push_back({{"key", f.key}, {"unit", f.unit}, {"description", f.description}});
     if (f.yielding_only) energy.back()["only_when"] = "columns yield";
   }
-  return {{"history", history}, {"impacts", impacts}, {"peaks", peaks}, {"energy", energy}};
+  json contact_forces = json::array();
+  for (const ContactForceColumn& c : contact_force_columns()) {
+    contact_forces.push_back({{"column", c.name}, {"unit", c.unit}, {"description", c.description}});
+  }
+  static constexpr std::string_view kKind[] = {"integer", "real", "text"};
+  json yielding = json::array();
+  for (const YieldingColumn& c : yielding_columns()) {
+    yielding.push_back({{"column", c.name},
+                        {"unit", c.unit},
+                        {"kind", kKind[static_cast<int>(c.kind)]},
+                        {"description", c.description}});
+  }
+  return {{"history", history},
+          {"impacts", impacts},
+          {"peaks", peaks},
+          {"energy", energy},
+          {"contact_forces", contact_forces},
+          {"yielding", yielding}};
 }
 
 }  // namespace pounding::io

@@ -21,14 +21,15 @@ void write_impact_row(const solvers::ImpactRecord& impact, std::ostream& out, Im
 void write_csv_header(const std::vector<std::string>& columns, std::ostream& out);
 void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& out);
 /// contacts_history.csv: one row per contact carrying a force at a history instant (tidy, long
-/// form: a column per candidate would mostly hold zeros). t_s, candidate (0-based, as in
-/// summary.json's list), level, striking_building, vertex, struck_edge, gap_m, gap_rate_mps, force_kN.
+/// form: a column per candidate would mostly hold zeros), its columns contact_force_columns()
+/// (output_schema.hpp).
 void write_contact_forces_header(std::ostream& out);
 void write_contact_force_row(const solvers::ContactForceSample& sample, std::ostream& out);
 /// Removes an earlier run's history.csv and contacts_history.csv from `folder`, for a run that
 /// writes neither: no file may stand beside a summary.json that is not its run's.
 void remove_history_files(const std::filesystem::path& folder);
-/// yielding.csv: one row per yielding column spring; removed for a run whose columns stay elastic.
+/// yielding.csv: one row per yielding column spring, its columns yielding_columns() (output_schema.hpp);
+/// removed for a run whose columns stay elastic.
 void write_yielding_csv(const analysis::RunReport& report, const std::filesystem::path& folder);
 
 }  // namespace pounding::io

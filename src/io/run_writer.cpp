@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <fmt/compile.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 
@@ -402,18 +404,14 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
 }
 
 void write_yielding_rows(const analysis::RunReport& report, std::ostream& out) {
-  write_csv_header({"building", "storey", "column", "direction", "stiffness_kN_per_m", "hardening_ratio",
-                    "yield_drift_m", "peak_drift_m", "peak_ductility", "first_yield_t_s", "yield_count",
-                    "hysteretic_kJ", "final_drift_m", "final_slip_m"},
-                   out);
+  const auto& columns = yielding_columns();
+  std::vector<std::string> names, cells(columns.size());
+  for (const YieldingColumn& c : columns) names.emplace_back(c.name);
+  write_csv_header(names, out);
   for (std::size_t j = 0; j < report.springs.size(); ++j) {
-    const dynamics::YieldingSpring& s = report.springs[j];
-    const solvers::SpringResult& r = report.result.springs[j];
-    out << fmt::format("{},{},\"{}\",{},{},{},{},{},{},{},{},{},{},{}\n", s.building + 1, s.storey, s.column,
-                       s.direction == 0 ? "x" : "y", s.stiffness_kN_per_m, s.hardening_ratio, s.yield_drift_m,
-                       r.peak_drift_m, r.peak_drift_m / s.yield_drift_m,
-                       std::isfinite(r.first_yield_t_s) ? fmt::format("{}", r.first_yield_t_s) : "", r.yield_count,
-                       r.hysteretic_kJ, r.final_drift_m, r.final_slip_m);
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      cells[c] = columns[c].cell(report.springs[j], report.result.springs[j]);
+    out << fmt::format("{}\n", fmt::join(cells, ","));
   }
 }
 
@@ -449,14 +447,19 @@ void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& 
 }
 
 void write_contact_forces_header(std::ostream& out) {
-  write_csv_header(
-      {"t_s", "candidate", "level", "striking_building", "vertex", "struck_edge", "gap_m", "gap_rate_mps", "force_kN"},
-      out);
+  std::vector<std::string> names;
+  for (const ContactForceColumn& c : contact_force_columns()) names.emplace_back(c.name);
+  write_csv_header(names, out);
 }
 
 void write_contact_force_row(const solvers::ContactForceSample& f, std::ostream& out) {
-  out << fmt::format("{},{},{},{},{},{},{},{},{}\n", f.t_s, f.candidate, f.level, f.striking_building, f.vertex, f.edge,
-                     f.gap_m, f.gap_rate_mps, f.force_kN);
+  fmt::memory_buffer line;
+  for (const ContactForceColumn& c : contact_force_columns()) {
+    if (line.size() > 0) line.push_back(',');
+    fmt::format_to(std::back_inserter(line), "{}", c.value(f));
+  }
+  line.push_back('\n');
+  out.write(line.data(), static_cast<std::streamsize>(line.size()));
 }
 
 void remove_history_files(const std::filesystem::path& folder) {

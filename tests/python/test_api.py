@@ -115,6 +115,8 @@ def test_output_schema_names_every_output_of_a_run_and_nothing_else():
     floor = summary["peaks"][0]["floors"][0]
     assert list(floor)[1:] == [f["key"] for f in schema["peaks"]]
     assert list(summary["energy"]) == [f["key"] for f in schema["energy"] if "only_when" not in f]
+    assert list(result.contact_forces) == [f["column"] for f in schema["contact_forces"]]
+    assert len(result.contact_forces["t_s"]) > 0  # the holds' forces
     for section in schema.values():
         for field in section:
             assert field["description"].strip(), field
@@ -187,6 +189,8 @@ def test_yielding_outputs_are_the_summary_per_column():
     has neither."""
     run = pounding.run(pounding.load_scene(SOURCE / "examples" / "paper" / "paper-yielding.toml"))
     springs = run.yielding_array
+    header = run._run.yielding_csv().splitlines()[0].split(",")
+    assert header == [c["column"] for c in pounding.output_schema()["yielding"]] == list(springs.dtype.names)
     assert len(springs) == 2 * (25 * 7 + 30 * 10)  # columns × storeys × (x, y)
     assert springs["hysteretic_kJ"].sum() == pytest.approx(run.energy["hysteretic_kJ"], rel=1e-12)
     assert run.yielding["hysteretic_kJ"] == run.energy["hysteretic_kJ"]

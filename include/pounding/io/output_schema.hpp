@@ -1,13 +1,15 @@
 #pragma once
-// The one list of summary.json's per-floor peaks and of its energy audit, read by the writer
-// (run_writer.cpp), by `pounding outputs` and so by the docs' column list
-// (docs/guide/output-columns.md). history.csv's columns: solvers/history_schema.hpp; impacts:
-// io/impact_schema.hpp.
+// The one list of summary.json's per-floor peaks and of its energy audit, and of the columns of
+// contacts_history.csv and yielding.csv, read by the writers (run_writer.cpp), the Python module,
+// `pounding outputs` and so the docs' column list (docs/guide/output-columns.md). history.csv's
+// columns: solvers/history_schema.hpp; impacts: io/impact_schema.hpp.
 
 #include <nlohmann/json.hpp>
+#include <string>
 #include <string_view>
 #include <vector>
 
+#include "pounding/dynamics/yielding_springs.hpp"
 #include "pounding/solvers/run_result.hpp"
 
 namespace pounding::io {
@@ -24,8 +26,7 @@ struct PeakField {
   nlohmann::ordered_json (*value)(const solvers::FloorPeaks& floor, double g_mps2) = nullptr;
 };
 
-/// In output order: u_m, v_m, phi_rad, vertex_dx_m; ax_abs_mps2, ay_abs_mps2, phi_ddot_radps2;
-/// drift_x, drift_y, corner_drift_x, corner_drift_y, worst_corner_drift.
+/// In output order, group by group.
 const std::vector<PeakField>& peak_fields();
 
 /// Whether `outputs` asked for `group`.
@@ -40,13 +41,40 @@ struct EnergyField {
   bool yielding_only = false;  // written only for runs whose columns yield
 };
 
-/// In output order: input, kinetic and strain energy at the end, damping, impact loss,
-/// constraint work, algorithmic dissipation, residual, relative residual.
+/// In output order.
 const std::vector<EnergyField>& energy_fields();
+
+/// A column of contacts_history.csv (a row per contact carrying a force, at each history
+/// instant). Its value is a double: the identity columns are whole numbers, which the CSV writer
+/// ({fmt}'s shortest form) writes without a decimal point.
+struct ContactForceColumn {
+  std::string_view name;  // CSV header, unit suffixed
+  std::string_view unit;  // empty: an index or a 1-based number
+  std::string_view description;
+  double (*value)(const solvers::ContactForceSample& sample) = nullptr;
+};
+
+/// In output order.
+const std::vector<ContactForceColumn>& contact_force_columns();
+
+/// A column of yielding.csv (a row per yielding column spring: one column of a storey, along x
+/// or y), with its cell's text as the CSV holds it.
+struct YieldingColumn {
+  enum class Kind { integer, real, text };  // a real may be empty (first_yield_t_s: never yielded)
+  std::string_view name;
+  std::string_view unit;  // empty: a count, a name or a ratio
+  Kind kind;
+  std::string_view description;
+  std::string (*cell)(const dynamics::YieldingSpring& spring, const solvers::SpringResult& result) = nullptr;
+};
+
+/// In output order.
+const std::vector<YieldingColumn>& yielding_columns();
 
 /// Every output field, as `pounding outputs --json` prints it and pounding.output_schema()
 /// returns it: `history` (column pattern, unit, per, description), `impacts` (JSON key, CSV
 /// columns, unit, description), `peaks` (key, unit, group, description), `energy` (key, unit,
+/// description), `contact_forces` (column, unit, description), `yielding` (column, unit, kind,
 /// description).
 nlohmann::ordered_json output_schema_json();
 
