@@ -6,7 +6,7 @@ each a full contact-free run exact at its angle: no superposition).
 
 For the paper scene (one component) and the Kobe pair (examples/beyond-paper/two-components.toml):
   1. the reported largest needed gap is at least every single-angle run's, on a grid of
-     2 degrees (the paper scene; 15 degrees for the Kobe pair) over [0, 360) and of FINE_DEG
+     2 degrees (the paper scene; 30 degrees for the Kobe pair) over [0, 360) and of FINE_DEG
      within 1.5 degrees of the reported angle (tolerance 1e-9 m), and equals the largest of them
      within 1e-6 m;
   2. a run at the reported angle gives the reported needed gap (to 1e-12 m);
@@ -71,7 +71,7 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     failures = []
     check(program, ROOT / "examples/paper/paper.toml", out, 2.0, failures)
-    check(program, ROOT / "examples/beyond-paper/two-components.toml", out, 15.0, failures)
+    check(program, ROOT / "examples/beyond-paper/two-components.toml", out, 30.0, failures)
     text = (ROOT / "examples/paper/paper-yielding.toml").read_text().replace("duration_s = 12.2", "duration_s = 4.0")
     scene = out / "yielding.toml"
     scene.write_text(text.replace("../records/", str(ROOT / "examples/records") + "/"))
