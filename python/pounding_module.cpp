@@ -571,11 +571,7 @@ PYBIND11_MODULE(_pounding, m) {
       .def("history_columns", [](const Run& r) { return r.report.result.history.columns; })
       .def("history_table", &history_table)
       .def("contact_force_columns",
-           [](const Run&) {
-             std::vector<std::string> names;
-             for (const auto& c : pounding::io::contact_force_columns()) names.emplace_back(c.name);
-             return names;
-           })
+           [](const Run&) { return pounding::io::column_names(pounding::io::contact_force_columns()); })
       .def("contact_force_table", &contact_force_table)
       .def("yielding_csv", [](const Run& r) {
         std::ostringstream out;

@@ -138,7 +138,8 @@ const std::vector<YieldingColumn>& yielding_columns() {
   static const std::vector<YieldingColumn> columns = {
       {"building", "", Kind::integer, "1-based building",
        [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.building + 1); }},
-      {"storey", "", Kind::integer, "1-based storey, between floors storey - 1 and storey (0: the ground)",
+      {"storey", "", Kind::integer,
+       "1-based storey: the columns between floor storey - 1 (floor 0: the ground) and floor storey",
        [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.storey); }},
       {"column", "", Kind::text, "the column's scene key, quoted (\"columns[3]\", \"column_grid[1] x[2] y[1]\")",
        [](const YieldingSpring& s, const SpringResult&) { return fmt::format("\"{}\"", s.column); }},

@@ -405,9 +405,8 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
 
 void write_yielding_rows(const analysis::RunReport& report, std::ostream& out) {
   const auto& columns = yielding_columns();
-  std::vector<std::string> names, cells(columns.size());
-  for (const YieldingColumn& c : columns) names.emplace_back(c.name);
-  write_csv_header(names, out);
+  write_csv_header(column_names(columns), out);
+  std::vector<std::string> cells(columns.size());
   for (std::size_t j = 0; j < report.springs.size(); ++j) {
     for (std::size_t c = 0; c < columns.size(); ++c)
       cells[c] = columns[c].cell(report.springs[j], report.result.springs[j]);
@@ -446,11 +445,7 @@ void write_history_row(double t_s, const Eigen::VectorXd& values, std::ostream& 
   out.write(line.data(), static_cast<std::streamsize>(line.size()));
 }
 
-void write_contact_forces_header(std::ostream& out) {
-  std::vector<std::string> names;
-  for (const ContactForceColumn& c : contact_force_columns()) names.emplace_back(c.name);
-  write_csv_header(names, out);
-}
+void write_contact_forces_header(std::ostream& out) { write_csv_header(column_names(contact_force_columns()), out); }
 
 void write_contact_force_row(const solvers::ContactForceSample& f, std::ostream& out) {
   fmt::memory_buffer line;

@@ -71,6 +71,15 @@ struct YieldingColumn {
 /// In output order.
 const std::vector<YieldingColumn>& yielding_columns();
 
+/// The names of a file's columns (contact_force_columns(), yielding_columns()), in order: its header.
+template <class Column>
+std::vector<std::string> column_names(const std::vector<Column>& columns) {
+  std::vector<std::string> names;
+  names.reserve(columns.size());
+  for (const Column& c : columns) names.emplace_back(c.name);
+  return names;
+}
+
 /// Every output field, as `pounding outputs --json` prints it and pounding.output_schema()
 /// returns it: `history` (column pattern, unit, per, description), `impacts` (JSON key, CSV
 /// columns, unit, description), `peaks` (key, unit, group, description), `energy` (key, unit,
