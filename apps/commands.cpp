@@ -239,9 +239,10 @@ void apply_output_options(const RunCommand& command, analysis::OutputSettings& o
 /// user gave --rtol (a value from the scene file keeps its key). The run limits have no scene key:
 /// their options are named whether given or defaulted.
 std::map<std::string, std::string> option_names(const RunCommand& c) {
-  std::map<std::string, std::string> names = {{"limits.max_steps", "--max-steps"},
-                                              {"limits.max_wall_time_s", "--max-wall-time"},
-                                              {"limits.max_history_values", "--max-history-values"}};
+  std::map<std::string, std::string> names;
+  for (const analysis::LimitSpec& limit : analysis::limit_specs()) {
+    names["limits." + std::string(limit.key)] = limit.option;
+  }
   if (c.method) names["solver.method"] = "--method";
   if (c.history) names["output.history"] = "--history";
   if (c.peaks) names["output.peaks"] = "--peaks";
@@ -254,18 +255,16 @@ std::map<std::string, std::string> option_names(const RunCommand& c) {
 
 analysis::RunLimits run_limits(const RunCommand& command) {
   analysis::RunLimits limits;
-  if (command.max_steps) limits.max_steps = *command.max_steps;
-  if (command.max_wall_time_s) limits.max_wall_time_s = *command.max_wall_time_s;
-  if (command.max_history_values) limits.max_history_values = *command.max_history_values;
+  for (const analysis::LimitSpec& limit : analysis::limit_specs()) {
+    const auto given = command.limits.find(limit.option);
+    if (given != command.limits.end()) analysis::set_key(limits, limit, "limits", given->second);
+  }
   return limits;
 }
 
 int run_run(const RunCommand& command, const std::string& command_line) {
-  analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps,
-                                                         .restitution = command.restitution,
-                                                         .contact_law = command.contact_law,
-                                                         .contact_stiffness = command.contact_stiffness,
-                                                         .record = command.record});
+  analysis::Scene scene =
+      io::read_scene(command.scene, {.gaps = command.gaps, .contact = command.contact, .record = command.record});
   try {
     apply_run_options(command, scene.solver);
     apply_output_options(command, scene.output);
@@ -300,7 +299,7 @@ int run_run(const RunCommand& command, const std::string& command_line) {
     files.abandon();
     if (!created.empty()) std::filesystem::remove_all(created);  // a refused run leaves nothing
     // A law the method cannot run, both given as options, is the options' fault, not the scene's.
-    if (error.key() == "contact.law" && command.contact_law) {
+    if (error.key() == "contact.law" && command.contact.contains("--contact-law")) {
       throw InputError("--contact-law", error.value(), error.reason() + (command.method ? " (--method)" : ""),
                        command.scene);
     }
@@ -416,8 +415,8 @@ int run_modes(const ModesCommand& command) {
 }
 
 int run_check(const CheckCommand& command) {
-  const analysis::Scene scene = io::read_scene(
-      command.scene, {.gaps = command.gaps, .restitution = command.restitution, .record = command.record});
+  const analysis::Scene scene =
+      io::read_scene(command.scene, {.gaps = command.gaps, .contact = command.contact, .record = command.record});
   analysis::require_compliant_law_where_needed(scene);
   const auto buildings = analysis::summarise_buildings(scene);
   const dynamics::CoupledSystem system = analysis::build_system(scene);

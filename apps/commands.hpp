@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/key_spec.hpp"
 #include "pounding/analysis/methods.hpp"
 #include "pounding/excitation/record_choice.hpp"
 
@@ -25,7 +26,7 @@ struct MethodsCommand {
 
 struct SettingsCommand {
   bool json = false;                    // the table as JSON on stdout (for scripts)
-  std::optional<std::string> markdown;  // solver | contact: that section's tables of docs/scene-format.md
+  std::optional<std::string> markdown;  // solver | contact | limits: that table of the docs
 };
 
 struct OutputsCommand {
@@ -38,30 +39,28 @@ struct LawsCommand {
   double restitution = 0.5;  // e for each law's closed-form rebound
 };
 
+/// Options of a key table's rows as given (analysis::KeyValue), by option name.
+using GivenKeys = std::map<std::string, analysis::KeyValue, std::less<>>;
+
 struct CheckCommand {
   std::string scene;
-  std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
-  std::optional<double> restitution;
+  std::vector<std::string> gaps;    // --gap (io::SceneOverrides::gaps)
+  GivenKeys contact;                // --restitution, --contact-law, ... (io::SceneOverrides::contact)
   excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
 };
 
 struct RunCommand {
   std::string scene;
-  std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
-  std::optional<double> restitution;
-  std::optional<std::string> contact_law;
-  std::optional<double> contact_stiffness;  // in the law's unit (contact_laws.hpp)
-  excitation::RecordChoice record;          // --record, --scale, --pga-g, ...
+  std::vector<std::string> gaps;    // --gap (io::SceneOverrides::gaps)
+  GivenKeys contact;                // --restitution, --contact-law, ... (io::SceneOverrides::contact)
+  excitation::RecordChoice record;  // --record, --scale, --pga-g, ...
   std::optional<std::string> method;
   std::map<analysis::Setting, analysis::SettingValue> settings;  // the [solver] options given (--rtol, --dt, ...)
   std::optional<std::string> halving;                            // on | off
   std::optional<std::string> history;                            // on | off: replaces output.history
-  std::optional<std::string> peaks;  // none, all or a comma-separated list of groups: replaces output.peaks
-  std::string out_dir;               // empty: out/<scene name, made safe as a folder name>
-  // Limits of the run (analysis::RunLimits); unset: its defaults.
-  std::optional<long> max_steps;
-  std::optional<double> max_wall_time_s;
-  std::optional<double> max_history_values;
+  std::optional<std::string> peaks;     // none, all or a comma-separated list of groups: replaces output.peaks
+  std::string out_dir;                  // empty: out/<scene name, made safe as a folder name>
+  GivenKeys limits;                     // --max-steps, ... (analysis::limit_specs()); unset: RunLimits' defaults
   bool no_progress = false;             // no progress line even on a terminal
   bool contact_free_reference = false;  // --contact-free-reference: sets output.contact_free_reference
 };

@@ -6,12 +6,15 @@
 
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "pounding/analysis/contact_laws.hpp"
 #include "pounding/analysis/methods.hpp"
+#include "pounding/analysis/run_scene.hpp"
+#include "pounding/analysis/scene.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/provenance.hpp"
 #include "pounding/version.hpp"
@@ -83,16 +86,38 @@ std::map<std::string, std::pair<long long, long long>> integer_ranges_of_options
       {"--order", {1, 12}},  // any ARKODE table; the method's own orders are checked after
       {"--record-column", {1, 1000}},
       {"--record2-column", {1, 1000}},
-      {"--max-steps", {1, 1000000000000}},
-      {"--max-history-values", {1, 1000000000000}},
       {"--threads", {0, 4096}}};
+  auto add = [&ranges](std::string_view option, const pounding::Range& range) {
+    ranges[std::string(option)] = {static_cast<long long>(range.min), static_cast<long long>(range.max)};
+  };
   for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
-    if (spec.member.index() == 0 && spec.range) {
-      ranges[std::string(spec.option)] = {static_cast<long long>(spec.range->min),
-                                          static_cast<long long>(spec.range->max)};
-    }
+    if (spec.member.index() == 0 && spec.range) add(spec.option, *spec.range);
+  }
+  for (const pounding::analysis::LimitSpec& spec : pounding::analysis::limit_specs()) {
+    if (pounding::analysis::type_name(spec) == "integer" && spec.range) add(spec.option, *spec.range);
   }
   return ranges;
+}
+
+/// The options of a key table's rows (key_spec.hpp), each value kept by option name in `given`
+/// for the library to apply and check. An option the command already has (`--gap`, with its own
+/// forms) or that an earlier row shares (`--contact-stiffness`) is not added again.
+template <typename Owner>
+void add_key_options(CLI::App& command, std::span<const pounding::analysis::KeySpec<Owner>> specs,
+                     pounding::cli::GivenKeys& given) {
+  for (const pounding::analysis::KeySpec<Owner>& spec : specs) {
+    const std::string option(spec.option);
+    if (option.empty() || command.get_option_no_throw(option) != nullptr) continue;
+    std::visit(
+        [&](auto Owner::*member) {
+          using T = std::decay_t<decltype(Owner{}.*member)>;
+          using Parsed = std::conditional_t<std::is_same_v<T, std::string> || std::is_same_v<T, long>, T, double>;
+          command.add_option_function<Parsed>(
+              option, [&given, option](const Parsed& value) { given[option] = value; },
+              pounding::analysis::option_help(spec));
+        },
+        spec.member);
+  }
 }
 
 /// Every option that takes a value refuses an empty one (`--gap ''` is a slip, not "unset"), and
@@ -152,11 +177,13 @@ int main(int argc, char** argv) {
   pounding::cli::SettingsCommand settings;
   CLI::App* settings_app = app.add_subcommand(
       "settings",
-      "The [solver] and [contact] settings: key, option, type, default, range (and the methods using each)");
+      "The [solver] and [contact] settings and the run limits: key, option, type, default, range (and the methods "
+      "using each solver setting)");
   settings_app->add_flag("--json", settings.json,
                          "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
   settings_app->add_option("--markdown", settings.markdown,
-                           "solver or contact: that section's tables in docs/scene-format.md");
+                           "solver, contact or limits: that section's tables in docs/scene-format.md "
+                           "(limits: docs/guide/limits.md)");
 
   pounding::cli::OutputsCommand outputs;
   CLI::App* outputs_app = app.add_subcommand(
@@ -177,16 +204,14 @@ int main(int argc, char** argv) {
   CLI::App* check_app = app.add_subcommand("check", "Validate a scene and print what it describes");
   add_scene_argument(*check_app, check.scene);
   add_gap_option(*check_app, check.gaps);
-  check_app->add_option("--restitution", check.restitution, "Coefficient of restitution k in [0, 1]");
+  add_key_options(*check_app, pounding::analysis::contact_setting_specs(), check.contact);
   add_record_options(*check_app, check.record);
 
   pounding::cli::RunCommand run;
   CLI::App* run_app = app.add_subcommand("run", "Time-history analysis with event-driven contact");
   add_scene_argument(*run_app, run.scene);
   add_gap_option(*run_app, run.gaps);
-  run_app->add_option("--restitution", run.restitution, "Coefficient of restitution k in [0, 1]");
-  run_app->add_option("--contact-law", run.contact_law, pounding::analysis::contact_laws_help());
-  run_app->add_option("--contact-stiffness", run.contact_stiffness, pounding::analysis::contact_stiffness_help());
+  add_key_options(*run_app, pounding::analysis::contact_setting_specs(), run.contact);
   add_record_options(*run_app, run.record);
   using pounding::analysis::option_help;
   run_app->add_option("--method", run.method, pounding::analysis::methods_help());
@@ -213,10 +238,7 @@ int main(int argc, char** argv) {
       "Peak groups in summary.json: none, all or a comma-separated list of displacements, accelerations, "
       "drifts (replaces output.peaks)");
   run_app->add_option("--out", run.out_dir, "Output folder (default out/<scene name>)");
-  run_app->add_option("--max-steps", run.max_steps, "Refuse or stop a run needing more steps (default 1e7)");
-  run_app->add_option("--max-wall-time", run.max_wall_time_s, "Stop the run after this many seconds (default 3600)");
-  run_app->add_option("--max-history-values", run.max_history_values,
-                      "Refuse a run whose history.csv would hold more values (default 2e7)");
+  add_key_options(*run_app, pounding::analysis::limit_specs(), run.limits);
   run_app->add_flag("--no-progress,--quiet", run.no_progress,
                     "No progress line (simulated time, impacts) on the terminal while the run goes; it is never "
                     "shown when stderr is not a terminal");

@@ -1,6 +1,7 @@
-// `pounding settings`: the [solver] and [contact] settings tables (analysis::setting_specs(),
-// analysis::contact_setting_specs()) as text, JSON, or the Markdown tables docs/scene-format.md
-// holds (tools/doc_tables.py writes and checks them).
+// `pounding settings`: the [solver] and [contact] settings and the run limits
+// (analysis::setting_specs(), contact_setting_specs(), limit_specs()) as text, JSON, or the
+// Markdown tables docs/scene-format.md and docs/guide/limits.md hold (tools/doc_tables.py writes
+// and checks them).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -9,6 +10,7 @@
 
 #include "commands.hpp"
 #include "pounding/analysis/contact_laws.hpp"
+#include "pounding/analysis/run_scene.hpp"
 #include "pounding/analysis/scene.hpp"
 #include "pounding/input_error.hpp"
 
@@ -62,69 +64,74 @@ std::string type_column(const SettingSpec& spec) {
                      analysis::accepted_text(spec));
 }
 
-/// The [contact] key's default as the docs print it: ContactSettings' initialiser.
-std::string contact_default(const analysis::ContactSettingSpec& spec) {
-  if (spec.required) return "required";
-  const analysis::ContactSettings defaults;
-  return std::visit(
-      [&](auto analysis::ContactSettings::*member) -> std::string {
-        const auto& value = defaults.*member;
-        using T = std::decay_t<decltype(value)>;
-        if constexpr (std::is_same_v<T, std::string>) {
-          return fmt::format("\"{}\"", value);
-        } else if constexpr (std::is_same_v<T, double>) {
-          return fmt::format("{}", value);
-        } else {  // a stiffness: each law using the key has its own
-          std::vector<std::string> defaults;
-          for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
-            if (law.stiffness_key == spec.key)
-              defaults.push_back(fmt::format("{} {:g}", law.name, law.default_stiffness));
-          }
-          return fmt::format("{}", fmt::join(defaults, ", "));
-        }
-      },
-      spec.member);
+/// A [contact] key's or run limit's default as the docs print it: its member's initialiser; an
+/// unset stiffness, each law's own (contact_laws()).
+template <typename Owner>
+std::string key_default(const analysis::KeySpec<Owner>& spec) {
+  if (!std::holds_alternative<std::optional<double> Owner::*>(spec.member)) return analysis::default_text(spec);
+  std::vector<std::string> defaults;
+  for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
+    if (law.stiffness_key == spec.key) defaults.push_back(fmt::format("{} {:g}", law.name, law.default_stiffness));
+  }
+  return fmt::format("{}", fmt::join(defaults, ", "));
 }
 
-std::string contact_type(const analysis::ContactSettingSpec& spec) {
-  if (!spec.choices.empty()) {
-    std::vector<std::string> names;
-    for (std::string_view choice : spec.choices) names.push_back(fmt::format("`\"{}\"`", choice));
-    return fmt::format("{}", fmt::join(names, ", "));
-  }
-  if (!spec.range) {  // the law
-    std::vector<std::string> names;
+/// The values accepted: the choices, the contact laws (contact.law, whose names the law table
+/// holds), or "number in [0, 10] m".
+template <typename Owner>
+std::string key_type(const analysis::KeySpec<Owner>& spec) {
+  std::vector<std::string> names;
+  for (std::string_view choice : spec.choices) names.push_back(fmt::format("`\"{}\"`", choice));
+  if (!spec.range && names.empty()) {
     for (const analysis::ContactLawInfo& law : analysis::contact_laws())
       names.push_back(fmt::format("`\"{}\"`", law.name));
-    return fmt::format("{}", fmt::join(names, ", "));
   }
-  return "number in " + range_text(*spec.range);
+  if (!names.empty()) return fmt::format("{}", fmt::join(names, ", "));
+  return fmt::format("{} in {}", analysis::type_name(spec), range_text(*spec.range));
 }
 
-void print_contact_markdown() {
+template <typename Owner>
+void print_keys_markdown(std::span<const analysis::KeySpec<Owner>> specs) {
   fmt::print("| key | option | type | default | meaning |\n|---|---|---|---|---|\n");
-  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
-    const bool literal =
-        !spec.required && !std::holds_alternative<std::optional<double> analysis::ContactSettings::*>(spec.member);
+  for (const analysis::KeySpec<Owner>& spec : specs) {
+    const bool literal = !spec.required && !std::holds_alternative<std::optional<double> Owner::*>(spec.member);
     fmt::print("| `{}` | {} | {} | {} | {}{}{} |\n", spec.key,
-               spec.option.empty() ? "" : fmt::format("`{}`", spec.option), contact_type(spec),
-               literal ? fmt::format("`{}`", contact_default(spec)) : contact_default(spec), spec.description,
+               spec.option.empty() ? "" : fmt::format("`{}`", spec.option), key_type(spec),
+               literal ? fmt::format("`{}`", key_default(spec)) : key_default(spec), spec.description,
                spec.details.empty() ? "" : "; ", spec.details);
   }
 }
 
-nlohmann::json as_json(const analysis::ContactSettingSpec& spec) {
+template <typename Owner>
+nlohmann::json as_json(const analysis::KeySpec<Owner>& spec, std::string_view section) {
   nlohmann::json entry = {{"key", spec.key},
-                          {"toml", "contact." + std::string(spec.key)},
+                          {"toml", fmt::format("{}.{}", section, spec.key)},
                           {"option", spec.option},
+                          {"python", spec.option.empty() ? "" : analysis::python_keyword(spec.option)},
+                          {"type", analysis::type_name(spec)},
                           {"required", spec.required},
+                          {"default", key_default(spec)},
                           {"description", spec.description},
                           {"details", spec.details}};
   if (spec.range) {
     entry["range"] = {{"min", spec.range->min}, {"max", spec.range->max}, {"min_open", spec.range->min_open}};
     entry["unit"] = spec.range->unit;
   }
+  if (!spec.choices.empty()) entry["choices"] = spec.choices;
   return entry;
+}
+
+template <typename Owner>
+void print_keys_text(std::span<const analysis::KeySpec<Owner>> specs, std::string_view section) {
+  for (const analysis::KeySpec<Owner>& spec : specs) {
+    const std::string name = fmt::format("{}.{}", section, spec.key);
+    fmt::print("{:<27} {:<17} {:<8} default {:<18} {}\n{:28} {}\n", name, spec.option, analysis::type_name(spec),
+               key_default(spec),
+               spec.range             ? range_text(*spec.range)
+               : spec.choices.empty() ? "a law"
+                                      : "a choice",
+               "", spec.description);
+  }
 }
 
 void print_solver_markdown() {
@@ -154,17 +161,21 @@ int run_settings(const SettingsCommand& command) {
     if (*command.markdown == "solver") {
       print_solver_markdown();
     } else if (*command.markdown == "contact") {
-      print_contact_markdown();
+      print_keys_markdown(analysis::contact_setting_specs());
+    } else if (*command.markdown == "limits") {
+      print_keys_markdown(analysis::limit_specs());
     } else {
-      throw InputError("--markdown", *command.markdown, "expected solver or contact");
+      throw InputError("--markdown", *command.markdown, "expected solver, contact or limits");
     }
     return 0;
   }
   if (command.json) {
-    nlohmann::json solver = nlohmann::json::array(), contact = nlohmann::json::array();
+    nlohmann::json solver = nlohmann::json::array(), contact = nlohmann::json::array(),
+                   limits = nlohmann::json::array();
     for (const SettingSpec& spec : analysis::setting_specs()) solver.push_back(as_json(spec));
-    for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) contact.push_back(as_json(spec));
-    fmt::print("{}\n", nlohmann::json{{"solver", solver}, {"contact", contact}}.dump(2));
+    for (const auto& spec : analysis::contact_setting_specs()) contact.push_back(as_json(spec, "contact"));
+    for (const auto& spec : analysis::limit_specs()) limits.push_back(as_json(spec, "limits"));
+    fmt::print("{}\n", nlohmann::json{{"solver", solver}, {"contact", contact}, {"limits", limits}}.dump(2));
     return 0;
   }
   for (const SettingSpec& spec : analysis::setting_specs()) {
@@ -172,11 +183,8 @@ int run_settings(const SettingsCommand& command) {
                analysis::type_name(spec), analysis::default_text(spec), analysis::accepted_text(spec), "",
                fmt::format("{}: {}", fmt::join(users(spec), ", "), spec.description));
   }
-  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
-    fmt::print("contact.{:<19} {:<17} {:<8} default {:<18} {}\n{:28} {}\n", spec.key, spec.option,
-               spec.range ? "number" : "string", contact_default(spec), spec.range ? range_text(*spec.range) : "a law",
-               "", spec.description);
-  }
+  print_keys_text(analysis::contact_setting_specs(), "contact");
+  print_keys_text(analysis::limit_specs(), "limits");
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <map>
 #include <optional>
 #include <tuple>
 #include <sstream>
@@ -171,13 +172,75 @@ Scene with_solver(Scene scene, const std::optional<std::string>& method, const p
   return scene;
 }
 
+/// A Python keyword's value as a key's (key_spec.hpp): a whole number for an integer key (numpy's
+/// too), a number for a number key, str for a text key.
+/// @throws InputError naming `keyword`: a value of another type, or a whole number too large for
+///   C++ (said with the key's range, which the library checks for every other value).
+template <typename Owner>
+pounding::analysis::KeyValue key_value(py::handle value, const pounding::analysis::KeySpec<Owner>& spec,
+                                       const std::string& keyword) {
+  const std::string_view type = pounding::analysis::type_name(spec);
+  std::string text = py::str(py::repr(value));
+  if (text.size() > 40) text = text.substr(0, 40) + "...";
+  if (type == "string") {
+    if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+    throw InputError(keyword, text, "expected a string");
+  }
+  const bool whole = !py::isinstance<py::bool_>(value) && PyIndex_Check(value.ptr()) != 0;
+  if (whole && type == "integer") {
+    const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+    int overflow = 0;
+    const long number = PyLong_AsLongAndOverflow(index.ptr(), &overflow);
+    if (overflow != 0) throw InputError(keyword, text, "must lie in " + pounding::range_text(*spec.range));
+    return number;
+  }
+  if (type == "number" && !py::isinstance<py::bool_>(value) &&
+      (whole || py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))) {
+    return value.cast<double>();
+  }
+  throw InputError(keyword, text, type == "integer" ? "expected a whole number" : "expected a number");
+}
+
+/// The [contact] options given as Python keywords (python_keyword() of each row's option; the gap
+/// is load_scene's own argument), keyed by option as io::SceneOverrides::contact takes them.
+std::map<std::string, pounding::analysis::KeyValue, std::less<>> contact_options(const py::dict& keywords) {
+  std::map<std::string, pounding::analysis::KeyValue, std::less<>> options;
+  for (const auto& spec : pounding::analysis::contact_setting_specs()) {
+    const std::string keyword = spec.option.empty() ? "" : pounding::analysis::python_keyword(spec.option);
+    if (keyword.empty() || !keywords.contains(keyword) || options.contains(spec.option)) continue;
+    options.emplace(spec.option, key_value(keywords[py::str(keyword)], spec, keyword));
+  }
+  return options;
+}
+
+/// The run limits given as keywords (limit_specs(): the key is the keyword), checked.
+/// @throws InputError naming the keyword.
+pounding::analysis::RunLimits run_limits(const py::dict& keywords) {
+  pounding::analysis::RunLimits limits;
+  std::map<std::string, std::string> names;
+  for (const auto& spec : pounding::analysis::limit_specs()) {
+    const std::string keyword(spec.key);
+    names["limits." + keyword] = keyword;
+    if (keywords.contains(keyword)) {
+      pounding::analysis::set_key(limits, spec, "limits", key_value(keywords[py::str(keyword)], spec, keyword));
+    }
+  }
+  try {
+    limits.validate();
+  } catch (const InputError& error) {
+    throw error.renamed(names);
+  }
+  return limits;
+}
+
 /// `pounding run` without files: with_solver(), the limits checked, then the run with the GIL
 /// released.
 Run run(Scene scene, const std::optional<std::string>& method, const py::dict& settings,
-        const pounding::analysis::RunLimits& limits) {
+        const py::dict& limit_keywords) {
   scene = with_solver(std::move(scene), method, settings);
+  pounding::analysis::RunLimits limits;
   try {
-    limits.validate();
+    limits = run_limits(limit_keywords);
   } catch (const InputError& error) {
     rethrow_in_scene(error, scene);
   }
@@ -461,33 +524,36 @@ PYBIND11_MODULE(_pounding, m) {
 
   m.def(
       "load_scene",
-      [](const std::filesystem::path& file, std::optional<double> gap_m, std::optional<double> restitution,
-         std::optional<std::string> contact_law, std::optional<double> contact_stiffness,
-         std::vector<std::string> gaps) {
-        return pounding::io::read_scene(file, {.gap_m = gap_m,
-                                               .gaps = std::move(gaps),
-                                               .restitution = restitution,
-                                               .contact_law = std::move(contact_law),
-                                               .contact_stiffness = contact_stiffness});
+      [](const std::filesystem::path& file, std::optional<double> gap_m, std::vector<std::string> gaps,
+         const py::dict& contact) {
+        return pounding::io::read_scene(file,
+                                        {.gap_m = gap_m, .gaps = std::move(gaps), .contact = contact_options(contact)});
       },
-      py::arg("file"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"), py::arg("contact_stiffness"),
-      py::arg("gaps") = std::vector<std::string>{});
+      py::arg("file"), py::arg("gap_m"), py::arg("gaps"), py::arg("contact"));
   m.def(
       "scene_from_toml",
       [](const std::string& text, const std::filesystem::path& anchor, std::optional<double> gap_m,
-         std::optional<double> restitution, std::optional<std::string> contact_law,
-         std::optional<double> contact_stiffness, std::vector<std::string> gaps) {
-        Scene scene = pounding::io::parse_scene(text, anchor,
-                                                {.gap_m = gap_m,
-                                                 .gaps = std::move(gaps),
-                                                 .restitution = restitution,
-                                                 .contact_law = std::move(contact_law),
-                                                 .contact_stiffness = contact_stiffness});
+         std::vector<std::string> gaps, const py::dict& contact) {
+        Scene scene = pounding::io::parse_scene(
+            text, anchor, {.gap_m = gap_m, .gaps = std::move(gaps), .contact = contact_options(contact)});
         scene.file.clear();  // built in code: no file to hash, provenance says so (scene_file null)
         return scene;
       },
-      py::arg("text"), py::arg("anchor"), py::arg("gap_m"), py::arg("restitution"), py::arg("contact_law"),
-      py::arg("contact_stiffness"), py::arg("gaps") = std::vector<std::string>{});
+      py::arg("text"), py::arg("anchor"), py::arg("gap_m"), py::arg("gaps"), py::arg("contact"));
+  m.def("contact_keywords", [] {  // load_scene()'s keywords besides the gap, one per option
+    std::vector<std::string> keywords;
+    for (const auto& spec : pounding::analysis::contact_setting_specs()) {
+      if (spec.option.empty() || spec.option == "--gap") continue;
+      const std::string keyword = pounding::analysis::python_keyword(spec.option);
+      if (std::find(keywords.begin(), keywords.end(), keyword) == keywords.end()) keywords.push_back(keyword);
+    }
+    return keywords;
+  });
+  m.def("limit_keys", [] {
+    std::vector<std::string> keys;
+    for (const auto& spec : pounding::analysis::limit_specs()) keys.emplace_back(spec.key);
+    return keys;
+  });
   m.def(
       "contact_law_stiffness_key",
       [](const std::string& law) {
@@ -551,12 +617,6 @@ PYBIND11_MODULE(_pounding, m) {
   m.def("modes_json", [](const Scene& scene) {
     return pounding::io::modes_json(pounding::analysis::summarise_buildings(scene)).dump();
   });
-
-  py::class_<pounding::analysis::RunLimits>(m, "RunLimits")
-      .def(py::init<>())
-      .def_readwrite("max_steps", &pounding::analysis::RunLimits::max_steps)
-      .def_readwrite("max_wall_time_s", &pounding::analysis::RunLimits::max_wall_time_s)
-      .def_readwrite("max_history_values", &pounding::analysis::RunLimits::max_history_values);
 
   py::class_<Run>(m, "Run")
       .def("summary_json", [](const Run& r) { return pounding::io::run_json(r.report, r.provenance).dump(); })

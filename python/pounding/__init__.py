@@ -25,8 +25,8 @@ import numpy as _np
 
 __all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "scene_from_dict", "scene_toml",
            "record_list", "modes", "modes_frame",
-           "run", "needed_gap", "ground_motion", "response_spectrum", "rotd_spectrum", "methods", "settings",
-           "output_schema", "sweep", "verify", "__version__"]
+           "run", "needed_gap", "ground_motion", "response_spectrum", "rotd_spectrum", "methods", "settings", "limits",
+           "contact_options", "output_schema", "sweep", "verify", "__version__"]
 
 
 class InputError(ValueError):
@@ -109,8 +109,8 @@ def _check_record_types(arguments):
 def _check_settings(settings):
     unknown = sorted(set(settings) - set(_pounding.setting_keys()))
     if unknown:
-        raise TypeError(f"unknown settings {', '.join(unknown)}; "
-                        f"expected keywords among {', '.join(_pounding.setting_keys())}")
+        raise TypeError(f"unknown settings {', '.join(unknown)}; expected keywords among "
+                        f"{', '.join(_pounding.setting_keys() + _pounding.limit_keys())}")
     for name, value in settings.items():
         _check_number(name, value, -2**31, 2**31 - 1)
 
@@ -158,21 +158,32 @@ def _gap_options(gap):
     return gap, []
 
 
-def load_scene(path, gap=None, restitution=None, contact_law=None, contact_stiffness=None):
+def _contact_keywords(contact):
+    """The [contact] options given as keywords (None: not given); an unknown one raises TypeError,
+    as a Python function's unknown keyword does."""
+    known = _pounding.contact_keywords()
+    unknown = sorted(set(contact) - set(known))
+    if unknown:
+        raise TypeError(f"unknown keywords {', '.join(unknown)}; expected gap or {', '.join(known)}")
+    return {keyword: value for keyword, value in contact.items() if value is not None}
+
+
+def load_scene(path, gap=None, **contact):
     """Reads and validates a scene file, like `pounding run SCENE [--gap G] [--restitution K]
     [--contact-law L] [--contact-stiffness S]` (the same errors, naming those options). `gap` is a
     number (two buildings) or, for a row, a dict {"B1:B2": m, ...} of pair gaps (`--gap B1:B2=m`).
+    The other keywords are the [contact] options without `--`, `-` as `_` (restitution,
+    contact_law, contact_stiffness: `pounding settings` lists them in its python column).
     Returns a Scene with .name, .file, .gap_m, .pair_gaps, .building_names, .restitution, .method,
     .contact_law, .record_file, .history, .peaks ([output]) and the with_gap(m),
     with_pair_gap(first, second, m), with_restitution(k), with_record(path, ...),
     with_outputs(history=, peaks=) copies. `contact_stiffness` is in the
     law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp, hertzdamp-ye and jankowski."""
     gap_m, gaps = _gap_options(gap)
-    return _pounding.load_scene(path, gap_m, restitution, contact_law, contact_stiffness, gaps)
+    return _pounding.load_scene(path, gap_m, gaps, _contact_keywords(contact))
 
 
-def scene_from_dict(document, folder=None, gap=None, restitution=None, contact_law=None,
-                    contact_stiffness=None):
+def scene_from_dict(document, folder=None, gap=None, **contact):
     """A scene built in code: `document` holds the scene file's tables and keys under the same
     names (docs/scene-format.md), as dicts, lists, text, numbers and booleans (numpy numbers and
     arrays too), e.g. {"name": "pair", "building": [{"name": "A", "storeys": 4, ...}, {...}],
@@ -186,8 +197,7 @@ def scene_from_dict(document, folder=None, gap=None, restitution=None, contact_l
     anchor = _os.path.join(_os.fspath(folder) if folder is not None else _os.getcwd(), "(scene from a dict).toml")
     document = document if "name" in document else {"name": "scene", **document}
     gap_m, gaps = _gap_options(gap)
-    return _pounding.scene_from_toml(scene_toml(document), anchor, gap_m, restitution, contact_law, contact_stiffness,
-                                     gaps)
+    return _pounding.scene_from_toml(scene_toml(document), anchor, gap_m, gaps, _contact_keywords(contact))
 
 
 def scene_toml(document):
@@ -255,6 +265,17 @@ def methods():
 def settings():
     """The [solver] settings run() accepts as keywords, in registry order."""
     return _pounding.setting_keys()
+
+
+def limits():
+    """The run limits run() accepts as keywords (max_steps, ...), in the table's order."""
+    return _pounding.limit_keys()
+
+
+def contact_options():
+    """The [contact] options load_scene() and scene_from_dict() accept as keywords besides gap
+    (restitution, contact_law, contact_stiffness), in the table's order."""
+    return _pounding.contact_keywords()
 
 
 def output_schema():
@@ -410,24 +431,19 @@ class RunResult:
         return f"<pounding.RunResult {self.brief()}>"
 
 
-def run(scene, method=None, max_steps=None, max_wall_time_s=None, max_history_values=None, **settings):
+def run(scene, method=None, **keywords):
     """Runs `scene` like `pounding run`: method (a name of methods(); None: the scene's, whose
     [solver] keys for another method are then not used, as with --method), the [solver] settings
-    by their registry names (settings(); e.g. rtol=1e-8, dt_s=0.01), and the run limits
-    (--max-steps, --max-wall-time, --max-history-values). A setting the method does not use
-    raises InputError naming it, as the command line refuses it. The outputs are the scene's
+    by their registry names (settings(); e.g. rtol=1e-8, dt_s=0.01), and the run limits by their
+    keys (max_steps, max_wall_time_s, max_history_values: `pounding settings`' limits, the options
+    --max-steps, ...). A setting the method does not use raises InputError naming it, as the
+    command line refuses it. The outputs are the scene's
     [output] (Scene.with_outputs changes them). Releases the GIL while it runs.
     Returns a RunResult; a run that did not complete says so in .status, it does not raise."""
+    limit_keys = set(_pounding.limit_keys())
+    limits = {key: value for key, value in keywords.items() if key in limit_keys and value is not None}
+    settings = {key: value for key, value in keywords.items() if key not in limit_keys}
     _check_settings(settings)
-    limits = _pounding.RunLimits()
-    for name, value, kind in (("max_steps", max_steps, _numbers.Integral), ("max_wall_time_s", max_wall_time_s, _numbers.Real),
-                              ("max_history_values", max_history_values, _numbers.Real)):
-        if value is not None:
-            if isinstance(value, bool) or not isinstance(value, kind):
-                raise _input_error("", name, repr(value)[:40], "expected a whole number" if kind is _numbers.Integral
-                                   else "expected a number")
-            _check_number(name, value, 1, 10**12)  # the command line's --max-steps range
-            setattr(limits, name, value)
     return RunResult(_pounding.run(scene, method, settings, limits))
 
 

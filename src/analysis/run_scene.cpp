@@ -300,15 +300,38 @@ std::vector<RunWarning> settings_warnings(const UsedSettings& used, const dynami
 
 }  // namespace
 
-void RunLimits::validate() const {
-  if (max_steps < 1) throw InputError("limits.max_steps", std::to_string(max_steps), "must be positive");
-  if (!(max_wall_time_s > 0.0) || !std::isfinite(max_wall_time_s)) {
-    throw InputError("limits.max_wall_time_s", format_value(max_wall_time_s), "must be positive (s)");
-  }
-  if (!(max_history_values >= 1.0) || !std::isfinite(max_history_values)) {
-    throw InputError("limits.max_history_values", format_value(max_history_values), "must be at least 1");
-  }
+// The limits' ranges: at least one step and one history value, at most 1e12 of either (a
+// month of CPU at the fastest step rate, terabytes of history); any positive wall time.
+std::span<const LimitSpec> limit_specs() {
+  static const std::vector<LimitSpec> kSpecs = {
+      {.key = "max_steps",
+       .option = "--max-steps",
+       .member = &RunLimits::max_steps,
+       .range = Range{1.0, 1e12, {}, false, "[1, 1e12]"},
+       .description = "integrator steps over the whole run (hht: trial steps, halvings included)",
+       .details = "a run estimated to need more (hht: record length / Δt; event-driven: record length / "
+                  "(T_min/4), exact: T_min/16) is refused before it starts (exit 2); one that takes more ends with "
+                  "status `step_limit` (exit 3)"},
+      {.key = "max_wall_time_s",
+       .option = "--max-wall-time",
+       .member = &RunLimits::max_wall_time_s,
+       .range = Range{0.0, 1e12, "s", true, "(0, 1e12]"},
+       .description = "wall-clock time of the run (s)",
+       .details = "a run that takes longer ends with status `time_limit` (exit 3), everything computed up to "
+                  "`end_s` written"},
+      {.key = "max_history_values",
+       .option = "--max-history-values",
+       .member = &RunLimits::max_history_values,
+       .range = Range{1.0, 1e12, {}, false, "[1, 1e12]"},
+       .description = "values of history.csv (rows × columns)",
+       .details = "a run whose history would hold more (record length / `history_interval_s` × columns) is "
+                  "refused before it starts (exit 2). 2e7 is about 450 MB of history.csv, 160 MB in memory when a "
+                  "library caller keeps the history"},
+  };
+  return kSpecs;
 }
+
+void RunLimits::validate() const { validate_keys(*this, limit_specs(), "limits"); }
 
 WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& system) {
   WorkEstimate estimate;

@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "pounding/analysis/contact_laws.hpp"
+#include "pounding/contact/impact.hpp"
 #include "pounding/input_error.hpp"
 
 namespace pounding::analysis {
@@ -22,6 +23,14 @@ constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
 // building); stiffness from a soft pad (1 kN/m) to far stiffer than concrete (1e12 kN/m: contact
 // periods of microseconds for floor masses of tonnes, below which no integrator resolves the
 // contact), and the Hertz laws' k δ^(1/2) at 1 mm of overlap spans the same within a factor 30.
+// `--contact-stiffness` sets the stiffness key of the law in force (ContactSettings::set_stiffness).
+void set_stiffness_option(ContactSettings& contact, const KeyValue& value) {
+  if (const auto* text = std::get_if<std::string>(&value))
+    throw InputError("contact.stiffness", *text, "expected a number");
+  contact.set_stiffness(std::holds_alternative<long>(value) ? static_cast<double>(std::get<long>(value))
+                                                            : std::get<double>(value));
+}
+
 // Built on first use, so other files' static initialisers may read it.
 const std::vector<ContactSettingSpec>& contact_specs() {
   static const std::vector<ContactSettingSpec> kSpecs = {
@@ -38,7 +47,7 @@ const std::vector<ContactSettingSpec>& contact_specs() {
        .option = "--restitution",
        .member = &ContactSettings::restitution,
        .required = true,
-       .range = Range{0.0, 1.0},
+       .range = contact::kRestitutionRange,
        .description = "Newton coefficient k"},
       {.key = "candidate_margin_m",
        .member = &ContactSettings::candidate_margin_m,
@@ -71,7 +80,8 @@ const std::vector<ContactSettingSpec>& contact_specs() {
                   "(Jankowski 2005) ([model.md §6a](model.md#6a-compliant-contact-kelvin-hertzdamp-jankowski), "
                   "which also says which law to use for what). The compliant laws run on cvode-bdf, cvode-adams, "
                   "arkode-erk and arkode-dirk; hht and exact refuse them (exit 2). `jankowski` and `hertzdamp-ye` "
-                  "refuse `restitution = 0` (their damping is infinite there)"},
+                  "refuse `restitution = 0` (their damping is infinite there)",
+       .option_help = contact_laws_help},
       {.key = "slab_to_column",
        .member = &ContactSettings::slab_to_column,
        .choices = {"on", "off"},
@@ -88,7 +98,9 @@ const std::vector<ContactSettingSpec>& contact_specs() {
        .details = "refused for the other laws, naming the law and its key, like a solver setting the method does "
                   "not use. The default is Jankowski's (2005) linear viscoelastic fit to concrete-on-concrete "
                   "impact tests, 93.5 kN/mm, as quoted: not checked against the paper here; the dashpot follows "
-                  "from `restitution`"},
+                  "from `restitution`",
+       .set = set_stiffness_option,
+       .option_help = contact_stiffness_help},
       {.key = "stiffness_kN_per_m1_5",
        .option = "--contact-stiffness",
        .member = &ContactSettings::stiffness_kN_per_m1_5,
@@ -98,7 +110,9 @@ const std::vector<ContactSettingSpec>& contact_specs() {
                   "force. Defaults as quoted, not checked against the papers: hertzdamp and hertzdamp-ye 25 000 "
                   "kip/in^1.5 (Muthukumar & DesRoches 2006, concrete bridge decks), jankowski 2.75e9 N/m^1.5 "
                   "(Jankowski 2005, the same concrete tests as kelvin's default). The damping follows from "
-                  "`restitution` (and for the hertzdamp laws the approach speed at onset)"},
+                  "`restitution` (and for the hertzdamp laws the approach speed at onset)",
+       .set = set_stiffness_option,
+       .option_help = contact_stiffness_help},
       {.key = "level_tolerance_m",
        .member = &ContactSettings::level_tolerance_m,
        .range = Range{0.0, 0.5, "m", true},
@@ -133,33 +147,20 @@ std::string pair_gap_key(const std::string& first, const std::string& second) {
 }
 
 void validate_contact(const ContactSettings& contact) {
-  for (const ContactSettingSpec& spec : contact_specs()) {
-    if (const auto* number = std::get_if<double ContactSettings::*>(&spec.member)) {
-      require_range("contact." + std::string(spec.key), contact.**number, *spec.range);
-    }
-    const auto* text = std::get_if<std::string ContactSettings::*>(&spec.member);
-    if (text == nullptr || spec.choices.empty()) continue;  // the law is checked by name below
-    const std::string& value = contact.**text;
-    if (std::find(spec.choices.begin(), spec.choices.end(), value) == spec.choices.end()) {
-      throw InputError("contact." + std::string(spec.key), fmt::format("\"{}\"", value),
-                       fmt::format("expected \"{}\"", fmt::join(spec.choices, "\" or \"")));
-    }
-  }
+  // The law first: a stiffness given for a law that has none is refused as not applying, whatever
+  // its value; the ranges of every key come from the table.
   const ContactLawInfo& law = contact_law_info(contact.law);
   auto check_stiffness = [&](std::string_view key, const std::optional<double>& value) {
-    if (!value) return;
-    const std::string name = "contact." + std::string(key);
-    if (law.stiffness_key != key) {
-      throw InputError(name, format_value(*value),
-                       law.stiffness_key.empty()
-                           ? fmt::format("does not apply to law {} (it uses no stiffness)", law.name)
-                           : fmt::format("does not apply to law {}: its stiffness is {} ({})", law.name,
-                                         law.stiffness_key, law.stiffness_unit));
-    }
-    require_range(name, *value, range_of(key));
+    if (!value || law.stiffness_key == key) return;
+    throw InputError("contact." + std::string(key), format_value(*value),
+                     law.stiffness_key.empty()
+                         ? fmt::format("does not apply to law {} (it uses no stiffness)", law.name)
+                         : fmt::format("does not apply to law {}: its stiffness is {} ({})", law.name,
+                                       law.stiffness_key, law.stiffness_unit));
   };
   check_stiffness("stiffness_kN_per_m", contact.stiffness_kN_per_m);
   check_stiffness("stiffness_kN_per_m1_5", contact.stiffness_kN_per_m1_5);
+  validate_keys(contact, contact_setting_specs(), "contact");
   if (contact::refuses_plastic(law.law) && contact.restitution == 0.0) {
     const char* damping = law.law == contact::ContactLaw::jankowski
                               ? "damping ratio 9 sqrt(5) (1 - e^2) / (2e (e (9 pi - 16) + 16))"

@@ -699,6 +699,8 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
           } else if constexpr (std::is_same_v<T, double>) {
             value = spec.required && !(scene.is_row() && spec.key == "gap_m") ? contact.number(spec.key)
                                                                               : contact.number_or(spec.key, value);
+          } else if constexpr (std::is_same_v<T, long>) {
+            value = contact.optional_integer(spec.key).value_or(value);
           } else {
             value = contact.optional_number(spec.key);
           }
@@ -829,12 +831,15 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
                        file.string());
     }
   }
-  if (overrides.restitution) {
-    apply_option("--restitution", [&] { scene.contact.restitution = *overrides.restitution; });
+  std::set<std::string_view> applied;  // one option may serve two rows (--contact-stiffness)
+  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
+    const auto given = overrides.contact.find(spec.option);
+    if (spec.key == "gap_m") continue;  // --gap moves building 2 (gap_m and gaps, above), not only the key
+    if (given == overrides.contact.end() || !applied.insert(spec.option).second) continue;
+    apply_option(given->first.c_str(), [&] { analysis::set_key(scene.contact, spec, "contact", given->second); });
   }
-  if (overrides.contact_law) apply_option("--contact-law", [&] { scene.contact.law = *overrides.contact_law; });
-  if (overrides.contact_stiffness) {
-    apply_option("--contact-stiffness", [&] { scene.contact.set_stiffness(*overrides.contact_stiffness); });
+  for (const auto& [option, value] : overrides.contact) {
+    if (!applied.contains(option)) throw InputError(option, "", "is not an option of a [contact] key", file.string());
   }
   if (!overrides.record.empty()) apply_record(scene, overrides.record);
   return scene;

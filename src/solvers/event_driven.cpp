@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "law_events.hpp"
+#include "pounding/contact/impact.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/solvers/contact_states.hpp"
 #include "pounding/solvers/event_step_bound.hpp"
@@ -40,7 +41,8 @@ void EventOptions::validate() const {
   auto positive = [](double value, const char* field) {
     if (!(value > 0.0) || !std::isfinite(value)) throw InputError(field, format_value(value), "must be positive");
   };
-  require_range("restitution", restitution, {0.0, 1.0});  // also for programs that call the solver directly
+  require_range("restitution", restitution,
+                contact::kRestitutionRange);  // also for programs that call the solver directly
   positive(contact_tolerance_m, "contact_tolerance_m");
   positive(reopen_gap_m, "reopen_gap_m");
   positive(overlap_allowance_m, "overlap_allowance_m");

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <set>
 
+#include "pounding/contact/impact.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/solvers/energy_balance.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
@@ -91,7 +92,7 @@ void HhtOptions::validate() const {
   require_range("alpha", alpha, {-1.0 / 3.0, 0.0, {}, false, "[-1/3, 0]"});  // unconditionally stable, 2nd order
   require_range("contact_tolerance_m", contact_tolerance_m, {0.0, std::numeric_limits<double>::max(), "m", true});
   require_range("max_halvings", max_halvings, {0.0, 60.0});  // dt / 2⁶⁰ is below the round-off of t
-  require_range("restitution", restitution, {0.0, 1.0});
+  require_range("restitution", restitution, contact::kRestitutionRange);
   if (!(history_interval_s > 0.0)) {
     throw InputError("history_interval_s", format_value(history_interval_s), "must be positive (s)");
   }

@@ -326,3 +326,31 @@ BOOST_AUTO_TEST_CASE(EveryContactRowIsCheckedByItsOwnRange) {
     }
   }
 }
+
+BOOST_AUTO_TEST_CASE(EveryRunLimitIsCheckedByItsOwnRange) {
+  // Each run limit's default (RunLimits' initialiser) lies in its row's range, and a value beyond
+  // either bound is refused naming limits.<key> with that range; set_key refuses a value of
+  // another type by the key.
+  const analysis::RunLimits defaults;
+  BOOST_CHECK_NO_THROW(defaults.validate());
+  for (const analysis::LimitSpec& spec : analysis::limit_specs()) {
+    BOOST_TEST_CONTEXT(spec.key) {
+      BOOST_TEST(spec.option.starts_with("--"));
+      for (double outside : {spec.range->min - 1.0, spec.range->max * 2.0}) {
+        analysis::RunLimits limits;
+        const bool whole = analysis::type_name(spec) == "integer";
+        analysis::set_key(limits, spec, "limits",
+                          whole ? analysis::KeyValue(static_cast<long>(outside)) : analysis::KeyValue(outside));
+        try {
+          limits.validate();
+          BOOST_TEST(false, "accepted " << outside);
+        } catch (const InputError& error) {
+          BOOST_TEST(error.key() == "limits." + std::string(spec.key));
+          BOOST_TEST(error.reason() == "must lie in " + range_text(*spec.range));
+        }
+      }
+      analysis::RunLimits limits;
+      BOOST_CHECK_THROW(analysis::set_key(limits, spec, "limits", analysis::KeyValue(std::string("ten"))), InputError);
+    }
+  }
+}

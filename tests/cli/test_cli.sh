@@ -327,6 +327,25 @@ expect_refusal "--peaks = \"speeds\": expected one of displacements, acceleratio
 expect_refusal "--history = never: expected on or off" run "$scene" --history never --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
 
+# The [contact] keys' and run limits' options come from their rows (`pounding settings --json`):
+# run offers every one, check the [contact] ones, and check applies them as run does.
+"$pounding" settings --json > "$work/settings.json"
+"$pounding" run --help > "$work/run-help.txt"
+"$pounding" check --help > "$work/check-help.txt"
+for section in contact limits; do
+  for option in $(/usr/bin/python3 -c 'import json, sys
+rows = json.load(open(sys.argv[1]))[sys.argv[2]]
+print(" ".join(sorted({row["option"] for row in rows if row["option"]})))' "$work/settings.json" $section); do
+    grep -q -- "  $option " "$work/run-help.txt" || fail "run --help does not offer $option ($section)"
+    [ $section = limits ] || grep -q -- "  $option " "$work/check-help.txt" || fail "check --help does not offer $option"
+  done
+done
+"$pounding" check "$scene" --contact-law kelvin --contact-stiffness 5e4 > "$work/check-kelvin.txt" \
+  || fail "check refused --contact-law kelvin --contact-stiffness 5e4"
+grep -q "kelvin" "$work/check-kelvin.txt" && grep -q "50000" "$work/check-kelvin.txt" \
+  || fail "check did not show the law and stiffness given: $(grep -i contact "$work/check-kelvin.txt")"
+expect_refusal "--max-history-values = 0: must lie in \[1, 1e12\]" run "$scene" --max-history-values 0 --out "$work/bad"
+
 # [output] selection: --history off --peaks drifts over the folder of a full run writes no
 # history (and removes the earlier one), the drift peaks only, and the same impacts and energy.
 cp -r "$work/d20" "$work/selected"
@@ -390,7 +409,7 @@ expect_refusal "--max-steps = 100: the run needs at least 24[0-9] steps" run "$s
 expect_refusal "--max-steps = 10000000: the run needs at least 1.22e+10 steps" run "$scene" --method hht --dt 1e-9 --out "$work/bad"
 expect_refusal "--max-steps = 10000000: the run needs at least 2.44e+07 steps" run "$scene" --method hht --dt 5e-7 --out "$work/bad"
 expect_refusal "--max-history-values = 1000: history.csv would hold" run "$scene" --max-history-values 1000 --out "$work/bad"
-expect_refusal "--max-wall-time = 0: must be positive" run "$scene" --max-wall-time 0 --out "$work/bad"
+expect_refusal "--max-wall-time = 0: must lie in (0, 1e12\] s" run "$scene" --max-wall-time 0 --out "$work/bad"
 [ ! -e "$work/bad" ] || fail "a refused run left an output folder"
 
 # Output folders are checked before the run (exit 2, naming the option), never found unwritable after it.

@@ -206,7 +206,7 @@ BOOST_AUTO_TEST_CASE(RestitutionOutsideUnitIntervalIsRefused) {
   BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = 1.5")),
                       {"scene.toml", "contact.restitution", "1.5", "[0, 1]"}));
   BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = -0.1")), {"contact.restitution", "-0.1"}));
-  BOOST_TEST(mentions(error_of(kScene, {.restitution = 2.0}), {"--restitution", "2", "[0, 1]"}));
+  BOOST_TEST(mentions(error_of(kScene, {.contact = {{"--restitution", 2.0}}}), {"--restitution", "2", "[0, 1]"}));
 }
 
 BOOST_AUTO_TEST_CASE(NegativeGapIsRefused) {

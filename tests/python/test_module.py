@@ -319,3 +319,29 @@ def test_budget_ends_runs_with_a_status():
         with pytest.raises(pounding.InputError) as raised:
             call()
         assert "max_wall_time_s" in raised.value.key
+
+
+def test_contact_and_limit_keywords_come_from_their_tables():
+    """load_scene's [contact] keywords and run's limit keywords are the rows of `pounding settings
+    --json` (their option without `--`; their key), applied and checked as the options are."""
+    table = json.loads(subprocess.run([CLI, "settings", "--json"], capture_output=True, text=True, check=True).stdout)
+    options = {row["python"] for row in table["contact"] if row["option"] and row["option"] != "--gap"}
+    assert set(pounding.contact_options()) == options
+    assert pounding.limits() == [row["key"] for row in table["limits"]]
+    scene = pounding.load_scene(PAPER, restitution=0.6, contact_law="kelvin", contact_stiffness=5e4)
+    assert (scene.restitution, scene.contact_law) == (0.6, "kelvin")
+    assert "50000" in subprocess.run([CLI, "check", PAPER, "--contact-law", "kelvin", "--contact-stiffness", "5e4"],
+                                     capture_output=True, text=True, check=True).stdout
+    with pytest.raises(TypeError, match="restitutio"):
+        pounding.load_scene(PAPER, restitutio=0.5)
+    with pytest.raises(pounding.InputError) as raised:
+        pounding.load_scene(PAPER, restitution=1.5)
+    assert raised.value.key == "--restitution" and "[0, 1]" in str(raised.value)
+    with pytest.raises(pounding.InputError) as raised:
+        pounding.load_scene(PAPER, contact_law=3)
+    assert raised.value.key == "contact_law" and "a string" in str(raised.value)
+    for row in table["limits"]:
+        with pytest.raises(pounding.InputError) as raised:
+            too_large = row["range"]["max"] * 2
+            pounding.run(scene, **{row["key"]: int(too_large) if row["type"] == "integer" else too_large})
+        assert raised.value.key == row["key"] and "must lie in" in str(raised.value), row["key"]

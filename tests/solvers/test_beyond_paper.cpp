@@ -194,7 +194,7 @@ BOOST_AUTO_TEST_CASE(HeldSharesAreNotImpactsAndTwoPointHoldsStayClosed) {
   // Paper scene with k = 0: floor 7 is held at two points at once. A held pair that takes part in
   // a neighbour's impact solve is not an impact (no approach), and the exact path agrees with
   // CVODE on the impacts and keeps the holds closed.
-  const auto scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.restitution = 0.0});
+  const auto scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact = {{"--restitution", 0.0}}});
   auto with = [&](const char* method) {
     analysis::Scene variant = scene;
     variant.solver.method = method;

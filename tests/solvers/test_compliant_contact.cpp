@@ -185,8 +185,8 @@ BOOST_AUTO_TEST_CASE(PaperSceneRunsWithKelvinOnEventDrivenMethods) {
   const analysis::RunReport impulse = analysis::run_scene(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml"));
   BOOST_TEST_REQUIRE(!impulse.result.impacts.empty());
   for (const char* method : {"cvode-bdf", "arkode-dirk"}) {
-    analysis::Scene scene =
-        io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string("kelvin")});
+    analysis::Scene scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml",
+                                           {.contact = {{"--contact-law", std::string("kelvin")}}});
     scene.solver = analysis::with_method(scene.solver, method);
     const analysis::RunReport report = analysis::run_scene(scene);
     BOOST_TEST_CONTEXT(method) {
@@ -210,8 +210,8 @@ BOOST_AUTO_TEST_CASE(PaperSceneRunsWithKelvinOnEventDrivenMethods) {
 }
 
 BOOST_AUTO_TEST_CASE(CompliantLawsAreRefusedWhereTheyCannotRun) {
-  analysis::Scene scene =
-      io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string("kelvin")});
+  analysis::Scene scene = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml",
+                                         {.contact = {{"--contact-law", std::string("kelvin")}}});
   for (const char* method : {"hht", "exact"}) {
     scene.solver = analysis::with_method(scene.solver, method);
     try {
@@ -224,9 +224,12 @@ BOOST_AUTO_TEST_CASE(CompliantLawsAreRefusedWhereTheyCannotRun) {
     }
   }
   // A law key given for the impulse law is refused like an inapplicable solver setting.
-  BOOST_CHECK_THROW(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_stiffness = 1e6}), InputError);
-  BOOST_CHECK_THROW(io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string("hertz")}),
-                    InputError);
+  BOOST_CHECK_THROW(
+      io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact = {{"--contact-stiffness", 1e6}}}),
+      InputError);
+  BOOST_CHECK_THROW(
+      io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact = {{"--contact-law", std::string("hertz")}}}),
+      InputError);
 }
 
 BOOST_AUTO_TEST_CASE(ImpulseLawImpactsCarryNoForceOrDuration) {

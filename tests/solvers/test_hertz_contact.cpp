@@ -320,30 +320,39 @@ BOOST_AUTO_TEST_CASE(StiffnessKeysBelongToTheirLaws) {
                 "contact.stiffness_kN_per_m1_5", {"-3"});
   // --contact-stiffness sets the key of the law in force, after --contact-law.
   const analysis::Scene overridden =
-      paper_with("", {.contact_law = std::string("jankowski"), .contact_stiffness = 5e6});
+      paper_with("", {.contact = {{"--contact-law", std::string("jankowski")}, {"--contact-stiffness", 5e6}}});
   BOOST_TEST(overridden.contact.stiffness_kN_per_m1_5.value_or(0.0) == 5e6);
   BOOST_TEST(!overridden.contact.stiffness_kN_per_m.has_value());
   check_refused(
-      [] { paper_with("law = \"kelvin\"\nstiffness_kN_per_m = 1e5\n", {.contact_law = std::string("hertzdamp")}); },
+      [] {
+        paper_with("law = \"kelvin\"\nstiffness_kN_per_m = 1e5\n",
+                   {.contact = {{"--contact-law", std::string("hertzdamp")}}});
+      },
       "--contact-law", {"stiffness_kN_per_m1_5"});
 }
 
 BOOST_AUTO_TEST_CASE(JankowskiRefusesPlasticRestitution) {
-  check_refused([] { paper_with("law = \"jankowski\"\n", {.restitution = 0.0}); }, "--restitution",
-                {"jankowski", "infinite"});
+  check_refused(
+      [] {
+        paper_with("law = \"jankowski\"\n", {.contact = {{"--restitution", 0.0}}});
+      },
+      "--restitution", {"jankowski", "infinite"});
   solvers::EventOptions options;
   options.law = ContactLaw::jankowski;
   options.contact_stiffness = 1e6;
   options.restitution = 0.0;
   BOOST_CHECK_THROW(options.validate(), InputError);
   // hertzdamp takes e = 0: ξ = 3k_h/(4δ̇₀) is finite.
-  BOOST_TEST(paper_with("law = \"hertzdamp\"\n", {.restitution = 0.0}).contact.restitution == 0.0);
+  BOOST_TEST(paper_with("law = \"hertzdamp\"\n", {.contact = {{"--restitution", 0.0}}}).contact.restitution == 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(HertzdampYeRefusesPlasticRestitution) {
   // Its damping 8(1 − e)/(5e) is infinite at e = 0, as jankowski's is.
-  check_refused([] { paper_with("law = \"hertzdamp-ye\"\n", {.restitution = 0.0}); }, "--restitution",
-                {"hertzdamp-ye", "infinite"});
+  check_refused(
+      [] {
+        paper_with("law = \"hertzdamp-ye\"\n", {.contact = {{"--restitution", 0.0}}});
+      },
+      "--restitution", {"hertzdamp-ye", "infinite"});
   solvers::EventOptions options;
   options.law = ContactLaw::hertzdamp_ye;
   options.contact_stiffness = 1e6;
@@ -355,7 +364,7 @@ BOOST_AUTO_TEST_CASE(HertzdampYeRefusesPlasticRestitution) {
 
 BOOST_AUTO_TEST_CASE(HhtAndExactRefuseTheHertzLaws) {
   for (const char* law : {"hertzdamp", "hertzdamp-ye", "jankowski"}) {
-    analysis::Scene scene = paper_with("", {.contact_law = std::string(law)});
+    analysis::Scene scene = paper_with("", {.contact = {{"--contact-law", std::string(law)}}});
     for (const char* method : {"hht", "exact"}) {
       scene.solver = analysis::with_method(scene.solver, method);
       check_refused([&] { analysis::run_scene(scene); }, "contact.law", {law, method});
@@ -370,7 +379,7 @@ BOOST_AUTO_TEST_CASE(PaperSceneRunsWithTheHertzLaws) {
   for (const char* law : {"hertzdamp", "hertzdamp-ye", "jankowski"}) {
     for (const char* method : {"cvode-bdf", "cvode-adams", "arkode-dirk", "arkode-erk"}) {
       analysis::Scene scene =
-          io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact_law = std::string(law)});
+          io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper.toml", {.contact = {{"--contact-law", std::string(law)}}});
       scene.solver = analysis::with_method(scene.solver, method);
       const analysis::RunReport report = analysis::run_scene(scene);
       BOOST_TEST_CONTEXT(law << " on " << method) {

@@ -3,8 +3,10 @@
 // integrates it with the scene's solver settings.
 
 #include <optional>
+#include <span>
 #include <vector>
 
+#include "pounding/analysis/key_spec.hpp"
 #include "pounding/analysis/scene.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
@@ -35,16 +37,24 @@ dynamics::CoupledSystem build_system(const Scene& scene, bool contact = true);
 /// The HHT-α options that `used` (method hht), scene.contact and scene.output describe.
 solvers::HhtOptions hht_options(const Scene& scene, const UsedSettings& used);
 
-/// What one run may cost (README, "Limits"): checked against an estimate before the run starts,
-/// and enforced while it runs (the run then ends with status step_limit or time_limit).
+/// What one run may cost (docs/guide/limits.md): checked against an estimate before the run
+/// starts, and enforced while it runs (the run then ends with status step_limit or time_limit).
+/// Each limit is a row of limit_specs(); the defaults are these initialisers.
 struct RunLimits {
   long max_steps = 10'000'000;      // integrator steps (hht: trial steps, halvings included)
   double max_wall_time_s = 3600.0;  // wall-clock time of the run (s)
   double max_history_values = 2e7;  // history.csv values (rows × columns): 2e7 ≈ 450 MB on disk (≈ 23 B a
                                     // value), 160 MB in memory when the caller keeps the history (no sink)
-  /// @throws InputError naming the field (limits.max_steps, ...) unless each is positive.
+  /// @throws InputError naming the limit (limits.max_steps, ...) and its range (limit_specs()).
   void validate() const;
 };
+
+/// One run limit, declared once (key_spec.hpp): `run`'s options, Python run()'s keywords,
+/// validate(), `pounding settings` and docs/guide/limits.md's table come from its row.
+using LimitSpec = KeySpec<RunLimits>;
+
+/// Every run limit, in the order the docs list them.
+std::span<const LimitSpec> limit_specs();
 
 /// What a run of the scene needs at least, from the scene alone (no integration).
 struct WorkEstimate {

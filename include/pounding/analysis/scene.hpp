@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "pounding/analysis/key_spec.hpp"
 #include "pounding/analysis/methods.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/contact/column_contact.hpp"
@@ -54,20 +55,11 @@ struct ContactSettings {
   void set_stiffness(double value);
 };
 
-/// One [contact] key, declared once: the scene reader, the range checks of Scene::validate(),
-/// `pounding settings` and docs/scene-format.md's [contact] table come from its row. The
-/// defaults are ContactSettings' initialisers (a required key has none).
-struct ContactSettingSpec {
-  std::string_view key;       // [contact] key, as `contact.<key>` in errors and summary.json
-  std::string_view option{};  // the `run`/`check` option that replaces it; empty: none
-  std::variant<double ContactSettings::*, std::optional<double> ContactSettings::*, std::string ContactSettings::*>
-      member;
-  bool required = false;
-  std::optional<Range> range = std::nullopt;  // numbers: the values accepted
-  std::vector<std::string_view> choices{};    // text other than the law: the values accepted
-  std::string_view description{};             // one line, with units
-  std::string_view details{};                 // the docs' meaning column, after the description
-};
+/// One [contact] key, declared once (key_spec.hpp): the scene reader, the `run`/`check` options
+/// and Python's load_scene() keywords, the range checks of Scene::validate(), `pounding settings`
+/// and docs/scene-format.md's [contact] table come from its row. The defaults are ContactSettings'
+/// initialisers (a required key has none).
+using ContactSettingSpec = KeySpec<ContactSettings>;
 
 /// Every [contact] key, in the order the docs list them.
 std::span<const ContactSettingSpec> contact_setting_specs();

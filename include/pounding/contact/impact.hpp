@@ -7,7 +7,13 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "pounding/input_error.hpp"
+
 namespace pounding::contact {
+
+/// The coefficients of restitution Newton's law admits: 0 (plastic) to 1 (elastic). The scene's
+/// [contact] row and the solvers' own preconditions check against this one declaration.
+inline constexpr Range kRestitutionRange{0.0, 1.0};
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using RowVector6d = Eigen::Matrix<double, 1, 6>;

@@ -3,6 +3,7 @@
 // docs/scene-format.md.
 
 #include <filesystem>
+#include <map>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -18,9 +19,10 @@ struct SceneOverrides {
   /// `--gap` as typed, each a gap in m (two buildings: as gap_m) or "NAME:NAME=m", a neighbouring
   /// pair's gap (Scene::set_pair_gap), applied in order after gap_m.
   std::vector<std::string> gaps{};
-  std::optional<double> restitution{};
-  std::optional<std::string> contact_law{};   // --contact-law
-  std::optional<double> contact_stiffness{};  // --contact-stiffness, in the law's unit
+  /// [contact] keys' options as given, by option (`--restitution`, `--contact-law`,
+  /// `--contact-stiffness`: the option column of analysis::contact_setting_specs()), applied in the
+  /// table's order after the gaps.
+  std::map<std::string, analysis::KeyValue, std::less<>> contact{};
   /// Another record or scaling (`--record`, `--pga-g`, ...; excitation::with_record says what
   /// it keeps of the scene's). When set, the record is read once here, so that a record that
   /// cannot be read or scales beyond 10 g is refused before any run, naming the option.

@@ -1,0 +1,147 @@
+#pragma once
+// One user-facing key of a plain settings struct, declared once as a row: [contact]'s keys
+// (ContactSettings, scene.hpp) and the run limits (RunLimits, run_scene.hpp). From the rows come
+// the scene reader, the command-line options, the Python keywords, the range checks, `pounding
+// settings` and the docs' tables, so a new key is one row plus the line that uses it. (The
+// [solver] keys have their own row type, SettingSpec in methods.hpp, because each is kept as given
+// and resolved per method.)
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "pounding/input_error.hpp"
+
+namespace pounding::analysis {
+
+/// A value given for a key on the command line or from Python: whole numbers for `long` keys.
+using KeyValue = std::variant<long, double, std::string>;
+
+template <typename Owner>
+struct KeySpec {
+  std::string_view key;       // the key, `<section>.<key>` in errors and summary.json
+  std::string_view option{};  // the command-line option that replaces it; empty: none. Python's
+                              // keyword is the option without `--`, `-` as `_` (python_keyword())
+  std::variant<double Owner::*, std::optional<double> Owner::*, std::string Owner::*, long Owner::*> member;
+  bool required = false;
+  std::optional<Range> range = std::nullopt;  // numbers: the values accepted
+  std::vector<std::string_view> choices{};    // text: the values accepted (empty: checked elsewhere)
+  std::string_view description{};             // one line, with units
+  std::string_view details{};                 // the docs' meaning column, after the description
+  /// How the option's value is stored, when not by assignment to `member` (e.g. one option for
+  /// two stiffness keys, the law deciding which).
+  void (*set)(Owner&, const KeyValue&) = nullptr;
+  /// The option's `--help` line, when not the description with the accepted values.
+  std::string (*option_help)() = nullptr;
+};
+
+/// "integer", "number" or "string": the type a key's reader expects.
+template <typename Owner>
+std::string_view type_name(const KeySpec<Owner>& spec) {
+  if (std::holds_alternative<long Owner::*>(spec.member)) return "integer";
+  return std::holds_alternative<std::string Owner::*>(spec.member) ? "string" : "number";
+}
+
+/// `restitution` for `--restitution`, `contact_law` for `--contact-law`.
+inline std::string python_keyword(std::string_view option) {
+  std::string keyword(option.substr(option.find_first_not_of('-')));
+  std::replace(keyword.begin(), keyword.end(), '-', '_');
+  return keyword;
+}
+
+/// A row's default as the docs print it: the initialiser of Owner's member ("required" for a
+/// required key, empty for an unset optional).
+template <typename Owner>
+std::string default_text(const KeySpec<Owner>& spec) {
+  if (spec.required) return "required";
+  const Owner defaults{};
+  return std::visit(
+      [&](auto Owner::*member) -> std::string {
+        const auto& value = defaults.*member;
+        using T = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, std::string>) {
+          return fmt::format("\"{}\"", value);
+        } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+          return value ? fmt::format("{}", *value) : std::string();
+        } else {
+          return fmt::format("{}", value);
+        }
+      },
+      spec.member);
+}
+
+/// The `--help` line of a key's option: its own, or the description with the accepted values and
+/// the default.
+template <typename Owner>
+std::string option_help(const KeySpec<Owner>& spec) {
+  if (spec.option_help != nullptr) return spec.option_help();
+  std::string accepted;
+  if (spec.range) accepted = ", in " + range_text(*spec.range);
+  for (std::string_view choice : spec.choices)
+    accepted += fmt::format("{}{}", accepted.empty() ? ": " : " or ", choice);
+  const std::string default_value = default_text(spec);
+  return fmt::format("{}{}{}", spec.description, accepted,
+                     default_value.empty() || spec.required ? "" : fmt::format(" (default {})", default_value));
+}
+
+/// Stores `value` in `owner` as the row says (its `set`, else assigned to its member).
+/// @throws InputError(`<section>.<key>`, value, "expected ...") for a value of another type.
+template <typename Owner>
+void set_key(Owner& owner, const KeySpec<Owner>& spec, std::string_view section, const KeyValue& value) {
+  if (spec.set != nullptr) return spec.set(owner, value);
+  const std::string name = fmt::format("{}.{}", section, spec.key);
+  std::visit(
+      [&](auto Owner::*member) {
+        auto& target = owner.*member;
+        using T = std::decay_t<decltype(target)>;
+        if constexpr (std::is_same_v<T, std::string>) {
+          if (!std::holds_alternative<std::string>(value)) throw InputError(name, "", "expected a string");
+          target = std::get<std::string>(value);
+        } else if constexpr (std::is_same_v<T, long>) {
+          if (!std::holds_alternative<long>(value)) throw InputError(name, "", "expected an integer");
+          target = std::get<long>(value);
+        } else {
+          if (std::holds_alternative<std::string>(value)) throw InputError(name, "", "expected a number");
+          target = std::holds_alternative<long>(value) ? static_cast<double>(std::get<long>(value))
+                                                       : std::get<double>(value);
+        }
+      },
+      spec.member);
+}
+
+/// Checks every row's value in `owner`: numbers against their range (an unset optional passes),
+/// text against its choices. Each range is checked here and nowhere else.
+/// @throws InputError(`<section>.<key>`, value, "must lie in ..." | "expected ...").
+template <typename Owner>
+void validate_keys(const Owner& owner, std::span<const KeySpec<Owner>> specs, std::string_view section) {
+  for (const KeySpec<Owner>& spec : specs) {
+    const std::string name = fmt::format("{}.{}", section, spec.key);
+    std::visit(
+        [&](auto Owner::*member) {
+          const auto& value = owner.*member;
+          using T = std::decay_t<decltype(value)>;
+          if constexpr (std::is_same_v<T, std::string>) {
+            if (spec.choices.empty() ||
+                std::find(spec.choices.begin(), spec.choices.end(), value) != spec.choices.end())
+              return;
+            std::string expected;
+            for (std::string_view choice : spec.choices)
+              expected += fmt::format("{}\"{}\"", expected.empty() ? "" : " or ", choice);
+            throw InputError(name, fmt::format("\"{}\"", value), "expected " + expected);
+          } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+            if (value && spec.range) require_range(name, *value, *spec.range);
+          } else if (spec.range) {
+            require_range(name, static_cast<double>(value), *spec.range);
+          }
+        },
+        spec.member);
+  }
+}
+
+}  // namespace pounding::analysis
