@@ -76,10 +76,9 @@ struct StudyCommand {
 
 struct GapCommand {
   std::string scene;
-  std::vector<std::string> gaps;  // --gap (io::SceneOverrides::gaps)
-  std::optional<double> rtol;
-  std::optional<double> atol;
-  excitation::RecordChoice record;        // --record, --scale, --pga-g, ...
+  std::vector<std::string> gaps;                                 // --gap (io::SceneOverrides::gaps)
+  std::map<analysis::Setting, analysis::SettingValue> settings;  // --rtol, --atol: the contact-free run's
+  excitation::RecordChoice record;                               // --record, --scale, --pga-g, ...
   std::string records;                    // --records: a list file or a folder of .AT2 files; empty: the scene's record
   int curve = 0;                          // gaps of the severity curve; 0: none
   unsigned threads = 0;                   // runs at a time (curve, records); 0: every core

@@ -390,14 +390,14 @@ int run_row_gap(const GapCommand& command, const analysis::Scene& scene, const s
 
 int run_gap(const GapCommand& command, const std::string& command_line) {
   analysis::Scene scene = io::read_scene(command.scene, {.gaps = command.gaps, .record = command.record});
-  if (command.rtol) scene.solver.rtol = *command.rtol;
-  if (command.atol) scene.solver.atol = *command.atol;
+  std::map<std::string, std::string> names;  // an option's value is blamed on the option
   try {
+    for (const auto& [setting, value] : command.settings) {
+      scene.solver.set(setting, value);
+      names["solver." + std::string(analysis::spec(setting).key)] = analysis::spec(setting).option;
+    }
     scene.validate();
-  } catch (const InputError& error) {  // an option's value is blamed on the option
-    std::map<std::string, std::string> names;
-    if (command.rtol) names["solver.rtol"] = analysis::spec(analysis::Setting::rtol).option;
-    if (command.atol) names["solver.atol"] = analysis::spec(analysis::Setting::atol).option;
+  } catch (const InputError& error) {
     throw error.renamed(names).in_context(command.scene);
   }
   if (scene.is_row()) return run_row_gap(command, scene, command_line);

@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <span>
@@ -120,6 +122,24 @@ void add_key_options(CLI::App& command, std::span<const pounding::analysis::KeyS
   }
 }
 
+/// The [solver] settings' options (setting_specs()), each value kept by setting in `given` for
+/// SolverSettings::set(); `only`: just these settings (empty: every one).
+void add_setting_options(CLI::App& command,
+                         std::map<pounding::analysis::Setting, pounding::analysis::SettingValue>& given,
+                         std::initializer_list<pounding::analysis::Setting> only = {}) {
+  for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
+    if (only.size() != 0 && std::find(only.begin(), only.end(), spec.id) == only.end()) continue;
+    std::visit(
+        [&](const auto& member) {
+          using T = typename std::decay_t<decltype(pounding::analysis::SolverSettings{}.*member.given)>::value_type;
+          command.add_option_function<T>(
+              std::string(spec.option), [&given, id = spec.id](const T& value) { given[id] = value; },
+              pounding::analysis::option_help(spec.id));
+        },
+        spec.member);
+  }
+}
+
 /// Every option that takes a value refuses an empty one (`--gap ''` is a slip, not "unset"), and
 /// the whole-number options their range.
 void harden_options(CLI::App& app) {
@@ -213,18 +233,8 @@ int main(int argc, char** argv) {
   add_gap_option(*run_app, run.gaps);
   add_key_options(*run_app, pounding::analysis::contact_setting_specs(), run.contact);
   add_record_options(*run_app, run.record);
-  using pounding::analysis::option_help;
   run_app->add_option("--method", run.method, pounding::analysis::methods_help());
-  for (const pounding::analysis::SettingSpec& spec : pounding::analysis::setting_specs()) {
-    std::visit(
-        [&](const auto& member) {
-          using T = typename std::decay_t<decltype(pounding::analysis::SolverSettings{}.*member.given)>::value_type;
-          run_app->add_option_function<T>(
-              std::string(spec.option), [&run, id = spec.id](const T& value) { run.settings[id] = value; },
-              option_help(spec.id));
-        },
-        spec.member);
-  }
+  add_setting_options(*run_app, run.settings);
   run_app->add_option("--halving", run.halving,
                       "hht: on (default) or off (impacts at the end of the overlapping step)");
   run_app->add_flag("--contact-free-reference", run.contact_free_reference,
@@ -261,8 +271,7 @@ int main(int argc, char** argv) {
       app.add_subcommand("gap", "The clear gap that prevents pounding, from one contact-free run, and the code rules");
   add_scene_argument(*gap_app, gap.scene);
   add_gap_option(*gap_app, gap.gaps);
-  gap_app->add_option("--rtol", gap.rtol, "Relative tolerance of the run (default: the scene's)");
-  gap_app->add_option("--atol", gap.atol, "Absolute tolerance of the run, m and rad (default: the scene's)");
+  add_setting_options(*gap_app, gap.settings, {pounding::analysis::Setting::rtol, pounding::analysis::Setting::atol});
   add_record_options(*gap_app, gap.record);
   CLI::Option* curve =
       gap_app->add_option("--curve", gap.curve, "Also run N gaps from 0 towards the needed gap: the severity table")

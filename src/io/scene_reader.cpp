@@ -833,8 +833,8 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
   }
   std::set<std::string_view> applied;  // one option may serve two rows (--contact-stiffness)
   for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
-    const auto given = overrides.contact.find(spec.option);
     if (spec.key == "gap_m") continue;  // --gap moves building 2 (gap_m and gaps, above), not only the key
+    const auto given = overrides.contact.find(spec.option);
     if (given == overrides.contact.end() || !applied.insert(spec.option).second) continue;
     apply_option(given->first.c_str(), [&] { analysis::set_key(scene.contact, spec, "contact", given->second); });
   }
