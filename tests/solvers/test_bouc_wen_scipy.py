@@ -31,6 +31,9 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_yielding_scipy import (ALPHA, COLUMNS, YIELD_DRIFT_M, Peer, check_needed_gap_brackets,  # noqa: E402
                                  check_second_method, paper_with_yielding, run_one_storey)
@@ -135,9 +138,7 @@ def main():
                         residual_limit=1e-6)
     root = Path(__file__).resolve().parents[2]
     check_needed_gap_brackets(program, out, root / "examples/paper/paper-bouc-wen.toml", failures)
-    for failure in failures:
-        print("FAIL:", failure)
-    sys.exit(1 if failures else 0)
+    program_run.finish(failures)
 
 
 if __name__ == "__main__":

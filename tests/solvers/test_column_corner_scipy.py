@@ -126,7 +126,6 @@ are always armed finds them within 2e-11); dormancy shows in corner_candidates_a
 armed from the start all 4 would count). Run time about 25 s (five peer runs of about 4.5 s each,
 one of them only after a failure).
 """
-import csv
 import json
 import math
 import subprocess
@@ -139,6 +138,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 from scipy.optimize import minimize_scalar
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
 
 # --- the scene ------------------------------------------------------------------------------------
 ZETA, RESTITUTION, KELVIN_K, E_KPA = 0.05, 0.6, 93500.0, 3.0e7
@@ -944,26 +946,13 @@ LIMITS = dict(t=1e-9, duration=1e-9, approach=3e-8, impulse=3e-7, peak=5e-6, han
 
 
 def run_program(program, folder, options):
-    folder.mkdir(parents=True, exist_ok=True)
     _, accel = record()
-    (folder / "pulse.txt").write_text("\n".join(repr(a) for a in accel) + "\n")
-    (folder / "scene.toml").write_text(scene_text(buildings(), folder / "pulse.txt"))
-    cmd = [program, "run", str(folder / "scene.toml"), "--out", str(folder / "run"), "--no-progress", *options]
-    run = subprocess.run(cmd, capture_output=True, text=True)
-    if not (folder / "run/summary.json").exists():
-        return None, f"exit {run.returncode}: {(run.stderr + run.stdout).strip()[-400:]}"
-    summary = json.loads((folder / "run/summary.json").read_text())
-    summary["exit_code"] = run.returncode
-    with open(folder / "run/impacts.csv") as f:
-        impacts = sorted(csv.DictReader(f), key=lambda r: float(r["t_s"]))
-    with open(folder / "run/history.csv") as f:
-        hist = list(csv.DictReader(f))
-    with open(folder / "run/contacts_history.csv") as f:
-        forces = [dict(t=float(r["t_s"]), candidate=int(r["candidate"]), force=float(r["force_kN"]))
-                  for r in csv.DictReader(f)]
-    t_out = np.array([float(r["t_s"]) for r in hist])
-    q = np.array([[float(r[f"B{b}_f{fl}_{comp}"]) for b, fl, comp in HISTORY] for r in hist])
-    return dict(summary=summary, impacts=impacts, t=t_out, q=q, forces=forces), None
+    run, message = program_run.run_scene(program, folder, lambda path: scene_text(buildings(), path), accel, options,
+                                         [f"B{b}_f{fl}_{comp}" for b, fl, comp in HISTORY], accept_any_exit=True,
+                                         forces=True)
+    if run is None:
+        return None, message
+    return dict(summary=run.summary, impacts=run.impacts, t=run.t, q=run.q, forces=run.forces), None
 
 
 def candidate_key(point, striking, struck, edge):
@@ -1203,10 +1192,7 @@ def main():
     if disagreed and peer.tensile_handovers:
         diagnose(program, out, times, accel)
     print()
-    for f in failures:
-        print("FAIL:", f if len(f) < 800 else f[:800] + " ...")
-    print(f"{'FAILED' if failures else 'passed'}: {len(failures)} failures in {time.time() - started:.1f} s")
-    sys.exit(1 if failures else 0)
+    program_run.finish(failures, started, width=800)
 
 
 if __name__ == "__main__":

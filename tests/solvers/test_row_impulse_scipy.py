@@ -104,7 +104,6 @@ Checked (all program runs at rtol 1e-12, atol 1e-14; measured values in parenthe
 The program's max_force_kN of a hold is sampled at step ends and events and is not compared.
 Run time about 20 s.
 """
-import csv
 import json
 import math
 import subprocess
@@ -116,6 +115,9 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
 
 E_KPA, STOREY_M = 3.0e7, 3.0
 HOLD_VELOCITY_MPS, HOLD_HEIGHT_M, CLOSED_TOL_M = 1e-3, 1e-8, 1e-8  # docs/scene-format.md defaults; see Peer.impact
@@ -518,26 +520,11 @@ def exact_free(times, accel, out_times):
 # --- the program ----------------------------------------------------------------------------------
 def run_program(program, folder, accel, restitution, options):
     """Writes the record and the scene into folder and runs it; (history times, u v phi of the three
-    slabs, impacts.csv rows, summary.json), or None and the program's message."""
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "record.txt").write_text("\n".join(f"{a!r}" for a in accel) + "\n")
-    (folder / "scene.toml").write_text(scene_text(folder / "record.txt", restitution))
-    run = subprocess.run([program, "run", str(folder / "scene.toml"), "--out", str(folder / "run"), "--no-progress",
-                          *options], capture_output=True, text=True)
-    if run.returncode != 0:
-        return None, f"exit {run.returncode}: " + (run.stderr + run.stdout).strip()[-600:]
-    with open(folder / "run/history.csv") as f:
-        hist = list(csv.DictReader(f))
+    slabs, impacts.csv rows by onset, summary.json), or None and the program's message."""
     cols = [f"{n}_f1_{c}" for n in NAMES for c in ("u_m", "v_m", "phi_rad")]
-    missing = [c for c in cols if c not in hist[0]]
-    if missing:
-        return None, f"history.csv has no column {', '.join(missing)}"
-    t_out = np.array([float(r["t_s"]) for r in hist])
-    q = np.array([[float(r[c]) for c in cols] for r in hist])
-    with open(folder / "run/impacts.csv") as f:
-        impacts = list(csv.DictReader(f))
-    summary = json.loads((folder / "run/summary.json").read_text())
-    return (t_out, q, impacts, summary), None
+    run, message = program_run.run_scene(program, folder, lambda record: scene_text(record, restitution), accel,
+                                         options, cols, record_name="record.txt")
+    return (None, message) if run is None else ((run.t, run.q, run.impacts, run.summary), None)
 
 
 def program_side(buildings):
@@ -800,10 +787,7 @@ def main():
         peer = check_peer(times, accel, restitution, failures)
         for label in RUNS:
             check_program(program, out, label, peer, accel, restitution, failures)
-    for failure in failures:
-        print("FAIL:", failure)
-    print(f"{'FAILED' if failures else 'passed'}: {len(failures)} failures in {time.time() - started:.1f} s")
-    sys.exit(1 if failures else 0)
+    program_run.finish(failures, started)
 
 
 if __name__ == "__main__":

@@ -76,8 +76,6 @@ stepped over is counted and must not occur). Checked:
      impulses 3.0e-7), and without the column struck_building.
 The peer's contact point at onset is its vertex P (the program's `point`). Run time about 18 s.
 """
-import csv
-import json
 import math
 import subprocess
 import sys
@@ -89,6 +87,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh, expm
 from scipy.optimize import minimize_scalar
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
 
 ZETA, RESTITUTION, MARGIN_M, LEVEL_TOL_M, KELVIN_K = 0.05, 0.6, 1.0, 1e-3, 93500.0
 PULSE_MPS2, PULSE_PERIOD_S, PULSE_END_S, DT_S, DURATION_S, BETA_DEG = 4.5, 0.5, 1.5, 0.005, 2.5, 15.0
@@ -613,26 +614,11 @@ def run_program(program, folder, accel, options, buildings, gaps):
     """Writes the record and the scene into folder, runs it with options; (history times, the
     (u, v, phi) columns of every floor in the peer's order, impacts by onset, summary.json), or
     None and the program's message."""
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "pulse.txt").write_text("\n".join(f"{a!r}" for a in accel) + "\n")
-    (folder / "scene.toml").write_text(scene_text(folder / "pulse.txt", buildings, gaps))
-    run = subprocess.run([program, "run", str(folder / "scene.toml"), "--out", str(folder / "run"), "--no-progress",
-                          *options], capture_output=True, text=True)
-    if run.returncode != 0:
-        return None, f"exit {run.returncode}: " + (run.stderr + run.stdout).strip()[-400:]
-    with open(folder / "run/history.csv") as f:
-        hist = list(csv.DictReader(f))
     names = [f"B{b + 1}_f{fl}_{comp}" for b, spec in enumerate(buildings) for fl in range(1, len(spec["heights"]) + 1)
              for comp in ("u_m", "v_m", "phi_rad")]
-    missing = [name for name in names if name not in hist[0]]
-    if missing:
-        return None, f"history.csv has no column {', '.join(missing)}"
-    t_out = np.array([float(r["t_s"]) for r in hist])
-    q = np.array([[float(r[name]) for name in names] for r in hist])
-    with open(folder / "run/impacts.csv") as f:
-        impacts = sorted(csv.DictReader(f), key=lambda r: float(r["t_s"]))
-    summary = json.loads((folder / "run/summary.json").read_text())
-    return (t_out, q, impacts, summary), None
+    run, message = program_run.run_scene(program, folder, lambda record: scene_text(record, buildings, gaps), accel,
+                                         options, names)
+    return (None, message) if run is None else ((run.t, run.q, run.impacts, run.summary), None)
 
 
 # Per program tolerance: limits on |u, v| (m), |phi| (rad), onset and duration (s), peak force,
@@ -795,10 +781,7 @@ def main():
         print(f"peer of {label}: {len(pair.contacts)} contacts")
         check_program(program, out, "rtol 1e-12", pair, accel, failures, BUILDINGS[first:first + 2],
                       {(0, 1): GAPS[(first, first + 1)]}, label)
-    for failure in failures:
-        print("FAIL:", failure)
-    print(f"{'FAILED' if failures else 'passed'}: {len(failures)} failures in {time.time() - started:.1f} s")
-    sys.exit(1 if failures else 0)
+    program_run.finish(failures, started)
 
 
 if __name__ == "__main__":

@@ -62,8 +62,6 @@ opens; no force returns before a gap opens. Checked:
      contact work (1e-5, 3e-7; measured 1.2e-7 / 1.1e-7, and 3.1e-9 / 3.0e-9 / 2.6e-9).
   4. the impulse law (rigid impact) is refused for this scene: exit 2, naming contact.law.
 """
-import csv
-import json
 import math
 import subprocess
 import sys
@@ -74,6 +72,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh, expm
 from scipy.optimize import minimize_scalar
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
 
 ZETA, GAP_M, RESTITUTION, MARGIN_M, LEVEL_TOL_M = 0.05, 0.05, 0.6, 1.0, 1e-3
 KELVIN_K, HERTZ_KH = 93500.0, 2.0e6
@@ -611,21 +612,10 @@ HISTORY = [(b, f, comp) for b, f in ((1, 1), (2, 1), (2, 2)) for comp in ("u_m",
 def run_program(program, folder, law, accel, options, buildings):
     """Writes the record and the scene into folder, runs it with options; (history times, the nine
     (u, v, phi) columns, impacts by onset, summary.json), or None and the program's message."""
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "pulse.txt").write_text("\n".join(f"{a!r}" for a in accel) + "\n")
-    (folder / "scene.toml").write_text(scene_text(folder / "pulse.txt", law, buildings))
-    run = subprocess.run([program, "run", str(folder / "scene.toml"), "--out", str(folder / "run"), "--no-progress",
-                          *options], capture_output=True, text=True)
-    if run.returncode != 0:
-        return None, run.stderr + run.stdout
-    with open(folder / "run/history.csv") as f:
-        hist = list(csv.DictReader(f))
-    t_out = np.array([float(r["t_s"]) for r in hist])
-    q = np.array([[float(r[f"B{b}_f{fl}_{comp}"]) for b, fl, comp in HISTORY] for r in hist])
-    with open(folder / "run/impacts.csv") as f:
-        impacts = sorted(csv.DictReader(f), key=lambda r: float(r["t_s"]))
-    summary = json.loads((folder / "run/summary.json").read_text())
-    return (t_out, q, impacts, summary), None
+    names = [f"B{b}_f{fl}_{comp}" for b, fl, comp in HISTORY]
+    run, message = program_run.run_scene(program, folder, lambda record: scene_text(record, law, buildings), accel,
+                                         options, names)
+    return (None, message) if run is None else ((run.t, run.q, run.impacts, run.summary), None)
 
 
 # Per program tolerance: limits on |u, v| (m), |phi| (rad), onset and duration (s), peak force,
@@ -751,9 +741,7 @@ def main():
     times, accel = record(VARIANT_MPS2)
     check_program(program, out, "kelvin", "rtol 1e-12", times, accel, failures, VARIANT, "variant ")
     check_impulse_refused(program, out, failures)
-    for failure in failures:
-        print("FAIL:", failure)
-    sys.exit(1 if failures else 0)
+    program_run.finish(failures)
 
 
 if __name__ == "__main__":

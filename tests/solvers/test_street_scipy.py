@@ -95,7 +95,6 @@ other slab's facade at the end of a side edge, mm behind that edge's line); the 
 docs/model.md §5a ("inside means inside", a vertex sliding along the face where the slabs meet)
 were written against this test. Run time about 45 s (the peers ~30 s).
 """
-import csv
 import json
 import math
 import subprocess
@@ -108,6 +107,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 from scipy.optimize import minimize_scalar
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
 
 # --- the scenes -----------------------------------------------------------------------------------
 E_KPA, STOREY_M, ZETA = 3.0e7, 3.0, 0.05
@@ -951,27 +953,12 @@ METHODS = {"cvode-bdf": ["--method", "cvode-bdf", "--rtol", "1e-12", "--atol", "
 
 
 def run_program(program, folder, specs, law, restitution, options):
-    folder.mkdir(parents=True, exist_ok=True)
-    t, a = record()
-    (folder / "record.txt").write_text("\n".join(repr(x) for x in a) + "\n")
-    (folder / "scene.toml").write_text(scene_text(specs, law, restitution, folder / "record.txt"))
     cmd = [program, "run", str(folder / "scene.toml"), "--out", str(folder / "run"), "--no-progress", *options]
-    run = subprocess.run(cmd, capture_output=True, text=True)
-    if not (folder / "run/summary.json").exists():
-        return None, f"exit {run.returncode}: {(run.stderr + run.stdout).strip()[-400:]}", cmd
-    summary = json.loads((folder / "run/summary.json").read_text())
-    summary["exit_code"] = run.returncode
-    with open(folder / "run/impacts.csv") as f:
-        impacts = sorted(csv.DictReader(f), key=lambda r: float(r["t_s"]))
-    with open(folder / "run/history.csv") as f:
-        hist = list(csv.DictReader(f))
+    _, a = record()
     cols = [f"B{b + 1}_f1_{c}" for b in range(len(specs)) for c in ("u_m", "v_m", "phi_rad")]
-    missing = [c for c in cols if c not in hist[0]]
-    if missing:
-        return None, f"history.csv has no column {', '.join(missing)}", cmd
-    t_out = np.array([float(r["t_s"]) for r in hist])
-    q = np.array([[float(r[c]) for c in cols] for r in hist])
-    return (summary, impacts, t_out, q), None, cmd
+    run, message = program_run.run_scene(program, folder, lambda path: scene_text(specs, law, restitution, path), a,
+                                         options, cols, record_name="record.txt", accept_any_exit=True)
+    return (None, message, cmd) if run is None else ((run.summary, run.impacts, run.t, run.q), None, cmd)
 
 
 def peer_events(peer):
@@ -1242,15 +1229,12 @@ def main():
             folder = out_dir / (case["name"].replace(", ", "-").replace(" ", "_").replace("=", "") + "-" + method)
             compare(program, folder, case, peer, method, failures, out)
     print()
-    for f in failures:
-        print("FAIL:", f if len(f) < 400 else f[:400] + " ...")
     runs = sorted({name for name in REPRODUCE if any(f.startswith(name + ":") for f in failures)})
     if runs:
         print("To reproduce the failing program runs (the scene and record are in each folder):")
         for name in runs:
             print(f"  {name}: {REPRODUCE[name]}")
-    print(f"{'FAILED' if failures else 'passed'}: {len(failures)} failures in {time.time() - started:.1f} s")
-    sys.exit(1 if failures else 0)
+    program_run.finish(failures, started, width=400)
 
 
 if __name__ == "__main__":

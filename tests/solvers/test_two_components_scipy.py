@@ -55,6 +55,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[2]
 E_KPA, HEIGHT_M, MASS_T, ZETA = 3.0e7, 3.5, 400.0, 0.05
 SLAB = (0.0, 0.0, 16.0, 10.0)
@@ -410,10 +413,8 @@ def main():
         check_closed_forms(program, out, failures)
         check_methods(program, out, failures)
         check_spectral_scaling(program, out, failures)
-    for failure in failures:
-        print("FAIL:", failure)
-    return 1 if failures else 0
+    program_run.finish(failures)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

@@ -47,6 +47,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
+import program_run  # noqa: E402
+
 E_KPA, HEIGHT_M, MASS_T = 3.0e7, 3.5, 400.0
 SLAB = (0.0, 0.0, 16.0, 10.0)
 CM = np.array([9.0, 5.0])
@@ -394,9 +397,7 @@ def main():
     check_second_method(program, out, failures)
     check_needed_gap(program, out, failures)
     check_pounding_demand(program, out, failures)
-    for failure in failures:
-        print("FAIL:", failure)
-    sys.exit(1 if failures else 0)
+    program_run.finish(failures)
 
 
 if __name__ == "__main__":
