@@ -107,7 +107,7 @@ nlohmann::json as_json(const analysis::KeySpec<Owner>& spec, std::string_view se
   nlohmann::json entry = {{"key", spec.key},
                           {"toml", fmt::format("{}.{}", section, spec.key)},
                           {"option", spec.option},
-                          {"python", spec.option.empty() ? "" : analysis::python_keyword(spec.option)},
+                          {"python", analysis::python_keyword(spec.option)},
                           {"type", analysis::type_name(spec)},
                           {"required", spec.required},
                           {"default", key_default(spec)},

@@ -206,7 +206,7 @@ pounding::analysis::KeyValue key_value(py::handle value, const pounding::analysi
 std::map<std::string, pounding::analysis::KeyValue, std::less<>> contact_options(const py::dict& keywords) {
   std::map<std::string, pounding::analysis::KeyValue, std::less<>> options;
   for (const auto& spec : pounding::analysis::contact_setting_specs()) {
-    const std::string keyword = spec.option.empty() ? "" : pounding::analysis::python_keyword(spec.option);
+    const std::string keyword = pounding::analysis::python_keyword(spec.option);
     if (keyword.empty() || !keywords.contains(keyword) || options.contains(spec.option)) continue;
     options.emplace(spec.option, key_value(keywords[py::str(keyword)], spec, keyword));
   }

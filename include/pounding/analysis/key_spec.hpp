@@ -48,9 +48,10 @@ std::string_view type_name(const KeySpec<Owner>& spec) {
   return std::holds_alternative<std::string Owner::*>(spec.member) ? "string" : "number";
 }
 
-/// `restitution` for `--restitution`, `contact_law` for `--contact-law`.
+/// `restitution` for `--restitution`, `contact_law` for `--contact-law`; empty for no option.
 inline std::string python_keyword(std::string_view option) {
-  std::string keyword(option.substr(option.find_first_not_of('-')));
+  const std::size_t start = option.find_first_not_of('-');
+  std::string keyword(start == std::string_view::npos ? std::string_view() : option.substr(start));
   std::replace(keyword.begin(), keyword.end(), '-', '_');
   return keyword;
 }
