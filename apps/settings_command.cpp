@@ -32,6 +32,12 @@ std::string meaning(const SettingSpec& spec) {
   return spec.details.empty() ? std::string(spec.description) : fmt::format("{}; {}", spec.description, spec.details);
 }
 
+/// A key's range in its JSON entry: `range` (min, max, min_open) and `unit`.
+void add_range(const Range& range, nlohmann::json& entry) {
+  entry["range"] = {{"min", range.min}, {"max", range.max}, {"min_open", range.min_open}};
+  entry["unit"] = range.unit;
+}
+
 nlohmann::json as_json(const SettingSpec& spec) {
   nlohmann::json entry = {{"key", spec.key},
                           {"toml", "solver." + std::string(spec.key)},
@@ -44,10 +50,7 @@ nlohmann::json as_json(const SettingSpec& spec) {
   entry["default"] = spec.id == analysis::Setting::order
                          ? nlohmann::json(nullptr)
                          : std::visit([](const auto& v) { return nlohmann::json(v); }, spec.default_value);
-  if (spec.range) {
-    entry["range"] = {{"min", spec.range->min}, {"max", spec.range->max}, {"min_open", spec.range->min_open}};
-    entry["unit"] = spec.range->unit;
-  }
+  if (spec.range) add_range(*spec.range, entry);
   if (!spec.choices.empty()) entry["choices"] = spec.choices;
   return entry;
 }
@@ -113,10 +116,7 @@ nlohmann::json as_json(const analysis::KeySpec<Owner>& spec, std::string_view se
                           {"default", key_default(spec)},
                           {"description", spec.description},
                           {"details", spec.details}};
-  if (spec.range) {
-    entry["range"] = {{"min", spec.range->min}, {"max", spec.range->max}, {"min_open", spec.range->min_open}};
-    entry["unit"] = spec.range->unit;
-  }
+  if (spec.range) add_range(*spec.range, entry);
   if (!spec.choices.empty()) entry["choices"] = spec.choices;
   return entry;
 }

@@ -194,8 +194,7 @@ pounding::analysis::KeyValue key_value(py::handle value, const pounding::analysi
     if (overflow != 0) throw InputError(keyword, text, "must lie in " + pounding::range_text(*spec.range));
     return number;
   }
-  if (type == "number" && !py::isinstance<py::bool_>(value) &&
-      (whole || py::isinstance<py::float_>(value) || py::hasattr(value, "__float__"))) {
+  if (type == "number" && !py::isinstance<py::bool_>(value) && py::hasattr(value, "__float__")) {
     return value.cast<double>();
   }
   throw InputError(keyword, text, type == "integer" ? "expected a whole number" : "expected a number");

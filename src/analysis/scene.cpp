@@ -17,20 +17,19 @@ constexpr double kGapTolerance_m = 1e-6;
 
 constexpr Range kHistoryInterval{1e-4, 10.0, "s"};
 
+// `--contact-stiffness` sets the stiffness key of the law in force (ContactSettings::set_stiffness).
+void set_stiffness_option(ContactSettings& contact, const KeyValue& value) {
+  const std::optional<double> stiffness = number_of(value);
+  if (!stiffness) throw InputError("contact.stiffness", std::get<std::string>(value), "expected a number");
+  contact.set_stiffness(*stiffness);
+}
+
 // The [contact] keys. Ranges: seismic joints are centimetres to a metre; pounding approaches at
 // 0.1 to 1 m/s; floors up to a slab's thickness apart still meet face on (validate_levels() also
 // keeps the tolerance below half of every storey, so a floor meets at most one of the other
 // building); stiffness from a soft pad (1 kN/m) to far stiffer than concrete (1e12 kN/m: contact
 // periods of microseconds for floor masses of tonnes, below which no integrator resolves the
 // contact), and the Hertz laws' k δ^(1/2) at 1 mm of overlap spans the same within a factor 30.
-// `--contact-stiffness` sets the stiffness key of the law in force (ContactSettings::set_stiffness).
-void set_stiffness_option(ContactSettings& contact, const KeyValue& value) {
-  if (const auto* text = std::get_if<std::string>(&value))
-    throw InputError("contact.stiffness", *text, "expected a number");
-  contact.set_stiffness(std::holds_alternative<long>(value) ? static_cast<double>(std::get<long>(value))
-                                                            : std::get<double>(value));
-}
-
 // Built on first use, so other files' static initialisers may read it.
 const std::vector<ContactSettingSpec>& contact_specs() {
   static const std::vector<ContactSettingSpec> kSpecs = {

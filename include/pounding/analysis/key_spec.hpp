@@ -41,6 +41,22 @@ struct KeySpec {
   std::string (*option_help)() = nullptr;
 };
 
+/// A number given as a whole number or not; none for text.
+inline std::optional<double> number_of(const KeyValue& value) {
+  if (const auto* whole = std::get_if<long>(&value)) return static_cast<double>(*whole);
+  if (const auto* number = std::get_if<double>(&value)) return *number;
+  return std::nullopt;
+}
+
+/// `a or b or c`, each choice quoted when `quote`: what a text key accepts, as `--help` and its
+/// errors say it.
+inline std::string or_list(const std::vector<std::string_view>& choices, bool quote) {
+  std::string text;
+  for (std::string_view choice : choices)
+    text += fmt::format("{}{}{}{}", text.empty() ? "" : " or ", quote ? "\"" : "", choice, quote ? "\"" : "");
+  return text;
+}
+
 /// "integer", "number" or "string": the type a key's reader expects.
 template <typename Owner>
 std::string_view type_name(const KeySpec<Owner>& spec) {
@@ -82,10 +98,9 @@ std::string default_text(const KeySpec<Owner>& spec) {
 template <typename Owner>
 std::string option_help(const KeySpec<Owner>& spec) {
   if (spec.option_help != nullptr) return spec.option_help();
-  std::string accepted;
-  if (spec.range) accepted = ", in " + range_text(*spec.range);
-  for (std::string_view choice : spec.choices)
-    accepted += fmt::format("{}{}", accepted.empty() ? ": " : " or ", choice);
+  const std::string accepted = spec.range             ? ", in " + range_text(*spec.range)
+                               : spec.choices.empty() ? std::string()
+                                                      : ": " + or_list(spec.choices, false);
   const std::string default_value = default_text(spec);
   return fmt::format("{}{}{}", spec.description, accepted,
                      default_value.empty() || spec.required ? "" : fmt::format(" (default {})", default_value));
@@ -108,9 +123,9 @@ void set_key(Owner& owner, const KeySpec<Owner>& spec, std::string_view section,
           if (!std::holds_alternative<long>(value)) throw InputError(name, "", "expected an integer");
           target = std::get<long>(value);
         } else {
-          if (std::holds_alternative<std::string>(value)) throw InputError(name, "", "expected a number");
-          target = std::holds_alternative<long>(value) ? static_cast<double>(std::get<long>(value))
-                                                       : std::get<double>(value);
+          const std::optional<double> number = number_of(value);
+          if (!number) throw InputError(name, std::get<std::string>(value), "expected a number");
+          target = *number;
         }
       },
       spec.member);
@@ -131,10 +146,7 @@ void validate_keys(const Owner& owner, std::span<const KeySpec<Owner>> specs, st
             if (spec.choices.empty() ||
                 std::find(spec.choices.begin(), spec.choices.end(), value) != spec.choices.end())
               return;
-            std::string expected;
-            for (std::string_view choice : spec.choices)
-              expected += fmt::format("{}\"{}\"", expected.empty() ? "" : " or ", choice);
-            throw InputError(name, fmt::format("\"{}\"", value), "expected " + expected);
+            throw InputError(name, fmt::format("\"{}\"", value), "expected " + or_list(spec.choices, true));
           } else if constexpr (std::is_same_v<T, std::optional<double>>) {
             if (value && spec.range) require_range(name, *value, *spec.range);
           } else if (spec.range) {
