@@ -192,6 +192,39 @@ std::string storeys_text(const model::BuildingDefinition& b) {
                  : fmt::format("{} storeys of {} m", b.storeys, fmt::join(h, ", "));
 }
 
+/// "0.005 of the storey height", "[0.004, 0.005] of the storey heights", "0.01 m", or "storey
+/// yield shear [5200, 4100] kN": the strength as the scene gave it (one number for all storeys).
+std::string strength_text(const model::HystereticLaw& law) {
+  const auto values = [](const std::vector<double>& v) {
+    const bool uniform = std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
+    return uniform ? fmt::format("{}", v.front()) : fmt::format("[{}]", fmt::join(v, ", "));
+  };
+  if (!law.yield_drift_m.empty()) return fmt::format("yield drift {} m", values(law.yield_drift_m));
+  if (!law.yield_drift_ratio.empty()) {
+    return fmt::format("yield drift {} of the storey height", values(law.yield_drift_ratio));
+  }
+  return fmt::format("storey yield shear {} kN", values(law.yield_shear_kN));
+}
+
+/// Each storey's yield shear along x and y (kN): what the columns carry when they all yield
+/// together in a translation, Σ k · d_y.
+void print_storey_strengths(const model::Building& building) {
+  std::vector<std::string> storeys;
+  for (int storey = 1; storey <= building.storeys(); ++storey) {
+    const auto shear_kN = [&](int direction) {
+      return model::storey_column_stiffness(building, storey, direction) *
+             model::column_yield_drift_m(building, storey, direction);
+    };
+    storeys.push_back(fmt::format("{:.5g} | {:.5g}", shear_kN(0), shear_kN(1)));
+  }
+  const bool uniform = std::all_of(storeys.begin(), storeys.end(), [&](const auto& s) { return s == storeys.front(); });
+  if (uniform) {
+    fmt::print("  storey yield shear x | y: {} kN, every storey\n", storeys.front());
+  } else {
+    fmt::print("  storey yield shears x | y (kN), storey 1 first: {}\n", fmt::join(storeys, "; "));
+  }
+}
+
 }  // namespace
 
 /// The command-line options of `run` replace their scene keys. `--method` keeps the file's keys
@@ -447,10 +480,9 @@ int run_check(const CheckCommand& command) {
       const std::string shape = law.is_smooth() ? fmt::format(", A {}, beta {}, gamma {}, n {}", law.bouc_wen_a,
                                                               law.bouc_wen_beta, law.bouc_wen_gamma, law.bouc_wen_n)
                                                 : std::string();
-      fmt::print("  columns {} in x and y: yield drift {}, hardening ratio {}{}\n", model::to_string(law.kind),
-                 law.yield_drift_m ? fmt::format("{} m", *law.yield_drift_m)
-                                   : fmt::format("{} of the storey height", *law.yield_drift_ratio),
+      fmt::print("  columns {} in x and y: {}, hardening ratio {}{}\n", model::to_string(law.kind), strength_text(law),
                  law.hardening_ratio, shape);
+      print_storey_strengths(system.building(static_cast<int>(i)));
       // One hysteretic variable per column, storey and direction (dynamics/yielding_springs.hpp).
       if (law.is_smooth()) hysteretic_states += 2 * static_cast<int>(definition.columns.size()) * definition.storeys;
     }

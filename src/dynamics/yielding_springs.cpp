@@ -32,7 +32,7 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .column = column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key,
                               .stiffness_kN_per_m = k[direction],
                               .hardening_ratio = d.hysteresis.hardening_ratio,
-                              .yield_drift_m = d.hysteresis.yield_drift_of(height_m),
+                              .yield_drift_m = model::column_yield_drift_m(building, storey, direction),
                               .storey_height_m = height_m,
                               .indices = {},
                               .coefficients = {},

@@ -151,6 +151,10 @@ const std::vector<YieldingColumn>& yielding_columns() {
        [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.hardening_ratio); }},
       {"yield_drift_m", "m", Kind::real, "yield drift d_y",
        [](const YieldingSpring& s, const SpringResult&) { return fmt::format("{}", s.yield_drift_m); }},
+      {"yield_force_kN", "kN", Kind::real, "force at the yield drift, k d_y (Bouc-Wen tends to it as n grows)",
+       [](const YieldingSpring& s, const SpringResult&) {
+         return fmt::format("{}", s.stiffness_kN_per_m * s.yield_drift_m);
+       }},
       {"peak_drift_m", "m", Kind::real, "largest absolute drift over the run",
        [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.peak_drift_m); }},
       {"peak_ductility", "", Kind::real, "peak drift over yield drift",

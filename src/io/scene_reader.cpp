@@ -264,13 +264,20 @@ double in_range(TableReader& table, const toml::node& node, const std::string& k
   return value;
 }
 
-/// `storey_height_m`: one number for every storey, or one a storey, storey 1 (the ground storey)
-/// first. A list is checked entry by entry by BuildingDefinition::validate().
+/// A per-storey value: one number for every storey (checked here, under the key typed), or a list
+/// of one a storey, storey 1 (the ground storey) first (checked entry by entry by validate());
+/// empty if the key is absent.
+std::vector<double> per_storey(TableReader& table, const char* name, const Range& range, int storeys) {
+  const toml::node* node = table.find(name);
+  if (node == nullptr) return {};
+  const std::string key = table.key_path(name);
+  if (node->is_array()) return table.numbers_of(*node, key);
+  return std::vector<double>(std::max(storeys, 0), in_range(table, *node, key, range));
+}
+
 std::vector<double> storey_heights(TableReader& table, int storeys) {
-  const toml::node& node = table.require("storey_height_m");
-  const std::string key = table.key_path("storey_height_m");
-  if (node.is_array()) return table.numbers_of(node, key);
-  return std::vector<double>(std::max(storeys, 0), in_range(table, node, key, model::kStoreyHeightRange));
+  table.require("storey_height_m");
+  return per_storey(table, "storey_height_m", model::kStoreyHeightRange, storeys);
 }
 
 std::vector<double> per_floor_masses(TableReader& table, int storeys) {
@@ -402,7 +409,7 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   b.column_shear_capacity_kN = table.optional_number("column_shear_capacity_kN");
 }
 
-model::HystereticLaw read_hysteresis(TableReader& table) {
+model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
   using Kind = model::HystereticLaw::Kind;
   model::HystereticLaw law;
   const toml::node& kind = table.require("law");
@@ -423,7 +430,7 @@ model::HystereticLaw read_hysteresis(TableReader& table) {
       }
     }
   };
-  refuse_unless({"yield_drift_ratio", "yield_drift_m", "hardening_ratio"}, law.yields(),
+  refuse_unless({"yield_drift_ratio", "yield_drift_m", "yield_shear_kN", "hardening_ratio"}, law.yields(),
                 "\"bilinear\" or \"bouc-wen\"");
   refuse_unless({"a", "beta", "gamma", "n"}, law.is_smooth(), "\"bouc-wen\"");
   const auto number = [&](const char* key, const Range& range) -> std::optional<double> {
@@ -431,8 +438,9 @@ model::HystereticLaw read_hysteresis(TableReader& table) {
     if (given == nullptr) return std::nullopt;
     return in_range(table, *given, table.key_path(key), range);
   };
-  law.yield_drift_ratio = number("yield_drift_ratio", model::kYieldDriftRatio);
-  law.yield_drift_m = number("yield_drift_m", model::kYieldDrift);
+  law.yield_drift_ratio = per_storey(table, "yield_drift_ratio", model::kYieldDriftRatio, storeys);
+  law.yield_drift_m = per_storey(table, "yield_drift_m", model::kYieldDrift, storeys);
+  law.yield_shear_kN = per_storey(table, "yield_shear_kN", model::kYieldShear, storeys);
   law.hardening_ratio = number("hardening_ratio", model::kHardeningRatio).value_or(law.hardening_ratio);
   law.bouc_wen_a = number("a", model::kBoucWenA).value_or(law.bouc_wen_a);
   law.bouc_wen_beta = number("beta", model::kBoucWenBeta).value_or(law.bouc_wen_beta);
@@ -475,7 +483,7 @@ model::BuildingDefinition read_building(TableReader table) {
     }
     damping->finish();
   }
-  if (auto hysteresis = table.optional_subtable("hysteresis")) b.hysteresis = read_hysteresis(*hysteresis);
+  if (auto hysteresis = table.optional_subtable("hysteresis")) b.hysteresis = read_hysteresis(*hysteresis, b.storeys);
   if (const toml::node* p_delta = table.find("p_delta")) {
     if (!p_delta->is_boolean()) throw table.error(*p_delta, table.key_path("p_delta"), "expected true or false");
     b.p_delta = **p_delta->as_boolean();

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -175,6 +176,29 @@ void validate_bouc_wen(const HystereticLaw& law) {
   }
 }
 
+/// A drift of 10 % of a storey ends a run as a collapse (solvers::kCollapseDriftRatio): a column
+/// must yield well before, at most at 5 % of its storey. One value for every storey is named
+/// without an index and measured against the lowest storey.
+void refuse_collapse_before_yield(const std::vector<double>& yield_drift_m, const std::vector<double>& heights_m) {
+  const bool uniform =
+      std::adjacent_find(yield_drift_m.begin(), yield_drift_m.end(), std::not_equal_to<>()) == yield_drift_m.end();
+  if (uniform) {
+    const double lowest_m = *std::min_element(heights_m.begin(), heights_m.end());
+    if (yield_drift_m.front() <= 0.05 * lowest_m) return;
+    throw InputError("hysteresis.yield_drift_m", format_value(yield_drift_m.front()),
+                     fmt::format("must be at most 5 % of the lowest storey ({:g} m): a drift of 10 % of a storey "
+                                 "ends a run as a collapse",
+                                 lowest_m));
+  }
+  for (std::size_t j = 0; j < yield_drift_m.size(); ++j) {
+    if (yield_drift_m[j] <= 0.05 * heights_m[j]) continue;
+    throw InputError(indexed("hysteresis.yield_drift_m", j), format_value(yield_drift_m[j]),
+                     fmt::format("must be at most 5 % of storey {}'s height ({:g} m): a drift of 10 % of a storey "
+                                 "ends a run as a collapse",
+                                 j + 1, heights_m[j]));
+  }
+}
+
 void validate_hysteresis(const BuildingDefinition& b) {
   const HystereticLaw& law = b.hysteresis;
   if (!law.yields()) return;
@@ -182,23 +206,22 @@ void validate_hysteresis(const BuildingDefinition& b) {
     throw InputError("hysteresis.law", fmt::format("\"{}\"", to_string(law.kind)),
                      "needs columns: storeys given as storey_stiffness matrices stay elastic");
   }
-  if (law.yield_drift_ratio.has_value() == law.yield_drift_m.has_value()) {
-    throw InputError("hysteresis.yield_drift_ratio", law.yield_drift_ratio ? "given with yield_drift_m" : "missing",
-                     "give one of yield_drift_ratio and yield_drift_m");
+  std::vector<std::string> strengths;
+  if (!law.yield_drift_ratio.empty()) strengths.push_back("yield_drift_ratio");
+  if (!law.yield_drift_m.empty()) strengths.push_back("yield_drift_m");
+  if (!law.yield_shear_kN.empty()) strengths.push_back("yield_shear_kN");
+  if (strengths.size() != 1) {
+    throw InputError("hysteresis." + (strengths.empty() ? std::string("yield_drift_ratio") : strengths[0]),
+                     strengths.empty() ? "missing" : "given with " + strengths[1],
+                     "give one of yield_drift_ratio, yield_drift_m and yield_shear_kN");
   }
-  if (law.yield_drift_ratio) require_range("hysteresis.yield_drift_ratio", *law.yield_drift_ratio, kYieldDriftRatio);
-  if (law.yield_drift_m) {
-    require_range("hysteresis.yield_drift_m", *law.yield_drift_m, kYieldDrift);
-    // A drift of 10 % of a storey ends a run as a collapse (solvers::kCollapseDriftRatio): a column
-    // must yield well before.
-    const double lowest_m = *std::min_element(b.storey_height_m.begin(), b.storey_height_m.end());
-    if (*law.yield_drift_m > 0.05 * lowest_m) {
-      throw InputError("hysteresis.yield_drift_m", format_value(*law.yield_drift_m),
-                       fmt::format("must be at most 5 % of the lowest storey ({:g} m): a drift of 10 % of a storey "
-                                   "ends a run as a collapse",
-                                   lowest_m));
-    }
-  }
+  const auto per_storey = [&](const std::vector<double>& values, const char* key, const Range& range) {
+    if (!values.empty()) validate_per_floor(values, key, b.storeys, range, "storey");
+  };
+  per_storey(law.yield_drift_ratio, "hysteresis.yield_drift_ratio", kYieldDriftRatio);
+  per_storey(law.yield_drift_m, "hysteresis.yield_drift_m", kYieldDrift);
+  per_storey(law.yield_shear_kN, "hysteresis.yield_shear_kN", kYieldShear);
+  if (!law.yield_drift_m.empty()) refuse_collapse_before_yield(law.yield_drift_m, b.storey_height_m);
   if (!(law.hardening_ratio >= 0.0 && law.hardening_ratio < 1.0)) {
     throw InputError("hysteresis.hardening_ratio", format_value(law.hardening_ratio), "must lie in [0, 1)");
   }
@@ -351,6 +374,43 @@ RayleighCoefficients fit_rayleigh(double omega_i, double omega_j, double ratio) 
   return {2.0 * ratio * omega_i * omega_j / sum, 2.0 * ratio / sum};
 }
 
+double storey_column_stiffness(const Building& building, int storey, int direction) {
+  const BuildingDefinition& d = building.definition;
+  double sum_kN_per_m = 0.0;
+  for (const Column& column : d.columns)
+    sum_kN_per_m += column_stiffness(column, d.E_kPa, d.storey_height_m[storey - 1], building.frame_factor)[direction];
+  return sum_kN_per_m;
+}
+
+double column_yield_drift_m(const Building& building, int storey, int direction) {
+  const HystereticLaw& law = building.definition.hysteresis;
+  const std::size_t j = storey - 1;
+  if (!law.yield_drift_m.empty()) return law.yield_drift_m[j];
+  if (!law.yield_drift_ratio.empty()) return law.yield_drift_ratio[j] * building.definition.storey_height_m[j];
+  return law.yield_shear_kN[j] / storey_column_stiffness(building, storey, direction);
+}
+
+namespace {
+
+/// A storey yield shear sets the yield drift through the columns' stiffness, known only once the
+/// frame factor is: refused here, as refuse_collapse_before_yield() refuses a yield drift.
+void refuse_collapse_before_yield_shear(const Building& building) {
+  const std::vector<double>& shears_kN = building.definition.hysteresis.yield_shear_kN;
+  for (std::size_t j = 0; j < shears_kN.size(); ++j) {
+    const double height_m = building.definition.storey_height_m[j];
+    for (int direction = 0; direction < 2; ++direction) {
+      const double drift_m = column_yield_drift_m(building, static_cast<int>(j) + 1, direction);
+      if (drift_m <= 0.05 * height_m) continue;
+      throw InputError(indexed("hysteresis.yield_shear_kN", j), format_value(shears_kN[j]),
+                       fmt::format("gives storey {}'s columns a yield drift of {:.4g} m along {}, over 5 % of its "
+                                   "height ({:g} m): a drift of 10 % of a storey ends a run as a collapse",
+                                   j + 1, drift_m, direction == 0 ? "x" : "y", height_m));
+    }
+  }
+}
+
+}  // namespace
+
 Building make_building(const BuildingDefinition& definition) {
   definition.validate();
   Building building;
@@ -374,6 +434,7 @@ Building make_building(const BuildingDefinition& definition) {
     building.frame_factor = 1.0;
     building.stiffness = assemble_stiffness(definition.storey_stiffness);
   }
+  if (definition.hysteresis.yields()) refuse_collapse_before_yield_shear(building);
   if (definition.p_delta) building.stiffness += assemble_stiffness(geometric_storey_matrices(definition));
   require_positive_definite(building.stiffness, definition);
 

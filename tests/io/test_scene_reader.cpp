@@ -486,6 +486,56 @@ BOOST_AUTO_TEST_CASE(BoucWenParametersAreCheckedAndOnlyForTheirLaw) {
                       {"building[1].hysteresis.law", "\"elastic\", \"bilinear\" or \"bouc-wen\""}));
 }
 
+BOOST_AUTO_TEST_CASE(AStrengthIsOneNumberForEveryStoreyOrOneAStorey) {
+  // Building 1 has two storeys of 3 m and four 0.4 m columns: k = 12 E (0.4⁴/12)/3³ each.
+  const std::string columns =
+      "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";
+  const auto with_strength = [&](const std::string& lines) {
+    return edited(columns, columns + "\n[building.hysteresis]\nlaw = \"bilinear\"\n" + lines);
+  };
+  Case spread(with_strength("yield_drift_ratio = 0.005\n"));
+  BOOST_TEST(read_scene(spread.file).buildings[0].hysteresis.yield_drift_ratio == std::vector<double>({0.005, 0.005}));
+  Case listed(with_strength("yield_shear_kN = [400.0, 250.0]\n"));
+  const auto scene = read_scene(listed.file);
+  BOOST_TEST(scene.buildings[0].hysteresis.yield_shear_kN == std::vector<double>({400.0, 250.0}));
+  // The storey's yield shear over its columns' stiffness: every column of storey 2 yields at
+  // 250 kN / (4 k) along x and along y.
+  const pounding::model::Building building = pounding::model::make_building(scene.buildings[0]);
+  const double column_k_kN_per_m = 12.0 * 3.0e7 * (0.4 * 0.4 * 0.4 * 0.4 / 12.0) / 27.0;
+  BOOST_TEST(pounding::model::column_yield_drift_m(building, 2, 1) == 250.0 / (4.0 * column_k_kN_per_m),
+             boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(pounding::model::storey_column_stiffness(building, 1, 0) == 4.0 * column_k_kN_per_m,
+             boost::test_tools::tolerance(1e-14));
+
+  BOOST_TEST(mentions(error_of(with_strength("yield_drift_m = [0.01, 0.01, 0.01]\n")),
+                      {"building[1].hysteresis.yield_drift_m = 3 values", "one value per storey (2)"}));
+  BOOST_TEST(mentions(error_of(with_strength("yield_shear_kN = [400.0, -1.0]\n")),
+                      {"building[1].hysteresis.yield_shear_kN[2] = -1", "(0, 1000000000] kN"}));
+  BOOST_TEST(mentions(error_of(with_strength("yield_shear_kN = 0.0\n")),
+                      {"building[1].hysteresis.yield_shear_kN = 0", "(0, 1000000000] kN"}));
+  BOOST_TEST(mentions(error_of(with_strength("yield_drift_m = [0.01, 0.2]\n")),
+                      {"building[1].hysteresis.yield_drift_m[2] = 0.2", "5 % of storey 2's height (3 m)"}));
+  BOOST_TEST(mentions(error_of(with_strength("yield_drift_m = 0.2\n")),
+                      {"building[1].hysteresis.yield_drift_m = 0.2", "5 % of the lowest storey (3 m)"}));
+  BOOST_TEST(mentions(error_of(with_strength("yield_drift_ratio = 0.005\nyield_shear_kN = 400.0\n")),
+                      {"building[1].hysteresis.yield_drift_ratio = given with yield_shear_kN",
+                       "one of yield_drift_ratio, yield_drift_m and yield_shear_kN"}));
+  BOOST_TEST(mentions(error_of(with_strength("")), {"building[1].hysteresis.yield_drift_ratio = missing"}));
+  BOOST_TEST(
+      mentions(error_of(with_strength("yield_shear_kN = [\"a\", 1.0]\n")), {"building[1].hysteresis.yield_shear_kN"}));
+  // A shear that the columns reach only beyond 5 % of the storey's drift is refused once the
+  // frame factor is known (here 4 k · 0.15 m = 1.7e4 kN at storey 1).
+  Case too_strong(with_strength("yield_shear_kN = [2.0e4, 400.0]\n"));
+  const auto strong = read_scene(too_strong.file);
+  try {
+    pounding::analysis::summarise_buildings(strong);
+    BOOST_FAIL("a yield shear beyond 5 % drift was accepted");
+  } catch (const InputError& error) {
+    BOOST_TEST(mentions(error.what(), {"building[1].hysteresis.yield_shear_kN[1] = 20000",
+                                       "yield drift of 0.1758 m along x, over 5 % of its height (3 m)"}));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(AbsurdContactSolverAndOutputValuesNameTheirRange) {
   BOOST_TEST(mentions(error_of(kScene, {.gap_m = 1e17}), {"--gap = 1e+17", "[0, 10] m"}));
   BOOST_TEST(mentions(error_of(edited("restitution = 0.5", "restitution = 0.5\nhold_velocity_mps = 1e6")),

@@ -117,7 +117,7 @@ BOOST_AUTO_TEST_CASE(BilinearOscillatorReleasedWithAVelocityFollowsItsClosedForm
         const double t_end = t_peak + 0.25 * 2.0 * std::numbers::pi / sdof.omega();
         const auto system = system_of({.kind = model::HystereticLaw::Kind::bilinear,
                                        .yield_drift_ratio = {},
-                                       .yield_drift_m = sdof.d_y,
+                                       .yield_drift_m = {sdof.d_y},
                                        .hardening_ratio = alpha},
                                       t_end, p_delta);
         BOOST_TEST_REQUIRE(system.springs().size() == 8u);  // 4 columns × (x, y)
@@ -165,7 +165,7 @@ BOOST_AUTO_TEST_CASE(PDeltaBeyondTheHardeningStopsTheRunAsACollapse) {
       BOOST_TEST(runs_away == (v0 > 3.0));  // the threshold is 3.06 m/s
       const auto system = system_of({.kind = model::HystereticLaw::Kind::bilinear,
                                      .yield_drift_ratio = {},
-                                     .yield_drift_m = sdof.d_y,
+                                     .yield_drift_m = {sdof.d_y},
                                      .hardening_ratio = 0.0},
                                     2.0, true);
       solvers::EventOptions options;
@@ -256,7 +256,7 @@ struct BoucWenLoading {
 model::HystereticLaw bouc_wen(double d_y, double alpha, double n) {
   model::HystereticLaw law;
   law.kind = model::HystereticLaw::Kind::bouc_wen;
-  law.yield_drift_m = d_y;
+  law.yield_drift_m = {d_y};
   law.hardening_ratio = alpha;
   law.bouc_wen_n = n;
   return law;

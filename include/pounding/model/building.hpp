@@ -63,9 +63,14 @@ struct RayleighSpec {
 struct HystereticLaw {
   enum class Kind { elastic, bilinear, bouc_wen };
   Kind kind = Kind::elastic;
-  /// The yield drift (m) of storey j: yield_drift_ratio · H_j, or yield_drift_m for every storey.
-  std::optional<double> yield_drift_ratio;
-  std::optional<double> yield_drift_m;
+  /// The strength, exactly one of three, each one value a storey, storey 1 first (the reader
+  /// spreads a single number over every storey): the yield drift as a fraction of the storey
+  /// height (d_y = ratio_j · H_j), the yield drift (m), or the storey's yield shear (kN), the
+  /// shear at which the storey's columns all yield together in a translation along x or y:
+  /// d_y = V_j / Σ k of its columns along that direction (column_yield_drift_m()).
+  std::vector<double> yield_drift_ratio;
+  std::vector<double> yield_drift_m;
+  std::vector<double> yield_shear_kN;
   double hardening_ratio = 0.0;  // α ∈ [0, 1): post-yield over initial stiffness
   /// Bouc–Wen's shape parameters (only for Kind::bouc_wen): A = 1 (so that the initial stiffness
   /// is k, which K uses); β > 0 and −β < γ ≤ β, so that z stays within (A/(β + γ))^(1/n) and no
@@ -78,10 +83,6 @@ struct HystereticLaw {
   bool yields() const { return kind != Kind::elastic; }
   /// True for the laws whose state is an ODE variable (Bouc–Wen's z) rather than branches.
   bool is_smooth() const { return kind == Kind::bouc_wen; }
-  /// @pre yields(); storey_height_m > 0.
-  double yield_drift_of(double storey_height_m) const {
-    return yield_drift_m ? *yield_drift_m : *yield_drift_ratio * storey_height_m;
-  }
 };
 
 /// The scene's name of a law ("elastic", "bilinear", "bouc-wen").
@@ -90,6 +91,7 @@ const char* to_string(HystereticLaw::Kind kind);
 /// The ranges of HystereticLaw's parameters, public for the scene reader's messages.
 inline constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};
 inline constexpr Range kYieldDrift{0.0, 1.0, "m", true};
+inline constexpr Range kYieldShear{0.0, 1e9, "kN", true};
 inline constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
 inline constexpr Range kBoucWenA{0.0, 10.0, "", true};
 inline constexpr Range kBoucWenBeta{0.0, 10.0, "", true};
@@ -188,6 +190,14 @@ struct Building {
   int storeys() const { return definition.storeys; }
   int dof() const { return 3 * definition.storeys; }
 };
+
+/// Σ k (kN/m) of storey `storey`'s columns (1-based) along `direction` (0: x, 1: y), with the
+/// building's frame factor. @pre building.definition.uses_columns().
+double storey_column_stiffness(const Building& building, int storey, int direction);
+
+/// The yield drift (m) of every column of storey `storey` (1-based) along `direction` (0: x,
+/// 1: y), from the law's strength (HystereticLaw). @pre building.definition.hysteresis.yields().
+double column_yield_drift_m(const Building& building, int storey, int direction);
 
 /// Validates `definition`, solves the frame factor if a target period is given (for the frame
 /// without P-Δ), assembles M, K (with P-Δ if asked), C and solves the modes. @throws InputError (field relative to the
