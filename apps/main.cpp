@@ -197,13 +197,13 @@ int main(int argc, char** argv) {
   pounding::cli::SettingsCommand settings;
   CLI::App* settings_app = app.add_subcommand(
       "settings",
-      "The [solver] and [contact] settings and the run limits: key, option, type, default, range (and the methods "
-      "using each solver setting)");
+      "The [solver] and [contact] settings, the run limits and the [building.limit_states] keys: key, option, type, "
+      "default, range (and the methods using each solver setting)");
   settings_app->add_flag("--json", settings.json,
                          "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
   settings_app->add_option("--markdown", settings.markdown,
-                           "solver, contact or limits: that section's tables in docs/scene-format.md "
-                           "(limits: docs/guide/limits.md)");
+                           "solver, contact, limits or limit_states: that section's tables in "
+                           "docs/scene-format.md (limits: docs/guide/limits.md)");
 
   pounding::cli::OutputsCommand outputs;
   CLI::App* outputs_app = app.add_subcommand(

@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "pounding/analysis/contact_laws.hpp"
+#include "pounding/analysis/limit_states.hpp"
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/analysis/scene.hpp"
 #include "pounding/input_error.hpp"
@@ -134,6 +135,25 @@ void print_keys_text(std::span<const analysis::KeySpec<Owner>> specs, std::strin
   }
 }
 
+/// The drift limits' keys, then each structural type's default limits.
+void print_limit_states_markdown() {
+  print_keys_markdown(analysis::drift_limit_specs());
+  fmt::print("\n| `structural_type` | FEMA 356 Table C1-3 | IO | LS | CP |\n|---|---|---|---|---|\n");
+  for (const analysis::StructuralType& type : analysis::structural_types()) {
+    fmt::print("| `\"{}\"`{} | {} | {:g} % | {:g} % | {:g} % |\n", type.name,
+               &type == analysis::structural_types().data() ? " (default)" : "", type.description,
+               100.0 * type.drift_ratios[0], 100.0 * type.drift_ratios[1], 100.0 * type.drift_ratios[2]);
+  }
+}
+
+nlohmann::json structural_types_json() {
+  nlohmann::json types = nlohmann::json::array();
+  for (const analysis::StructuralType& type : analysis::structural_types()) {
+    types.push_back({{"name", type.name}, {"description", type.description}, {"drift_ratios", type.drift_ratios}});
+  }
+  return types;
+}
+
 void print_solver_markdown() {
   fmt::print("| method | uses |\n|---|---|\n");
   for (const analysis::MethodInfo& method : analysis::methods()) {
@@ -164,8 +184,10 @@ int run_settings(const SettingsCommand& command) {
       print_keys_markdown(analysis::contact_setting_specs());
     } else if (*command.markdown == "limits") {
       print_keys_markdown(analysis::limit_specs());
+    } else if (*command.markdown == "limit_states") {
+      print_limit_states_markdown();
     } else {
-      throw InputError("--markdown", *command.markdown, "expected solver, contact or limits");
+      throw InputError("--markdown", *command.markdown, "expected solver, contact, limits or limit_states");
     }
     return 0;
   }
@@ -175,7 +197,15 @@ int run_settings(const SettingsCommand& command) {
     for (const SettingSpec& spec : analysis::setting_specs()) solver.push_back(as_json(spec));
     for (const auto& spec : analysis::contact_setting_specs()) contact.push_back(as_json(spec, "contact"));
     for (const auto& spec : analysis::limit_specs()) limits.push_back(as_json(spec, "limits"));
-    fmt::print("{}\n", nlohmann::json{{"solver", solver}, {"contact", contact}, {"limits", limits}}.dump(2));
+    nlohmann::json limit_states = nlohmann::json::array();
+    for (const auto& spec : analysis::drift_limit_specs())
+      limit_states.push_back(as_json(spec, "building.limit_states"));
+    fmt::print("{}\n", nlohmann::json{{"solver", solver},
+                                      {"contact", contact},
+                                      {"limits", limits},
+                                      {"limit_states", limit_states},
+                                      {"structural_types", structural_types_json()}}
+                           .dump(2));
     return 0;
   }
   for (const SettingSpec& spec : analysis::setting_specs()) {
@@ -185,6 +215,7 @@ int run_settings(const SettingsCommand& command) {
   }
   print_keys_text(analysis::contact_setting_specs(), "contact");
   print_keys_text(analysis::limit_specs(), "limits");
+  print_keys_text(analysis::drift_limit_specs(), "building.limit_states");
   return 0;
 }
 

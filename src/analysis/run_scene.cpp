@@ -479,6 +479,7 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
     const dynamics::CoupledSystem free = build_system(reference, false);
     report.contact_free = run_system(reference, resolve(reference.solver, &free), free, limits, budget, nullptr);
   }
+  report.limit_states = drift_limit_states(scene.buildings, report.result, report.contact_free);
   return report;
 }
 

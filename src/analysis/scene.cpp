@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "pounding/analysis/contact_laws.hpp"
+#include "pounding/analysis/limit_states.hpp"
 #include "pounding/contact/impact.hpp"
 #include "pounding/input_error.hpp"
 
@@ -272,6 +273,22 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
     throw InputError("output.contact_free_reference", "true",
                      "compares the storeys' peak drifts: output.peaks must include \"drifts\"");
   }
+}
+
+/// Drift limit states are judged on the storeys' located peak drifts.
+void validate_limit_state_outputs(const Scene& scene) {
+  const auto assessed = std::find_if(scene.buildings.begin(), scene.buildings.end(),
+                                     [](const model::BuildingDefinition& b) { return b.drift_limits.has_value(); });
+  if (assessed == scene.buildings.end() ||
+      std::find(scene.output.peaks.begin(), scene.output.peaks.end(), kPeakGroups[2]) != scene.output.peaks.end()) {
+    return;
+  }
+  std::vector<std::string> quoted;
+  for (const std::string& group : scene.output.peaks) quoted.push_back(fmt::format("\"{}\"", group));
+  throw InputError("output.peaks", fmt::format("[{}]", fmt::join(quoted, ", ")),
+                   fmt::format("must include \"drifts\": building '{}' has [building.limit_states], judged on the "
+                               "storeys' peak drifts",
+                               assessed->name));
 }
 
 void validate_pair(const Scene& scene) {
@@ -641,6 +658,7 @@ void Scene::validate() const {
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     try {
       buildings[i].validate();
+      if (buildings[i].drift_limits) validate_drift_limits(*buildings[i].drift_limits);
     } catch (const InputError& error) {
       throw error.in_context(file.string(), building_key(i));
     }
@@ -653,6 +671,7 @@ void Scene::validate() const {
     validate_column_storeys(*this);
     solver.validate();
     validate_output(output, levels().size());
+    validate_limit_state_outputs(*this);
     validate_floor_history(*this);
     is_row() ? validate_row(*this) : validate_pair(*this);
   } catch (const InputError& error) {

@@ -190,6 +190,33 @@ void append_pounding_demand(const analysis::RunReport& report, std::string& text
   }
 }
 
+/// "IO 1 % exceeded (by 0.35 %), LS 2 % met (margin 0.65 %), CP 4 % met (margin 2.65 %)".
+std::string verdicts_text(const std::array<analysis::LevelVerdict, 3>& levels) {
+  std::vector<std::string> parts;
+  for (const analysis::LevelVerdict& v : levels) {
+    parts.push_back(fmt::format("{} {:g} % {} ({} {:.3f} %)", v.level, 100.0 * v.drift_ratio,
+                                v.exceeded ? "exceeded" : "met", v.exceeded ? "by" : "margin",
+                                100.0 * std::abs(v.margin)));
+  }
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+/// Per building with [building.limit_states]: its peak storey drift ratio against each level.
+void append_limit_states(const analysis::RunReport& report, std::string& text) {
+  auto out = std::back_inserter(text);
+  for (const analysis::DriftLimitState& state : report.limit_states) {
+    const analysis::PeakStoreyDrift& p = state.peak;
+    fmt::format_to(out, "Limit states {} ({}): peak storey drift {:.3f} % (storey {}, {} {}, t = {:.4f} s): {}\n",
+                   state.name, state.structural_type, 100.0 * p.ratio, p.storey, p.where, p.axis, p.t_s,
+                   verdicts_text(state.levels));
+    if (state.peak_without_contact) {
+      fmt::format_to(out, "  without contact: peak storey drift {:.3f} % (storey {}): {}\n",
+                     100.0 * state.peak_without_contact->ratio, state.peak_without_contact->storey,
+                     verdicts_text(*state.levels_without_contact));
+    }
+  }
+}
+
 void append_response(const analysis::RunReport& report, std::string& text) {
   const solvers::RunResult& r = report.result;
   auto out = std::back_inserter(text);
@@ -213,6 +240,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   append_design_peaks(report, text);
   append_yielding(report, text);
   append_pounding_demand(report, text);
+  append_limit_states(report, text);
   const auto& st = r.statistics;
   if (st.max_interpenetration_candidate >= 0) {
     fmt::format_to(

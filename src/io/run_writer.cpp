@@ -185,6 +185,46 @@ json with_without(double with, double without) {
           {"ratio", without > analysis::kDemandFloor ? json(with / without) : json(nullptr)}};
 }
 
+json peak_drift_json(const analysis::PeakStoreyDrift& peak) {
+  return {{"drift_ratio", peak.ratio},
+          {"t_s", peak.t_s},
+          {"storey", peak.storey},
+          {"where", peak.where},
+          {"axis", std::string(1, peak.axis)}};
+}
+
+json verdicts_json(const std::array<analysis::LevelVerdict, 3>& levels) {
+  json list = json::array();
+  for (const analysis::LevelVerdict& v : levels) {
+    list.push_back({{"level", v.level},
+                    {"drift_ratio_limit", v.drift_ratio},
+                    {"limit_from", v.given ? "scene" : "structural_type"},
+                    {"exceeded", v.exceeded},
+                    {"margin", v.margin}});
+  }
+  return list;
+}
+
+/// Per building with [building.limit_states]: the peak storey drift ratio and each performance
+/// level's verdict, with contact and (with the contact-free reference) without.
+json limit_states_json(const analysis::RunReport& report) {
+  json buildings = json::array();
+  for (const analysis::DriftLimitState& state : report.limit_states) {
+    json entry = {{"building", state.name},
+                  {"structural_type", state.structural_type},
+                  {"peak_storey_drift", peak_drift_json(state.peak)},
+                  {"levels", verdicts_json(state.levels)}};
+    if (state.peak_without_contact) {
+      entry["without_contact"] = {{"peak_storey_drift", peak_drift_json(*state.peak_without_contact)},
+                                  {"levels", verdicts_json(*state.levels_without_contact)}};
+    }
+    buildings.push_back(std::move(entry));
+  }
+  return {{"measure", "largest |storey drift ratio| over storeys, the CM and the slab corners, along x and y"},
+          {"source", "FEMA 356 Table C1-3 (indicative transient drifts) unless the scene gives a limit"},
+          {"buildings", buildings}};
+}
+
 /// The pounding-induced change of each storey's peak drift ratio at the CM (and of its columns'
 /// ductility, when they yield) against the same run without contact.
 json pounding_demand_json(const analysis::RunReport& report) {
@@ -390,13 +430,14 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
     scaling["record_factor"] = sa.record_factor;
     summary["spectral_scaling"] = scaling;
   }
-  if (report.springs.empty() && !report.contact_free) return summary;
+  if (report.springs.empty() && !report.contact_free && report.limit_states.empty()) return summary;
   // The yielding and pounding-demand sections go before the energy audit.
   json extended;
   for (auto& [key, value] : summary.items()) {
     if (key == "energy") {
       if (!report.springs.empty()) extended["yielding"] = yielding_json(report);
       if (report.contact_free) extended["pounding_demand"] = pounding_demand_json(report);
+      if (!report.limit_states.empty()) extended["limit_states"] = limit_states_json(report);
     }
     extended[key] = std::move(value);
   }

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -33,6 +34,7 @@ struct TomlCheckFailed : std::logic_error {
 #include <toml++/toml.h>
 #pragma pop_macro("NDEBUG")
 
+#include "pounding/analysis/limit_states.hpp"
 #include "pounding/analysis/run_scene.hpp"
 #include "pounding/input_error.hpp"
 #include "toml_text.hpp"
@@ -450,6 +452,38 @@ model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
   return law;
 }
 
+/// Reads each row's key of `table` into its member of `owner`; an absent key leaves the member as
+/// it is, unless `required(row)`.
+template <typename Owner, typename Required>
+void read_keys(TableReader& table, Owner& owner, std::span<const analysis::KeySpec<Owner>> specs,
+               const Required& required) {
+  for (const analysis::KeySpec<Owner>& spec : specs) {
+    std::visit(
+        [&](auto Owner::*member) {
+          auto& value = owner.*member;
+          using T = std::decay_t<decltype(value)>;
+          if constexpr (std::is_same_v<T, std::string>) {
+            value = table.optional_string(spec.key).value_or(value);
+          } else if constexpr (std::is_same_v<T, double>) {
+            value = required(spec) ? table.number(spec.key) : table.number_or(spec.key, value);
+          } else if constexpr (std::is_same_v<T, long>) {
+            value = table.optional_integer(spec.key).value_or(value);
+          } else {
+            value = table.optional_number(spec.key);
+          }
+        },
+        spec.member);
+  }
+}
+
+model::DriftLimits read_drift_limits(TableReader table) {
+  model::DriftLimits limits;
+  read_keys(table, limits, analysis::drift_limit_specs(),
+            [](const analysis::DriftLimitSpec& spec) { return spec.required; });
+  table.finish();
+  return limits;
+}
+
 model::BuildingDefinition read_building(TableReader table) {
   model::BuildingDefinition b;
   b.name = table.string("name");
@@ -484,6 +518,7 @@ model::BuildingDefinition read_building(TableReader table) {
     damping->finish();
   }
   if (auto hysteresis = table.optional_subtable("hysteresis")) b.hysteresis = read_hysteresis(*hysteresis, b.storeys);
+  if (auto limits = table.optional_subtable("limit_states")) b.drift_limits = read_drift_limits(*limits);
   if (const toml::node* p_delta = table.find("p_delta")) {
     if (!p_delta->is_boolean()) throw table.error(*p_delta, table.key_path("p_delta"), "expected true or false");
     b.p_delta = **p_delta->as_boolean();
@@ -697,24 +732,9 @@ analysis::Scene read_document(const toml::table& document, const std::filesystem
   scene.excitation = read_excitation(root.subtable("excitation"), path.parent_path());
   for (model::BuildingDefinition& b : scene.buildings) b.g_mps2 = scene.excitation.g_mps2;  // for P-Δ
   TableReader contact = root.subtable("contact");
-  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
-    std::visit(
-        [&](auto analysis::ContactSettings::*member) {
-          auto& value = scene.contact.*member;
-          using T = std::decay_t<decltype(value)>;
-          if constexpr (std::is_same_v<T, std::string>) {
-            value = contact.optional_string(spec.key).value_or(value);
-          } else if constexpr (std::is_same_v<T, double>) {
-            value = spec.required && !(scene.is_row() && spec.key == "gap_m") ? contact.number(spec.key)
-                                                                              : contact.number_or(spec.key, value);
-          } else if constexpr (std::is_same_v<T, long>) {
-            value = contact.optional_integer(spec.key).value_or(value);
-          } else {
-            value = contact.optional_number(spec.key);
-          }
-        },
-        spec.member);
-  }
+  read_keys(contact, scene.contact, analysis::contact_setting_specs(), [&](const analysis::ContactSettingSpec& spec) {
+    return spec.required && !(scene.is_row() && spec.key == "gap_m");
+  });
   read_pair_gaps(contact, scene);
   contact.finish();
   scene.solver = read_solver(root.optional_subtable("solver"));

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "../support/fixtures.hpp"
+#include "pounding/analysis/limit_states.hpp"
 #include "pounding/analysis/modal_summary.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/scene_reader.hpp"
@@ -534,6 +535,35 @@ BOOST_AUTO_TEST_CASE(AStrengthIsOneNumberForEveryStoreyOrOneAStorey) {
     BOOST_TEST(mentions(error.what(), {"building[1].hysteresis.yield_shear_kN[1] = 20000",
                                        "yield drift of 0.1758 m along x, over 5 % of its height (3 m)"}));
   }
+}
+
+BOOST_AUTO_TEST_CASE(DriftLimitStatesAreReadFromTheirTableAndChecked) {
+  const std::string columns =
+      "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";
+  const auto with_limits = [&](const std::string& lines) {
+    return edited(columns, columns + "\n[building.limit_states]\n" + lines);
+  };
+  Case empty(with_limits(""));
+  const auto defaults = read_scene(empty.file).buildings[0].drift_limits;
+  BOOST_TEST_REQUIRE(defaults.has_value());
+  BOOST_TEST(defaults->structural_type == "concrete-frame");
+  BOOST_TEST((pounding::analysis::resolved_drift_limits(*defaults) == std::array<double, 3>{0.01, 0.02, 0.04}));
+  Case given(with_limits("structural_type = \"concrete-wall\"\nlife_safety = 0.015\n"));
+  const auto limits = *read_scene(given.file).buildings[0].drift_limits;
+  BOOST_TEST((pounding::analysis::resolved_drift_limits(limits) == std::array<double, 3>{0.005, 0.015, 0.02}));
+  BOOST_TEST(!read_scene(Case(kScene).file).buildings[0].drift_limits.has_value());
+
+  BOOST_TEST(mentions(error_of(with_limits("structural_type = \"adobe\"\n")),
+                      {"building[1].limit_states.structural_type = \"adobe\"", "\"concrete-frame\" or"}));
+  BOOST_TEST(mentions(error_of(with_limits("life_safety = 0.5\n")),
+                      {"building[1].limit_states.life_safety = 0.5", "(0, 0.2]"}));
+  BOOST_TEST(mentions(error_of(with_limits("collapse_prevention = 0.015\n")),
+                      {"building[1].limit_states.collapse_prevention = 0.015",
+                       "must exceed the LS limit (0.02, the "
+                       "concrete-frame default)"}));
+  BOOST_TEST(mentions(error_of(with_limits("life_safty = 0.02\n")), {"limit_states.life_safty", "life_safety"}));
+  BOOST_TEST(mentions(error_of(with_limits("") + "[output]\npeaks = [\"displacements\"]\n"),
+                      {"output.peaks = [\"displacements\"]", "must include \"drifts\"", "building 'A'"}));
 }
 
 BOOST_AUTO_TEST_CASE(AbsurdContactSolverAndOutputValuesNameTheirRange) {

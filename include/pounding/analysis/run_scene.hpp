@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "pounding/analysis/key_spec.hpp"
+#include "pounding/analysis/limit_states.hpp"
 #include "pounding/analysis/scene.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/dynamics/coupled_system.hpp"
@@ -113,6 +114,8 @@ struct RunReport {
   std::optional<solvers::RunResult> contact_free = std::nullopt;
   /// The yielding column springs (result.springs in the same order); empty if all stay elastic.
   std::vector<dynamics::YieldingSpring> springs = {};
+  /// The drift limit states of the buildings with [building.limit_states] (limit_states.hpp).
+  std::vector<DriftLimitState> limit_states = {};
   std::optional<SpectralScaling> spectral_scaling = std::nullopt;  // with excitation.scale_to_sa
   /// A row: its neighbouring pairs (Scene::pairs) and building names; empty for two buildings,
   /// whose outputs name no pair.

@@ -98,6 +98,16 @@ inline constexpr Range kBoucWenBeta{0.0, 10.0, "", true};
 inline constexpr Range kBoucWenGamma{-10.0, 10.0};
 inline constexpr Range kBoucWenN{1.0, 50.0};
 
+/// The peak transient storey drift ratios that mark a building's structural performance levels
+/// ([building.limit_states], analysis/limit_states.hpp): immediate occupancy, life safety and
+/// collapse prevention. An unset limit is its structural type's (FEMA 356 Table C1-3).
+struct DriftLimits {
+  std::string structural_type = "concrete-frame";
+  std::optional<double> immediate_occupancy;
+  std::optional<double> life_safety;
+  std::optional<double> collapse_prevention;
+};
+
 /// Everything a scene says about one building. All floors share the slab outline and the CM.
 struct BuildingDefinition {
   std::string name;
@@ -125,6 +135,8 @@ struct BuildingDefinition {
   /// K and so in the modes and the Rayleigh damping. The gravity g_mps2 is the scene's.
   bool p_delta = false;
   double g_mps2 = 9.81;
+  /// The drift limits its run is assessed against; none: not assessed.
+  std::optional<DriftLimits> drift_limits;
 
   bool uses_columns() const { return storey_stiffness.empty(); }
   /// @throws InputError naming the offending field (as the scene key, relative to the building),

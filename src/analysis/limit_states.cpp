@@ -1,0 +1,150 @@
+#include "pounding/analysis/limit_states.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pounding/input_error.hpp"
+
+namespace pounding::analysis {
+
+namespace {
+
+/// A drift ratio limit: above 0 (a limit of 0 is exceeded by any motion), at most 20 % (beyond
+/// 10 % the run ends as a collapse; a higher limit would never be reached).
+constexpr Range kDriftLimitRange{0.0, 0.2, "", true};
+
+constexpr std::array<StructuralType, 8> kStructuralTypes{{
+    {"concrete-frame", "concrete frames", {0.01, 0.02, 0.04}},
+    {"concrete-wall", "concrete walls", {0.005, 0.01, 0.02}},
+    {"steel-moment-frame", "steel moment frames", {0.007, 0.025, 0.05}},
+    {"steel-braced-frame", "braced steel frames", {0.005, 0.015, 0.02}},
+    {"masonry-infill", "unreinforced masonry infill walls", {0.001, 0.005, 0.006}},
+    {"unreinforced-masonry", "unreinforced masonry (noninfill) walls", {0.003, 0.006, 0.01}},
+    {"reinforced-masonry", "reinforced masonry walls", {0.002, 0.006, 0.015}},
+    {"wood-stud", "wood stud walls", {0.01, 0.02, 0.03}},
+}};
+
+std::vector<std::string_view> type_names() {
+  std::vector<std::string_view> names;
+  for (const StructuralType& type : kStructuralTypes) names.push_back(type.name);
+  return names;
+}
+
+const std::vector<DriftLimitSpec> kSpecs = {
+    {.key = "structural_type",
+     .member = &model::DriftLimits::structural_type,
+     .choices = type_names(),
+     .description = "the structural system, whose drift limits are the defaults",
+     .details = "FEMA 356 Table C1-3's indicative peak transient drifts (`pounding settings` lists them)"},
+    {.key = "immediate_occupancy",
+     .member = &model::DriftLimits::immediate_occupancy,
+     .range = kDriftLimitRange,
+     .description = "peak storey drift ratio at the immediate occupancy level (IO)",
+     .details = "unset: the structural type's"},
+    {.key = "life_safety",
+     .member = &model::DriftLimits::life_safety,
+     .range = kDriftLimitRange,
+     .description = "peak storey drift ratio at the life safety level (LS)",
+     .details = "unset: the structural type's"},
+    {.key = "collapse_prevention",
+     .member = &model::DriftLimits::collapse_prevention,
+     .range = kDriftLimitRange,
+     .description = "peak storey drift ratio at the collapse prevention level (CP)",
+     .details = "unset: the structural type's"},
+};
+
+const StructuralType& structural_type(std::string_view name) {
+  const auto* type = std::find_if(kStructuralTypes.begin(), kStructuralTypes.end(),
+                                  [&](const StructuralType& t) { return t.name == name; });
+  return type == kStructuralTypes.end() ? kStructuralTypes.front() : *type;
+}
+
+std::array<const std::optional<double>*, 3> given_limits(const model::DriftLimits& limits) {
+  return {&limits.immediate_occupancy, &limits.life_safety, &limits.collapse_prevention};
+}
+
+std::array<LevelVerdict, 3> verdicts(const model::DriftLimits& limits, double peak_ratio) {
+  const std::array<double, 3> resolved = resolved_drift_limits(limits);
+  const auto given = given_limits(limits);
+  std::array<LevelVerdict, 3> levels;
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    levels[i] = {.level = kPerformanceLevels[i],
+                 .drift_ratio = resolved[i],
+                 .given = given[i]->has_value(),
+                 .exceeded = peak_ratio > resolved[i],
+                 .margin = resolved[i] - peak_ratio};
+  }
+  return levels;
+}
+
+void consider(PeakStoreyDrift& worst, const solvers::Peak& peak, int storey, std::string where, char axis) {
+  if (worst.storey != 0 && !(std::abs(peak.value) > worst.ratio)) return;
+  worst = {.ratio = std::abs(peak.value), .t_s = peak.t_s, .storey = storey, .where = std::move(where), .axis = axis};
+}
+
+}  // namespace
+
+std::span<const DriftLimitSpec> drift_limit_specs() { return kSpecs; }
+
+std::span<const StructuralType> structural_types() { return kStructuralTypes; }
+
+std::array<double, 3> resolved_drift_limits(const model::DriftLimits& limits) {
+  std::array<double, 3> resolved = structural_type(limits.structural_type).drift_ratios;
+  const auto given = given_limits(limits);
+  for (std::size_t i = 0; i < resolved.size(); ++i) resolved[i] = given[i]->value_or(resolved[i]);
+  return resolved;
+}
+
+void validate_drift_limits(const model::DriftLimits& limits) {
+  validate_keys<model::DriftLimits>(limits, kSpecs, "limit_states");
+  const std::array<double, 3> resolved = resolved_drift_limits(limits);
+  for (std::size_t i = 1; i < resolved.size(); ++i) {
+    if (resolved[i] > resolved[i - 1]) continue;
+    const std::string_view key = kSpecs[i + 1].key;
+    throw InputError(
+        fmt::format("limit_states.{}", key), fmt::format("{:g}", resolved[i]),
+        fmt::format(
+            "must exceed the {} limit ({:g}{}): the levels rise from immediate occupancy to "
+            "collapse prevention",
+            kPerformanceLevels[i - 1], resolved[i - 1],
+            given_limits(limits)[i - 1]->has_value() ? "" : fmt::format(", the {} default", limits.structural_type)));
+  }
+}
+
+PeakStoreyDrift peak_storey_drift(const solvers::BuildingPeaks& peaks) {
+  PeakStoreyDrift worst;
+  for (const solvers::FloorPeaks& floor : peaks.floors) {
+    consider(worst, floor.drift_x, floor.floor, "CM", 'x');
+    consider(worst, floor.drift_y, floor.floor, "CM", 'y');
+    for (std::size_t k = 0; k < floor.corner_drift_x.size(); ++k) {
+      consider(worst, floor.corner_drift_x[k], floor.floor, fmt::format("corner {}", k + 1), 'x');
+      consider(worst, floor.corner_drift_y[k], floor.floor, fmt::format("corner {}", k + 1), 'y');
+    }
+  }
+  return worst;
+}
+
+std::vector<DriftLimitState> drift_limit_states(const std::vector<model::BuildingDefinition>& buildings,
+                                                const solvers::RunResult& result,
+                                                const std::optional<solvers::RunResult>& contact_free) {
+  std::vector<DriftLimitState> states;
+  for (std::size_t b = 0; b < buildings.size(); ++b) {
+    if (!buildings[b].drift_limits) continue;
+    const model::DriftLimits& limits = *buildings[b].drift_limits;
+    DriftLimitState state{.building = static_cast<int>(b),
+                          .name = buildings[b].name,
+                          .structural_type = limits.structural_type,
+                          .peak = peak_storey_drift(result.peaks.at(b))};
+    state.levels = verdicts(limits, state.peak.ratio);
+    if (contact_free) {
+      state.peak_without_contact = peak_storey_drift(contact_free->peaks.at(b));
+      state.levels_without_contact = verdicts(limits, state.peak_without_contact->ratio);
+    }
+    states.push_back(std::move(state));
+  }
+  return states;
+}
+
+}  // namespace pounding::analysis
