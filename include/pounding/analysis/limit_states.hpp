@@ -2,7 +2,7 @@
 // Drift limit states: a building's largest peak storey drift ratio over a run against the drifts
 // that mark its structural performance levels (immediate occupancy, life safety, collapse
 // prevention), set per building in [building.limit_states] with defaults by structural type
-// (FEMA 356 Table C1-3). docs/model.md §8 says what is measured and why.
+// (FEMA 356 Table C1-3). docs/model.md §2b says what is measured and why.
 
 #include <array>
 #include <optional>
