@@ -184,20 +184,24 @@ void print_excitation(const analysis::Scene& scene, const excitation::GroundMoti
              motion.peak_mps2(1) / spec.g_mps2, motion.peak_time_s(1), spec.direction_deg + 90.0);
 }
 
+/// Whether every entry equals the first (an empty list: true).
+template <typename T>
+bool all_equal(const std::vector<T>& values) {
+  return std::all_of(values.begin(), values.end(), [&](const T& value) { return value == values.front(); });
+}
+
 /// "7 storeys of 3 m", or with unequal storeys "7 storeys of 4.5, 3, 3, 3, 3, 3, 3 m" (floor 1 first).
 std::string storeys_text(const model::BuildingDefinition& b) {
   const std::vector<double>& h = b.storey_height_m;
-  const bool uniform = std::all_of(h.begin(), h.end(), [&](double height) { return height == h.front(); });
-  return uniform ? fmt::format("{} storeys of {} m", b.storeys, h.front())
-                 : fmt::format("{} storeys of {} m", b.storeys, fmt::join(h, ", "));
+  return all_equal(h) ? fmt::format("{} storeys of {} m", b.storeys, h.front())
+                      : fmt::format("{} storeys of {} m", b.storeys, fmt::join(h, ", "));
 }
 
 /// "0.005 of the storey height", "[0.004, 0.005] of the storey heights", "0.01 m", or "storey
 /// yield shear [5200, 4100] kN": the strength as the scene gave it (one number for all storeys).
 std::string strength_text(const model::HystereticLaw& law) {
   const auto values = [](const std::vector<double>& v) {
-    const bool uniform = std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
-    return uniform ? fmt::format("{}", v.front()) : fmt::format("[{}]", fmt::join(v, ", "));
+    return all_equal(v) ? fmt::format("{}", v.front()) : fmt::format("[{}]", fmt::join(v, ", "));
   };
   if (!law.yield_drift_m.empty()) return fmt::format("yield drift {} m", values(law.yield_drift_m));
   if (!law.yield_drift_ratio.empty()) {
@@ -217,8 +221,7 @@ void print_storey_strengths(const model::Building& building) {
     };
     storeys.push_back(fmt::format("{:.5g} | {:.5g}", shear_kN(0), shear_kN(1)));
   }
-  const bool uniform = std::all_of(storeys.begin(), storeys.end(), [&](const auto& s) { return s == storeys.front(); });
-  if (uniform) {
+  if (all_equal(storeys)) {
     fmt::print("  storey yield shear x | y: {} kN, every storey\n", storeys.front());
   } else {
     fmt::print("  storey yield shears x | y (kN), storey 1 first: {}\n", fmt::join(storeys, "; "));

@@ -243,6 +243,12 @@ void validate_floor_history(const Scene& scene) {
   }
 }
 
+/// Whether output.peaks keeps the storeys' drift peaks, which the pounding-induced demand and the
+/// drift limit states are judged on.
+bool keeps_drift_peaks(const OutputSettings& output) {
+  return std::find(output.peaks.begin(), output.peaks.end(), kPeakGroups[2]) != output.peaks.end();
+}
+
 void validate_output(const OutputSettings& output, std::size_t levels) {
   std::set<int> seen;
   for (std::size_t i = 0; i < output.history_floors.size(); ++i) {
@@ -268,8 +274,7 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
       throw InputError(key, value, "is listed twice");
     }
   }
-  if (output.contact_free_reference &&
-      std::find(output.peaks.begin(), output.peaks.end(), kPeakGroups[2]) == output.peaks.end()) {
+  if (output.contact_free_reference && !keeps_drift_peaks(output)) {
     throw InputError("output.contact_free_reference", "true",
                      "compares the storeys' peak drifts: output.peaks must include \"drifts\"");
   }
@@ -279,10 +284,7 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
 void validate_limit_state_outputs(const Scene& scene) {
   const auto assessed = std::find_if(scene.buildings.begin(), scene.buildings.end(),
                                      [](const model::BuildingDefinition& b) { return b.drift_limits.has_value(); });
-  if (assessed == scene.buildings.end() ||
-      std::find(scene.output.peaks.begin(), scene.output.peaks.end(), kPeakGroups[2]) != scene.output.peaks.end()) {
-    return;
-  }
+  if (assessed == scene.buildings.end() || keeps_drift_peaks(scene.output)) return;
   std::vector<std::string> quoted;
   for (const std::string& group : scene.output.peaks) quoted.push_back(fmt::format("\"{}\"", group));
   throw InputError("output.peaks", fmt::format("[{}]", fmt::join(quoted, ", ")),
