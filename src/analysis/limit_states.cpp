@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "pounding/input_error.hpp"
 
@@ -124,6 +125,27 @@ PeakStoreyDrift peak_storey_drift(const solvers::BuildingPeaks& peaks) {
     }
   }
   return worst;
+}
+
+BuildingResidualDrift residual_drift(const solvers::BuildingPeaks& peaks, double first_period_s) {
+  const double omega_radps = 2.0 * std::numbers::pi / first_period_s;
+  BuildingResidualDrift building{.name = peaks.name, .first_period_s = first_period_s};
+  for (const solvers::FloorPeaks& floor : peaks.floors) {
+    StoreyResidualDrift storey{.storey = floor.floor, .x = floor.end_drift.at(0), .y = floor.end_drift.at(1)};
+    for (std::size_t slot = 0; slot < floor.end_drift.size(); ++slot) {
+      const double ratio = std::abs(floor.end_drift[slot]);
+      storey.oscillation = std::max(storey.oscillation, std::abs(floor.end_drift_rate_per_s[slot]) / omega_radps);
+      if (!storey.where.empty() && !(ratio > storey.largest)) continue;
+      storey.largest = ratio;
+      storey.where = slot < 2 ? "CM" : fmt::format("corner {}", slot / 2);
+      storey.axis = slot % 2 == 0 ? 'x' : 'y';
+    }
+    if (building.storeys.empty() || storey.largest > building.largest.largest) building.largest = storey;
+    building.oscillation = std::max(building.oscillation, storey.oscillation);
+    building.storeys.push_back(std::move(storey));
+  }
+  building.settled = building.oscillation <= std::max(0.1 * building.largest.largest, kSettledOscillation);
+  return building;
 }
 
 std::vector<DriftLimitState> drift_limit_states(const std::vector<model::BuildingDefinition>& buildings,

@@ -480,6 +480,14 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
     report.contact_free = run_system(reference, resolve(reference.solver, &free), free, limits, budget, nullptr);
   }
   report.limit_states = drift_limit_states(scene.buildings, report.result, report.contact_free);
+  report.free_vibration_s = scene.excitation.free_vibration_s;
+  if (report.result.outputs.drift_peaks &&
+      (!report.springs.empty() || !report.limit_states.empty() || report.free_vibration_s > 0.0)) {
+    for (int b = 0; b < system.building_count(); ++b) {
+      report.residual_drifts.push_back(residual_drift(report.result.peaks.at(static_cast<std::size_t>(b)),
+                                                      system.building(b).modes.front().period_s));
+    }
+  }
   return report;
 }
 

@@ -405,6 +405,7 @@ void ExcitationSpec::validate() const {
   // Physical ranges (docs/scene-format.md): beyond them a value is a typo or a unit mistake.
   validate_spacing("excitation.", read, dt_override_s);
   if (duration_s) require_range("excitation.duration_s", *duration_s, {0.0, kMaxRecordDuration_s, "s", true});
+  require_range("excitation.free_vibration_s", free_vibration_s, {0.0, kMaxFreeVibration_s, "s"});
   require_range("excitation.start_s", start_s, {0.0, kMaxRecordDuration_s, "s"});
   if (scale_to_pga_g) require_range("excitation.scale_to_pga_g", *scale_to_pga_g, {0.0, kMaxPeakAccel_g, "g", true});
   require_range("excitation.g_mps2", g_mps2, {kGravityRange_mps2[0], kGravityRange_mps2[1], "m/s2"});
@@ -476,6 +477,24 @@ double GroundMotion::peak_time_s(int component) const {
   return time_s_[peak_index_[static_cast<std::size_t>(component)]];
 }
 
+namespace {
+
+/// Zero samples after the record at its sample spacing (the median interval), the last at or past
+/// end + tail_s: every solution path takes them as it takes the record's own samples.
+void append_quiet_tail(std::vector<RecordSamples>& components, double tail_s) {
+  const std::vector<double>& times = components.front().time_s;
+  const double spacing_s = median_spacing_s(times), end_s = times.back();
+  const auto samples = static_cast<std::size_t>(std::ceil(tail_s / spacing_s * (1.0 - 1e-12)));
+  for (RecordSamples& c : components) {
+    for (std::size_t i = 1; i <= samples; ++i) {
+      c.time_s.push_back(end_s + static_cast<double>(i) * spacing_s);
+      c.accel.push_back(0.0);
+    }
+  }
+}
+
+}  // namespace
+
 GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec, std::optional<RecordSamples> second) {
   spec.validate();
   const ComponentSource h1_source = first_source(spec);
@@ -511,6 +530,7 @@ GroundMotion process_record(RecordSamples samples, const ExcitationSpec& spec, s
     applied_scale *= scale;
   }
   for (std::size_t c = 0; c < components.size(); ++c) check_peak(components[c].accel, spec, sources[c]);
+  if (spec.free_vibration_s > 0.0) append_quiet_tail(components, spec.free_vibration_s);
   const double direction_rad = spec.direction_deg * std::numbers::pi / 180.0;
   GroundMotion motion =
       spec.second ? GroundMotion(std::move(components[0].time_s), std::move(components[0].accel),

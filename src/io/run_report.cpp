@@ -217,6 +217,27 @@ void append_limit_states(const analysis::RunReport& report, std::string& text) {
   }
 }
 
+/// Per building: its largest residual drift, whether it had come to rest, and every storey's.
+void append_residual_drifts(const analysis::RunReport& report, std::string& text) {
+  auto out = std::back_inserter(text);
+  for (const analysis::BuildingResidualDrift& b : report.residual_drifts) {
+    const analysis::StoreyResidualDrift& worst = b.largest;
+    fmt::format_to(out, "Residual drift {} at t = {:.3f} s{}: largest {:.4f} % (storey {}, {} {}), {}\n", b.name,
+                   report.result.end_s,
+                   report.free_vibration_s > 0.0 ? fmt::format(" ({:g} s after the record)", report.free_vibration_s)
+                                                 : "",
+                   100.0 * worst.largest, worst.storey, worst.where, worst.axis,
+                   b.settled ? fmt::format("at rest (oscillation {:.4f} %)", 100.0 * b.oscillation)
+                             : fmt::format("still oscillating by about {:.4f} %: [excitation] free_vibration_s lets "
+                                           "it come to rest",
+                                           100.0 * b.oscillation));
+    for (const analysis::StoreyResidualDrift& s : b.storeys) {
+      fmt::format_to(out, "  storey {}: x {:.4f} %, y {:.4f} % at the CM; largest {:.4f} % ({} {})\n", s.storey,
+                     100.0 * s.x, 100.0 * s.y, 100.0 * s.largest, s.where, s.axis);
+    }
+  }
+}
+
 void append_response(const analysis::RunReport& report, std::string& text) {
   const solvers::RunResult& r = report.result;
   auto out = std::back_inserter(text);
@@ -241,6 +262,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   append_yielding(report, text);
   append_pounding_demand(report, text);
   append_limit_states(report, text);
+  append_residual_drifts(report, text);
   const auto& st = r.statistics;
   if (st.max_interpenetration_candidate >= 0) {
     fmt::format_to(

@@ -225,6 +225,43 @@ json limit_states_json(const analysis::RunReport& report) {
           {"buildings", buildings}};
 }
 
+json residual_json(const analysis::StoreyResidualDrift& storey) {
+  return {{"storey", storey.storey},
+          {"drift_ratio_x", storey.x},
+          {"drift_ratio_y", storey.y},
+          {"largest_drift_ratio", storey.largest},
+          {"where", storey.where},
+          {"axis", std::string(1, storey.axis)},
+          {"oscillation_ratio", storey.oscillation}};
+}
+
+/// Per building: every storey's drift ratio at the end of the run (FEMA P-58's residual drift once
+/// at rest), the largest, and whether the building had come to rest.
+json residual_drift_json(const analysis::RunReport& report) {
+  json buildings = json::array();
+  for (const analysis::BuildingResidualDrift& building : report.residual_drifts) {
+    json storeys = json::array();
+    for (const analysis::StoreyResidualDrift& storey : building.storeys) storeys.push_back(residual_json(storey));
+    buildings.push_back({{"building", building.name},
+                         {"first_period_s", building.first_period_s},
+                         {"largest", residual_json(building.largest)},
+                         {"oscillation_ratio", building.oscillation},
+                         {"settled", building.settled},
+                         {"storeys", storeys}});
+  }
+  return {{"measure",
+           "storey drift ratio at the end of the run (the CM's along x and y, signed; the largest |ratio| over the CM "
+           "and the slab corners)"},
+          {"t_s", report.result.end_s},
+          {"free_vibration_s", report.free_vibration_s},
+          {"oscillation",
+           "|drift ratio rate| / omega_1 at the end, largest over the points: a first-mode vibration's amplitude still "
+           "going on"},
+          {"settled", fmt::format("oscillation at most a tenth of the largest residual or below {:g}",
+                                  analysis::kSettledOscillation)},
+          {"buildings", buildings}};
+}
+
 /// The pounding-induced change of each storey's peak drift ratio at the CM (and of its columns'
 /// ductility, when they yield) against the same run without contact.
 json pounding_demand_json(const analysis::RunReport& report) {
@@ -430,7 +467,10 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
     scaling["record_factor"] = sa.record_factor;
     summary["spectral_scaling"] = scaling;
   }
-  if (report.springs.empty() && !report.contact_free && report.limit_states.empty()) return summary;
+  if (report.springs.empty() && !report.contact_free && report.limit_states.empty() &&
+      report.residual_drifts.empty()) {
+    return summary;
+  }
   // The yielding and pounding-demand sections go before the energy audit.
   json extended;
   for (auto& [key, value] : summary.items()) {
@@ -438,6 +478,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
       if (!report.springs.empty()) extended["yielding"] = yielding_json(report);
       if (report.contact_free) extended["pounding_demand"] = pounding_demand_json(report);
       if (!report.limit_states.empty()) extended["limit_states"] = limit_states_json(report);
+      if (!report.residual_drifts.empty()) extended["residual_drift"] = residual_drift_json(report);
     }
     extended[key] = std::move(value);
   }

@@ -596,6 +596,7 @@ excitation::ExcitationSpec read_excitation(TableReader table, const std::filesys
   read_layout(table, spec.read, spec.dt_override_s);
   spec.start_s = table.number_or("start_s", 0.0);
   spec.duration_s = table.optional_number("duration_s");
+  spec.free_vibration_s = table.number_or("free_vibration_s", 0.0);
   spec.scale_to_pga_g = table.optional_number("scale_to_pga_g");
   spec.scale_factor = table.number_or("scale_factor", 1.0);
   if (const std::optional<std::string> sa = table.optional_string("scale_to_sa")) {

@@ -179,7 +179,22 @@ void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result, 
   result.energy = energy_.close(final_state, springs);
   result.outputs = outputs_;
   result.peaks = peaks_.take();
+  if (outputs_.drift_peaks) record_end_drifts(final_state, result.peaks);
   result.history = std::move(history_);
+}
+
+void Recorder::record_end_drifts(const dynamics::VectorXd& final_state, std::vector<BuildingPeaks>& peaks) const {
+  Drifts end;
+  kinematics_.storey_drifts(final_state, end);
+  for (std::size_t b = 0; b < peaks.size(); ++b) {
+    const int building = static_cast<int>(b);
+    const std::size_t slots = kinematics_.drift_slots(building);
+    for (FloorPeaks& floor : peaks[b].floors) {
+      const std::size_t first = kinematics_.drift_index(building, floor.floor, 0);
+      floor.end_drift.assign(end.value.data() + first, end.value.data() + first + slots);
+      floor.end_drift_rate_per_s.assign(end.rate.data() + first, end.rate.data() + first + slots);
+    }
+  }
 }
 
 }  // namespace pounding::solvers

@@ -176,6 +176,25 @@ BOOST_AUTO_TEST_CASE(DurationBeyondTheRecordIsRefused) {
   BOOST_TEST(process_record(ramp(11, 0.01), spec).end_s() == 0.1, tt::tolerance(1e-12));
 }
 
+BOOST_AUTO_TEST_CASE(AQuietTailAppendsZeroSamplesAtTheRecordsSpacingAfterTheScaling) {
+  ExcitationSpec spec = spec_in(AccelUnits::m_per_s2);
+  spec.scale_to_pga_g = 1.0;      // the ramp's peak, 10 m/s2 at 0.1 s, becomes g
+  spec.free_vibration_s = 0.025;  // not a whole number of intervals: three zero samples cover it
+  const GroundMotion motion = process_record(ramp(11, 0.01), spec);
+  BOOST_TEST(motion.time_s().size() == 14u);
+  BOOST_TEST(motion.end_s() == 0.13, tt::tolerance(1e-12));
+  BOOST_TEST(motion.accel_mps2()[10] == 9.81, tt::tolerance(1e-14));  // scaled as before
+  BOOST_TEST(motion.accel_at(0.105) == 9.81 / 2, tt::tolerance(1e-12));  // linear to zero over one interval
+  BOOST_TEST(motion.accel_at(0.125) == 0.0);
+  BOOST_TEST(motion.peak_mps2() == 9.81, tt::tolerance(1e-14));
+  spec.free_vibration_s = 0.03;  // a whole number: no extra sample
+  BOOST_TEST(process_record(ramp(11, 0.01), spec).time_s().size() == 14u);
+  spec.free_vibration_s = -1.0;
+  BOOST_TEST(names(refusal(ramp(11, 0.01), spec), "excitation.free_vibration_s", "-1", "[0, 600] s"));
+  spec.free_vibration_s = 601.0;
+  BOOST_TEST(names(refusal(ramp(11, 0.01), spec), "excitation.free_vibration_s", "601", "[0, 600] s"));
+}
+
 BOOST_AUTO_TEST_CASE(AbsurdScalingAndGravityAreRefused) {
   ExcitationSpec spec = spec_in(AccelUnits::g);
   spec.scale_factor = 1e308;

@@ -24,8 +24,16 @@ its own yield drifts per spring and its own branch rules. Checked, for A and for
      1e-7 s and the final slip within 1e-8 m;
   3. `pounding check` prints each storey's yield shear along x and y, sum of k d_y: for A the V_j
      given, for B the peer's sum, to its 5 printed digits (5e-5 relative);
+  4. the residual drift (summary.json's residual_drift, written for yielding scenes): each storey's
+     drift ratio at the end of the run at the CM along x and y and the largest |ratio| over the CM
+     and the four slab corners (exact rigid-body rotation) within 1e-8, the oscillation ratio
+     |rate| / omega_1 within 1e-7, the end time, and the `settled` verdict by its documented rule;
 and the storeys' strengths matter: in A (the upper storey weaker by force) storey 2 yields first, in
-B (storey 1 weaker) storey 1 does.
+B (storey 1 weaker) storey 1 does. A third case, C, is A under the pulse cut at 0.5 s (its last
+sample 4.8 m/s2, not zero) with `free_vibration_s = 5.5`: the program appends the quiet tail to
+6.0 s, the peer integrates its own record of zeros after 0.5 s (a_g linear from the last sample to
+0 over the first interval), and the building must have come to rest (settled) with the storeys'
+permanent drifts left, 1 to 4 checked as for A.
 """
 import csv
 import re
@@ -48,9 +56,13 @@ COLUMNS = [((0.0, y), 0.40, 0.40) for y in (0.0, 5.0, 10.0)] + [((16.0, y), 0.55
 ALPHA, ZETA = 0.05, 0.05
 PULSE_MPS2, PULSE_S, DT_S, DURATION_S, DIRECTION_DEG = 5.0, 0.6, 0.005, 3.0, 30.0
 STRENGTHS = {"A": ("yield_shear_kN", (4000.0, 1500.0)), "B": ("yield_drift_ratio", (0.004, 0.003))}
+CUT_S, FREE_VIBRATION_S = 0.5, 5.5  # case C: the pulse cut at CUT_S, then the program's quiet tail
+CASES = {"A": ("A", None), "B": ("B", None), "C": ("A", FREE_VIBRATION_S)}  # strength, quiet tail
 
 
-def scene_text(key, values):
+def scene_text(key, values, free_vibration_s=None):
+    tail = "" if free_vibration_s is None else f"free_vibration_s = {free_vibration_s}\n"
+
     def text(record):
         columns = ", ".join(f"[{x}, {y}, {b}, {h}]" for (x, y), b, h in COLUMNS)
         x0, y0, x1, y1 = SLAB
@@ -92,7 +104,7 @@ format = "single"
 units = "m/s2"
 dt_s = {DT_S}
 direction_deg = {DIRECTION_DEG}
-
+{tail}
 [contact]
 gap_m = 10.0
 restitution = 0.5
@@ -108,9 +120,14 @@ atol = 1e-12
     return text
 
 
-def record():
-    t = np.arange(0.0, DURATION_S + DT_S / 2, DT_S)
-    return t, np.where(t < PULSE_S, PULSE_MPS2 * np.sin(np.pi * np.minimum(t, PULSE_S) / PULSE_S), 0.0)
+def record(cut_s=None, end_s=DURATION_S):
+    """The pulse sampled every DT_S to end_s, zero from cut_s on (the record the program is given
+    stops at cut_s)."""
+    t = np.arange(0.0, end_s + DT_S / 2, DT_S)
+    a = np.where(t < PULSE_S, PULSE_MPS2 * np.sin(np.pi * np.minimum(t, PULSE_S) / PULSE_S), 0.0)
+    if cut_s is not None:
+        a[t > cut_s + DT_S / 2] = 0.0
+    return t, a
 
 
 class Peer:
@@ -150,6 +167,7 @@ class Peer:
         self.K = (self.t.T * self.k) @ self.t
         w2, _ = eigh(self.K, np.diag(self.m))
         w = np.sqrt(np.sort(w2))
+        self.omega_1 = w[0]
         a0, a1 = 2 * ZETA * w[0] * w[2] / (w[0] + w[2]), 2 * ZETA / (w[0] + w[2])
         self.C = a0 * np.diag(self.m) + a1 * self.K
         beta = np.radians(DIRECTION_DEG)
@@ -223,7 +241,32 @@ class Peer:
         for j in range(len(self.k)):
             if self.branch[j] != 0:
                 self.slip[j] = self.t[j] @ y[:6] - self.branch[j] * self.d_y[j]
+        self.final = y
         return np.array(rows)
+
+    def end_drifts(self):
+        """Per storey, the drift ratios at the end and their rates at the CM then at each slab corner
+        (outline order), x and y: arrays (storeys, points, 2)."""
+        x0, y0, x1, y1 = SLAB
+        arms = [np.zeros(2)] + [np.array(c) - CM for c in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+        q, qd = self.final[:6], self.final[6:]
+
+        def motion(floor):  # displacement and velocity of every point of a floor (exact rotation)
+            if floor < 0:
+                return np.zeros((len(arms), 2)), np.zeros((len(arms), 2))
+            u, v, phi = q[3 * floor:3 * floor + 3]
+            du, dv, dphi = qd[3 * floor:3 * floor + 3]
+            c, s = np.cos(phi), np.sin(phi)
+            disp = [(u + (c - 1) * a[0] - s * a[1], v + s * a[0] + (c - 1) * a[1]) for a in arms]
+            vel = [(du - dphi * (s * a[0] + c * a[1]), dv + dphi * (c * a[0] - s * a[1])) for a in arms]
+            return np.array(disp), np.array(vel)
+
+        ratio, rate = [], []
+        for storey, height in enumerate(HEIGHTS_M):
+            (d_up, v_up), (d_low, v_low) = motion(storey), motion(storey - 1)
+            ratio.append((d_up - d_low) / height)
+            rate.append((v_up - v_low) / height)
+        return np.array(ratio), np.array(rate)
 
 
 HISTORY = [f"B1_f{f}_{c}" for f in (1, 2) for c in ("u_m", "v_m", "phi_rad")]
@@ -239,15 +282,48 @@ def printed_storey_shears(program, scene):
     return np.array(numbers).reshape(-1, 2), line.strip()
 
 
+def check_residual_drift(run, peer, label, failures):
+    """summary.json's residual drift of building 1 against the peer's end state."""
+    ratio, rate = peer.end_drifts()
+    oscillation = np.abs(rate).max(axis=(1, 2)) / peer.omega_1
+    section = run.summary.get("residual_drift")
+    if section is None:
+        failures.append(f"{label}: summary.json has no residual_drift")
+        return
+    building = section["buildings"][0]
+    worst = {"ratio": 0.0, "oscillation": 0.0}
+    for j, storey in enumerate(building["storeys"]):
+        worst["ratio"] = max(worst["ratio"], abs(storey["drift_ratio_x"] - ratio[j, 0, 0]),
+                             abs(storey["drift_ratio_y"] - ratio[j, 0, 1]),
+                             abs(storey["largest_drift_ratio"] - np.abs(ratio[j]).max()))
+        worst["oscillation"] = max(worst["oscillation"], abs(storey["oscillation_ratio"] - oscillation[j]))
+    largest = np.abs(ratio).max()
+    settled = oscillation.max() <= max(0.1 * largest, 1e-4)
+    print(f"  residual drift at {section['t_s']} s: largest {100 * largest:.4f} % (peer), "
+          f"oscillation {100 * oscillation.max():.5f} %, settled {building['settled']} (peer {settled}); "
+          f"differences {worst['ratio']:.1e} in ratio, {worst['oscillation']:.1e} in oscillation")
+    for name, limit in (("ratio", 1e-8), ("oscillation", 1e-7)):
+        if worst[name] > limit:
+            failures.append(f"{label}: residual drift {name} differs by {worst[name]:.2e} (limit {limit:g})")
+    if abs(section["t_s"] - peer.end_s) > 1e-9:
+        failures.append(f"{label}: residual drift read at {section['t_s']} s, the record ends at {peer.end_s} s")
+    if building["settled"] != settled:
+        failures.append(f"{label}: settled is {building['settled']}, the peer's numbers say {settled}")
+
+
 def check_case(program, out, label, failures):
-    key, values = STRENGTHS[label]
-    times, accel = record()
+    strength, tail_s = CASES[label]
+    key, values = STRENGTHS[strength]
+    # the program gets the record to its cut; the peer integrates it with the quiet tail written out
+    times, accel = record() if tail_s is None else record(CUT_S, CUT_S + tail_s)
+    given = accel if tail_s is None else accel[times <= CUT_S + DT_S / 2]
     folder = out / label
-    run, message = program_run.run_scene(program, folder, scene_text(key, values), accel, columns=HISTORY)
+    run, message = program_run.run_scene(program, folder, scene_text(key, values, tail_s), given, columns=HISTORY)
     if run is None:
         failures.append(f"{label}: {message}")
         return None
     peer = Peer(key, values)
+    peer.end_s = times[-1]
     peer_q = peer.run(times, accel, run.t)
     du = np.max(np.abs(run.q[:, [0, 1, 3, 4]] - peer_q[:, [0, 1, 3, 4]]))
     dphi = np.max(np.abs(run.q[:, [2, 5]] - peer_q[:, [2, 5]]))
@@ -282,6 +358,9 @@ def check_case(program, out, label, failures):
     print(f"  check: {line}")
     if printed.shape != expected.shape or np.max(np.abs(printed / expected - 1)) > 5e-5:
         failures.append(f"{label}: check prints storey yield shears {printed.tolist()}, the peer {expected.tolist()}")
+    check_residual_drift(run, peer, label, failures)
+    if tail_s is not None and not run.summary["residual_drift"]["buildings"][0]["settled"]:
+        failures.append(f"{label}: still moving after a {tail_s} s quiet tail")
     never = np.where(np.isnan(peer.first_yield), np.inf, peer.first_yield)
     return [float(np.min(never[peer.storey == j])) for j in (0, 1)]  # inf: the storey never yields
 
@@ -291,7 +370,7 @@ def main():
     out = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp())
     out.mkdir(parents=True, exist_ok=True)
     failures = []
-    orders = {label: check_case(program, out, label, failures) for label in STRENGTHS}
+    orders = {label: check_case(program, out, label, failures) for label in CASES}
     if all(orders.values()):
         print(f"first yield by storey 1, 2 (s; inf: never): A {orders['A']}, B {orders['B']}")
         if not (orders["A"][1] < orders["A"][0] and orders["B"][0] < orders["B"][1]):

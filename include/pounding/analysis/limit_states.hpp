@@ -81,6 +81,36 @@ struct DriftLimitState {
   std::optional<std::array<LevelVerdict, 3>> levels_without_contact;
 };
 
+/// A storey's residual drift: its drift ratio at the end of the run, which is the drift it keeps
+/// (FEMA P-58's residual drift) once the building has come to rest there ([excitation]
+/// free_vibration_s lets it).
+struct StoreyResidualDrift {
+  int storey = 0;           // 1-based
+  double x = 0.0, y = 0.0;  // at the CM, signed
+  double largest = 0.0;     // the largest |drift ratio| over the CM and the slab corners, x and y
+  std::string where;        // where that is: "CM" or "corner 3"
+  char axis = 'x';
+  /// The largest |drift ratio rate| / ω₁ over the same points (ω₁ = 2π/T₁): the amplitude of a
+  /// first-mode vibration still going on at the end. Far below `largest` once at rest.
+  double oscillation = 0.0;
+};
+
+/// A building's residual drifts and whether it had come to rest.
+struct BuildingResidualDrift {
+  std::string name;
+  double first_period_s = 0.0;
+  std::vector<StoreyResidualDrift> storeys;  // every storey, bottom up
+  StoreyResidualDrift largest;               // the storey with the largest `largest`
+  double oscillation = 0.0;                  // the largest over storeys
+  /// At rest: the oscillation at most a tenth of the largest residual drift ratio, or below
+  /// kSettledOscillation (a drift ratio no damage state notices).
+  bool settled = false;
+};
+inline constexpr double kSettledOscillation = 1e-4;
+
+/// @pre peaks' floors hold the drifts at the end (FloorPeaks::end_drift); first_period_s > 0.
+BuildingResidualDrift residual_drift(const solvers::BuildingPeaks& peaks, double first_period_s);
+
 /// The limit states of every building whose definition has drift_limits, from `result` and the
 /// optional contact-free run. @pre both hold drift peaks for every building.
 std::vector<DriftLimitState> drift_limit_states(const std::vector<model::BuildingDefinition>& buildings,

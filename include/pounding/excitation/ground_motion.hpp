@@ -74,6 +74,7 @@ struct SaScaling {
   std::vector<double> periods_s() const;
 };
 inline constexpr double kSaScalingDamping = 0.05;
+inline constexpr double kMaxFreeVibration_s = 600.0;
 inline constexpr int kSaRangePeriods = 50;
 
 /// Parses either form (targets in (0, 10] g, periods in [0.01, 10] s, S_D1 ≤ 10 g, T_L in [1, 20] s).
@@ -82,7 +83,7 @@ SaScaling parse_sa_scaling(const std::string& text, const std::string& key);
 
 /// How a record file (or a pair) becomes the excitation. Processing order: read, override the
 /// time step, cut [start, start + duration], convert to m/s², take a pair on the union of its
-/// sample times over the span both cover, scale.
+/// sample times over the span both cover, scale, append the quiet tail (free_vibration_s).
 struct ExcitationSpec {
   std::filesystem::path file;
   RecordReadOptions read;
@@ -96,6 +97,11 @@ struct ExcitationSpec {
   std::optional<SaScaling> scale_to_sa;  // spectral scaling (excludes the other two); its period resolved before use
   double direction_deg = 0.0;            // β: angle of the shaking direction (H1's) from +x towards +y
   std::optional<SecondComponentSpec> second;  // H2 of a pair; empty: one component
+  /// A quiet tail after the record (s, [0, kMaxFreeVibration_s]): zero samples at the record's
+  /// sample spacing, as many as cover it (the last one at or past end + free_vibration_s), so that
+  /// the buildings come to rest and the run's end reads their residual drift. a_g falls linearly
+  /// from the record's last sample to 0 over the first interval, as between any two samples.
+  double free_vibration_s = 0.0;
 
   /// @throws InputError naming the `excitation.*` key, its value and the range it must lie in.
   void validate() const;

@@ -90,6 +90,8 @@ class Recorder {
 
  private:
   void append_row(const Instant& at);
+  /// Every floor's storey drift ratios and rates at the final state (FloorPeaks::end_drift).
+  void record_end_drifts(const dynamics::VectorXd& final_state, std::vector<BuildingPeaks>& peaks) const;
 
   const dynamics::CoupledSystem& system_;
   RunKinematics kinematics_;

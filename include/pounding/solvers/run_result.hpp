@@ -117,6 +117,9 @@ struct FloorPeaks {
   Peak drift_x, drift_y;
   /// ... and at each slab corner, in outline order.
   std::vector<Peak> corner_drift_x, corner_drift_y;
+  /// The same drift ratios at the end of the run, and their rates (1/s): slot 2k + axis (axis 0
+  /// x, 1 y) holds the CM's for k = 0 and corner k's for k ≥ 1. Empty without drift peaks.
+  std::vector<double> end_drift, end_drift_rate_per_s;
 };
 
 /// The corner drift peak of largest magnitude over the slab's corners and both axes.
