@@ -228,6 +228,22 @@ void print_storey_strengths(const model::Building& building) {
   }
 }
 
+/// Building b's column shear capacities, if given, and how many of its column springs are
+/// shear-critical: a capacity below their yield force k d_y, so they fail in shear before they yield.
+void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
+  const std::vector<double>& capacities = system.building(b).definition.hysteresis.column_shear_capacity_kN;
+  if (capacities.empty()) return;
+  int springs = 0, critical = 0;
+  for (const dynamics::YieldingSpring& s : system.springs().all()) {
+    if (s.building != b) continue;
+    ++springs;
+    if (s.shear_capacity_kN < s.stiffness_kN_per_m * s.yield_drift_m) ++critical;
+  }
+  fmt::print("  column shear capacity {} kN{}: {} of {} column springs shear-critical (below their yield force k d_y)\n",
+             all_equal(capacities) ? fmt::format("{}", capacities.front()) : fmt::format("[{}]", fmt::join(capacities, ", ")),
+             all_equal(capacities) ? ", every storey" : " by storey", critical, springs);
+}
+
 }  // namespace
 
 /// The command-line options of `run` replace their scene keys. `--method` keeps the file's keys
@@ -486,6 +502,7 @@ int run_check(const CheckCommand& command) {
       fmt::print("  columns {} in x and y: {}, hardening ratio {}{}\n", model::to_string(law.kind), strength_text(law),
                  law.hardening_ratio, shape);
       print_storey_strengths(system.building(static_cast<int>(i)));
+      print_shear_capacities(system, static_cast<int>(i));
       // One hysteretic variable per column, storey and direction (dynamics/yielding_springs.hpp).
       if (law.is_smooth()) hysteretic_states += 2 * static_cast<int>(definition.columns.size()) * definition.storeys;
     }

@@ -375,6 +375,24 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
   }
 }
 
+namespace {
+
+void add_shear_demand(const dynamics::YieldingSpring& spring, const solvers::SpringResult& r, StoreyYielding& storey) {
+  ++storey.springs_with_capacity;
+  if (std::isfinite(r.shear_failure_t_s)) {
+    ++storey.shear_failures;
+    if (!(storey.first_shear_failure_t_s <= r.shear_failure_t_s)) storey.first_shear_failure_t_s = r.shear_failure_t_s;
+  }
+  const double ratio = r.peak_force_kN / spring.shear_capacity_kN;
+  if (storey.springs_with_capacity == 1 || ratio > storey.largest_demand_capacity_ratio) {
+    storey.largest_demand_capacity_ratio = ratio;
+    storey.critical_column = spring.column;
+    storey.critical_direction = spring.direction == 0 ? 'x' : 'y';
+  }
+}
+
+}  // namespace
+
 std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::YieldingSpring>& springs,
                                             const std::vector<solvers::SpringResult>& results) {
   std::vector<StoreyYielding> storeys;
@@ -383,7 +401,8 @@ std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::Yielding
     if (storeys.empty() || storeys.back().building != spring.building || storeys.back().storey != spring.storey) {
       storeys.push_back({.building = spring.building,
                          .storey = spring.storey,
-                         .first_yield_t_s = std::numeric_limits<double>::quiet_NaN()});
+                         .first_yield_t_s = std::numeric_limits<double>::quiet_NaN(),
+                         .first_shear_failure_t_s = std::numeric_limits<double>::quiet_NaN()});
     }
     StoreyYielding& storey = storeys.back();
     const solvers::SpringResult& r = results[j];
@@ -395,6 +414,7 @@ std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::Yielding
     }
     ++storey.springs;
     storey.hysteretic_kJ += r.hysteretic_kJ;
+    if (spring.shear_capacity_kN > 0.0) add_shear_demand(spring, r, storey);
   }
   return storeys;
 }

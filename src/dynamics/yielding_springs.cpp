@@ -13,6 +13,12 @@ std::optional<BoucWenShape> bouc_wen_shape(const model::HystereticLaw& law) {
   return BoucWenShape{.a = law.bouc_wen_a, .beta = law.bouc_wen_beta, .gamma = law.bouc_wen_gamma, .n = law.bouc_wen_n};
 }
 
+/// Storey `storey`'s column shear capacity (kN), 0 when none is given.
+double shear_capacity_kN(const model::HystereticLaw& law, int storey) {
+  const std::vector<double>& capacities = law.column_shear_capacity_kN;
+  return capacities.empty() ? 0.0 : capacities.at(static_cast<std::size_t>(storey - 1));
+}
+
 /// The springs of one building (empty if its columns stay elastic).
 void add_building_springs(const model::Building& building, int b, int offset, std::vector<YieldingSpring>& springs) {
   const model::BuildingDefinition& d = building.definition;
@@ -36,7 +42,8 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .storey_height_m = height_m,
                               .indices = {},
                               .coefficients = {},
-                              .bouc_wen = bouc_wen_shape(d.hysteresis)};
+                              .bouc_wen = bouc_wen_shape(d.hysteresis),
+                              .shear_capacity_kN = shear_capacity_kN(d.hysteresis, storey)};
         for (int floor : {storey, storey - 1}) {
           if (floor == 0) continue;  // the ground does not move relative to the base
           const double sign = floor == storey ? 1.0 : -1.0;
@@ -87,6 +94,12 @@ double YieldingSprings::slip(const Eigen::Ref<const Eigen::VectorXd>& y, const S
     case SpringBranch::yielding_down: return drift(y.head(dof_), j) + spring.yield_drift_m;
   }
   return 0.0;
+}
+
+double YieldingSprings::force_kN(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,
+                                 std::size_t j) const {
+  const YieldingSpring& spring = springs_[j];
+  return spring.stiffness_kN_per_m * (drift(y.head(dof_), j) - (1.0 - spring.hardening_ratio) * slip(y, states, j));
 }
 
 void YieldingSprings::add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,

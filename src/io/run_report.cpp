@@ -165,6 +165,11 @@ void append_yielding(const analysis::RunReport& report, std::string& text) {
         s.peak_ductility[0], s.peak_ductility[1],
         std::isfinite(s.first_yield_t_s) ? fmt::format("first yield {:.6f} s", s.first_yield_t_s) : "elastic",
         s.hysteretic_kJ);
+    if (s.springs_with_capacity == 0) continue;
+    fmt::format_to(out, "    column shear: {} of {} springs reached their capacity{}; largest demand/capacity {:.3f} ({} {})\n",
+                   s.shear_failures, s.springs_with_capacity,
+                   s.shear_failures > 0 ? fmt::format(", first at {:.6f} s", s.first_shear_failure_t_s) : "",
+                   s.largest_demand_capacity_ratio, s.critical_column, s.critical_direction);
   }
 }
 

@@ -156,13 +156,22 @@ json yielding_json(const analysis::RunReport& report) {
     if (buildings.empty() || buildings.back()["building"] != s.building + 1) {
       buildings.push_back({{"building", s.building + 1}, {"storeys", json::array()}});
     }
-    buildings.back()["storeys"].push_back({{"storey", s.storey},
-                                           {"peak_ductility_x", s.peak_ductility[0]},
-                                           {"peak_ductility_y", s.peak_ductility[1]},
-                                           {"first_yield_t_s", finite_or_null(s.first_yield_t_s)},
-                                           {"springs_yielded", s.springs_yielded},
-                                           {"springs", s.springs},
-                                           {"hysteretic_kJ", s.hysteretic_kJ}});
+    json storey = {{"storey", s.storey},
+                   {"peak_ductility_x", s.peak_ductility[0]},
+                   {"peak_ductility_y", s.peak_ductility[1]},
+                   {"first_yield_t_s", finite_or_null(s.first_yield_t_s)},
+                   {"springs_yielded", s.springs_yielded},
+                   {"springs", s.springs},
+                   {"hysteretic_kJ", s.hysteretic_kJ}};
+    if (s.springs_with_capacity > 0) {
+      storey["column_shear"] = {{"springs_with_capacity", s.springs_with_capacity},
+                                {"failures", s.shear_failures},
+                                {"first_failure_t_s", finite_or_null(s.first_shear_failure_t_s)},
+                                {"largest_demand_capacity_ratio", s.largest_demand_capacity_ratio},
+                                {"critical_column", s.critical_column},
+                                {"critical_direction", std::string(1, s.critical_direction)}};
+    }
+    buildings.back()["storeys"].push_back(std::move(storey));
   }
   // "bilinear", "bouc-wen", or "mixed" when the two buildings' columns follow different laws.
   std::string law;
@@ -486,7 +495,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
 }
 
 void write_yielding_rows(const analysis::RunReport& report, std::ostream& out) {
-  const auto& columns = yielding_columns();
+  const std::vector<YieldingColumn> columns = yielding_columns(report.springs);
   write_csv_header(column_names(columns), out);
   std::vector<std::string> cells(columns.size());
   for (std::size_t j = 0; j < report.springs.size(); ++j) {

@@ -432,7 +432,8 @@ model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
       }
     }
   };
-  refuse_unless({"yield_drift_ratio", "yield_drift_m", "yield_shear_kN", "hardening_ratio"}, law.yields(),
+  refuse_unless({"yield_drift_ratio", "yield_drift_m", "yield_shear_kN", "hardening_ratio", "column_shear_capacity_kN"},
+                law.yields(),
                 "\"bilinear\" or \"bouc-wen\"");
   refuse_unless({"a", "beta", "gamma", "n"}, law.is_smooth(), "\"bouc-wen\"");
   const auto number = [&](const char* key, const Range& range) -> std::optional<double> {
@@ -443,6 +444,8 @@ model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
   law.yield_drift_ratio = per_storey(table, "yield_drift_ratio", model::kYieldDriftRatio, storeys);
   law.yield_drift_m = per_storey(table, "yield_drift_m", model::kYieldDrift, storeys);
   law.yield_shear_kN = per_storey(table, "yield_shear_kN", model::kYieldShear, storeys);
+  law.column_shear_capacity_kN =
+      per_storey(table, "column_shear_capacity_kN", model::kColumnShearCapacity, storeys);
   law.hardening_ratio = number("hardening_ratio", model::kHardeningRatio).value_or(law.hardening_ratio);
   law.bouc_wen_a = number("a", model::kBoucWenA).value_or(law.bouc_wen_a);
   law.bouc_wen_beta = number("beta", model::kBoucWenBeta).value_or(law.bouc_wen_beta);

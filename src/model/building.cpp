@@ -221,6 +221,7 @@ void validate_hysteresis(const BuildingDefinition& b) {
   per_storey(law.yield_drift_ratio, "hysteresis.yield_drift_ratio", kYieldDriftRatio);
   per_storey(law.yield_drift_m, "hysteresis.yield_drift_m", kYieldDrift);
   per_storey(law.yield_shear_kN, "hysteresis.yield_shear_kN", kYieldShear);
+  per_storey(law.column_shear_capacity_kN, "hysteresis.column_shear_capacity_kN", kColumnShearCapacity);
   if (!law.yield_drift_m.empty()) refuse_collapse_before_yield(law.yield_drift_m, b.storey_height_m);
   if (!(law.hardening_ratio >= 0.0 && law.hardening_ratio < 1.0)) {
     throw InputError("hysteresis.hardening_ratio", format_value(law.hardening_ratio), "must lie in [0, 1)");

@@ -114,7 +114,7 @@ class EventDrivenSystem final : public HybridSystem {
         states_(count_, options.overlap_allowance_m),
         cover_(system.candidates(), contact::link_corners(system.candidates(), outline_sizes(system)),
                options.contact_tolerance_m),
-        yields_(system.springs(), options.max_events_per_s),
+        yields_(system.springs(), options.max_events_per_s, /*locate_shear_failures=*/true),
         building_names_(building_names(system)),
         witnesses_(count_, yields_.size()),
         gap_components_(gap_components(system)),

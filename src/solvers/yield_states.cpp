@@ -2,18 +2,21 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pounding::solvers {
 
 using dynamics::SpringBranch;
 
-YieldStates::YieldStates(const dynamics::YieldingSprings& springs, double max_switches_per_s)
+YieldStates::YieldStates(const dynamics::YieldingSprings& springs, double max_switches_per_s,
+                         bool locate_shear_failures)
     : springs_(springs),
       states_(springs.size()),
       results_(springs.size()),
       phase_start_slip_m_(springs.size(), 0.0),
       max_switches_per_s_(max_switches_per_s),
+      locate_shear_failures_(locate_shear_failures),
       recent_switches_s_(springs.size()) {}
 
 void YieldStates::count_switch(std::size_t j, double t) {
@@ -24,6 +27,20 @@ void YieldStates::count_switch(std::size_t j, double t) {
 }
 
 double YieldStates::witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const {
+  const double own = branch_witness(y, j);
+  return watches_capacity(j) ? std::min(own, capacity_witness(y, j)) : own;
+}
+
+bool YieldStates::watches_capacity(std::size_t j) const {
+  return locate_shear_failures_ && springs_[j].shear_capacity_kN > 0.0 && std::isnan(results_[j].shear_failure_t_s);
+}
+
+double YieldStates::capacity_witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const {
+  // In metres, as the elastic branch's witness: on a branch the force is linear in the drift.
+  return (springs_[j].shear_capacity_kN - std::abs(springs_.force_kN(y, states_, j))) / springs_[j].stiffness_kN_per_m;
+}
+
+double YieldStates::branch_witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const {
   if (!springs_[j].bouc_wen) return springs_.witness(y, states_, j);
   // A smooth spring has no branches: its one event is its first yield, |d| reaching d_y.
   if (results_[j].yield_count > 0) return 1.0;
@@ -34,7 +51,8 @@ int YieldStates::switch_branches(double t, const Eigen::VectorXd& y, const Eigen
   const int n = springs_.dof();
   int switched = 0;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
-    if (witness(y, j) > 0.0) continue;
+    if (watches_capacity(j) && capacity_witness(y, j) <= 0.0) results_[j].shear_failure_t_s = t;
+    if (branch_witness(y, j) > 0.0) continue;
     dynamics::SpringState& state = states_[j];
     SpringResult& result = results_[j];
     const double rate_mps = springs_.drift(y.segment(n, n), j), accel_mps2 = springs_.drift(y_dot.segment(n, n), j);
@@ -74,6 +92,7 @@ std::optional<std::size_t> YieldStates::observe(const Eigen::VectorXd& y) {
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     const double drift_m = std::abs(springs_.drift(y.head(springs_.dof()), j));
     results_[j].peak_drift_m = std::max(results_[j].peak_drift_m, drift_m);
+    results_[j].peak_force_kN = std::max(results_[j].peak_force_kN, std::abs(springs_.force_kN(y, states_, j)));
     if (!collapsed && drift_m > kCollapseDriftRatio * springs_[j].storey_height_m) collapsed = j;
   }
   return collapsed;

@@ -537,6 +537,28 @@ BOOST_AUTO_TEST_CASE(AStrengthIsOneNumberForEveryStoreyOrOneAStorey) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(AColumnShearCapacityIsOneNumberForEveryStoreyOrOneAStorey) {
+  const std::string columns =
+      "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";
+  const auto with_capacity = [&](const std::string& lines) {
+    return edited(columns, columns + "\n[building.hysteresis]\nlaw = \"bilinear\"\nyield_drift_ratio = 0.005\n" + lines);
+  };
+  Case spread(with_capacity("column_shear_capacity_kN = 300.0\n"));
+  BOOST_TEST(read_scene(spread.file).buildings[0].hysteresis.column_shear_capacity_kN ==
+             std::vector<double>({300.0, 300.0}));
+  Case listed(with_capacity("column_shear_capacity_kN = [300.0, 200.0]\n"));
+  BOOST_TEST(read_scene(listed.file).buildings[0].hysteresis.column_shear_capacity_kN ==
+             std::vector<double>({300.0, 200.0}));
+  BOOST_TEST(mentions(error_of(with_capacity("column_shear_capacity_kN = [300.0, -1.0]\n")),
+                      {"building[1].hysteresis.column_shear_capacity_kN[2] = -1", "(0, 100000000] kN"}));
+  BOOST_TEST(mentions(error_of(with_capacity("column_shear_capacity_kN = [300.0]\n")),
+                      {"building[1].hysteresis.column_shear_capacity_kN = 1 values", "one value per storey (2)"}));
+  BOOST_TEST(mentions(error_of(edited(columns, columns + "\n[building.hysteresis]\nlaw = \"elastic\"\n"
+                                                         "column_shear_capacity_kN = 300.0\n")),
+                      {"building[1].hysteresis.column_shear_capacity_kN = 300",
+                       "applies to law = \"bilinear\" or \"bouc-wen\" only"}));
+}
+
 BOOST_AUTO_TEST_CASE(DriftLimitStatesAreReadFromTheirTableAndChecked) {
   const std::string columns =
       "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";

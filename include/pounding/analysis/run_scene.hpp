@@ -139,6 +139,15 @@ struct StoreyYielding {
   int springs_yielded = 0;
   int springs = 0;
   double hysteretic_kJ = 0.0;
+  /// With column shear capacities (hysteresis.column_shear_capacity_kN): how many of its springs
+  /// have one, how many reached it, the first instant one did (NaN: none), and the largest peak
+  /// force over capacity, with that spring's column and direction.
+  int springs_with_capacity = 0;
+  int shear_failures = 0;
+  double first_shear_failure_t_s = 0.0;
+  double largest_demand_capacity_ratio = 0.0;
+  std::string critical_column;
+  char critical_direction = 'x';
 };
 /// Below this a contact-free drift ratio or ductility is round-off (y drift under pure x
 /// shaking): the pounding-induced ratio to it is not reported.

@@ -63,6 +63,7 @@ struct YieldingSpring {
   /// A smooth (Bouc–Wen) spring: its shape, and the index in y of its z. Empty: bilinear.
   std::optional<BoucWenShape> bouc_wen;
   int z_index = -1;
+  double shear_capacity_kN = 0.0;  // V_c of its column along its direction; 0: not checked
 
   /// (1 − α) k (kN/m): the stiffness of the elastic–perfectly-plastic part.
   double plastic_stiffness() const { return (1.0 - hardening_ratio) * stiffness_kN_per_m; }
@@ -104,6 +105,8 @@ class YieldingSprings {
   void smooth_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::VectorXd& inverse_mass,
                        Eigen::SparseMatrix<double>& accel_by_z, Eigen::SparseMatrix<double>& z_rate_by_velocity,
                        Eigen::VectorXd& z_rate_by_z) const;
+  /// F_j (kN): spring j's force in state y, α k d + (1 − α) k (d − s) = k (d − (1 − α) s).
+  double force_kN(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states, std::size_t j) const;
   /// Spring j's witness in y = (q, q̇) (see the header comment); 1 for a smooth spring.
   double witness(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states, std::size_t j) const;
   /// The energy (kJ) the slips take out of ½ qᵀ K q: the springs store

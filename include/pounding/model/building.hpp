@@ -72,6 +72,10 @@ struct HystereticLaw {
   std::vector<double> yield_drift_m;
   std::vector<double> yield_shear_kN;
   double hardening_ratio = 0.0;  // α ∈ [0, 1): post-yield over initial stiffness
+  /// Each column's shear capacity V_c (kN) along x and along y, one value a storey (spread as
+  /// the strengths are); empty: not checked. A column whose sway shear |F| reaches it has failed
+  /// in shear (reported with its instant; the run goes on with its law unchanged).
+  std::vector<double> column_shear_capacity_kN;
   /// Bouc–Wen's shape parameters (only for Kind::bouc_wen): A = 1 (so that the initial stiffness
   /// is k, which K uses); β > 0 and −β < γ ≤ β, so that z stays within (A/(β + γ))^(1/n) and no
   /// loop returns energy; n ≥ 1, the sharpness.
@@ -92,6 +96,7 @@ const char* to_string(HystereticLaw::Kind kind);
 inline constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};
 inline constexpr Range kYieldDrift{0.0, 1.0, "m", true};
 inline constexpr Range kYieldShear{0.0, 1e9, "kN", true};
+inline constexpr Range kColumnShearCapacity{0.0, 1e8, "kN", true};
 inline constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
 inline constexpr Range kBoucWenA{0.0, 10.0, "", true};
 inline constexpr Range kBoucWenBeta{0.0, 10.0, "", true};

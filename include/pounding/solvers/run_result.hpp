@@ -169,6 +169,11 @@ struct SpringResult {
   double hysteretic_kJ = 0.0;                                         // energy it dissipated
   double final_drift_m = 0.0;                                         // drift at the end of the run
   double final_slip_m = 0.0;  // its plastic part's slip at the end (the drift at zero force, α = 0)
+  /// Its largest |force| (kN) at the step ends and events (exact at a yielding phase's end).
+  double peak_force_kN = 0.0;
+  /// When |force| first reached the column's shear capacity (located as an event); NaN: never, or
+  /// no capacity given.
+  double shear_failure_t_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// "Inside means inside" (docs/model.md §5a), for a vertex `gap_m` (< 0) behind its edge's line

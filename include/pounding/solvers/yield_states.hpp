@@ -8,7 +8,9 @@
 // A yielding phase dissipates (1 − α) k d_y |Δs| (the plastic part's constant force times its
 // slip), added when it ends. A smooth (Bouc–Wen) spring has no branches: its one event is its
 // first yield (|d| reaching d_y outwards), and its dissipation is integrated with the energy
-// audit (EnergyBalance) and handed to finish().
+// audit (EnergyBalance) and handed to finish(). A spring whose column has a shear capacity V_c
+// (YieldingSpring::shear_capacity_kN) and whose YieldStates locates shear failures adds the root
+// of (V_c − |F|)/k to its witness, until |F| first reaches V_c: that instant is its shear failure.
 
 #include <Eigen/Core>
 #include <deque>
@@ -31,16 +33,18 @@ struct YieldingStop {
 class YieldStates {
  public:
   /// @pre `springs` outlives this. `max_switches_per_s`: a spring switching more often than this
-  /// within one simulated second is chattering (chattering()).
-  YieldStates(const dynamics::YieldingSprings& springs, double max_switches_per_s);
+  /// within one simulated second is chattering (chattering()). `locate_shear_failures`: the
+  /// witnesses also mark where a column's force first reaches its shear capacity.
+  YieldStates(const dynamics::YieldingSprings& springs, double max_switches_per_s, bool locate_shear_failures = false);
 
   bool empty() const { return springs_.empty(); }
   std::size_t size() const { return springs_.size(); }
   /// The states for the system's functions: nullptr when nothing yields (the elastic path).
   const dynamics::SpringStates* states() const { return springs_.empty() ? nullptr : &states_; }
   bool any_yielding() const { return yielding_ > 0; }
-  /// Spring j's witness in y (YieldingSprings::witness); a smooth spring's is d_y − |d| until it
-  /// first yields, then 1.
+  /// Spring j's witness in y: its branch's (YieldingSprings::witness; a smooth spring's is
+  /// d_y − |d| until it first yields, then 1), or, while its shear failure is watched for and
+  /// nearer, (V_c − |F|)/k (m).
   double witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
 
   /// At an event at (t, y), ẏ = y_dot (on the present branches): switches every spring whose
@@ -48,7 +52,8 @@ class YieldStates {
   /// if its motion goes on past the switch: outwards from the yield drift (a drift rate, or at
   /// zero rate an acceleration, pointing out), back from a yielding branch (the drift rate
   /// turned, unless at zero rate the acceleration reloads it). A smooth spring
-  /// moving outwards at its first yield counts too (it is the integrator's to restart).
+  /// moving outwards at its first yield counts too (it is the integrator's to restart). Notes,
+  /// first, the shear failure of every watched spring whose force has reached its capacity.
   /// @return the number switched.
   int switch_branches(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& y_dot);
   /// The first spring that switched more than max_switches_per_s times within one simulated
@@ -70,6 +75,10 @@ class YieldStates {
  private:
   /// Ends a yielding phase of spring j at slip `slip_m`: adds its dissipation.
   void end_yielding(std::size_t j, double slip_m);
+  double branch_witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
+  /// Spring j has a shear capacity its force has not reached yet, and failures are located.
+  bool watches_capacity(std::size_t j) const;
+  double capacity_witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
 
   const dynamics::YieldingSprings& springs_;
   dynamics::SpringStates states_;
@@ -80,6 +89,7 @@ class YieldStates {
   std::vector<double> phase_start_slip_m_;  // the slip where the current yielding phase began
   int yielding_ = 0;                        // springs on a yielding branch
   double max_switches_per_s_;
+  bool locate_shear_failures_;
   std::vector<std::deque<double>> recent_switches_s_;  // per spring, its switches within the last second
   std::optional<std::size_t> chattering_;
 };
