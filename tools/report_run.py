@@ -3,7 +3,8 @@
 
 The page holds the run's key numbers (gap, k, contact law, impacts, first impact, energy residual,
 run time), the plan and elevation of the scene (plan.json; a row's with its impacts marked, then
-each pair's results and each building's demands), the histories of the level with most
+each pair's results and each building's demands), the storeys' ductility, column shear failures
+and residual drift and the drift limit states (where the run has them), the histories of the level with most
 impacts (tools/plot_run.py's figure), the impacts and sustained contacts, the peaks of every
 floor, the energy balance, the solver's statistics, the settings given and used, the warnings and
 the provenance. Figures are embedded as PNG data and nothing is fetched from elsewhere, so the file
@@ -217,6 +218,84 @@ def demands_table(summary):
     return table(header, rows, "demands", text_columns=header)
 
 
+def percent(ratio, digits=3):
+    return f"{100.0 * ratio:.{digits}f} %"
+
+
+def storeys_table(summary):
+    """Per building and storey, where the run has them: the columns' ductility and first yield, the
+    column shear failures against their capacity, and the residual drift ratio."""
+    yielding = {(b["building"], s["storey"]): s for b in summary.get("yielding", {}).get("buildings", [])
+                for s in b["storeys"]}
+    names = [b["building"] for b in summary["peaks"]]
+    residual = {(names.index(b["building"]) + 1, s["storey"]): s
+                for b in summary.get("residual_drift", {}).get("buildings", []) for s in b["storeys"]}
+    if not yielding and not residual:
+        return ""
+    shear = any("column_shear" in s for s in yielding.values())
+    header = ["building", "storey", "ductility x", "ductility y", "first yield [s]"]
+    header += ["shear failures", "first failure [s]", "largest demand/capacity"] if shear else []
+    header += ["residual drift x (CM)", "residual drift y (CM)", "largest residual"] if residual else []
+    rows = []
+    for b, name in enumerate(names, start=1):
+        for storey in sorted({k[1] for k in list(yielding) + list(residual) if k[0] == b}):
+            y, r = yielding.get((b, storey)), residual.get((b, storey))
+            row = [text(name), storey]
+            row += [number(y["peak_ductility_x"], 4), number(y["peak_ductility_y"], 4),
+                    f"{y['first_yield_t_s']:.4f}" if y["first_yield_t_s"] is not None else "elastic"] if y else ["–"] * 3
+            if shear:
+                c = (y or {}).get("column_shear")
+                row += [f"{c['failures']} of {c['springs_with_capacity']}",
+                        f"{c['first_failure_t_s']:.4f}" if c["first_failure_t_s"] is not None else "–",
+                        f"{c['largest_demand_capacity_ratio']:.3f} ({text(c['critical_column'])} "
+                        f"{c['critical_direction']})"] if c else ["–"] * 3
+            if residual:
+                row += [percent(r["drift_ratio_x"]), percent(r["drift_ratio_y"]),
+                        f"{percent(r['largest_drift_ratio'])} ({text(r['where'])} {r['axis']})"] if r else ["–"] * 3
+            rows.append(row)
+    notes = []
+    for b in summary.get("residual_drift", {}).get("buildings", []):
+        state = "at rest" if b["settled"] else "still oscillating"
+        notes.append(f"{text(b['building'])}: {state} (oscillation {percent(b['oscillation_ratio'], 4)})")
+    note = ""
+    if notes:
+        note = (f'<p class="note">Residual drift: the storey drift ratio at the end of the run, '
+                f"t = {summary['residual_drift']['t_s']:.3f} s ({number(summary['residual_drift']['free_vibration_s'])} s "
+                f"of quiet tail); {'; '.join(notes)}.</p>")
+    return table(header, rows, "storeys", text_columns=("building",)) + note
+
+
+def limit_states_table(summary):
+    """Per building with limit states: its peak storey drift and each level's verdict and margin,
+    with contact and, where the run has it, without."""
+    states = summary.get("limit_states", {}).get("buildings", [])
+    if not states:
+        return ""
+    header = ("building", "structural type", "run", "peak storey drift", "where", "IO", "LS", "CP")
+
+    def verdict(level):
+        word = "exceeded by" if level["exceeded"] else "met, margin"
+        return f"{percent(level['drift_ratio_limit'], 2)}: {word} {percent(abs(level['margin']))}"
+
+    rows = []
+    for state in states:
+        for label, part in (("with contact", state), ("without contact", state.get("without_contact"))):
+            if not part:
+                continue
+            peak = part["peak_storey_drift"]
+            rows.append([text(state["building"]), text(state["structural_type"]), label, percent(peak["drift_ratio"]),
+                         f"storey {peak['storey']}, {text(peak['where'])} {peak['axis']}, {peak['t_s']:.3f} s"
+                         if "t_s" in peak else f"storey {peak['storey']}"] + [verdict(v) for v in part["levels"]])
+    return table(header, rows, "limit-states", text_columns=header[:3] + ("where",) + header[5:])
+
+
+def structural_sections(summary):
+    """The storeys' demands and the limit states, when the run has any."""
+    storeys, limits = storeys_table(summary), limit_states_table(summary)
+    parts = ["<h2>Storeys</h2>", storeys] if storeys else []
+    return parts + (["<h2>Limit states</h2>", limits] if limits else [])
+
+
 def peaks_tables(summary):
     """Per building, one row a floor: every scalar peak (value at time), whatever the run computed."""
     parts = []
@@ -261,6 +340,7 @@ def page(folder, summary, plan):
         "<h2>Key numbers</h2>", key_numbers(summary),
         "<h2>Plan and elevation</h2>", plan_html(summary, plan),
         *row_sections(summary),
+        *structural_sections(summary),
         "<h2>Histories</h2>", history_figure_html(folder, summary),
         f"<h2>Impacts ({summary['impact_count']})</h2>", impacts_table(summary),
         "<h2>Sustained contacts</h2>", sustained_table(summary),

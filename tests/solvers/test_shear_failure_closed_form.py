@@ -21,11 +21,13 @@ and never yields back). Checked against the program (cvode-bdf, rtol 1e-10), fro
 summary.json: each x spring's shear failure time within 1e-7 s, its peak force within 1e-7
 relative and its demand/capacity ratio; the y springs (no force) never fail; the storey's count of
 failures, first failure and largest ratio; and `pounding check`'s count of shear-critical springs
-(a capacity below the yield force: all 8 when brittle, none when ductile).
+(a capacity below the yield force: all 8 when brittle, none when ductile); and report.html's
+storeys table (its row of the building: 4 of 8 failures, the first at the closed form's instant).
 The stiffness k = 12 E I / H^3 of a fixed-fixed column (docs/model.md §2) is the test's own.
 """
 import csv
 import json
+import re
 import subprocess
 import sys
 import tempfile
@@ -154,6 +156,13 @@ def check_case(program, out, name, failures):
             abs(shear.get("first_failure_t_s", 0.0) - t_fail) > 1e-7 or \
             abs(shear.get("largest_demand_capacity_ratio", 0.0) * capacity_kN / peak_kN - 1.0) > 1e-7:
         failures.append(f"{name}: summary.json column_shear {shear}")
+    subprocess.run([program, "report", str(folder / "run")], capture_output=True, text=True)
+    page = (folder / "run/report.html").read_text() if (folder / "run/report.html").is_file() else ""
+    storeys = page.split('id="storeys"')[1].split("</table>")[0] if 'id="storeys"' in page else ""
+    first_row = re.sub(r"<[^>]+>", "|", storeys.split("<tbody>")[-1].split("</tr>")[0])
+    cells = [c for c in first_row.split("|") if c]
+    if cells[:2] != ["S", "1"] or "4 of 8" not in cells or f"{t_fail:.4f}" not in cells:
+        failures.append(f"{name}: report.html's storeys table row is {cells}")
     check = subprocess.run([program, "check", str(folder / "scene.toml")], capture_output=True, text=True).stdout
     critical = 8 if capacity_kN < yield_kN else 0  # every spring, x and y, of the four columns
     line = next((l.strip() for l in check.splitlines() if "column shear capacity" in l), "")
