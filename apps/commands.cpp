@@ -228,20 +228,39 @@ void print_storey_strengths(const model::Building& building) {
   }
 }
 
-/// Building b's column shear capacities, if given, and how many of its column springs are
-/// shear-critical: a capacity below their yield force k d_y, so they fail in shear before they yield.
+/// Building b's column shear capacities, if any, storey by storey along x and y (a range where
+/// its columns differ), and, where its columns yield, how many of their springs are shear-critical:
+/// a capacity below their yield force k d_y, so that they fail in shear before they yield.
 void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
-  const std::vector<double>& capacities = system.building(b).definition.hysteresis.column_shear_capacity_kN;
-  if (capacities.empty()) return;
+  const model::Building& building = system.building(b);
+  const model::BuildingDefinition& d = building.definition;
+  if (d.column_shear_capacity_kN.empty() && !d.shear_capacity) return;
+  std::vector<std::string> storeys;
+  for (int storey = 1; storey <= d.storeys; ++storey) {
+    std::array<std::string, 2> along;
+    for (int direction = 0; direction < 2; ++direction) {
+      std::vector<double> kN;
+      for (std::size_t c = 0; c < d.columns.size(); ++c) kN.push_back(model::column_shear_capacity_kN(building, storey, c, direction));
+      const auto [low, high] = std::minmax_element(kN.begin(), kN.end());
+      along[direction] = *low == *high ? fmt::format("{:.5g}", *low) : fmt::format("{:.5g}-{:.5g}", *low, *high);
+    }
+    storeys.push_back(fmt::format("{} | {}", along[0], along[1]));
+  }
+  const std::string source = d.shear_capacity ? " (ASCE 41-17 Eq. 10-3)" : "";
+  if (all_equal(storeys)) {
+    fmt::print("  column shear capacity{} x | y: {} kN, every storey\n", source, storeys.front());
+  } else {
+    fmt::print("  column shear capacity{} x | y (kN), storey 1 first: {}\n", source, fmt::join(storeys, "; "));
+  }
   int springs = 0, critical = 0;
   for (const dynamics::YieldingSpring& s : system.springs().all()) {
     if (s.building != b) continue;
     ++springs;
     if (s.shear_capacity_kN < s.stiffness_kN_per_m * s.yield_drift_m) ++critical;
   }
-  fmt::print("  column shear capacity {} kN{}: {} of {} column springs shear-critical (below their yield force k d_y)\n",
-             all_equal(capacities) ? fmt::format("{}", capacities.front()) : fmt::format("[{}]", fmt::join(capacities, ", ")),
-             all_equal(capacities) ? ", every storey" : " by storey", critical, springs);
+  if (springs > 0) {
+    fmt::print("    {} of {} column springs shear-critical (capacity below their yield force k d_y)\n", critical, springs);
+  }
 }
 
 }  // namespace
@@ -502,10 +521,10 @@ int run_check(const CheckCommand& command) {
       fmt::print("  columns {} in x and y: {}, hardening ratio {}{}\n", model::to_string(law.kind), strength_text(law),
                  law.hardening_ratio, shape);
       print_storey_strengths(system.building(static_cast<int>(i)));
-      print_shear_capacities(system, static_cast<int>(i));
       // One hysteretic variable per column, storey and direction (dynamics/yielding_springs.hpp).
       if (law.is_smooth()) hysteretic_states += 2 * static_cast<int>(definition.columns.size()) * definition.storeys;
     }
+    print_shear_capacities(system, static_cast<int>(i));
   }
   fmt::print("Coupled system: {} DOF ({} first-order states{})\n", total_dof, 2 * total_dof + hysteretic_states,
              hysteretic_states > 0 ? fmt::format(", {} of them Bouc-Wen's z", hysteretic_states) : std::string());

@@ -197,12 +197,13 @@ int main(int argc, char** argv) {
   pounding::cli::SettingsCommand settings;
   CLI::App* settings_app = app.add_subcommand(
       "settings",
-      "The [solver] and [contact] settings, the run limits and the [building.limit_states] keys: key, option, type, "
+      "The [solver] and [contact] settings, the run limits and the [building.limit_states] and "
+      "[building.shear_capacity] keys: key, option, type, "
       "default, range (and the methods using each solver setting)");
   settings_app->add_flag("--json", settings.json,
                          "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
   settings_app->add_option("--markdown", settings.markdown,
-                           "solver, contact, limits or limit_states: that section's tables in "
+                           "solver, contact, limits, limit_states or shear_capacity: that section's tables in "
                            "docs/scene-format.md (limits: docs/guide/limits.md)");
 
   pounding::cli::OutputsCommand outputs;

@@ -186,8 +186,11 @@ int run_settings(const SettingsCommand& command) {
       print_keys_markdown(analysis::limit_specs());
     } else if (*command.markdown == "limit_states") {
       print_limit_states_markdown();
+    } else if (*command.markdown == "shear_capacity") {
+      print_keys_markdown(analysis::shear_capacity_specs());
     } else {
-      throw InputError("--markdown", *command.markdown, "expected solver, contact, limits or limit_states");
+      throw InputError("--markdown", *command.markdown,
+                       "expected solver, contact, limits, limit_states or shear_capacity");
     }
     return 0;
   }
@@ -200,10 +203,14 @@ int run_settings(const SettingsCommand& command) {
     nlohmann::json limit_states = nlohmann::json::array();
     for (const auto& spec : analysis::drift_limit_specs())
       limit_states.push_back(as_json(spec, "building.limit_states"));
+    nlohmann::json shear_capacity = nlohmann::json::array();
+    for (const auto& spec : analysis::shear_capacity_specs())
+      shear_capacity.push_back(as_json(spec, "building.shear_capacity"));
     fmt::print("{}\n", nlohmann::json{{"solver", solver},
                                       {"contact", contact},
                                       {"limits", limits},
                                       {"limit_states", limit_states},
+                                      {"shear_capacity", shear_capacity},
                                       {"structural_types", structural_types_json()}}
                            .dump(2));
     return 0;
@@ -216,6 +223,7 @@ int run_settings(const SettingsCommand& command) {
   print_keys_text(analysis::contact_setting_specs(), "contact");
   print_keys_text(analysis::limit_specs(), "limits");
   print_keys_text(analysis::drift_limit_specs(), "building.limit_states");
+  print_keys_text(analysis::shear_capacity_specs(), "building.shear_capacity");
   return 0;
 }
 

@@ -56,6 +56,46 @@ const std::vector<DriftLimitSpec> kSpecs = {
      .details = "unset: the structural type's"},
 };
 
+const std::vector<ShearCapacitySpec> kShearCapacitySpecs = {
+    {.key = "concrete_strength_MPa",
+     .member = &model::ShearCapacityFormula::concrete_strength_MPa,
+     .required = true,
+     .range = Range{10.0, 120.0, "MPa"},
+     .description = "f'c: the concrete's compressive strength (MPa)"},
+    {.key = "transverse_yield_strength_MPa",
+     .member = &model::ShearCapacityFormula::transverse_yield_strength_MPa,
+     .required = true,
+     .range = Range{200.0, 1000.0, "MPa"},
+     .description = "f_yt: the ties' yield strength (MPa)"},
+    {.key = "transverse_area_mm2",
+     .member = &model::ShearCapacityFormula::transverse_area_mm2,
+     .required = true,
+     .range = Range{0.0, 1e4, "mm2"},
+     .description = "A_v: the area of one set of ties' legs across the shear plane (mm²), along x and along y alike",
+     .details = "0: no ties (the concrete alone)"},
+    {.key = "transverse_spacing_mm",
+     .member = &model::ShearCapacityFormula::transverse_spacing_mm,
+     .required = true,
+     .range = Range{0.0, 1000.0, "mm", true},
+     .description = "s: the ties' spacing along the column (mm)",
+     .details = "ties at s ≥ d do not count (α = 0), at s ≤ 0.75 d fully"},
+    {.key = "axial_load_kN",
+     .member = &model::ShearCapacityFormula::axial_load_kN,
+     .range = Range{0.0, 1e6, "kN"},
+     .description = "N: each column's axial compression (kN)",
+     .details = "unset: the storey's gravity share, g times the floor masses it carries over its number of columns"},
+    {.key = "effective_depth_ratio",
+     .member = &model::ShearCapacityFormula::effective_depth_ratio,
+     .range = Range{0.5, 1.0, ""},
+     .description = "d over the section's depth along the sway",
+     .details = "ASCE 41-17 allows 0.8"},
+    {.key = "ductility_factor",
+     .member = &model::ShearCapacityFormula::ductility_factor,
+     .range = Range{0.7, 1.0, ""},
+     .description = "k_nl: 1 for a displacement ductility demand up to 2, 0.7 from 6 on (linear between)",
+     .details = "fixed for the run, not updated with the demand"},
+};
+
 const StructuralType& structural_type(std::string_view name) {
   const auto* type = std::find_if(kStructuralTypes.begin(), kStructuralTypes.end(),
                                   [&](const StructuralType& t) { return t.name == name; });
@@ -90,6 +130,12 @@ void consider(PeakStoreyDrift& worst, const solvers::Peak& peak, int storey, std
 std::span<const DriftLimitSpec> drift_limit_specs() { return kSpecs; }
 
 std::span<const StructuralType> structural_types() { return kStructuralTypes; }
+
+std::span<const ShearCapacitySpec> shear_capacity_specs() { return kShearCapacitySpecs; }
+
+void validate_shear_capacity(const model::ShearCapacityFormula& formula) {
+  validate_keys<model::ShearCapacityFormula>(formula, kShearCapacitySpecs, "shear_capacity");
+}
 
 std::array<double, 3> resolved_drift_limits(const model::DriftLimits& limits) {
   std::array<double, 3> resolved = structural_type(limits.structural_type).drift_ratios;

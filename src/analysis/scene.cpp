@@ -661,6 +661,7 @@ void Scene::validate() const {
     try {
       buildings[i].validate();
       if (buildings[i].drift_limits) validate_drift_limits(*buildings[i].drift_limits);
+      if (buildings[i].shear_capacity) validate_shear_capacity(*buildings[i].shear_capacity);
     } catch (const InputError& error) {
       throw error.in_context(file.string(), building_key(i));
     }

@@ -13,12 +13,6 @@ std::optional<BoucWenShape> bouc_wen_shape(const model::HystereticLaw& law) {
   return BoucWenShape{.a = law.bouc_wen_a, .beta = law.bouc_wen_beta, .gamma = law.bouc_wen_gamma, .n = law.bouc_wen_n};
 }
 
-/// Storey `storey`'s column shear capacity (kN), 0 when none is given.
-double shear_capacity_kN(const model::HystereticLaw& law, int storey) {
-  const std::vector<double>& capacities = law.column_shear_capacity_kN;
-  return capacities.empty() ? 0.0 : capacities.at(static_cast<std::size_t>(storey - 1));
-}
-
 /// The springs of one building (empty if its columns stay elastic).
 void add_building_springs(const model::Building& building, int b, int offset, std::vector<YieldingSpring>& springs) {
   const model::BuildingDefinition& d = building.definition;
@@ -43,7 +37,7 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .indices = {},
                               .coefficients = {},
                               .bouc_wen = bouc_wen_shape(d.hysteresis),
-                              .shear_capacity_kN = shear_capacity_kN(d.hysteresis, storey)};
+                              .shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction)};
         for (int floor : {storey, storey - 1}) {
           if (floor == 0) continue;  // the ground does not move relative to the base
           const double sign = floor == storey ? 1.0 : -1.0;

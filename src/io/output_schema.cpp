@@ -251,7 +251,7 @@ json output_schema_json() {
                         {"unit", c.unit},
                         {"kind", kKind[static_cast<int>(c.kind)]},
                         {"description", c.description}});
-    if (c.shear_capacity_only) yielding.back()["only_when"] = "some column has hysteresis.column_shear_capacity_kN";
+    if (c.shear_capacity_only) yielding.back()["only_when"] = "some yielding column has a shear capacity (column_shear_capacity_kN or [building.shear_capacity])";
   }
   return {{"history", history},
           {"impacts", impacts},

@@ -386,7 +386,8 @@ std::vector<Eigen::Matrix3d> storey_matrices(TableReader& table, const toml::nod
 void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (const toml::node* node = table.find("storey_stiffness")) {
     for (const char* other :
-         {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s", "column_shear_capacity_kN"}) {
+         {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s", "column_shear_capacity_kN",
+          "shear_capacity"}) {
       if (table.has(other)) {
         throw table.error(*node, table.key_path("storey_stiffness"),
                           fmt::format("give either storey_stiffness or columns with {}, not both", other));
@@ -408,7 +409,7 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   }
   if (factor) b.frame_factor = table.number_of(*factor, table.key_path("frame_factor"));
   if (period) b.target_period_s = table.number_of(*period, table.key_path("target_period_s"));
-  b.column_shear_capacity_kN = table.optional_number("column_shear_capacity_kN");
+  b.column_shear_capacity_kN = per_storey(table, "column_shear_capacity_kN", model::kColumnShearCapacity, b.storeys);
 }
 
 model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
@@ -432,8 +433,7 @@ model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
       }
     }
   };
-  refuse_unless({"yield_drift_ratio", "yield_drift_m", "yield_shear_kN", "hardening_ratio", "column_shear_capacity_kN"},
-                law.yields(),
+  refuse_unless({"yield_drift_ratio", "yield_drift_m", "yield_shear_kN", "hardening_ratio"}, law.yields(),
                 "\"bilinear\" or \"bouc-wen\"");
   refuse_unless({"a", "beta", "gamma", "n"}, law.is_smooth(), "\"bouc-wen\"");
   const auto number = [&](const char* key, const Range& range) -> std::optional<double> {
@@ -444,8 +444,6 @@ model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
   law.yield_drift_ratio = per_storey(table, "yield_drift_ratio", model::kYieldDriftRatio, storeys);
   law.yield_drift_m = per_storey(table, "yield_drift_m", model::kYieldDrift, storeys);
   law.yield_shear_kN = per_storey(table, "yield_shear_kN", model::kYieldShear, storeys);
-  law.column_shear_capacity_kN =
-      per_storey(table, "column_shear_capacity_kN", model::kColumnShearCapacity, storeys);
   law.hardening_ratio = number("hardening_ratio", model::kHardeningRatio).value_or(law.hardening_ratio);
   law.bouc_wen_a = number("a", model::kBoucWenA).value_or(law.bouc_wen_a);
   law.bouc_wen_beta = number("beta", model::kBoucWenBeta).value_or(law.bouc_wen_beta);
@@ -477,6 +475,14 @@ void read_keys(TableReader& table, Owner& owner, std::span<const analysis::KeySp
         },
         spec.member);
   }
+}
+
+model::ShearCapacityFormula read_shear_capacity(TableReader table) {
+  model::ShearCapacityFormula formula;
+  read_keys(table, formula, analysis::shear_capacity_specs(),
+            [](const analysis::ShearCapacitySpec& spec) { return spec.required; });
+  table.finish();
+  return formula;
 }
 
 model::DriftLimits read_drift_limits(TableReader table) {
@@ -522,6 +528,7 @@ model::BuildingDefinition read_building(TableReader table) {
   }
   if (auto hysteresis = table.optional_subtable("hysteresis")) b.hysteresis = read_hysteresis(*hysteresis, b.storeys);
   if (auto limits = table.optional_subtable("limit_states")) b.drift_limits = read_drift_limits(*limits);
+  if (auto capacity = table.optional_subtable("shear_capacity")) b.shear_capacity = read_shear_capacity(*capacity);
   if (const toml::node* p_delta = table.find("p_delta")) {
     if (!p_delta->is_boolean()) throw table.error(*p_delta, table.key_path("p_delta"), "expected true or false");
     b.p_delta = **p_delta->as_boolean();

@@ -22,7 +22,6 @@ std::string indexed(const char* key, std::size_t index) { return fmt::format("{}
 constexpr double kMaxPlanCoordinate_m = 10'000.0;
 constexpr Range kPolarMoment{0.1, 1e14, "t·m²"};
 constexpr Range kYoungsModulus{1e6, 1e9, "kPa"};
-constexpr Range kShearCapacity{0.0, 1e6, "kN", true};
 constexpr Range kFrameFactor{1e-4, 10.0, "", true};
 constexpr Range kTargetPeriod{0.02, 20.0, "s"};
 constexpr double kMaxStoreyStiffness = 1e16;        // torsional entries reach k·r², 1e12 kN/m · (100 m)²
@@ -128,8 +127,13 @@ void validate_columns(const BuildingDefinition& b) {
   }
   refuse_repeated_columns(b.columns);
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
-  if (b.column_shear_capacity_kN)
-    require_range("column_shear_capacity_kN", *b.column_shear_capacity_kN, kShearCapacity);
+  if (!b.column_shear_capacity_kN.empty()) {
+    validate_per_floor(b.column_shear_capacity_kN, "column_shear_capacity_kN", b.storeys, kColumnShearCapacity, "storey");
+  }
+  if (!b.column_shear_capacity_kN.empty() && b.shear_capacity) {
+    throw InputError("shear_capacity", "given with column_shear_capacity_kN",
+                     "give the columns' shear capacity one way: column_shear_capacity_kN or [building.shear_capacity]");
+  }
   if (b.target_period_s) {
     require_range("target_period_s", *b.target_period_s, kTargetPeriod);
   } else {
@@ -221,7 +225,6 @@ void validate_hysteresis(const BuildingDefinition& b) {
   per_storey(law.yield_drift_ratio, "hysteresis.yield_drift_ratio", kYieldDriftRatio);
   per_storey(law.yield_drift_m, "hysteresis.yield_drift_m", kYieldDrift);
   per_storey(law.yield_shear_kN, "hysteresis.yield_shear_kN", kYieldShear);
-  per_storey(law.column_shear_capacity_kN, "hysteresis.column_shear_capacity_kN", kColumnShearCapacity);
   if (!law.yield_drift_m.empty()) refuse_collapse_before_yield(law.yield_drift_m, b.storey_height_m);
   if (!(law.hardening_ratio >= 0.0 && law.hardening_ratio < 1.0)) {
     throw InputError("hysteresis.hardening_ratio", format_value(law.hardening_ratio), "must lie in [0, 1)");
@@ -389,6 +392,32 @@ double column_yield_drift_m(const Building& building, int storey, int direction)
   if (!law.yield_drift_m.empty()) return law.yield_drift_m[j];
   if (!law.yield_drift_ratio.empty()) return law.yield_drift_ratio[j] * building.definition.storey_height_m[j];
   return law.yield_shear_kN[j] / storey_column_stiffness(building, storey, direction);
+}
+
+double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction) {
+  const BuildingDefinition& d = building.definition;
+  if (!d.column_shear_capacity_kN.empty()) return d.column_shear_capacity_kN.at(static_cast<std::size_t>(storey - 1));
+  if (!d.shear_capacity) return 0.0;
+  const ShearCapacityFormula& f = *d.shear_capacity;
+  const Column& c = d.columns.at(column);
+  const double depth_mm = 1000.0 * (direction == 0 ? c.b_m : c.h_m);
+  const double gross_area_mm2 = 1e6 * c.b_m * c.h_m;
+  const double d_mm = f.effective_depth_ratio * depth_mm;
+  const double moment_ratio = std::clamp(1000.0 * d.storey_height_m.at(static_cast<std::size_t>(storey - 1)) / 2.0 / d_mm, 2.0, 4.0);
+  const double spacing_ratio = f.transverse_spacing_mm / d_mm;
+  const double steel_share = std::clamp((1.0 - spacing_ratio) / 0.25, 0.0, 1.0);
+  double axial_kN = 0.0;
+  if (f.axial_load_kN) {
+    axial_kN = *f.axial_load_kN;
+  } else {
+    for (std::size_t floor = static_cast<std::size_t>(storey - 1); floor < d.mass_t.size(); ++floor) axial_kN += d.mass_t[floor];
+    axial_kN *= d.g_mps2 / static_cast<double>(d.columns.size());
+  }
+  const double root_fc = std::sqrt(f.concrete_strength_MPa);
+  const double steel_N = steel_share * f.transverse_area_mm2 * f.transverse_yield_strength_MPa * d_mm / f.transverse_spacing_mm;
+  const double concrete_N = 0.5 * root_fc / moment_ratio *
+                            std::sqrt(1.0 + 1000.0 * axial_kN / (0.5 * root_fc * gross_area_mm2)) * 0.8 * gross_area_mm2;
+  return f.ductility_factor * (steel_N + concrete_N) / 1000.0;
 }
 
 namespace {

@@ -1,6 +1,7 @@
 // The compliant laws' events (law_events.hpp): contacts that begin, release and end at roots,
 // their force integrated with the motion.
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "law_events.hpp"
@@ -168,8 +169,11 @@ void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
     const contact::ColumnDemand demand = contact::column_demand(r.peak_force_kN, c.storey_height_m, c.height_ratio);
     r.column_shear_kN = demand.shear_kN;
     r.column_moment_kNm = demand.moment_kNm;
-    if (const auto capacity = system_.building(c.striking_building).definition.column_shear_capacity_kN)
-      r.column_shear_ratio = demand.shear_kN / *capacity;
+    // The capacity along the plan axis nearer the struck edge's normal (the force's direction).
+    const int direction = std::abs(c.normal_rest.x()) >= std::abs(c.normal_rest.y()) ? 0 : 1;
+    const double capacity_kN =
+        model::column_shear_capacity_kN(system_.building(c.striking_building), c.lower_floor + 1, c.column_index, direction);
+    if (capacity_kN > 0.0) r.column_shear_ratio = demand.shear_kN / capacity_kN;
   }
   recorder_.add_impact_loss(r.energy_lost_kJ);
   result_.impacts.push_back(r);

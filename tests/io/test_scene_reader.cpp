@@ -537,26 +537,35 @@ BOOST_AUTO_TEST_CASE(AStrengthIsOneNumberForEveryStoreyOrOneAStorey) {
   }
 }
 
-BOOST_AUTO_TEST_CASE(AColumnShearCapacityIsOneNumberForEveryStoreyOrOneAStorey) {
+BOOST_AUTO_TEST_CASE(AColumnShearCapacityIsOneNumberForEveryStoreyOrOneAStoreyOrFromTheSection) {
   const std::string columns =
       "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";
-  const auto with_capacity = [&](const std::string& lines) {
-    return edited(columns, columns + "\n[building.hysteresis]\nlaw = \"bilinear\"\nyield_drift_ratio = 0.005\n" + lines);
-  };
-  Case spread(with_capacity("column_shear_capacity_kN = 300.0\n"));
-  BOOST_TEST(read_scene(spread.file).buildings[0].hysteresis.column_shear_capacity_kN ==
-             std::vector<double>({300.0, 300.0}));
-  Case listed(with_capacity("column_shear_capacity_kN = [300.0, 200.0]\n"));
-  BOOST_TEST(read_scene(listed.file).buildings[0].hysteresis.column_shear_capacity_kN ==
-             std::vector<double>({300.0, 200.0}));
-  BOOST_TEST(mentions(error_of(with_capacity("column_shear_capacity_kN = [300.0, -1.0]\n")),
-                      {"building[1].hysteresis.column_shear_capacity_kN[2] = -1", "(0, 100000000] kN"}));
-  BOOST_TEST(mentions(error_of(with_capacity("column_shear_capacity_kN = [300.0]\n")),
-                      {"building[1].hysteresis.column_shear_capacity_kN = 1 values", "one value per storey (2)"}));
-  BOOST_TEST(mentions(error_of(edited(columns, columns + "\n[building.hysteresis]\nlaw = \"elastic\"\n"
-                                                         "column_shear_capacity_kN = 300.0\n")),
-                      {"building[1].hysteresis.column_shear_capacity_kN = 300",
-                       "applies to law = \"bilinear\" or \"bouc-wen\" only"}));
+  const auto with = [&](const std::string& lines) { return edited(columns, columns + "\n" + lines); };
+  Case spread(with("column_shear_capacity_kN = 300.0\n"));
+  BOOST_TEST(read_scene(spread.file).buildings[0].column_shear_capacity_kN == std::vector<double>({300.0, 300.0}));
+  Case listed(with("column_shear_capacity_kN = [300.0, 200.0]\n"));
+  BOOST_TEST(read_scene(listed.file).buildings[0].column_shear_capacity_kN == std::vector<double>({300.0, 200.0}));
+  BOOST_TEST(mentions(error_of(with("column_shear_capacity_kN = [300.0, -1.0]\n")),
+                      {"building[1].column_shear_capacity_kN[2] = -1", "(0, 1000000] kN"}));
+  BOOST_TEST(mentions(error_of(with("column_shear_capacity_kN = [300.0]\n")),
+                      {"building[1].column_shear_capacity_kN = 1 values", "one value per storey (2)"}));
+  // From the section: the keys are read as their rows say, checked against their ranges, and the
+  // required ones must be there.
+  const std::string section =
+      "[building.shear_capacity]\nconcrete_strength_MPa = 25.0\ntransverse_yield_strength_MPa = 420.0\n"
+      "transverse_area_mm2 = 157.0\ntransverse_spacing_mm = 200.0\n";
+  Case formula(with(section));
+  const auto& capacity = read_scene(formula.file).buildings[0].shear_capacity;
+  BOOST_TEST_REQUIRE(capacity.has_value());
+  BOOST_TEST(capacity->concrete_strength_MPa == 25.0);
+  BOOST_TEST(capacity->effective_depth_ratio == 0.8);  // the default
+  BOOST_TEST(!capacity->axial_load_kN.has_value());    // unset: the gravity share
+  BOOST_TEST(mentions(error_of(with(section + "ductility_factor = 0.5\n")),
+                      {"building[1].shear_capacity.ductility_factor = 0.5", "[0.7, 1]"}));
+  BOOST_TEST(mentions(error_of(with("[building.shear_capacity]\nconcrete_strength_MPa = 25.0\n")),
+                      {"building[1].shear_capacity.transverse_yield_strength_MPa"}));
+  BOOST_TEST(mentions(error_of(with("column_shear_capacity_kN = 300.0\n" + section)),
+                      {"building[1].shear_capacity", "one way"}));
 }
 
 BOOST_AUTO_TEST_CASE(DriftLimitStatesAreReadFromTheirTableAndChecked) {

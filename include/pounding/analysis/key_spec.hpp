@@ -1,7 +1,8 @@
 #pragma once
 // One user-facing key of a plain settings struct, declared once as a row: [contact]'s keys
-// (ContactSettings, scene.hpp), the run limits (RunLimits, run_scene.hpp) and
-// [building.limit_states] (model::DriftLimits, limit_states.hpp). From the rows come
+// (ContactSettings, scene.hpp), the run limits (RunLimits, run_scene.hpp),
+// [building.limit_states] (model::DriftLimits) and [building.shear_capacity]
+// (model::ShearCapacityFormula), both in limit_states.hpp. From the rows come
 // the scene reader, the command-line options, the Python keywords, the range checks, `pounding
 // settings` and the docs' tables, so a new key is one row plus the line that uses it. (The
 // [solver] keys have their own row type, SettingSpec in methods.hpp, because each is kept as given

@@ -35,6 +35,16 @@ struct StructuralType {
 /// Every structural type, in the order the docs list them; the first is the default.
 std::span<const StructuralType> structural_types();
 
+/// One key of [building.shear_capacity] (model::ShearCapacityFormula, ASCE 41-17
+/// Eq. 10-3), declared once as DriftLimitSpec is.
+using ShearCapacitySpec = KeySpec<model::ShearCapacityFormula>;
+
+/// Every [building.shear_capacity] key, in the order the docs list them.
+std::span<const ShearCapacitySpec> shear_capacity_specs();
+
+/// @throws InputError(`shear_capacity.<key>`, value, reason) for a value out of range.
+void validate_shear_capacity(const model::ShearCapacityFormula& formula);
+
 /// The performance levels' short names, in order: "IO", "LS", "CP".
 inline constexpr std::array<std::string_view, 3> kPerformanceLevels{"IO", "LS", "CP"};
 

@@ -51,6 +51,23 @@ struct RayleighSpec {
   std::array<int, 2> modes{1, 3};
 };
 
+/// A reinforced-concrete column's shear capacity from its section by ASCE 41-17 Eq. 10-3
+/// (docs/model.md §2a, "Column shear capacity"), in SI units:
+///   V = k_nl [α A_v f_yt d/s + λ (0.5 √f'c / (M/Vd)) √(1 + N/(0.5 √f'c A_g)) 0.8 A_g]
+/// for a sway along x (y) of a column b × h: the section's depth along the sway is b (h), d its
+/// effective depth, A_g = b h, M/Vd = (H/2)/d in double curvature bounded to [2, 4], α = 1 for
+/// s/d ≤ 0.75, 0 for s/d ≥ 1 and linear between, N the axial compression, λ = 1 (normal-weight
+/// concrete). The same for every column of the building.
+struct ShearCapacityFormula {
+  double concrete_strength_MPa = 0.0;        // f'c (required)
+  double transverse_yield_strength_MPa = 0.0;  // f_yt (required)
+  double transverse_area_mm2 = 0.0;          // A_v: the legs of one set of ties across the shear plane (required)
+  double transverse_spacing_mm = 0.0;        // s (required)
+  std::optional<double> axial_load_kN;       // N per column, compression; unset: the gravity share
+  double effective_depth_ratio = 0.8;        // d over the section's depth along the sway
+  double ductility_factor = 1.0;             // k_nl: 1 at displacement ductility ≤ 2, 0.7 at ≥ 6
+};
+
 /// The force–drift law of every column of a building (docs/model.md, "Yielding columns"). Each
 /// column has a spring in x and one in y, independent of each other (no interaction surface).
 /// `elastic`: the linear spring of column_stiffness. `bilinear`: kinematic hardening; the initial
@@ -72,10 +89,6 @@ struct HystereticLaw {
   std::vector<double> yield_drift_m;
   std::vector<double> yield_shear_kN;
   double hardening_ratio = 0.0;  // α ∈ [0, 1): post-yield over initial stiffness
-  /// Each column's shear capacity V_c (kN) along x and along y, one value a storey (spread as
-  /// the strengths are); empty: not checked. A column whose sway shear |F| reaches it has failed
-  /// in shear (reported with its instant; the run goes on with its law unchanged).
-  std::vector<double> column_shear_capacity_kN;
   /// Bouc–Wen's shape parameters (only for Kind::bouc_wen): A = 1 (so that the initial stiffness
   /// is k, which K uses); β > 0 and −β < γ ≤ β, so that z stays within (A/(β + γ))^(1/n) and no
   /// loop returns energy; n ≥ 1, the sharpness.
@@ -96,7 +109,7 @@ const char* to_string(HystereticLaw::Kind kind);
 inline constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};
 inline constexpr Range kYieldDrift{0.0, 1.0, "m", true};
 inline constexpr Range kYieldShear{0.0, 1e9, "kN", true};
-inline constexpr Range kColumnShearCapacity{0.0, 1e8, "kN", true};
+inline constexpr Range kColumnShearCapacity{0.0, 1e6, "kN", true};
 inline constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
 inline constexpr Range kBoucWenA{0.0, 10.0, "", true};
 inline constexpr Range kBoucWenBeta{0.0, 10.0, "", true};
@@ -128,9 +141,13 @@ struct BuildingDefinition {
   double E_kPa = 0.0;                     // Young's modulus of the columns
   double frame_factor = 1.0;              // ignored when target_period_s is set
   std::optional<double> target_period_s;  // solve the frame factor for this T₁ (s)
-  /// Each column's shear capacity (kN): slab-to-column impacts report their shear demand against
-  /// it (docs/model.md §6b). Unset: no ratio.
-  std::optional<double> column_shear_capacity_kN;
+  /// Each column's shear capacity (kN), along x and along y, one value a storey (the reader
+  /// spreads a single number over every storey); empty: none given. Slab-to-column impacts report
+  /// their shear demand against it (docs/model.md §6b), and yielding columns whose sway shear
+  /// reaches it fail in shear (§2a).
+  std::vector<double> column_shear_capacity_kN;
+  /// ... or every column's from its section (excludes column_shear_capacity_kN).
+  std::optional<ShearCapacityFormula> shear_capacity;
   // ... or given directly: one 3×3 matrix per storey about the CM (kN/m, kN, kN·m/rad).
   std::vector<Eigen::Matrix3d> storey_stiffness;
 
@@ -215,6 +232,10 @@ double storey_column_stiffness(const Building& building, int storey, int directi
 /// The yield drift (m) of every column of storey `storey` (1-based) along `direction` (0: x,
 /// 1: y), from the law's strength (HystereticLaw). @pre building.definition.hysteresis.yields().
 double column_yield_drift_m(const Building& building, int storey, int direction);
+/// Column `column` (0-based)'s shear capacity (kN) in storey `storey` along x (0) or y (1): the
+/// given column_shear_capacity_kN, or ShearCapacityFormula's, whose axial load defaults to the
+/// storey's gravity share g Σ (floor masses from `storey` up) / columns; 0 when none is given.
+double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction);
 
 /// Validates `definition`, solves the frame factor if a target period is given (for the frame
 /// without P-Δ), assembles M, K (with P-Δ if asked), C and solves the modes. @throws InputError (field relative to the
