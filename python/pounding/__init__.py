@@ -375,7 +375,10 @@ class RunResult:
         if self._yielding_array is None:
             rows = list(_csv.DictReader(_io.StringIO(self._run.yielding_csv())))
             dtype = {"integer": _np.int64, "real": _np.float64, "text": "U64"}
-            fields = [(c["column"], dtype[c["kind"]]) for c in output_schema()["yielding"]]
+            # The columns this run wrote: some only where some column has a shear capacity.
+            schema = output_schema()["yielding"]
+            written = rows[0].keys() if rows else [c["column"] for c in schema if "only_when" not in c]
+            fields = [(c["column"], dtype[c["kind"]]) for c in schema if c["column"] in written]
             array = _np.zeros(len(rows), dtype=fields)
             for name, _ in fields:
                 array[name] = [row[name] if row[name] != "" else "nan" for row in rows]
