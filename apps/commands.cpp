@@ -247,10 +247,11 @@ void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
     storeys.push_back(fmt::format("{} | {}", along[0], along[1]));
   }
   const std::string source = d.shear_capacity ? " (ASCE 41-17 Eq. 10-3)" : "";
+  const std::string after = d.column_shear_failure == "lose-stiffness" ? "; a column that fails loses its stiffness" : "";
   if (all_equal(storeys)) {
-    fmt::print("  column shear capacity{} x | y: {} kN, every storey\n", source, storeys.front());
+    fmt::print("  column shear capacity{} x | y: {} kN, every storey{}\n", source, storeys.front(), after);
   } else {
-    fmt::print("  column shear capacity{} x | y (kN), storey 1 first: {}\n", source, fmt::join(storeys, "; "));
+    fmt::print("  column shear capacity{} x | y (kN), storey 1 first: {}{}\n", source, fmt::join(storeys, "; "), after);
   }
   int springs = 0, critical = 0;
   for (const dynamics::YieldingSpring& s : system.springs().all()) {

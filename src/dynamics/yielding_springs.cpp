@@ -37,7 +37,8 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .indices = {},
                               .coefficients = {},
                               .bouc_wen = bouc_wen_shape(d.hysteresis),
-                              .shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction)};
+                              .shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction),
+                              .loses_stiffness = d.column_shear_failure == "lose-stiffness"};
         for (int floor : {storey, storey - 1}) {
           if (floor == 0) continue;  // the ground does not move relative to the base
           const double sign = floor == storey ? 1.0 : -1.0;
@@ -86,6 +87,7 @@ double YieldingSprings::slip(const Eigen::Ref<const Eigen::VectorXd>& y, const S
     case SpringBranch::elastic: return states[j].slip_m;
     case SpringBranch::yielding_up: return drift(y.head(dof_), j) - spring.yield_drift_m;
     case SpringBranch::yielding_down: return drift(y.head(dof_), j) + spring.yield_drift_m;
+    case SpringBranch::failed: return drift(y.head(dof_), j) / (1.0 - spring.hardening_ratio);
   }
   return 0.0;
 }
@@ -125,11 +127,14 @@ void YieldingSprings::add_tangent_rows(const SpringStates& states, const Eigen::
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     const YieldingSpring& spring = springs_[j];
     if (!spring.bouc_wen && states[j].branch == SpringBranch::elastic) continue;
-    // s_j = d_j ∓ d_y (or d_j − d_y z_j): the slip force (1 − α) k t tᵀ q adds to q̈ through M⁻¹.
+    // s_j = d_j ∓ d_y (or d_j − d_y z_j): the slip force (1 − α) k t tᵀ q adds to q̈ through M⁻¹;
+    // failed, s_j = d_j/(1 − α): k t tᵀ q, the whole spring.
+    const double slope_kN_per_m =
+        states[j].branch == SpringBranch::failed ? spring.stiffness_kN_per_m : spring.plastic_stiffness();
     for (std::size_t a = 0; a < spring.indices.size(); ++a) {
       for (std::size_t c = 0; c < spring.indices.size(); ++c) {
         terms.emplace_back(spring.indices[a], spring.indices[c],
-                           inverse_mass[spring.indices[a]] * spring.plastic_stiffness() * spring.coefficients[a] *
+                           inverse_mass[spring.indices[a]] * slope_kN_per_m * spring.coefficients[a] *
                                spring.coefficients[c]);
       }
     }
@@ -175,6 +180,7 @@ double YieldingSprings::witness(const Eigen::Ref<const Eigen::VectorXd>& y, cons
     case SpringBranch::elastic: return springs_[j].yield_drift_m - std::abs(drift(y.head(dof_), j) - states[j].slip_m);
     case SpringBranch::yielding_up: return drift(y.segment(dof_, dof_), j);
     case SpringBranch::yielding_down: return -drift(y.segment(dof_, dof_), j);
+    case SpringBranch::failed: return 1.0;
   }
   return 1.0;
 }
@@ -190,8 +196,13 @@ double YieldingSprings::stored_energy_change(const Eigen::Ref<const Eigen::Vecto
       change_kJ += 0.5 * spring.plastic_stiffness() * (d_y * d_y * z * z / spring.bouc_wen->a - d * d);
       continue;
     }
+    const double d = drift(y.head(dof_), j);
+    if (states[j].branch == SpringBranch::failed) {  // its ½ k d² leaves ½ qᵀ K q: it stores nothing
+      change_kJ -= 0.5 * spring.stiffness_kN_per_m * d * d;
+      continue;
+    }
     const double s = slip(y, states, j);
-    change_kJ += spring.plastic_stiffness() * s * (0.5 * s - drift(y.head(dof_), j));
+    change_kJ += spring.plastic_stiffness() * s * (0.5 * s - d);
   }
   return change_kJ;
 }

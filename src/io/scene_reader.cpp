@@ -410,6 +410,7 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (factor) b.frame_factor = table.number_of(*factor, table.key_path("frame_factor"));
   if (period) b.target_period_s = table.number_of(*period, table.key_path("target_period_s"));
   b.column_shear_capacity_kN = per_storey(table, "column_shear_capacity_kN", model::kColumnShearCapacity, b.storeys);
+  b.column_shear_failure = table.optional_string("column_shear_failure").value_or(b.column_shear_failure);
 }
 
 model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {

@@ -107,6 +107,23 @@ void refuse_repeated_columns(const std::vector<Column>& columns) {
   }
 }
 
+void validate_shear_failure(const BuildingDefinition& b) {
+  const std::string& choice = b.column_shear_failure;
+  if (choice != "report" && choice != "lose-stiffness") {
+    throw InputError("column_shear_failure", fmt::format("\"{}\"", choice), "expected \"report\" or \"lose-stiffness\"");
+  }
+  if (choice == "report") return;
+  if (b.hysteresis.kind != HystereticLaw::Kind::bilinear) {
+    throw InputError("column_shear_failure", "\"lose-stiffness\"",
+                     "needs bilinear columns ([building.hysteresis] law = \"bilinear\"): the columns' sway shear is "
+                     "checked where they yield");
+  }
+  if (b.column_shear_capacity_kN.empty() && !b.shear_capacity) {
+    throw InputError("column_shear_failure", "\"lose-stiffness\"",
+                     "needs a shear capacity: column_shear_capacity_kN or [building.shear_capacity]");
+  }
+}
+
 void validate_columns(const BuildingDefinition& b) {
   if (b.columns.empty()) {
     throw InputError("columns", "none", "give columns (or column_grid), or storey_stiffness");
@@ -130,6 +147,7 @@ void validate_columns(const BuildingDefinition& b) {
   if (!b.column_shear_capacity_kN.empty()) {
     validate_per_floor(b.column_shear_capacity_kN, "column_shear_capacity_kN", b.storeys, kColumnShearCapacity, "storey");
   }
+  validate_shear_failure(b);
   if (!b.column_shear_capacity_kN.empty() && b.shear_capacity) {
     throw InputError("shear_capacity", "given with column_shear_capacity_kN",
                      "give the columns' shear capacity one way: column_shear_capacity_kN or [building.shear_capacity]");

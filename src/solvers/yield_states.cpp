@@ -51,8 +51,16 @@ int YieldStates::switch_branches(double t, const Eigen::VectorXd& y, const Eigen
   const int n = springs_.dof();
   int switched = 0;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
-    if (watches_capacity(j) && capacity_witness(y, j) <= 0.0) results_[j].shear_failure_t_s = t;
-    if (branch_witness(y, j) > 0.0) continue;
+    if (watches_capacity(j) && capacity_witness(y, j) <= 0.0) {
+      results_[j].shear_failure_t_s = t;
+      if (springs_[j].loses_stiffness) {
+        fail(j, y);
+        count_switch(j, t);
+        ++switched;
+        continue;
+      }
+    }
+    if (states_[j].branch == SpringBranch::failed || branch_witness(y, j) > 0.0) continue;
     dynamics::SpringState& state = states_[j];
     SpringResult& result = results_[j];
     const double rate_mps = springs_.drift(y.segment(n, n), j), accel_mps2 = springs_.drift(y_dot.segment(n, n), j);
@@ -85,6 +93,18 @@ void YieldStates::end_yielding(std::size_t j, double slip_m) {
       spring.plastic_stiffness() * spring.yield_drift_m * std::abs(slip_m - phase_start_slip_m_[j]);
   states_[j] = {.branch = SpringBranch::elastic, .slip_m = slip_m};
   --yielding_;
+}
+
+void YieldStates::fail(std::size_t j, const Eigen::VectorXd& y) {
+  const dynamics::YieldingSpring& spring = springs_[j];
+  // Its force at the failure (V_c) is its peak: observe() sees it only after, at zero.
+  results_[j].peak_force_kN = std::max(results_[j].peak_force_kN, std::abs(springs_.force_kN(y, states_, j)));
+  if (states_[j].branch != SpringBranch::elastic) end_yielding(j, springs_.slip(y, states_, j));
+  const double d = springs_.drift(y.head(springs_.dof()), j), elastic_part = d - states_[j].slip_m;
+  results_[j].hysteretic_kJ += 0.5 * spring.hardening_ratio * spring.stiffness_kN_per_m * d * d +
+                               0.5 * spring.plastic_stiffness() * elastic_part * elastic_part;
+  states_[j] = {.branch = SpringBranch::failed, .slip_m = 0.0};
+  ++failed_;
 }
 
 std::optional<std::size_t> YieldStates::observe(const Eigen::VectorXd& y) {
@@ -127,7 +147,7 @@ std::vector<SpringResult> YieldStates::finish(const Eigen::VectorXd& y, const st
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     if (springs_[j].bouc_wen) {
       results_[j].hysteretic_kJ = smooth_dissipated_kJ.at(j);
-    } else if (states_[j].branch != SpringBranch::elastic) {
+    } else if (states_[j].branch == SpringBranch::yielding_up || states_[j].branch == SpringBranch::yielding_down) {
       end_yielding(j, springs_.slip(y, states_, j));
     }
     results_[j].final_drift_m = springs_.drift(y.head(springs_.dof()), j);

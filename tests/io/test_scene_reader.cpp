@@ -566,6 +566,14 @@ BOOST_AUTO_TEST_CASE(AColumnShearCapacityIsOneNumberForEveryStoreyOrOneAStoreyOr
                       {"building[1].shear_capacity.transverse_yield_strength_MPa"}));
   BOOST_TEST(mentions(error_of(with("column_shear_capacity_kN = 300.0\n" + section)),
                       {"building[1].shear_capacity", "one way"}));
+  // Losing the stiffness at the failure needs bilinear columns and a capacity.
+  BOOST_TEST(mentions(error_of(with("column_shear_failure = \"crumble\"\n")),
+                      {"building[1].column_shear_failure = \"crumble\"", "\"report\" or \"lose-stiffness\""}));
+  BOOST_TEST(mentions(error_of(with("column_shear_capacity_kN = 300.0\ncolumn_shear_failure = \"lose-stiffness\"\n")),
+                      {"building[1].column_shear_failure", "needs bilinear columns"}));
+  BOOST_TEST(mentions(error_of(with("column_shear_failure = \"lose-stiffness\"\n[building.hysteresis]\nlaw = "
+                                    "\"bilinear\"\nyield_drift_ratio = 0.005\n")),
+                      {"building[1].column_shear_failure", "needs a shear capacity"}));
 }
 
 BOOST_AUTO_TEST_CASE(DriftLimitStatesAreReadFromTheirTableAndChecked) {

@@ -19,6 +19,9 @@
 // after (q, q̇) in y (z_index) obeying ż = (ḋ/d_y)(A − |z|ⁿ(β sgn(ḋ z) + γ)); it has no branches
 // and no witness. Its part stores ½ (1 − α) k d_y² z²/A and dissipates the rest of its work at
 // the rate dissipation_power() ≥ 0.
+// A bilinear spring whose column has failed in shear and lost its stiffness (failed branch,
+// YieldingSpring::loses_stiffness) carries no force: its slip is d/(1 − α), so that its slip force
+// k d t cancels its share of K q; it has no witness and stores nothing.
 // Units: m, s, kN.
 
 #include <Eigen/Core>
@@ -32,7 +35,7 @@
 
 namespace pounding::dynamics {
 
-enum class SpringBranch { elastic, yielding_up, yielding_down };
+enum class SpringBranch { elastic, yielding_up, yielding_down, failed };
 
 /// One spring's discrete state: its branch, and its slip s (m; the plastic drift) while elastic.
 struct SpringState {
@@ -64,6 +67,7 @@ struct YieldingSpring {
   std::optional<BoucWenShape> bouc_wen;
   int z_index = -1;
   double shear_capacity_kN = 0.0;  // V_c of its column along its direction; 0: not checked
+  bool loses_stiffness = false;    // on reaching V_c its column loses its stiffness (failed branch)
 
   /// (1 − α) k (kN/m): the stiffness of the elastic–perfectly-plastic part.
   double plastic_stiffness() const { return (1.0 - hardening_ratio) * stiffness_kN_per_m; }

@@ -148,6 +148,10 @@ struct BuildingDefinition {
   std::vector<double> column_shear_capacity_kN;
   /// ... or every column's from its section (excludes column_shear_capacity_kN).
   std::optional<ShearCapacityFormula> shear_capacity;
+  /// What a yielding column does when its sway shear reaches its capacity: "report" (the instant
+  /// is reported, the column keeps its law) or "lose-stiffness" (bilinear columns only: it
+  /// carries no force for the rest of the run).
+  std::string column_shear_failure = "report";
   // ... or given directly: one 3×3 matrix per storey about the CM (kN/m, kN, kN·m/rad).
   std::vector<Eigen::Matrix3d> storey_stiffness;
 

@@ -10,7 +10,9 @@
 // first yield (|d| reaching d_y outwards), and its dissipation is integrated with the energy
 // audit (EnergyBalance) and handed to finish(). A spring whose column has a shear capacity V_c
 // (YieldingSpring::shear_capacity_kN) and whose YieldStates locates shear failures adds the root
-// of (V_c − |F|)/k to its witness, until |F| first reaches V_c: that instant is its shear failure.
+// of (V_c − |F|)/k to its witness, until |F| first reaches V_c: that instant is its shear failure,
+// where a spring that loses its stiffness (YieldingSpring::loses_stiffness) goes to the failed
+// branch for good.
 
 #include <Eigen/Core>
 #include <deque>
@@ -41,7 +43,8 @@ class YieldStates {
   std::size_t size() const { return springs_.size(); }
   /// The states for the system's functions: nullptr when nothing yields (the elastic path).
   const dynamics::SpringStates* states() const { return springs_.empty() ? nullptr : &states_; }
-  bool any_yielding() const { return yielding_ > 0; }
+  /// A spring on a yielding branch, or failed: its force then moves with q.
+  bool any_yielding() const { return yielding_ > 0 || failed_ > 0; }
   /// Spring j's witness in y: its branch's (YieldingSprings::witness; a smooth spring's is
   /// d_y − |d| until it first yields, then 1), or, while its shear failure is watched for and
   /// nearer, (V_c − |F|)/k (m).
@@ -76,6 +79,9 @@ class YieldStates {
   /// Ends a yielding phase of spring j at slip `slip_m`: adds its dissipation.
   void end_yielding(std::size_t j, double slip_m);
   double branch_witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
+  /// Spring j's column loses its stiffness at y: a yielding phase in progress ends, and the energy
+  /// the spring holds, ½ α k d² + ½ (1 − α) k (d − s)², counts as dissipated (hysteretic).
+  void fail(std::size_t j, const Eigen::VectorXd& y);
   /// Spring j has a shear capacity its force has not reached yet, and failures are located.
   bool watches_capacity(std::size_t j) const;
   double capacity_witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
@@ -88,6 +94,7 @@ class YieldStates {
 
   std::vector<double> phase_start_slip_m_;  // the slip where the current yielding phase began
   int yielding_ = 0;                        // springs on a yielding branch
+  int failed_ = 0;                          // springs whose column failed and lost its stiffness
   double max_switches_per_s_;
   bool locate_shear_failures_;
   std::vector<std::deque<double>> recent_switches_s_;  // per spring, its switches within the last second
