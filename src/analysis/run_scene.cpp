@@ -501,7 +501,8 @@ RunReport run_scene(const Scene& scene, const RunLimits& limits, solvers::RunSin
   }
   report.limit_states = drift_limit_states(scene.buildings, report.result, report.contact_free);
   report.free_vibration_s = scene.excitation.free_vibration_s;
-  if (report.result.outputs.drift_peaks &&
+  // A run that ended early (a collapse, a limit) has no residual drift: its end is not rest.
+  if (report.result.status == solvers::RunStatus::completed && report.result.outputs.drift_peaks &&
       (!report.springs.empty() || !report.limit_states.empty() || report.free_vibration_s > 0.0)) {
     for (int b = 0; b < system.building_count(); ++b) {
       report.residual_drifts.push_back(residual_drift(report.result.peaks.at(static_cast<std::size_t>(b)),

@@ -229,7 +229,7 @@ void append_residual_drifts(const analysis::RunReport& report, std::string& text
     const analysis::StoreyResidualDrift& worst = b.largest;
     fmt::format_to(out, "Residual drift {} at t = {:.3f} s{}: largest {:.4f} % (storey {}, {} {}), {}\n", b.name,
                    report.result.end_s,
-                   report.free_vibration_s > 0.0 ? fmt::format(" ({:g} s after the record)", report.free_vibration_s)
+                   report.free_vibration_s > 0.0 ? fmt::format(" (after a {:g} s quiet tail)", report.free_vibration_s)
                                                  : "",
                    100.0 * worst.largest, worst.storey, worst.where, worst.axis,
                    b.settled ? fmt::format("at rest (oscillation {:.4f} %)", 100.0 * b.oscillation)

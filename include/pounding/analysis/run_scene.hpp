@@ -116,9 +116,9 @@ struct RunReport {
   std::vector<dynamics::YieldingSpring> springs = {};
   /// The drift limit states of the buildings with [building.limit_states] (limit_states.hpp).
   std::vector<DriftLimitState> limit_states = {};
-  /// Every building's residual drift (limit_states.hpp), when the drift peaks are kept and the
-  /// scene has yielding columns, limit states or a quiet tail (an elastic building keeps none:
-  /// without them its drift at the end is vibration); else empty.
+  /// Every building's residual drift (limit_states.hpp), when the run completed, the drift peaks
+  /// are kept and the scene has yielding columns, limit states or a quiet tail (an elastic
+  /// building keeps none: without them its drift at the end is vibration); else empty.
   std::vector<BuildingResidualDrift> residual_drifts = {};
   double free_vibration_s = 0.0;  // the quiet tail after the record (excitation.free_vibration_s)
   std::optional<SpectralScaling> spectral_scaling = std::nullopt;  // with excitation.scale_to_sa

@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""The street example of shear-critical columns (examples/street/weak-ground-storey.toml) end to end.
+
+    tests/cli/test_weak_ground_storey.py POUNDING [OUT]
+
+A row of three with B3's columns shear-critical: the run completes; summary.json gives B3's
+storeys a column_shear entry whose failures are counted and located (the first failure before
+the storey's first yield: the columns fail in shear before they yield), every building its drift
+limit states with and without contact, and, after the 10 s quiet tail, every building's residual
+drift with `settled` true and its largest residual the largest of its storeys'; `pounding report`
+writes report.html with the storeys table (a row per storey of the three buildings) and the
+limit-states table (a row per building with contact and one without); and the same scene with
+column_shear_failure = "lose-stiffness" ends as a collapse of B3's ground storey.
+"""
+import json
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+SCENE = ROOT / "examples" / "street" / "weak-ground-storey.toml"
+
+
+def main():
+    program = sys.argv[1]
+    out = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp())
+    failures = []
+
+    def check(condition, message):
+        print(("ok   " if condition else "FAIL ") + message)
+        if not condition:
+            failures.append(message)
+
+    run = subprocess.run([program, "run", str(SCENE), "--out", str(out / "run"), "--no-progress"],
+                         capture_output=True, text=True)
+    check(run.returncode == 0, f"the example runs (exit {run.returncode}) {run.stderr[-300:]}")
+    if run.returncode != 0:
+        sys.exit(1)
+    summary = json.loads((out / "run/summary.json").read_text())
+    b3 = next(b for b in summary["yielding"]["buildings"] if b["building"] == 3)
+    ground = b3["storeys"][0]
+    shear = ground.get("column_shear", {})
+    check(shear.get("failures", 0) > 0 and shear.get("springs_with_capacity") == 30,
+          f"B3's ground storey: {shear.get('failures')} of {shear.get('springs_with_capacity')} springs fail in shear")
+    check(shear.get("first_failure_t_s") is not None and ground["first_yield_t_s"] is not None and
+          shear["first_failure_t_s"] < ground["first_yield_t_s"],
+          f"they fail in shear ({shear.get('first_failure_t_s')} s) before the storey yields "
+          f"({ground['first_yield_t_s']} s)")
+    states = summary["limit_states"]["buildings"]
+    check([s["building"] for s in states] == ["B1", "B2", "B3"] and all("without_contact" in s for s in states),
+          "limit states for the three buildings, with and without contact")
+    residual = summary["residual_drift"]
+    check(residual["free_vibration_s"] == 10.0 and all(b["settled"] for b in residual["buildings"]),
+          f"after the 10 s tail every building is at rest (t = {residual['t_s']} s)")
+    check(all(b["largest"]["largest_drift_ratio"] == max(s["largest_drift_ratio"] for s in b["storeys"])
+              for b in residual["buildings"]), "each building's largest residual drift is its largest storey's")
+
+    report = subprocess.run([program, "report", str(out / "run")], capture_output=True, text=True)
+    page = (out / "run/report.html").read_text() if (out / "run/report.html").is_file() else ""
+
+    def rows(table_id):
+        if f'id="{table_id}"' not in page:
+            return 0
+        return len(re.findall(r"<tr>", page.split(f'id="{table_id}"')[1].split("</table>")[0].split("<tbody>")[1]))
+
+    storeys = sum(len(b["storeys"]) for b in residual["buildings"])
+    check(report.returncode == 0 and rows("storeys") == storeys,
+          f"report.html's storeys table has a row per storey ({rows('storeys')} of {storeys})")
+    check(rows("limit-states") == 6, f"report.html's limit-states table has 6 rows ({rows('limit-states')})")
+
+    scene = SCENE.read_text().replace('column_shear_failure = "report"', 'column_shear_failure = "lose-stiffness"')
+    scene = scene.replace('"../records/', f'"{ROOT}/examples/records/')
+    (out / "lose.toml").write_text(scene)
+    lose = subprocess.run([program, "run", str(out / "lose.toml"), "--out", str(out / "lose"), "--no-progress"],
+                          capture_output=True, text=True)
+    status = json.loads((out / "lose/summary.json").read_text()) if (out / "lose/summary.json").is_file() else {}
+    check(status.get("status") == "collapse" and "B3 storey 1" in status.get("status_detail", ""),
+          f"losing their stiffness, B3's ground storey collapses ({status.get('status')}: "
+          f"{status.get('status_detail', '')[:80]})")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
