@@ -294,6 +294,10 @@ json pounding_demand_json(const analysis::RunReport& report) {
         if (yield_with[k].building != static_cast<int>(b) || yield_with[k].storey != a.floor) continue;
         storey["ductility_x"] = with_without(yield_with[k].peak_ductility[0], yield_without[k].peak_ductility[0]);
         storey["ductility_y"] = with_without(yield_with[k].peak_ductility[1], yield_without[k].peak_ductility[1]);
+        storey["column_force_x_kN"] =
+            with_without(yield_with[k].peak_column_force_kN[0], yield_without[k].peak_column_force_kN[0]);
+        storey["column_force_y_kN"] =
+            with_without(yield_with[k].peak_column_force_kN[1], yield_without[k].peak_column_force_kN[1]);
       }
       storeys.push_back(std::move(storey));
     }
@@ -302,6 +306,8 @@ json pounding_demand_json(const analysis::RunReport& report) {
   return {{"reference", "the same scene and method without contact"},
           {"reference_status", solvers::to_string(without.status)},
           {"drift", "peak drift ratio of the storey below each floor, at the CM (as peaks' drift_x, drift_y)"},
+          {"column_force", "yielding columns: the largest peak |force| of the storey's columns along x, y (kN; "
+                           "yielding.csv's peak_force_kN)"},
           {"buildings", buildings}};
 }
 

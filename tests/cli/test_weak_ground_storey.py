@@ -6,12 +6,14 @@
 A row of three with B3's columns shear-critical: the run completes; summary.json gives B3's
 storeys a column_shear entry whose failures are counted and located (the first failure before
 the storey's first yield: the columns fail in shear before they yield), every building its drift
-limit states with and without contact, and, after the 10 s quiet tail, every building's residual
+limit states with and without contact, its storeys the pounding-induced column force (with: the
+largest peak force in yielding.csv), and, after the 10 s quiet tail, every building's residual
 drift with `settled` true and its largest residual the largest of its storeys'; `pounding report`
 writes report.html with the storeys table (a row per storey of the three buildings) and the
 limit-states table (a row per building with contact and one without); and the same scene with
 column_shear_failure = "lose-stiffness" ends as a collapse of B3's ground storey.
 """
+import csv
 import json
 import re
 import subprocess
@@ -48,6 +50,11 @@ def main():
           shear["first_failure_t_s"] < ground["first_yield_t_s"],
           f"they fail in shear ({shear.get('first_failure_t_s')} s) before the storey yields "
           f"({ground['first_yield_t_s']} s)")
+    with open(out / "run/yielding.csv") as f:
+        springs = [r for r in csv.DictReader(f) if r["building"] == "3" and r["storey"] == "1" and r["direction"] == "x"]
+    demand = summary["pounding_demand"]["buildings"][2]["storeys"][0].get("column_force_x_kN", {})
+    check(demand.get("with") == max(float(r["peak_force_kN"]) for r in springs) and demand.get("without", 0) > 0,
+          f"the pounding-induced column force of B3's storey 1 is its columns' largest peak force ({demand})")
     states = summary["limit_states"]["buildings"]
     check([s["building"] for s in states] == ["B1", "B2", "B3"] and all("without_contact" in s for s in states),
           "limit states for the three buildings, with and without contact")
