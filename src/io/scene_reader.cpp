@@ -478,20 +478,14 @@ void read_keys(TableReader& table, Owner& owner, std::span<const analysis::KeySp
   }
 }
 
-model::ShearCapacityFormula read_shear_capacity(TableReader table) {
-  model::ShearCapacityFormula formula;
-  read_keys(table, formula, analysis::shear_capacity_specs(),
-            [](const analysis::ShearCapacitySpec& spec) { return spec.required; });
+/// A table whose keys are all `specs`' rows ([building.limit_states], [building.shear_capacity]),
+/// its required ones required.
+template <typename Owner>
+Owner read_table_of_keys(TableReader table, std::span<const analysis::KeySpec<Owner>> specs) {
+  Owner owner;
+  read_keys(table, owner, specs, [](const analysis::KeySpec<Owner>& spec) { return spec.required; });
   table.finish();
-  return formula;
-}
-
-model::DriftLimits read_drift_limits(TableReader table) {
-  model::DriftLimits limits;
-  read_keys(table, limits, analysis::drift_limit_specs(),
-            [](const analysis::DriftLimitSpec& spec) { return spec.required; });
-  table.finish();
-  return limits;
+  return owner;
 }
 
 model::BuildingDefinition read_building(TableReader table) {
@@ -528,8 +522,10 @@ model::BuildingDefinition read_building(TableReader table) {
     damping->finish();
   }
   if (auto hysteresis = table.optional_subtable("hysteresis")) b.hysteresis = read_hysteresis(*hysteresis, b.storeys);
-  if (auto limits = table.optional_subtable("limit_states")) b.drift_limits = read_drift_limits(*limits);
-  if (auto capacity = table.optional_subtable("shear_capacity")) b.shear_capacity = read_shear_capacity(*capacity);
+  if (auto limits = table.optional_subtable("limit_states"))
+    b.drift_limits = read_table_of_keys(*limits, analysis::drift_limit_specs());
+  if (auto capacity = table.optional_subtable("shear_capacity"))
+    b.shear_capacity = read_table_of_keys(*capacity, analysis::shear_capacity_specs());
   if (const toml::node* p_delta = table.find("p_delta")) {
     if (!p_delta->is_boolean()) throw table.error(*p_delta, table.key_path("p_delta"), "expected true or false");
     b.p_delta = **p_delta->as_boolean();
