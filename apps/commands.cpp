@@ -240,14 +240,16 @@ void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
     std::array<std::string, 2> along;
     for (int direction = 0; direction < 2; ++direction) {
       std::vector<double> kN;
-      for (std::size_t c = 0; c < d.columns.size(); ++c) kN.push_back(model::column_shear_capacity_kN(building, storey, c, direction));
+      for (std::size_t c = 0; c < d.columns.size(); ++c)
+        kN.push_back(model::column_shear_capacity_kN(building, storey, c, direction));
       const auto [low, high] = std::minmax_element(kN.begin(), kN.end());
       along[direction] = *low == *high ? fmt::format("{:.5g}", *low) : fmt::format("{:.5g}-{:.5g}", *low, *high);
     }
     storeys.push_back(fmt::format("{} | {}", along[0], along[1]));
   }
   const std::string source = d.shear_capacity ? " (ASCE 41-17 Eq. 10-3)" : "";
-  const std::string after = d.column_shear_failure == "lose-stiffness" ? "; a column that fails loses its stiffness" : "";
+  const std::string after =
+      d.column_shear_failure == "lose-stiffness" ? "; a column that fails loses its stiffness" : "";
   if (all_equal(storeys)) {
     fmt::print("  column shear capacity{} x | y: {} kN, every storey{}\n", source, storeys.front(), after);
   } else {
@@ -260,7 +262,8 @@ void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
     if (s.shear_capacity_kN < s.stiffness_kN_per_m * s.yield_drift_m) ++critical;
   }
   if (springs > 0) {
-    fmt::print("    {} of {} column springs shear-critical (capacity below their yield force k d_y)\n", critical, springs);
+    fmt::print("    {} of {} column springs shear-critical (capacity below their yield force k d_y)\n", critical,
+               springs);
   }
 }
 

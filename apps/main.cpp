@@ -195,11 +195,11 @@ int main(int argc, char** argv) {
   methods_app->add_flag("--json", methods.json, "As JSON (name, description, settings, study ladder and plot styles)");
 
   pounding::cli::SettingsCommand settings;
-  CLI::App* settings_app = app.add_subcommand(
-      "settings",
-      "The [solver] and [contact] settings, the run limits and the [building.limit_states] and "
-      "[building.shear_capacity] keys: key, option, type, "
-      "default, range (and the methods using each solver setting)");
+  CLI::App* settings_app =
+      app.add_subcommand("settings",
+                         "The [solver] and [contact] settings, the run limits and the [building.limit_states] and "
+                         "[building.shear_capacity] keys: key, option, type, "
+                         "default, range (and the methods using each solver setting)");
   settings_app->add_flag("--json", settings.json,
                          "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
   settings_app->add_option("--markdown", settings.markdown,

@@ -407,7 +407,8 @@ std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::Yielding
     StoreyYielding& storey = storeys.back();
     const solvers::SpringResult& r = results[j];
     const auto direction = static_cast<std::size_t>(spring.direction);
-    storey.peak_ductility[direction] = std::max(storey.peak_ductility[direction], r.peak_drift_m / spring.yield_drift_m);
+    storey.peak_ductility[direction] =
+        std::max(storey.peak_ductility[direction], r.peak_drift_m / spring.yield_drift_m);
     storey.peak_column_force_kN[direction] = std::max(storey.peak_column_force_kN[direction], r.peak_force_kN);
     if (r.yield_count > 0) {
       ++storey.springs_yielded;

@@ -133,9 +133,9 @@ void YieldingSprings::add_tangent_rows(const SpringStates& states, const Eigen::
         states[j].branch == SpringBranch::failed ? spring.stiffness_kN_per_m : spring.plastic_stiffness();
     for (std::size_t a = 0; a < spring.indices.size(); ++a) {
       for (std::size_t c = 0; c < spring.indices.size(); ++c) {
-        terms.emplace_back(spring.indices[a], spring.indices[c],
-                           inverse_mass[spring.indices[a]] * slope_kN_per_m * spring.coefficients[a] *
-                               spring.coefficients[c]);
+        terms.emplace_back(
+            spring.indices[a], spring.indices[c],
+            inverse_mass[spring.indices[a]] * slope_kN_per_m * spring.coefficients[a] * spring.coefficients[c]);
       }
     }
   }

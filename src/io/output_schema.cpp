@@ -174,12 +174,15 @@ const std::vector<YieldingColumn>& yielding_columns() {
        [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.final_drift_m); }},
       {"final_slip_m", "m", Kind::real, "slip of its plastic part at the end (the drift at zero force for alpha = 0)",
        [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.final_slip_m); }},
-      {"shear_capacity_kN", "kN", Kind::real, "its column's shear capacity V_c along its direction (this and the next three columns are written when some column has one); empty: none given",
+      {"shear_capacity_kN", "kN", Kind::real,
+       "its column's shear capacity V_c along its direction (this and the next three columns are written when some "
+       "column has one); empty: none given",
        [](const YieldingSpring& s, const SpringResult&) {
          return s.shear_capacity_kN > 0.0 ? fmt::format("{}", s.shear_capacity_kN) : std::string();
        },
        true},
-      {"peak_force_kN", "kN", Kind::real, "largest absolute force at the step ends and events (exact at a yielding phase's end)",
+      {"peak_force_kN", "kN", Kind::real,
+       "largest absolute force at the step ends and events (exact at a yielding phase's end)",
        [](const YieldingSpring&, const SpringResult& r) { return fmt::format("{}", r.peak_force_kN); }, true},
       {"demand_capacity_ratio", "", Kind::real, "peak force over shear capacity; empty: no capacity",
        [](const YieldingSpring& s, const SpringResult& r) {
@@ -187,7 +190,8 @@ const std::vector<YieldingColumn>& yielding_columns() {
        },
        true},
       {"shear_failure_t_s", "s", Kind::real,
-       "when the absolute force first reached the shear capacity (located: the column's shear failure); empty if it never did",
+       "when the absolute force first reached the shear capacity (located: the column's shear failure); empty if it "
+       "never did",
        [](const YieldingSpring&, const SpringResult& r) {
          return std::isfinite(r.shear_failure_t_s) ? fmt::format("{}", r.shear_failure_t_s) : std::string();
        },
@@ -251,7 +255,9 @@ json output_schema_json() {
                         {"unit", c.unit},
                         {"kind", kKind[static_cast<int>(c.kind)]},
                         {"description", c.description}});
-    if (c.shear_capacity_only) yielding.back()["only_when"] = "some yielding column has a shear capacity (column_shear_capacity_kN or [building.shear_capacity])";
+    if (c.shear_capacity_only)
+      yielding.back()["only_when"] =
+          "some yielding column has a shear capacity (column_shear_capacity_kN or [building.shear_capacity])";
   }
   return {{"history", history},
           {"impacts", impacts},

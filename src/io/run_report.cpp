@@ -166,10 +166,11 @@ void append_yielding(const analysis::RunReport& report, std::string& text) {
         std::isfinite(s.first_yield_t_s) ? fmt::format("first yield {:.6f} s", s.first_yield_t_s) : "elastic",
         s.hysteretic_kJ);
     if (s.springs_with_capacity == 0) continue;
-    fmt::format_to(out, "    column shear: {} of {} springs reached their capacity{}; largest demand/capacity {:.3f} ({} {})\n",
-                   s.shear_failures, s.springs_with_capacity,
-                   s.shear_failures > 0 ? fmt::format(", first at {:.6f} s", s.first_shear_failure_t_s) : "",
-                   s.largest_demand_capacity_ratio, s.critical_column, s.critical_direction);
+    fmt::format_to(
+        out, "    column shear: {} of {} springs reached their capacity{}; largest demand/capacity {:.3f} ({} {})\n",
+        s.shear_failures, s.springs_with_capacity,
+        s.shear_failures > 0 ? fmt::format(", first at {:.6f} s", s.first_shear_failure_t_s) : "",
+        s.largest_demand_capacity_ratio, s.critical_column, s.critical_direction);
   }
 }
 
@@ -227,15 +228,15 @@ void append_residual_drifts(const analysis::RunReport& report, std::string& text
   auto out = std::back_inserter(text);
   for (const analysis::BuildingResidualDrift& b : report.residual_drifts) {
     const analysis::StoreyResidualDrift& worst = b.largest;
-    fmt::format_to(out, "Residual drift {} at t = {:.3f} s{}: largest {:.4f} % (storey {}, {} {}), {}\n", b.name,
-                   report.result.end_s,
-                   report.free_vibration_s > 0.0 ? fmt::format(" (after a {:g} s quiet tail)", report.free_vibration_s)
-                                                 : "",
-                   100.0 * worst.largest, worst.storey, worst.where, worst.axis,
-                   b.settled ? fmt::format("at rest (oscillation {:.4f} %)", 100.0 * b.oscillation)
-                             : fmt::format("still oscillating by about {:.4f} %: [excitation] free_vibration_s lets "
-                                           "it come to rest",
-                                           100.0 * b.oscillation));
+    fmt::format_to(
+        out, "Residual drift {} at t = {:.3f} s{}: largest {:.4f} % (storey {}, {} {}), {}\n", b.name,
+        report.result.end_s,
+        report.free_vibration_s > 0.0 ? fmt::format(" (after a {:g} s quiet tail)", report.free_vibration_s) : "",
+        100.0 * worst.largest, worst.storey, worst.where, worst.axis,
+        b.settled ? fmt::format("at rest (oscillation {:.4f} %)", 100.0 * b.oscillation)
+                  : fmt::format("still oscillating by about {:.4f} %: [excitation] free_vibration_s lets "
+                                "it come to rest",
+                                100.0 * b.oscillation));
     for (const analysis::StoreyResidualDrift& s : b.storeys) {
       fmt::format_to(out, "  storey {}: x {:.4f} %, y {:.4f} % at the CM; largest {:.4f} % ({} {})\n", s.storey,
                      100.0 * s.x, 100.0 * s.y, 100.0 * s.largest, s.where, s.axis);

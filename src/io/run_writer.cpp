@@ -306,8 +306,9 @@ json pounding_demand_json(const analysis::RunReport& report) {
   return {{"reference", "the same scene and method without contact"},
           {"reference_status", solvers::to_string(without.status)},
           {"drift", "peak drift ratio of the storey below each floor, at the CM (as peaks' drift_x, drift_y)"},
-          {"column_force", "yielding columns: the largest peak |force| of the storey's columns along x, y (kN; "
-                           "yielding.csv's peak_force_kN)"},
+          {"column_force",
+           "yielding columns: the largest peak |force| of the storey's columns along x, y (kN; "
+           "yielding.csv's peak_force_kN)"},
           {"buildings", buildings}};
 }
 
@@ -482,8 +483,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
     scaling["record_factor"] = sa.record_factor;
     summary["spectral_scaling"] = scaling;
   }
-  if (report.springs.empty() && !report.contact_free && report.limit_states.empty() &&
-      report.residual_drifts.empty()) {
+  if (report.springs.empty() && !report.contact_free && report.limit_states.empty() && report.residual_drifts.empty()) {
     return summary;
   }
   // The yielding and pounding-demand sections go before the energy audit.

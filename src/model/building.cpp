@@ -110,7 +110,8 @@ void refuse_repeated_columns(const std::vector<Column>& columns) {
 void validate_shear_failure(const BuildingDefinition& b) {
   const std::string& choice = b.column_shear_failure;
   if (choice != "report" && choice != "lose-stiffness") {
-    throw InputError("column_shear_failure", fmt::format("\"{}\"", choice), "expected \"report\" or \"lose-stiffness\"");
+    throw InputError("column_shear_failure", fmt::format("\"{}\"", choice),
+                     "expected \"report\" or \"lose-stiffness\"");
   }
   if (choice == "report") return;
   if (b.hysteresis.kind != HystereticLaw::Kind::bilinear) {
@@ -145,7 +146,8 @@ void validate_columns(const BuildingDefinition& b) {
   refuse_repeated_columns(b.columns);
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
   if (!b.column_shear_capacity_kN.empty()) {
-    validate_per_floor(b.column_shear_capacity_kN, "column_shear_capacity_kN", b.storeys, kColumnShearCapacity, "storey");
+    validate_per_floor(b.column_shear_capacity_kN, "column_shear_capacity_kN", b.storeys, kColumnShearCapacity,
+                       "storey");
   }
   validate_shear_failure(b);
   if (!b.column_shear_capacity_kN.empty() && b.shear_capacity) {
@@ -421,20 +423,24 @@ double column_shear_capacity_kN(const Building& building, int storey, std::size_
   const double depth_mm = 1000.0 * (direction == 0 ? c.b_m : c.h_m);
   const double gross_area_mm2 = 1e6 * c.b_m * c.h_m;
   const double d_mm = f.effective_depth_ratio * depth_mm;
-  const double moment_ratio = std::clamp(1000.0 * d.storey_height_m.at(static_cast<std::size_t>(storey - 1)) / 2.0 / d_mm, 2.0, 4.0);
+  const double moment_ratio =
+      std::clamp(1000.0 * d.storey_height_m.at(static_cast<std::size_t>(storey - 1)) / 2.0 / d_mm, 2.0, 4.0);
   const double spacing_ratio = f.transverse_spacing_mm / d_mm;
   const double steel_share = std::clamp((1.0 - spacing_ratio) / 0.25, 0.0, 1.0);
   double axial_kN = 0.0;
   if (f.axial_load_kN) {
     axial_kN = *f.axial_load_kN;
   } else {
-    for (std::size_t floor = static_cast<std::size_t>(storey - 1); floor < d.mass_t.size(); ++floor) axial_kN += d.mass_t[floor];
+    for (std::size_t floor = static_cast<std::size_t>(storey - 1); floor < d.mass_t.size(); ++floor)
+      axial_kN += d.mass_t[floor];
     axial_kN *= d.g_mps2 / static_cast<double>(d.columns.size());
   }
   const double root_fc = std::sqrt(f.concrete_strength_MPa);
-  const double steel_N = steel_share * f.transverse_area_mm2 * f.transverse_yield_strength_MPa * d_mm / f.transverse_spacing_mm;
+  const double steel_N =
+      steel_share * f.transverse_area_mm2 * f.transverse_yield_strength_MPa * d_mm / f.transverse_spacing_mm;
   const double concrete_N = 0.5 * root_fc / moment_ratio *
-                            std::sqrt(1.0 + 1000.0 * axial_kN / (0.5 * root_fc * gross_area_mm2)) * 0.8 * gross_area_mm2;
+                            std::sqrt(1.0 + 1000.0 * axial_kN / (0.5 * root_fc * gross_area_mm2)) * 0.8 *
+                            gross_area_mm2;
   return f.ductility_factor * (steel_N + concrete_N) / 1000.0;
 }
 

@@ -171,8 +171,8 @@ void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
     r.column_moment_kNm = demand.moment_kNm;
     // The capacity along the plan axis nearer the struck edge's normal (the force's direction).
     const int direction = std::abs(c.normal_rest.x()) >= std::abs(c.normal_rest.y()) ? 0 : 1;
-    const double capacity_kN =
-        model::column_shear_capacity_kN(system_.building(c.striking_building), c.lower_floor + 1, c.column_index, direction);
+    const double capacity_kN = model::column_shear_capacity_kN(system_.building(c.striking_building), c.lower_floor + 1,
+                                                               c.column_index, direction);
     if (capacity_kN > 0.0) r.column_shear_ratio = demand.shear_kN / capacity_kN;
   }
   recorder_.add_impact_loss(r.energy_lost_kJ);

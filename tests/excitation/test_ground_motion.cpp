@@ -183,7 +183,7 @@ BOOST_AUTO_TEST_CASE(AQuietTailAppendsZeroSamplesAtTheRecordsSpacingAfterTheScal
   const GroundMotion motion = process_record(ramp(11, 0.01), spec);
   BOOST_TEST(motion.time_s().size() == 14u);
   BOOST_TEST(motion.end_s() == 0.13, tt::tolerance(1e-12));
-  BOOST_TEST(motion.accel_mps2()[10] == 9.81, tt::tolerance(1e-14));  // scaled as before
+  BOOST_TEST(motion.accel_mps2()[10] == 9.81, tt::tolerance(1e-14));     // scaled as before
   BOOST_TEST(motion.accel_at(0.105) == 9.81 / 2, tt::tolerance(1e-12));  // linear to zero over one interval
   BOOST_TEST(motion.accel_at(0.125) == 0.0);
   BOOST_TEST(motion.peak_mps2() == 9.81, tt::tolerance(1e-14));

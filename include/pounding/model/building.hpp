@@ -59,13 +59,13 @@ struct RayleighSpec {
 /// s/d ≤ 0.75, 0 for s/d ≥ 1 and linear between, N the axial compression, λ = 1 (normal-weight
 /// concrete). The same for every column of the building.
 struct ShearCapacityFormula {
-  double concrete_strength_MPa = 0.0;        // f'c (required)
+  double concrete_strength_MPa = 0.0;          // f'c (required)
   double transverse_yield_strength_MPa = 0.0;  // f_yt (required)
-  double transverse_area_mm2 = 0.0;          // A_v: the legs of one set of ties across the shear plane (required)
-  double transverse_spacing_mm = 0.0;        // s (required)
-  std::optional<double> axial_load_kN;       // N per column, compression; unset: the gravity share
-  double effective_depth_ratio = 0.8;        // d over the section's depth along the sway
-  double ductility_factor = 1.0;             // k_nl: 1 at displacement ductility ≤ 2, 0.7 at ≥ 6
+  double transverse_area_mm2 = 0.0;            // A_v: the legs of one set of ties across the shear plane (required)
+  double transverse_spacing_mm = 0.0;          // s (required)
+  std::optional<double> axial_load_kN;         // N per column, compression; unset: the gravity share
+  double effective_depth_ratio = 0.8;          // d over the section's depth along the sway
+  double ductility_factor = 1.0;               // k_nl: 1 at displacement ductility ≤ 2, 0.7 at ≥ 6
 };
 
 /// The force–drift law of every column of a building (docs/model.md, "Yielding columns"). Each
