@@ -73,9 +73,12 @@ def main():
         return len(re.findall(r"<tr>", page.split(f'id="{table_id}"')[1].split("</table>")[0].split("<tbody>")[1]))
 
     storeys = sum(len(b["storeys"]) for b in residual["buildings"])
-    check(report.returncode == 0 and rows("storeys") == storeys,
-          f"report.html's storeys table has a row per storey ({rows('storeys')} of {storeys})")
-    check(rows("limit-states") == 6, f"report.html's limit-states table has 6 rows ({rows('limit-states')})")
+    if "has no Python" in report.stderr:  # a build without the Python module (the sanitizer pass)
+        print(f"skip report.html: {report.stderr.strip()}")
+    else:
+        check(report.returncode == 0 and rows("storeys") == storeys,
+              f"report.html's storeys table has a row per storey ({rows('storeys')} of {storeys})")
+        check(rows("limit-states") == 6, f"report.html's limit-states table has 6 rows ({rows('limit-states')})")
 
     scene = SCENE.read_text().replace('column_shear_failure = "report"', 'column_shear_failure = "lose-stiffness"')
     scene = scene.replace('"../records/', f'"{ROOT}/examples/records/')

@@ -555,7 +555,7 @@ BOOST_AUTO_TEST_CASE(AColumnShearCapacityIsOneNumberForEveryStoreyOrOneAStoreyOr
       "[building.shear_capacity]\nconcrete_strength_MPa = 25.0\ntransverse_yield_strength_MPa = 420.0\n"
       "transverse_area_mm2 = 157.0\ntransverse_spacing_mm = 200.0\n";
   Case formula(with(section));
-  const auto& capacity = read_scene(formula.file).buildings[0].shear_capacity;
+  const auto capacity = read_scene(formula.file).buildings[0].shear_capacity;
   BOOST_TEST_REQUIRE(capacity.has_value());
   BOOST_TEST(capacity->concrete_strength_MPa == 25.0);
   BOOST_TEST(capacity->effective_depth_ratio == 0.8);  // the default

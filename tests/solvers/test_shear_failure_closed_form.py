@@ -175,13 +175,16 @@ def check_case(program, out, name, failures):
             abs(shear.get("first_failure_t_s", 0.0) - t_fail) > 1e-7 or \
             abs(shear.get("largest_demand_capacity_ratio", 0.0) * capacity_kN / peak_kN - 1.0) > 1e-7:
         failures.append(f"{name}: summary.json column_shear {shear}")
-    subprocess.run([program, "report", str(folder / "run")], capture_output=True, text=True)
-    page = (folder / "run/report.html").read_text() if (folder / "run/report.html").is_file() else ""
-    storeys = page.split('id="storeys"')[1].split("</table>")[0] if 'id="storeys"' in page else ""
-    first_row = re.sub(r"<[^>]+>", "|", storeys.split("<tbody>")[-1].split("</tr>")[0])
-    cells = [c for c in first_row.split("|") if c]
-    if cells[:2] != ["S", "1"] or "4 of 8" not in cells or f"{t_fail:.4f}" not in cells:
-        failures.append(f"{name}: report.html's storeys table row is {cells}")
+    report = subprocess.run([program, "report", str(folder / "run")], capture_output=True, text=True)
+    if "has no Python" in report.stderr:  # a build without the Python module (the sanitizer pass)
+        print(f"  report.html not checked: {report.stderr.strip()}")
+    else:
+        page = (folder / "run/report.html").read_text() if (folder / "run/report.html").is_file() else ""
+        storeys = page.split('id="storeys"')[1].split("</table>")[0] if 'id="storeys"' in page else ""
+        first_row = re.sub(r"<[^>]+>", "|", storeys.split("<tbody>")[-1].split("</tr>")[0])
+        cells = [c for c in first_row.split("|") if c]
+        if cells[:2] != ["S", "1"] or "4 of 8" not in cells or f"{t_fail:.4f}" not in cells:
+            failures.append(f"{name}: report.html's storeys table row is {cells}")
     check = subprocess.run([program, "check", str(folder / "scene.toml")], capture_output=True, text=True).stdout
     critical = 8 if capacity_kN < yield_kN else 0  # every spring, x and y, of the four columns
     line = " / ".join(l.strip() for l in check.splitlines() if "shear capacity" in l or "shear-critical" in l)
