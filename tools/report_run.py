@@ -256,7 +256,9 @@ def storeys_table(summary):
     notes = []
     for b in summary.get("residual_drift", {}).get("buildings", []):
         state = "at rest" if b["settled"] else "still oscillating"
-        notes.append(f"{text(b['building'])}: {state} (oscillation {percent(b['oscillation_ratio'], 4)})")
+        damage = b.get("damage_state") or "below DS1"
+        notes.append(f"{text(b['building'])}: {state} (oscillation {percent(b['oscillation_ratio'], 4)}), "
+                     f"damage state {damage}")
     note = ""
     if notes:
         note = (f'<p class="note">Residual drift: the storey drift ratio at the end of the run, '

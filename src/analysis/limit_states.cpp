@@ -133,6 +133,18 @@ std::span<const StructuralType> structural_types() { return kStructuralTypes; }
 
 std::span<const ShearCapacitySpec> shear_capacity_specs() { return kShearCapacitySpecs; }
 
+std::span<const ResidualDamageState> residual_damage_states() {
+  static constexpr std::array<ResidualDamageState, 4> kStates{{
+      {"DS1", 0.002, "no structural realignment needed for stability; nonstructural and mechanical repairs"},
+      {"DS2", 0.005, "realignment of the structural frame and related structural repairs needed"},
+      {"DS3", 0.01,
+       "major structural realignment needed to restore the margin against lateral instability; "
+       "may not be economically or practically feasible"},
+      {"DS4", 0.02, "in danger of collapse from aftershocks"},
+  }};
+  return kStates;
+}
+
 void validate_shear_capacity(const model::ShearCapacityFormula& formula) {
   validate_keys<model::ShearCapacityFormula>(formula, kShearCapacitySpecs, "shear_capacity");
 }
@@ -191,6 +203,9 @@ BuildingResidualDrift residual_drift(const solvers::BuildingPeaks& peaks, double
     building.storeys.push_back(std::move(storey));
   }
   building.settled = building.oscillation <= std::max(0.1 * building.largest.largest, kSettledOscillation);
+  for (std::size_t k = 0; k < residual_damage_states().size(); ++k) {
+    if (building.largest.largest >= residual_damage_states()[k].drift_ratio) building.damage_state = k;
+  }
   return building;
 }
 

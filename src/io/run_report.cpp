@@ -237,6 +237,14 @@ void append_residual_drifts(const analysis::RunReport& report, std::string& text
                   : fmt::format("still oscillating by about {:.4f} %: [excitation] free_vibration_s lets "
                                 "it come to rest",
                                 100.0 * b.oscillation));
+    if (b.damage_state) {
+      const analysis::ResidualDamageState& state = analysis::residual_damage_states()[*b.damage_state];
+      fmt::format_to(out, "  damage state {} (residual drift from {:g} %): {}\n", state.name, 100.0 * state.drift_ratio,
+                     state.meaning);
+    } else {
+      fmt::format_to(out, "  below damage state DS1 ({:g} %)\n",
+                     100.0 * analysis::residual_damage_states()[0].drift_ratio);
+    }
     for (const analysis::StoreyResidualDrift& s : b.storeys) {
       fmt::format_to(out, "  storey {}: x {:.4f} %, y {:.4f} % at the CM; largest {:.4f} % ({} {})\n", s.storey,
                      100.0 * s.x, 100.0 * s.y, 100.0 * s.largest, s.where, s.axis);

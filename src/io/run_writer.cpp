@@ -244,6 +244,15 @@ json residual_json(const analysis::StoreyResidualDrift& storey) {
           {"oscillation_ratio", storey.oscillation}};
 }
 
+/// FEMA P-58's residual drift damage states, which each building's damage_state names.
+json damage_states_json() {
+  json states = json::array();
+  for (const analysis::ResidualDamageState& s : analysis::residual_damage_states()) {
+    states.push_back({{"name", s.name}, {"drift_ratio", s.drift_ratio}, {"meaning", s.meaning}});
+  }
+  return states;
+}
+
 /// Per building: every storey's drift ratio at the end of the run (FEMA P-58's residual drift once
 /// at rest), the largest, and whether the building had come to rest.
 json residual_drift_json(const analysis::RunReport& report) {
@@ -251,12 +260,15 @@ json residual_drift_json(const analysis::RunReport& report) {
   for (const analysis::BuildingResidualDrift& building : report.residual_drifts) {
     json storeys = json::array();
     for (const analysis::StoreyResidualDrift& storey : building.storeys) storeys.push_back(residual_json(storey));
-    buildings.push_back({{"building", building.name},
-                         {"first_period_s", building.first_period_s},
-                         {"largest", residual_json(building.largest)},
-                         {"oscillation_ratio", building.oscillation},
-                         {"settled", building.settled},
-                         {"storeys", storeys}});
+    buildings.push_back(
+        {{"building", building.name},
+         {"first_period_s", building.first_period_s},
+         {"largest", residual_json(building.largest)},
+         {"oscillation_ratio", building.oscillation},
+         {"settled", building.settled},
+         {"damage_state", building.damage_state ? json(analysis::residual_damage_states()[*building.damage_state].name)
+                                                : json(nullptr)},
+         {"storeys", storeys}});
   }
   return {{"measure",
            "storey drift ratio at the end of the run (the CM's along x and y, signed; the largest |ratio| over the CM "
@@ -268,6 +280,7 @@ json residual_drift_json(const analysis::RunReport& report) {
            "going on"},
           {"settled", fmt::format("oscillation at most a tenth of the largest residual or below {:g}",
                                   analysis::kSettledOscillation)},
+          {"damage_states", damage_states_json()},
           {"buildings", buildings}};
 }
 

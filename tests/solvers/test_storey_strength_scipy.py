@@ -27,7 +27,8 @@ its own yield drifts per spring and its own branch rules. Checked, for A and for
   4. the residual drift (summary.json's residual_drift, written for yielding scenes): each storey's
      drift ratio at the end of the run at the CM along x and y and the largest |ratio| over the CM
      and the four slab corners (exact rigid-body rotation) within 1e-8, the oscillation ratio
-     |rate| / omega_1 within 1e-7, the end time, and the `settled` verdict by its documented rule;
+     |rate| / omega_1 within 1e-7, the end time, the `settled` verdict by its documented rule, and
+     the damage state of the largest residual (FEMA P-58's DS1-DS4 from 0.2, 0.5, 1 and 2 %);
 and the storeys' strengths matter: in A (the upper storey weaker by force) storey 2 yields first, in
 B (storey 1 weaker) storey 1 does. A third case, C, is A under the pulse cut at 0.5 s (its last
 sample 4.8 m/s2, not zero) with `free_vibration_s = 5.5`: the program appends the quiet tail to
@@ -300,7 +301,8 @@ def check_residual_drift(run, peer, label, failures):
     largest = np.abs(ratio).max()
     settled = oscillation.max() <= max(0.1 * largest, 1e-4)
     print(f"  residual drift at {section['t_s']} s: largest {100 * largest:.4f} % (peer), "
-          f"oscillation {100 * oscillation.max():.5f} %, settled {building['settled']} (peer {settled}); "
+          f"oscillation {100 * oscillation.max():.5f} %, settled {building['settled']} (peer {settled}), "
+          f"damage state {building['damage_state']}; "
           f"differences {worst['ratio']:.1e} in ratio, {worst['oscillation']:.1e} in oscillation")
     for name, limit in (("ratio", 1e-8), ("oscillation", 1e-7)):
         if worst[name] > limit:
@@ -309,6 +311,10 @@ def check_residual_drift(run, peer, label, failures):
         failures.append(f"{label}: residual drift read at {section['t_s']} s, the record ends at {peer.end_s} s")
     if building["settled"] != settled:
         failures.append(f"{label}: settled is {building['settled']}, the peer's numbers say {settled}")
+    reached = [name for name, ratio in (("DS1", 0.002), ("DS2", 0.005), ("DS3", 0.01), ("DS4", 0.02)) if largest >= ratio]
+    if building["damage_state"] != (reached[-1] if reached else None):
+        failures.append(f"{label}: damage state {building['damage_state']}, the peer's largest residual "
+                        f"{100 * largest:.4f} % is {reached[-1] if reached else 'below DS1'}")
 
 
 def check_case(program, out, label, failures):

@@ -105,6 +105,17 @@ struct StoreyResidualDrift {
   double oscillation = 0.0;
 };
 
+/// A damage state of residual drift, as FEMA P-58 (2012) defines the four: the residual storey
+/// drift ratio that marks it and what it means for the building.
+struct ResidualDamageState {
+  std::string_view name;  // "DS1" ... "DS4"
+  double drift_ratio;
+  std::string_view meaning;
+};
+
+/// The four, in rising order.
+std::span<const ResidualDamageState> residual_damage_states();
+
 /// A building's residual drifts and whether it had come to rest.
 struct BuildingResidualDrift {
   std::string name;
@@ -115,6 +126,9 @@ struct BuildingResidualDrift {
   /// At rest: the oscillation at most a tenth of the largest residual drift ratio, or below
   /// kSettledOscillation (a drift ratio no damage state notices).
   bool settled = false;
+  /// The highest residual_damage_states() entry its largest residual drift ratio reaches (0-based);
+  /// empty below DS1.
+  std::optional<std::size_t> damage_state;
 };
 inline constexpr double kSettledOscillation = 1e-4;
 
