@@ -248,8 +248,7 @@ void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
     storeys.push_back(fmt::format("{} | {}", along[0], along[1]));
   }
   const std::string source = d.shear_capacity ? " (ASCE 41-17 Eq. 10-3)" : "";
-  const std::string after =
-      d.column_shear_failure == "lose-stiffness" ? "; a column that fails loses its stiffness" : "";
+  const std::string after = d.shear_failure_loses_stiffness() ? "; a column that fails loses its stiffness" : "";
   if (all_equal(storeys)) {
     fmt::print("  column shear capacity{} x | y: {} kN, every storey{}\n", source, storeys.front(), after);
   } else {

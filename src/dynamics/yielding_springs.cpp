@@ -38,7 +38,7 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .coefficients = {},
                               .bouc_wen = bouc_wen_shape(d.hysteresis),
                               .shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction),
-                              .loses_stiffness = d.column_shear_failure == "lose-stiffness"};
+                              .loses_stiffness = d.shear_failure_loses_stiffness()};
         for (int floor : {storey, storey - 1}) {
           if (floor == 0) continue;  // the ground does not move relative to the base
           const double sign = floor == storey ? 1.0 : -1.0;
@@ -94,8 +94,7 @@ double YieldingSprings::slip(const Eigen::Ref<const Eigen::VectorXd>& y, const S
 
 double YieldingSprings::force_kN(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,
                                  std::size_t j) const {
-  const YieldingSpring& spring = springs_[j];
-  return spring.stiffness_kN_per_m * (drift(y.head(dof_), j) - (1.0 - spring.hardening_ratio) * slip(y, states, j));
+  return springs_[j].force_kN(drift(y.head(dof_), j), slip(y, states, j));
 }
 
 void YieldingSprings::add_slip_force(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states,

@@ -110,9 +110,10 @@ void YieldStates::fail(std::size_t j, const Eigen::VectorXd& y) {
 std::optional<std::size_t> YieldStates::observe(const Eigen::VectorXd& y) {
   std::optional<std::size_t> collapsed;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
-    const double drift_m = std::abs(springs_.drift(y.head(springs_.dof()), j));
+    const double signed_drift_m = springs_.drift(y.head(springs_.dof()), j), drift_m = std::abs(signed_drift_m);
     results_[j].peak_drift_m = std::max(results_[j].peak_drift_m, drift_m);
-    results_[j].peak_force_kN = std::max(results_[j].peak_force_kN, std::abs(springs_.force_kN(y, states_, j)));
+    const double force_kN = springs_[j].force_kN(signed_drift_m, springs_.slip(y, states_, j));
+    results_[j].peak_force_kN = std::max(results_[j].peak_force_kN, std::abs(force_kN));
     if (!collapsed && drift_m > kCollapseDriftRatio * springs_[j].storey_height_m) collapsed = j;
   }
   return collapsed;

@@ -141,7 +141,7 @@ struct StoreyYielding {
   double hysteretic_kJ = 0.0;
   /// The largest peak |force| of its columns along x and y (kN; SpringResult::peak_force_kN).
   std::array<double, 2> peak_column_force_kN{0.0, 0.0};
-  /// With column shear capacities (hysteresis.column_shear_capacity_kN): how many of its springs
+  /// With column shear capacities (column_shear_capacity_kN, [building.shear_capacity]): how many of its springs
   /// have one, how many reached it, the first instant one did (NaN: none), and the largest peak
   /// force over capacity, with that spring's column and direction.
   int springs_with_capacity = 0;

@@ -71,6 +71,10 @@ struct YieldingSpring {
 
   /// (1 − α) k (kN/m): the stiffness of the elastic–perfectly-plastic part.
   double plastic_stiffness() const { return (1.0 - hardening_ratio) * stiffness_kN_per_m; }
+  /// Its force (kN) at drift d and slip s: α k d + (1 − α) k (d − s) = k (d − (1 − α) s).
+  double force_kN(double drift_m, double slip_m) const {
+    return stiffness_kN_per_m * (drift_m - (1.0 - hardening_ratio) * slip_m);
+  }
 };
 
 class YieldingSprings {
@@ -109,7 +113,7 @@ class YieldingSprings {
   void smooth_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::VectorXd& inverse_mass,
                        Eigen::SparseMatrix<double>& accel_by_z, Eigen::SparseMatrix<double>& z_rate_by_velocity,
                        Eigen::VectorXd& z_rate_by_z) const;
-  /// F_j (kN): spring j's force in state y, α k d + (1 − α) k (d − s) = k (d − (1 − α) s).
+  /// F_j (kN): spring j's force in state y (YieldingSpring::force_kN at its drift and slip).
   double force_kN(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states, std::size_t j) const;
   /// Spring j's witness in y = (q, q̇) (see the header comment); 1 for a smooth spring.
   double witness(const Eigen::Ref<const Eigen::VectorXd>& y, const SpringStates& states, std::size_t j) const;

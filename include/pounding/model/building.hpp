@@ -152,6 +152,7 @@ struct BuildingDefinition {
   /// is reported, the column keeps its law) or "lose-stiffness" (bilinear columns only: it
   /// carries no force for the rest of the run).
   std::string column_shear_failure = "report";
+  bool shear_failure_loses_stiffness() const { return column_shear_failure == "lose-stiffness"; }
   // ... or given directly: one 3×3 matrix per storey about the CM (kN/m, kN, kN·m/rad).
   std::vector<Eigen::Matrix3d> storey_stiffness;
 
