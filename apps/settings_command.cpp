@@ -1,5 +1,7 @@
-// `pounding settings`: the [solver] and [contact] settings and the run limits
-// (analysis::setting_specs(), contact_setting_specs(), limit_specs()) as text, JSON, or the
+// `pounding settings`: the [solver] and [contact] settings, the run limits, the [excitation] and
+// [output] keys and the building's key tables (analysis::setting_specs(), contact_setting_specs(),
+// limit_specs(), excitation::excitation_specs(), output_specs(), model::hysteresis_specs(),
+// drift_limit_specs(), shear_capacity_specs()) as text, JSON, or the
 // Markdown tables docs/scene-format.md and docs/guide/limits.md hold (tools/doc_tables.py writes
 // and checks them).
 
@@ -72,7 +74,8 @@ std::string type_column(const SettingSpec& spec) {
 /// unset stiffness, each law's own (contact_laws()).
 template <typename Owner>
 std::string key_default(const analysis::KeySpec<Owner>& spec) {
-  if (!std::holds_alternative<std::optional<double> Owner::*>(spec.member)) return analysis::default_text(spec);
+  if (!spec.default_note.empty() || !std::holds_alternative<std::optional<double> Owner::*>(spec.member))
+    return analysis::default_text(spec);
   std::vector<std::string> defaults;
   for (const analysis::ContactLawInfo& law : analysis::contact_laws()) {
     if (law.stiffness_key == spec.key) defaults.push_back(fmt::format("{} {:g}", law.name, law.default_stiffness));
@@ -80,30 +83,59 @@ std::string key_default(const analysis::KeySpec<Owner>& spec) {
   return fmt::format("{}", fmt::join(defaults, ", "));
 }
 
-/// The values accepted: the choices, the contact laws (contact.law, whose names the law table
-/// holds), or "number in [0, 10] m".
+/// The values accepted: the choices, true or false, the contact laws (contact.law, whose names the
+/// law table holds), or "number in [0, 10] m" (", or one a storey" for a per-storey key).
 template <typename Owner>
 std::string key_type(const analysis::KeySpec<Owner>& spec) {
+  if (!spec.type_note.empty()) return std::string(spec.type_note);
   std::vector<std::string> names;
   for (std::string_view choice : spec.choices) names.push_back(fmt::format("`\"{}\"`", choice));
+  if (std::holds_alternative<bool Owner::*>(spec.member)) names = {"`true`", "`false`"};
   if (!spec.range && names.empty()) {
     for (const analysis::ContactLawInfo& law : analysis::contact_laws())
       names.push_back(fmt::format("`\"{}\"`", law.name));
   }
   if (!names.empty()) return fmt::format("{}", fmt::join(names, ", "));
-  return fmt::format("{} in {}", analysis::type_name(spec), range_text(*spec.range));
+  return fmt::format("{} in {}{}", analysis::type_name(spec), range_text(*spec.range),
+                     is_per_storey(spec) ? ", or one a storey" : "");
 }
 
+/// The docs' default column: the literal default in backticks, a note or a law's own as text.
 template <typename Owner>
-void print_keys_markdown(std::span<const analysis::KeySpec<Owner>> specs) {
-  fmt::print("| key | option | type | default | meaning |\n|---|---|---|---|---|\n");
+std::string default_column(const analysis::KeySpec<Owner>& spec) {
+  const bool literal = spec.default_note.empty() && !spec.required &&
+                       !std::holds_alternative<std::optional<double> Owner::*>(spec.member);
+  return literal ? fmt::format("`{}`", key_default(spec)) : key_default(spec);
+}
+
+/// The rows' meaning column: the description and details, and the laws a key applies to.
+template <typename Owner>
+std::string meaning(const analysis::KeySpec<Owner>& spec) {
+  std::vector<std::string> quoted;
+  for (std::string_view value : spec.applies_to) quoted.push_back(fmt::format("`{}`", value));
+  return fmt::format("{}{}{}{}", spec.description, spec.details.empty() ? "" : "; ", spec.details,
+                     spec.applies_to.empty() ? "" : fmt::format("; only for {}", fmt::join(quoted, ", ")));
+}
+
+/// The rows as the docs' table, after `first_row` (a key the rows do not hold) when given.
+template <typename Owner>
+void print_keys_markdown(std::span<const analysis::KeySpec<Owner>> specs, std::string_view first_row = {}) {
+  fmt::print("| key | option | type | default | meaning |\n|---|---|---|---|---|\n{}", first_row);
   for (const analysis::KeySpec<Owner>& spec : specs) {
-    const bool literal = !spec.required && !std::holds_alternative<std::optional<double> Owner::*>(spec.member);
-    fmt::print("| `{}` | {} | {} | {} | {}{}{} |\n", spec.key,
-               spec.option.empty() ? "" : fmt::format("`{}`", spec.option), key_type(spec),
-               literal ? fmt::format("`{}`", key_default(spec)) : key_default(spec), spec.description,
-               spec.details.empty() ? "" : "; ", spec.details);
+    fmt::print("| `{}` | {} | {} | {} | {} |\n", spec.key, spec.option.empty() ? "" : fmt::format("`{}`", spec.option),
+               key_type(spec), default_column(spec), meaning(spec));
   }
+}
+
+/// [building.hysteresis]: `law` (its choices the law names), then the rows.
+void print_hysteresis_markdown() {
+  std::vector<std::string> names;
+  for (std::string_view name : model::hysteretic_law_names()) names.push_back(fmt::format("`\"{}\"`", name));
+  print_keys_markdown(
+      model::hysteresis_specs(),
+      fmt::format(
+          "| `law` |  | {} | required in the table | the columns' force–drift law ([model.md](model.md) §2a) |\n",
+          fmt::join(names, ", ")));
 }
 
 template <typename Owner>
@@ -119,6 +151,7 @@ nlohmann::json as_json(const analysis::KeySpec<Owner>& spec, std::string_view se
                           {"details", spec.details}};
   if (spec.range) add_range(*spec.range, entry);
   if (!spec.choices.empty()) entry["choices"] = spec.choices;
+  if (!spec.applies_to.empty()) entry["applies_to"] = spec.applies_to;
   return entry;
 }
 
@@ -126,11 +159,15 @@ template <typename Owner>
 void print_keys_text(std::span<const analysis::KeySpec<Owner>> specs, std::string_view section) {
   for (const analysis::KeySpec<Owner>& spec : specs) {
     const std::string name = fmt::format("{}.{}", section, spec.key);
-    fmt::print("{:<27} {:<17} {:<8} default {:<18} {}\n{:28} {}\n", name, spec.option, analysis::type_name(spec),
-               key_default(spec),
-               spec.range             ? range_text(*spec.range)
-               : spec.choices.empty() ? "a law"
-                                      : "a choice",
+    constexpr std::size_t kNameWidth = 27;
+    if (name.size() > kNameWidth) fmt::print("{}\n", name);  // a line of its own: the columns stay aligned
+    fmt::print("{:<27} {:<17} {:<8} default {:<18} {}\n{:28} {}\n", name.size() > kNameWidth ? "" : name, spec.option,
+               analysis::type_name(spec), key_default(spec),
+               spec.range                                           ? range_text(*spec.range)
+               : !spec.type_note.empty()                            ? std::string(spec.type_note)
+               : std::holds_alternative<bool Owner::*>(spec.member) ? "true or false"
+               : spec.choices.empty()                               ? "a law"
+                                                                    : "a choice",
                "", spec.description);
   }
 }
@@ -184,13 +221,20 @@ int run_settings(const SettingsCommand& command) {
       print_keys_markdown(analysis::contact_setting_specs());
     } else if (*command.markdown == "limits") {
       print_keys_markdown(analysis::limit_specs());
+    } else if (*command.markdown == "excitation") {
+      print_keys_markdown(excitation::excitation_specs());
+    } else if (*command.markdown == "output") {
+      print_keys_markdown(analysis::output_specs());
+    } else if (*command.markdown == "hysteresis") {
+      print_hysteresis_markdown();
     } else if (*command.markdown == "limit_states") {
       print_limit_states_markdown();
     } else if (*command.markdown == "shear_capacity") {
       print_keys_markdown(analysis::shear_capacity_specs());
     } else {
       throw InputError("--markdown", *command.markdown,
-                       "expected solver, contact, limits, limit_states or shear_capacity");
+                       "expected solver, contact, limits, excitation, output, hysteresis, limit_states or "
+                       "shear_capacity");
     }
     return 0;
   }
@@ -200,6 +244,11 @@ int run_settings(const SettingsCommand& command) {
     for (const SettingSpec& spec : analysis::setting_specs()) solver.push_back(as_json(spec));
     for (const auto& spec : analysis::contact_setting_specs()) contact.push_back(as_json(spec, "contact"));
     for (const auto& spec : analysis::limit_specs()) limits.push_back(as_json(spec, "limits"));
+    nlohmann::json excitation = nlohmann::json::array(), output = nlohmann::json::array();
+    for (const auto& spec : excitation::excitation_specs()) excitation.push_back(as_json(spec, "excitation"));
+    for (const auto& spec : analysis::output_specs()) output.push_back(as_json(spec, "output"));
+    nlohmann::json hysteresis = nlohmann::json::array();
+    for (const auto& spec : model::hysteresis_specs()) hysteresis.push_back(as_json(spec, "building.hysteresis"));
     nlohmann::json limit_states = nlohmann::json::array();
     for (const auto& spec : analysis::drift_limit_specs())
       limit_states.push_back(as_json(spec, "building.limit_states"));
@@ -209,6 +258,9 @@ int run_settings(const SettingsCommand& command) {
     fmt::print("{}\n", nlohmann::json{{"solver", solver},
                                       {"contact", contact},
                                       {"limits", limits},
+                                      {"excitation", excitation},
+                                      {"output", output},
+                                      {"hysteresis", hysteresis},
                                       {"limit_states", limit_states},
                                       {"shear_capacity", shear_capacity},
                                       {"structural_types", structural_types_json()}}
@@ -222,6 +274,9 @@ int run_settings(const SettingsCommand& command) {
   }
   print_keys_text(analysis::contact_setting_specs(), "contact");
   print_keys_text(analysis::limit_specs(), "limits");
+  print_keys_text(excitation::excitation_specs(), "excitation");
+  print_keys_text(analysis::output_specs(), "output");
+  print_keys_text(model::hysteresis_specs(), "building.hysteresis");
   print_keys_text(analysis::drift_limit_specs(), "building.limit_states");
   print_keys_text(analysis::shear_capacity_specs(), "building.shear_capacity");
   return 0;

@@ -173,7 +173,7 @@ Scene with_solver(Scene scene, const std::optional<std::string>& method, const p
 }
 
 /// A Python keyword's value as a key's (key_spec.hpp): a whole number for an integer key (numpy's
-/// too), a number for a number key, str for a text key.
+/// too), a number for a number key, str for a text key, True or False for a boolean one.
 /// @throws InputError naming `keyword`: a value of another type, or a whole number too large for
 ///   C++ (said with the key's range, which the library checks for every other value).
 template <typename Owner>
@@ -185,6 +185,10 @@ pounding::analysis::KeyValue key_value(py::handle value, const pounding::analysi
   if (type == "string") {
     if (py::isinstance<py::str>(value)) return value.cast<std::string>();
     throw InputError(keyword, text, "expected a string");
+  }
+  if (type == "boolean") {  // set_key takes "true" or "false"
+    if (py::isinstance<py::bool_>(value)) return std::string(value.cast<bool>() ? "true" : "false");
+    throw InputError(keyword, text, "expected True or False");
   }
   const bool whole = !py::isinstance<py::bool_>(value) && PyIndex_Check(value.ptr()) != 0;
   if (whole && type == "integer") {

@@ -2,8 +2,9 @@
 """Writes (or with --check, compares) the generated tables of the docs: the text between a
 document's `COMMAND:SECTION:begin` and `COMMAND:SECTION:end` markers is what
 `pounding COMMAND --markdown SECTION` prints, so the documented settings (analysis::setting_specs(),
-analysis::contact_setting_specs(), analysis::limit_specs(), analysis::drift_limit_specs(),
-analysis::shear_capacity_specs()) and output fields (io::output_schema_json()) are the code's.
+analysis::contact_setting_specs(), analysis::limit_specs(), model::hysteresis_specs(),
+analysis::drift_limit_specs(), analysis::shear_capacity_specs(), excitation::excitation_specs(),
+analysis::output_specs()) and output fields (io::output_schema_json()) are the code's.
 
 Usage: doc_tables.py [--check] POUNDING_PROGRAM [REPO_ROOT]   (CTest: docs_tables)"""
 import pathlib
@@ -12,7 +13,10 @@ import sys
 
 TABLES = (("docs/scene-format.md", "settings", "solver"),
           ("docs/scene-format.md", "settings", "contact"),
+          ("docs/scene-format.md", "settings", "hysteresis"),
           ("docs/scene-format.md", "settings", "limit_states"),
+          ("docs/scene-format.md", "settings", "excitation"),
+          ("docs/scene-format.md", "settings", "output"),
           ("docs/scene-format.md", "settings", "shear_capacity"),
           ("docs/guide/limits.md", "settings", "limits"),
           ("docs/guide/output-columns.md", "outputs", "history"),

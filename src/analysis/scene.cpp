@@ -262,7 +262,7 @@ void validate_output(const OutputSettings& output, std::size_t levels) {
     }
     if (!seen.insert(level).second) throw InputError(key, std::to_string(level), "is listed twice");
   }
-  require_range("output.history_interval_s", output.history_interval_s, kHistoryInterval);
+  validate_keys(output, output_specs(), "output");
   for (std::size_t i = 0; i < output.peaks.size(); ++i) {
     const std::string key = fmt::format("output.peaks[{}]", i + 1), value = fmt::format("\"{}\"", output.peaks[i]);
     if (std::find(kPeakGroups.begin(), kPeakGroups.end(), output.peaks[i]) == kPeakGroups.end()) {
@@ -391,6 +391,30 @@ solvers::OutputSelection OutputSettings::selection() const {
 }
 
 std::span<const ContactSettingSpec> contact_setting_specs() { return contact_specs(); }
+
+std::span<const OutputSpec> output_specs() {
+  static const std::vector<OutputSpec> kSpecs = {
+      {.key = "history",
+       .member = &OutputSettings::history,
+       .description = "write `history.csv` and `contacts_history.csv`",
+       .details = "`false`: neither is computed nor written (an earlier run's in the output folder are removed); "
+                  "`pounding run --history off` replaces it"},
+      {.key = "contact_free_reference",
+       .member = &OutputSettings::contact_free_reference,
+       .description = "also run the scene with the same method and settings but no contact candidates",
+       .details = "the buildings move as if they never met; peaks only, no files of its own. Writes "
+                  "`pounding_demand` in `summary.json`: per building and storey the peak drift ratio at the CM in "
+                  "x and y with contact, without, and their ratio (and, for yielding columns, the storey's largest "
+                  "ductility and column shear likewise), with the report's \"Pounding-induced demand\" lines; needs "
+                  "the `drifts` group; `--contact-free-reference` on `pounding run`"},
+      {.key = "history_interval_s",
+       .member = &OutputSettings::history_interval_s,
+       .range = kHistoryInterval,
+       .description = "sampling interval of `history.csv` and `contacts_history.csv` (s)",
+       .details = "a compliant contact lasts a few ms at stiff settings, so resolving its force needs 1e-4"},
+  };
+  return kSpecs;
+}
 
 const ContactSettingSpec& contact_setting_spec(std::string_view key) {
   for (const ContactSettingSpec& spec : contact_specs()) {

@@ -401,14 +401,56 @@ void validate_layout(const std::string& prefix, const RecordReadOptions& read) {
 
 }  // namespace
 
+// Physical ranges: beyond them a value is a typo or a unit mistake. (An array: GCC 12 fails with an
+// internal error on a std::vector of these rows in this file.)
+std::span<const ExcitationKeySpec> excitation_specs() {
+  static const ExcitationKeySpec kSpecs[] = {
+      {.key = "start_s",
+       .member = &ExcitationSpec::start_s,
+       .range = Range{0.0, kMaxRecordDuration_s, "s"},
+       .description = "cut start; times are shifted back by it (s)"},
+      {.key = "duration_s",
+       .member = &ExcitationSpec::duration_s,
+       .range = Range{0.0, kMaxRecordDuration_s, "s", true},
+       .description = "cut length (s)",
+       .details = "cut ends that fall between samples are interpolated; a cut that ends after the record is "
+                  "refused (a_g would be zero there)",
+       .default_note = "to the end"},
+      {.key = "free_vibration_s",
+       .member = &ExcitationSpec::free_vibration_s,
+       .range = Range{0.0, kMaxFreeVibration_s, "s"},
+       .description = "a quiet tail after the record (s)",
+       .details = "zero samples at the record's spacing, as many as cover it, so that the buildings come to rest "
+                  "before the run ends and `summary.json`'s `residual_drift` is the drift they keep (FEMA P-58's "
+                  "residual drift). a_g falls linearly from the last sample to 0 over the first interval. Comes after "
+                  "the cut and the scaling (it changes neither); the run, its history and the response spectra then "
+                  "cover the tail too"},
+      {.key = "scale_to_pga_g",
+       .member = &ExcitationSpec::scale_to_pga_g,
+       .range = Range{0.0, kMaxPeakAccel_g, "g", true},
+       .description = "scale so that max \\|a_g\\| equals this many g (sign kept)",
+       .default_note = "none"},
+      {.key = "scale_factor",
+       .member = &ExcitationSpec::scale_factor,
+       .description = "plain multiplier; excludes `scale_to_pga_g`",
+       .details = "the processed record may peak at most at 10 g (recorded peaks stay below 5 g); more is refused, "
+                  "naming `scale_factor` (or `units` when the record's own values are too large)",
+       .type_note = "number ≠ 0"},
+      {.key = "g_mps2",
+       .member = &ExcitationSpec::g_mps2,
+       .range = Range{kGravityRange_mps2[0], kGravityRange_mps2[1], "m/s2"},
+       .description = "gravity used to convert g (m/s²)"},
+      {.key = "direction_deg",
+       .member = &ExcitationSpec::direction_deg,
+       .range = Range{-360.0, 360.0, "deg"},
+       .description = "β: the shaking acts along (cos β, sin β) in plan; a pair's second component along β + 90°"},
+  };
+  return kSpecs;
+}
+
 void ExcitationSpec::validate() const {
-  // Physical ranges (docs/scene-format.md): beyond them a value is a typo or a unit mistake.
   validate_spacing("excitation.", read, dt_override_s);
-  if (duration_s) require_range("excitation.duration_s", *duration_s, {0.0, kMaxRecordDuration_s, "s", true});
-  require_range("excitation.free_vibration_s", free_vibration_s, {0.0, kMaxFreeVibration_s, "s"});
-  require_range("excitation.start_s", start_s, {0.0, kMaxRecordDuration_s, "s"});
-  if (scale_to_pga_g) require_range("excitation.scale_to_pga_g", *scale_to_pga_g, {0.0, kMaxPeakAccel_g, "g", true});
-  require_range("excitation.g_mps2", g_mps2, {kGravityRange_mps2[0], kGravityRange_mps2[1], "m/s2"});
+  validate_keys(*this, excitation_specs(), "excitation");
   if (!std::isfinite(scale_factor) || scale_factor == 0.0) {
     throw InputError("excitation.scale_factor", format_value(scale_factor), "must be finite and non-zero");
   }
@@ -420,7 +462,6 @@ void ExcitationSpec::validate() const {
     throw InputError("excitation.scale_to_sa", scale_to_sa->text,
                      "give one scaling: scale_to_sa, scale_to_pga_g or scale_factor");
   }
-  require_range("excitation.direction_deg", direction_deg, {-360.0, 360.0, "deg"});
   validate_layout("excitation.", read);
   if (second) {
     validate_spacing("excitation.second.", second->read, second->dt_override_s);

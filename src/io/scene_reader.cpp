@@ -194,6 +194,13 @@ class TableReader {
     return string_of(*node, key_path(key));
   }
 
+  std::optional<bool> optional_boolean(std::string_view key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean()) throw error(*node, key_path(key), "expected true or false");
+    return **node->as_boolean();
+  }
+
   const toml::array& array_of(const toml::node& node, const std::string& key) const {
     if (!node.is_array()) throw error(node, key, "expected an array");
     return *node.as_array();
@@ -412,53 +419,15 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   b.column_shear_failure = table.optional_string("column_shear_failure").value_or(b.column_shear_failure);
 }
 
-model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
-  using Kind = model::HystereticLaw::Kind;
-  model::HystereticLaw law;
-  const toml::node& kind = table.require("law");
-  const std::string name = table.string_of(kind, table.key_path("law"));
-  if (name == "bilinear") {
-    law.kind = Kind::bilinear;
-  } else if (name == "bouc-wen") {
-    law.kind = Kind::bouc_wen;
-  } else if (name != "elastic") {
-    throw table.error(kind, table.key_path("law"), "expected \"elastic\", \"bilinear\" or \"bouc-wen\"");
-  }
-  const auto refuse_unless = [&](std::initializer_list<const char*> keys, bool applies, const char* laws) {
-    for (const char* key : keys) {
-      const toml::node* given = table.find(key);
-      if (given != nullptr && !applies) {
-        throw table.error(*given, table.key_path(key),
-                          fmt::format("applies to law = {} only (the law is {})", laws, name));
-      }
-    }
-  };
-  refuse_unless({"yield_drift_ratio", "yield_drift_m", "yield_shear_kN", "hardening_ratio"}, law.yields(),
-                "\"bilinear\" or \"bouc-wen\"");
-  refuse_unless({"a", "beta", "gamma", "n"}, law.is_smooth(), "\"bouc-wen\"");
-  const auto number = [&](const char* key, const Range& range) -> std::optional<double> {
-    const toml::node* given = table.find(key);
-    if (given == nullptr) return std::nullopt;
-    return in_range(table, *given, table.key_path(key), range);
-  };
-  law.yield_drift_ratio = per_storey(table, "yield_drift_ratio", model::kYieldDriftRatio, storeys);
-  law.yield_drift_m = per_storey(table, "yield_drift_m", model::kYieldDrift, storeys);
-  law.yield_shear_kN = per_storey(table, "yield_shear_kN", model::kYieldShear, storeys);
-  law.hardening_ratio = number("hardening_ratio", model::kHardeningRatio).value_or(law.hardening_ratio);
-  law.bouc_wen_a = number("a", model::kBoucWenA).value_or(law.bouc_wen_a);
-  law.bouc_wen_beta = number("beta", model::kBoucWenBeta).value_or(law.bouc_wen_beta);
-  law.bouc_wen_gamma = number("gamma", model::kBoucWenGamma).value_or(law.bouc_wen_gamma);
-  law.bouc_wen_n = number("n", model::kBoucWenN).value_or(law.bouc_wen_n);
-  table.finish();
-  return law;
-}
+/// For read_keys(): no row of the table is required.
+constexpr auto kNoneRequired = [](const auto&) { return false; };
 
 /// Reads each row's key of `table` into its member of `owner`; an absent key leaves the member as
-/// it is, unless `required(row)`.
+/// it is, unless `required(row)`. A per-storey key's single number is spread over `storeys`.
 template <typename Owner, typename Required>
-void read_keys(TableReader& table, Owner& owner, std::span<const analysis::KeySpec<Owner>> specs,
-               const Required& required) {
-  for (const analysis::KeySpec<Owner>& spec : specs) {
+void read_keys(TableReader& table, Owner& owner, std::span<const KeySpec<Owner>> specs, const Required& required,
+               int storeys = 0) {
+  for (const KeySpec<Owner>& spec : specs) {
     std::visit(
         [&](auto Owner::*member) {
           auto& value = owner.*member;
@@ -469,12 +438,52 @@ void read_keys(TableReader& table, Owner& owner, std::span<const analysis::KeySp
             value = required(spec) ? table.number(spec.key) : table.number_or(spec.key, value);
           } else if constexpr (std::is_same_v<T, long>) {
             value = table.optional_integer(spec.key).value_or(value);
+          } else if constexpr (std::is_same_v<T, bool>) {
+            value = table.optional_boolean(spec.key).value_or(value);
+          } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+            value = per_storey(table, spec.key.data(), *spec.range, storeys);
           } else {
             value = table.optional_number(spec.key);
           }
         },
         spec.member);
   }
+}
+
+/// Refuses a row's key given while the table's selector `selector` (e.g. `law`) has a value the
+/// row does not apply to (KeySpec::applies_to).
+template <typename Owner>
+void refuse_inapplicable(TableReader& table, std::span<const KeySpec<Owner>> specs, std::string_view selector,
+                         const std::string& chosen) {
+  for (const KeySpec<Owner>& spec : specs) {
+    const toml::node* given = table.find(spec.key);
+    if (given == nullptr || spec.applies_to.empty() ||
+        std::find(spec.applies_to.begin(), spec.applies_to.end(), chosen) != spec.applies_to.end())
+      continue;
+    throw table.error(*given, table.key_path(spec.key),
+                      fmt::format("applies to {} = {} only (the {} is {})", selector, or_list(spec.applies_to, true),
+                                  selector, chosen));
+  }
+}
+
+/// [building.hysteresis]: `law`, then its rows (model::hysteresis_specs()).
+model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
+  model::HystereticLaw law;
+  const toml::node& kind = table.require("law");
+  const std::string name = table.string_of(kind, table.key_path("law"));
+  const std::span<const std::string_view> names = model::hysteretic_law_names();
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) {
+    std::vector<std::string> quoted;
+    for (std::string_view known : names.first(names.size() - 1)) quoted.push_back(fmt::format("\"{}\"", known));
+    throw table.error(kind, table.key_path("law"),
+                      fmt::format("expected {} or \"{}\"", fmt::join(quoted, ", "), names.back()));
+  }
+  law.kind = static_cast<model::HystereticLaw::Kind>(found - names.begin());
+  refuse_inapplicable(table, model::hysteresis_specs(), "law", name);
+  read_keys(table, law, model::hysteresis_specs(), kNoneRequired, storeys);
+  table.finish();
+  return law;
 }
 
 /// A table whose keys are all `specs`' rows ([building.limit_states], [building.shear_capacity]),
@@ -600,16 +609,10 @@ excitation::ExcitationSpec read_excitation(TableReader table, const std::filesys
   spec.file = read_record_file(table, scene_dir);
   read_format_and_units(table, spec.read, spec.units, true);
   read_layout(table, spec.read, spec.dt_override_s);
-  spec.start_s = table.number_or("start_s", 0.0);
-  spec.duration_s = table.optional_number("duration_s");
-  spec.free_vibration_s = table.number_or("free_vibration_s", 0.0);
-  spec.scale_to_pga_g = table.optional_number("scale_to_pga_g");
-  spec.scale_factor = table.number_or("scale_factor", 1.0);
+  read_keys(table, spec, excitation::excitation_specs(), kNoneRequired);
   if (const std::optional<std::string> sa = table.optional_string("scale_to_sa")) {
     spec.scale_to_sa = excitation::parse_sa_scaling(*sa, table.key_path("scale_to_sa"));
   }
-  spec.direction_deg = table.number_or("direction_deg", 0.0);
-  spec.g_mps2 = table.number_or("g_mps2", spec.g_mps2);
   if (auto second = table.optional_subtable("second")) spec.second = read_second_component(*second, scene_dir, spec);
   table.finish();
   return spec;
@@ -659,17 +662,7 @@ analysis::OutputSettings read_output(std::optional<TableReader> table) {
     }
   }
   if (auto floors = table->optional_subtable("floor_history")) output.floor_history = read_floor_history(*floors);
-  output.history_interval_s = table->number_or("history_interval_s", output.history_interval_s);
-  if (const toml::node* history = table->find("history")) {
-    if (!history->is_boolean()) throw table->error(*history, table->key_path("history"), "expected true or false");
-    output.history = *history->value<bool>();
-  }
-  if (const toml::node* reference = table->find("contact_free_reference")) {
-    if (!reference->is_boolean()) {
-      throw table->error(*reference, table->key_path("contact_free_reference"), "expected true or false");
-    }
-    output.contact_free_reference = *reference->value<bool>();
-  }
+  read_keys(*table, output, analysis::output_specs(), kNoneRequired);
   if (const toml::node* peaks = table->find("peaks")) {
     const std::string key = table->key_path("peaks");
     const toml::array& array = table->array_of(*peaks, key);

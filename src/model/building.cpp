@@ -180,18 +180,15 @@ void validate_storey_matrices(const BuildingDefinition& b) {
   }
 }
 
-/// Bouc–Wen's shape: β > 0 and −β < γ ≤ β keep every loop dissipative and z bounded; A = 1
-/// keeps the initial stiffness the k that K, the modes, the damping and the step bounds use.
+/// Bouc–Wen's shape (each within its row's range, hysteresis_specs()): −β < γ ≤ β keeps every
+/// loop dissipative and z bounded; A = 1 keeps the initial stiffness the k that K, the modes, the
+/// damping and the step bounds use.
 void validate_bouc_wen(const HystereticLaw& law) {
-  require_range("hysteresis.a", law.bouc_wen_a, kBoucWenA);
   if (law.bouc_wen_a != 1.0) {
     throw InputError("hysteresis.a", format_value(law.bouc_wen_a),
                      "must be 1: the columns' initial stiffness would become alpha k + (1 - alpha) k A, while K, "
                      "the modes, the Rayleigh damping and the step bounds use k (scale the yield drift instead)");
   }
-  require_range("hysteresis.beta", law.bouc_wen_beta, kBoucWenBeta);
-  require_range("hysteresis.gamma", law.bouc_wen_gamma, kBoucWenGamma);
-  require_range("hysteresis.n", law.bouc_wen_n, kBoucWenN);
   if (!(law.bouc_wen_gamma > -law.bouc_wen_beta && law.bouc_wen_gamma <= law.bouc_wen_beta)) {
     throw InputError("hysteresis.gamma", format_value(law.bouc_wen_gamma),
                      fmt::format("must lie in (-beta, beta] = ({0:g}, {1:g}]: with |gamma| > beta a loop returns "
@@ -239,16 +236,16 @@ void validate_hysteresis(const BuildingDefinition& b) {
                      strengths.empty() ? "missing" : "given with " + strengths[1],
                      "give one of yield_drift_ratio, yield_drift_m and yield_shear_kN");
   }
-  const auto per_storey = [&](const std::vector<double>& values, const char* key, const Range& range) {
-    if (!values.empty()) validate_per_floor(values, key, b.storeys, range, "storey");
-  };
-  per_storey(law.yield_drift_ratio, "hysteresis.yield_drift_ratio", kYieldDriftRatio);
-  per_storey(law.yield_drift_m, "hysteresis.yield_drift_m", kYieldDrift);
-  per_storey(law.yield_shear_kN, "hysteresis.yield_shear_kN", kYieldShear);
-  if (!law.yield_drift_m.empty()) refuse_collapse_before_yield(law.yield_drift_m, b.storey_height_m);
-  if (!(law.hardening_ratio >= 0.0 && law.hardening_ratio < 1.0)) {
-    throw InputError("hysteresis.hardening_ratio", format_value(law.hardening_ratio), "must lie in [0, 1)");
+  for (const HysteresisSpec& spec : hysteresis_specs()) {
+    if (!is_per_storey(spec)) continue;
+    const auto& values = law.*std::get<std::vector<double> HystereticLaw::*>(spec.member);
+    if (!values.empty() && values.size() != static_cast<std::size_t>(b.storeys)) {
+      throw InputError(fmt::format("hysteresis.{}", spec.key), fmt::format("{} values", values.size()),
+                       fmt::format("needs one value per storey ({})", b.storeys));
+    }
   }
+  validate_keys(law, hysteresis_specs(), "hysteresis");
+  if (!law.yield_drift_m.empty()) refuse_collapse_before_yield(law.yield_drift_m, b.storey_height_m);
   if (law.is_smooth()) validate_bouc_wen(law);
 }
 
@@ -316,6 +313,71 @@ void BuildingDefinition::validate() const {
   }
   validate_damping(*this);
   validate_hysteresis(*this);
+}
+
+std::span<const std::string_view> hysteretic_law_names() {
+  static constexpr std::array<std::string_view, 3> kNames{"elastic", "bilinear", "bouc-wen"};
+  return kNames;
+}
+
+std::span<const HysteresisSpec> hysteresis_specs() {
+  const std::vector<std::string_view> yielding{"bilinear", "bouc-wen"};
+  const std::vector<std::string_view> smooth{"bouc-wen"};
+  static const std::vector<HysteresisSpec> kSpecs{
+      {.key = "yield_drift_ratio",
+       .member = &HystereticLaw::yield_drift_ratio,
+       .range = kYieldDriftRatio,
+       .description = "yield drift as a fraction of the storey height (0.005 = 0.5 %)",
+       .details = "a list gives each storey its own, storey 1 first",
+       .default_note = "one of these three",
+       .applies_to = yielding},
+      {.key = "yield_drift_m",
+       .member = &HystereticLaw::yield_drift_m,
+       .range = kYieldDrift,
+       .description = "yield drift (m), at most 5 % of its storey",
+       .details = "one number holds for every storey (a drift of 10 % of a storey ends a run as a collapse)",
+       .default_note = "one of these three",
+       .applies_to = yielding},
+      {.key = "yield_shear_kN",
+       .member = &HystereticLaw::yield_shear_kN,
+       .range = kYieldShear,
+       .description = "the storey yield shear V (kN)",
+       .details = "every column of the storey yields at d_y = V / Σ k of the storey's columns along x (and along "
+                  "y), so that the columns yield together in a translation, each at its share k d_y "
+                  "([model.md](model.md) §2a). A V that puts d_y above 5 % of the storey is refused",
+       .default_note = "one of these three",
+       .applies_to = yielding},
+      {.key = "hardening_ratio",
+       .member = &HystereticLaw::hardening_ratio,
+       .range = kHardeningRatio,
+       .description = "α: post-yield over initial stiffness (0: elastic–perfectly plastic)",
+       .applies_to = yielding},
+      {.key = "a",
+       .member = &HystereticLaw::bouc_wen_a,
+       .range = kBoucWenA,
+       .description = "A, the hysteretic part's initial stiffness over (1 − α) k",
+       .details = "only 1 is accepted, since K, the modes, the damping and the step bounds use the columns' "
+                  "initial stiffness k (scale the yield drift instead)",
+       .applies_to = smooth},
+      {.key = "beta",
+       .member = &HystereticLaw::bouc_wen_beta,
+       .range = kBoucWenBeta,
+       .description = "β",
+       .applies_to = smooth},
+      {.key = "gamma",
+       .member = &HystereticLaw::bouc_wen_gamma,
+       .range = kBoucWenGamma,
+       .description = "γ, in (−β, β]",
+       .details = "with β + γ = 1 the force saturates at the bilinear law's; \\|γ\\| ≤ β keeps every loop "
+                  "dissipative and γ > −β keeps z bounded (refused otherwise)",
+       .applies_to = smooth},
+      {.key = "n",
+       .member = &HystereticLaw::bouc_wen_n,
+       .range = kBoucWenN,
+       .description = "n, the sharpness of the transition (n → ∞: the bilinear law)",
+       .applies_to = smooth},
+  };
+  return kSpecs;
 }
 
 const char* to_string(HystereticLaw::Kind kind) {

@@ -9,6 +9,7 @@
 
 #include "pounding/analysis/methods.hpp"
 #include "pounding/analysis/run_scene.hpp"
+#include "pounding/excitation/ground_motion.hpp"
 #include "pounding/input_error.hpp"
 #include "pounding/io/scene_reader.hpp"
 
@@ -303,7 +304,9 @@ BOOST_AUTO_TEST_CASE(EveryContactRowIsCheckedByItsOwnRange) {
         analysis::Scene scene = paper();
         std::visit(
             [&](auto analysis::ContactSettings::*member) {
-              if constexpr (!std::is_same_v<std::decay_t<decltype(scene.contact.*member)>, std::string>) {
+              using T = std::decay_t<decltype(scene.contact.*member)>;
+              if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>> ||
+                            std::is_same_v<T, long>) {
                 scene.contact.*member = outside;
                 if constexpr (std::is_same_v<std::decay_t<decltype(defaults.*member)>, double>) {
                   const double default_value = defaults.*member;
@@ -325,6 +328,71 @@ BOOST_AUTO_TEST_CASE(EveryContactRowIsCheckedByItsOwnRange) {
       }
     }
   }
+}
+
+/// Sets every number of `owner`'s row `spec` (a list: each storey's) to `value`; false for a row
+/// that holds no number.
+template <typename Owner>
+bool set_number(Owner& owner, const KeySpec<Owner>& spec, double value) {
+  return std::visit(
+      [&](auto Owner::*member) {
+        auto& target = owner.*member;
+        using T = std::decay_t<decltype(target)>;
+        if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::optional<double>>) {
+          target = value;
+          return true;
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          target.assign(target.empty() ? 1 : target.size(), value);
+          return !target.empty();
+        } else {
+          return false;
+        }
+      },
+      spec.member);
+}
+
+/// Each ranged number of `specs` (rows of `section`, reached in the scene by `owner`): a value
+/// beyond either bound is refused by Scene::validate() naming `<section>.<key>` (a list's first
+/// entry, `[1]`) with the row's range.
+template <typename Owner>
+void check_row_ranges(const analysis::Scene& base, std::span<const KeySpec<Owner>> specs, std::string_view section,
+                      Owner& (*owner)(analysis::Scene&)) {
+  for (const KeySpec<Owner>& spec : specs) {
+    if (!spec.range) continue;
+    BOOST_TEST_CONTEXT(section << "." << spec.key) {
+      for (double outside : {spec.range->min - 1.0, spec.range->max * 2.0 + 1.0}) {
+        analysis::Scene scene = base;
+        Owner& target = owner(scene);
+        if (is_per_storey(spec)) {  // the law's one strength: this row's
+          for (const KeySpec<Owner>& other : specs)
+            if (is_per_storey(other)) (target.*std::get<std::vector<double> Owner::*>(other.member)).clear();
+          (target.*std::get<std::vector<double> Owner::*>(spec.member)).assign(scene.buildings[0].storeys, 1.0);
+        }
+        BOOST_REQUIRE(set_number(target, spec, outside));
+        try {
+          scene.validate();
+          BOOST_TEST(false, "accepted " << outside);
+        } catch (const InputError& error) {
+          const std::string key = fmt::format("{}.{}{}", section, spec.key, is_per_storey(spec) ? "[1]" : "");
+          BOOST_TEST(error.key().ends_with(key));
+          BOOST_TEST(error.reason() == "must lie in " + range_text(*spec.range));
+        }
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(TheExcitationOutputAndHysteresisRowsCheckTheirOwnRanges) {
+  // The rows of [excitation], [output] and [building.hysteresis] (the yielding paper scene, whose
+  // Bouc-Wen keys are checked whatever the law) are the one place their ranges are checked.
+  check_row_ranges<excitation::ExcitationSpec>(
+      paper(), excitation::excitation_specs(), "excitation", [](analysis::Scene & s) -> auto& { return s.excitation; });
+  check_row_ranges<analysis::OutputSettings>(
+      paper(), analysis::output_specs(), "output", [](analysis::Scene & s) -> auto& { return s.output; });
+  const analysis::Scene yielding = io::read_scene(POUNDING_EXAMPLES_DIR "/paper/paper-yielding.toml");
+  check_row_ranges<model::HystereticLaw>(
+      yielding, model::hysteresis_specs(), "hysteresis",
+      [](analysis::Scene & s) -> auto& { return s.buildings[0].hysteresis; });
 }
 
 BOOST_AUTO_TEST_CASE(EveryRunLimitIsCheckedByItsOwnRange) {

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "pounding/analysis/key_spec.hpp"
+#include "pounding/key_spec.hpp"
 #include "pounding/model/building.hpp"
 #include "pounding/solvers/run_result.hpp"
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "pounding/analysis/key_spec.hpp"
+#include "pounding/key_spec.hpp"
 #include "pounding/analysis/limit_states.hpp"
 #include "pounding/analysis/scene.hpp"
 #include "pounding/contact/candidates.hpp"

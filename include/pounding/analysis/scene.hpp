@@ -11,7 +11,7 @@
 #include <variant>
 #include <vector>
 
-#include "pounding/analysis/key_spec.hpp"
+#include "pounding/key_spec.hpp"
 #include "pounding/analysis/methods.hpp"
 #include "pounding/contact/candidates.hpp"
 #include "pounding/contact/column_contact.hpp"
@@ -86,6 +86,13 @@ struct OutputSettings {
   /// What the solvers record. @pre valid (Scene::validate).
   solvers::OutputSelection selection() const;
 };
+
+/// One scalar [output] key (key_spec.hpp): the scene reader, the range checks of
+/// Scene::validate(), `pounding settings` and docs/scene-format.md's [output] table come from its
+/// row. The lists (`peaks`, `history_floors`, `[output.floor_history]`) are read and checked on
+/// their own, since their checks need the scene's levels and buildings.
+using OutputSpec = KeySpec<OutputSettings>;
+std::span<const OutputSpec> output_specs();
 
 /// Two buildings whose slabs can touch: `first` < `second` (0-based in the scene), standing
 /// `gap_m` apart at rest (the shortest distance between their outlines; two buildings: the clear

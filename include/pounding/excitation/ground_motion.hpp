@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -12,6 +13,7 @@
 
 #include "pounding/excitation/record_reader.hpp"
 #include "pounding/input_error.hpp"
+#include "pounding/key_spec.hpp"
 
 namespace pounding::excitation {
 
@@ -106,6 +108,13 @@ struct ExcitationSpec {
   /// @throws InputError naming the `excitation.*` key, its value and the range it must lie in.
   void validate() const;
 };
+
+/// One scalar [excitation] key (key_spec.hpp): the cut, the scaling, the direction, gravity and the
+/// quiet tail. The scene reader, the range checks of ExcitationSpec::validate(), `pounding settings`
+/// and docs/scene-format.md's table come from its row. The record's own keys (file, format, units,
+/// layout) and `scale_to_sa` are read by their parsers.
+using ExcitationKeySpec = KeySpec<ExcitationSpec>;
+std::span<const ExcitationKeySpec> excitation_specs();
 
 /// H2 of a pair in `file`, read as H1 (`first`) is: its format, units, time column, spacing
 /// (format single) and re-spacing; the acceleration column left to the format's default (a pair

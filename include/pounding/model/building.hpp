@@ -5,10 +5,12 @@
 #include <Eigen/Core>
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "pounding/input_error.hpp"
+#include "pounding/key_spec.hpp"
 #include "pounding/model/mode.hpp"
 #include "pounding/model/polygon.hpp"
 
@@ -104,6 +106,14 @@ struct HystereticLaw {
 
 /// The scene's name of a law ("elastic", "bilinear", "bouc-wen").
 const char* to_string(HystereticLaw::Kind kind);
+/// The laws' names in the order of HystereticLaw::Kind: what `hysteresis.law` accepts.
+std::span<const std::string_view> hysteretic_law_names();
+
+/// One key of [building.hysteresis] besides `law` (key_spec.hpp): the scene reader, the range
+/// checks (validate()), `pounding settings` and the docs' table come from these rows; each names
+/// the laws it applies to.
+using HysteresisSpec = KeySpec<HystereticLaw>;
+std::span<const HysteresisSpec> hysteresis_specs();
 
 /// The ranges of HystereticLaw's parameters, public for the scene reader's messages.
 inline constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};

@@ -1,8 +1,9 @@
 #pragma once
 // One user-facing key of a plain settings struct, declared once as a row: [contact]'s keys
-// (ContactSettings, scene.hpp), the run limits (RunLimits, run_scene.hpp),
+// (analysis::ContactSettings, scene.hpp), the run limits (analysis::RunLimits, run_scene.hpp),
 // [building.limit_states] (model::DriftLimits) and [building.shear_capacity]
-// (model::ShearCapacityFormula), both in limit_states.hpp. From the rows come
+// (model::ShearCapacityFormula), both in analysis/limit_states.hpp, and [building.hysteresis]
+// (model::HystereticLaw, model/building.hpp). From the rows come
 // the scene reader, the command-line options, the Python keywords, the range checks, `pounding
 // settings` and the docs' tables, so a new key is one row plus the line that uses it. (The
 // [solver] keys have their own row type, SettingSpec in methods.hpp, because each is kept as given
@@ -20,7 +21,7 @@
 
 #include "pounding/input_error.hpp"
 
-namespace pounding::analysis {
+namespace pounding {
 
 /// A value given for a key on the command line or from Python: whole numbers for `long` keys.
 using KeyValue = std::variant<long, double, std::string>;
@@ -30,12 +31,21 @@ struct KeySpec {
   std::string_view key;       // the key, `<section>.<key>` in errors and summary.json
   std::string_view option{};  // the command-line option that replaces it; empty: none. Python's
                               // keyword is the option without `--`, `-` as `_` (python_keyword())
-  std::variant<double Owner::*, std::optional<double> Owner::*, std::string Owner::*, long Owner::*> member;
+  /// A number, an optional one, text, a whole number, true or false, or one number for every
+  /// storey or a list of one a storey (storey 1 first; the reader spreads a single number).
+  std::variant<double Owner::*, std::optional<double> Owner::*, std::string Owner::*, long Owner::*, bool Owner::*,
+               std::vector<double> Owner::*>
+      member;
   bool required = false;
   std::optional<Range> range = std::nullopt;  // numbers: the values accepted
   std::vector<std::string_view> choices{};    // text: the values accepted (empty: checked elsewhere)
   std::string_view description{};             // one line, with units
   std::string_view details{};                 // the docs' meaning column, after the description
+  std::string_view default_note{};            // the docs' default column, when not the member's initialiser
+  std::string_view type_note{};               // the docs' type column, when not the type and range (checked elsewhere)
+  /// The values of the table's selector (e.g. hysteresis.law) under which the key may be given;
+  /// empty: any. The reader refuses the key under another.
+  std::vector<std::string_view> applies_to{};
   /// How the option's value is stored, when not by assignment to `member` (e.g. one option for
   /// two stiffness keys, the law deciding which).
   void (*set)(Owner&, const KeyValue&) = nullptr;
@@ -63,7 +73,14 @@ inline std::string or_list(const std::vector<std::string_view>& choices, bool qu
 template <typename Owner>
 std::string_view type_name(const KeySpec<Owner>& spec) {
   if (std::holds_alternative<long Owner::*>(spec.member)) return "integer";
+  if (std::holds_alternative<bool Owner::*>(spec.member)) return "boolean";
   return std::holds_alternative<std::string Owner::*>(spec.member) ? "string" : "number";
+}
+
+/// True for a key given as one number for every storey or as one a storey.
+template <typename Owner>
+bool is_per_storey(const KeySpec<Owner>& spec) {
+  return std::holds_alternative<std::vector<double> Owner::*>(spec.member);
 }
 
 /// `restitution` for `--restitution`, `contact_law` for `--contact-law`; empty for no option.
@@ -74,10 +91,11 @@ inline std::string python_keyword(std::string_view option) {
   return keyword;
 }
 
-/// A row's default as the docs print it: the initialiser of Owner's member ("required" for a
-/// required key, empty for an unset optional).
+/// A row's default as the docs print it: its note, or the initialiser of Owner's member
+/// ("required" for a required key, empty for an unset optional or an empty list).
 template <typename Owner>
 std::string default_text(const KeySpec<Owner>& spec) {
+  if (!spec.default_note.empty()) return std::string(spec.default_note);
   if (spec.required) return "required";
   const Owner defaults{};
   return std::visit(
@@ -88,6 +106,8 @@ std::string default_text(const KeySpec<Owner>& spec) {
           return fmt::format("\"{}\"", value);
         } else if constexpr (std::is_same_v<T, std::optional<double>>) {
           return value ? fmt::format("{}", *value) : std::string();
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          return value.empty() ? std::string() : fmt::format("{}", value.front());
         } else {
           return fmt::format("{}", value);
         }
@@ -124,6 +144,13 @@ void set_key(Owner& owner, const KeySpec<Owner>& spec, std::string_view section,
         } else if constexpr (std::is_same_v<T, long>) {
           if (!std::holds_alternative<long>(value)) throw InputError(name, "", "expected an integer");
           target = std::get<long>(value);
+        } else if constexpr (std::is_same_v<T, bool>) {
+          const auto* text = std::get_if<std::string>(&value);
+          if (text == nullptr || (*text != "true" && *text != "false"))
+            throw InputError(name, "", "expected true or false");
+          target = *text == "true";
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          throw InputError(name, "", "is given in the scene file only (one number or one a storey)");
         } else {
           const std::optional<double> number = number_of(value);
           if (!number) throw InputError(name, std::get<std::string>(value), "expected a number");
@@ -133,8 +160,10 @@ void set_key(Owner& owner, const KeySpec<Owner>& spec, std::string_view section,
       spec.member);
 }
 
-/// Checks every row's value in `owner`: numbers against their range (an unset optional passes),
-/// text against its choices. Each range is checked here and nowhere else.
+/// Checks every row's value in `owner`: numbers against their range (an unset optional passes;
+/// a list entry by entry, named `key[i]` from 1), text against its choices. Each range is
+/// checked here and nowhere else (but for a single number a list stands for, which the scene
+/// reader checks under the key typed).
 /// @throws InputError(`<section>.<key>`, value, "must lie in ..." | "expected ...").
 template <typename Owner>
 void validate_keys(const Owner& owner, std::span<const KeySpec<Owner>> specs, std::string_view section) {
@@ -151,6 +180,11 @@ void validate_keys(const Owner& owner, std::span<const KeySpec<Owner>> specs, st
             throw InputError(name, fmt::format("\"{}\"", value), "expected " + or_list(spec.choices, true));
           } else if constexpr (std::is_same_v<T, std::optional<double>>) {
             if (value && spec.range) require_range(name, *value, *spec.range);
+          } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+            for (std::size_t i = 0; i < value.size() && spec.range; ++i)
+              require_range(fmt::format("{}[{}]", name, i + 1), value[i], *spec.range);
+          } else if constexpr (std::is_same_v<T, bool>) {
+            return;
           } else if (spec.range) {
             require_range(name, static_cast<double>(value), *spec.range);
           }
@@ -159,4 +193,17 @@ void validate_keys(const Owner& owner, std::span<const KeySpec<Owner>> specs, st
   }
 }
 
+}  // namespace pounding
+
+namespace pounding::analysis {  // where the tables were declared first; their users name them so
+using pounding::default_text;
+using pounding::KeySpec;
+using pounding::KeyValue;
+using pounding::number_of;
+using pounding::option_help;
+using pounding::or_list;
+using pounding::python_keyword;
+using pounding::set_key;
+using pounding::type_name;
+using pounding::validate_keys;
 }  // namespace pounding::analysis
