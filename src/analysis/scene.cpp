@@ -431,6 +431,10 @@ double ContactSettings::used_stiffness() const {
 }
 
 void ContactSettings::set_stiffness(double value) {
+  // The option is the stiffness: a scene's key of another law (the scene's own law, before
+  // --contact-law changed it) no longer applies.
+  stiffness_kN_per_m.reset();
+  stiffness_kN_per_m1_5.reset();
   (contact_law_info(law).stiffness_key == "stiffness_kN_per_m1_5" ? stiffness_kN_per_m1_5 : stiffness_kN_per_m) = value;
 }
 

@@ -829,6 +829,42 @@ std::optional<std::array<std::string, 2>> apply_gap_text(analysis::Scene& scene,
   return names;
 }
 
+/// Sets the [contact] keys given as options, then validates once: a key's refusal names the
+/// option that set it (--restitution 0 with --contact-law jankowski is the restitution's fault,
+/// whichever option comes first), a scene key's refusal names the key in the file and the
+/// options given.
+void apply_contact_options(analysis::Scene& scene,
+                           const std::map<std::string, analysis::KeyValue, std::less<>>& options,
+                           const std::filesystem::path& file) {
+  std::map<std::string, std::string> option_of_key;  // "contact.restitution" -> "--restitution"
+  std::set<std::string_view> applied;                // one option may serve two rows (--contact-stiffness)
+  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
+    if (spec.key == "gap_m") continue;  // --gap moves building 2 (gap_m and gaps, above), not only the key
+    const auto given = options.find(spec.option);
+    if (given == options.end()) continue;
+    option_of_key["contact." + std::string(spec.key)] = given->first;
+    if (!applied.insert(spec.option).second) continue;
+    try {
+      analysis::set_key(scene.contact, spec, "contact", given->second);
+    } catch (const InputError& error) {
+      throw InputError(given->first, error.value(), error.reason(), file.string());
+    }
+  }
+  for (const auto& [option, value] : options) {
+    if (!applied.contains(option)) throw InputError(option, "", "is not an option of a [contact] key", file.string());
+  }
+  if (applied.empty()) return;
+  try {
+    scene.validate();
+  } catch (const InputError& error) {
+    if (option_of_key.contains(error.key())) throw error.renamed(option_of_key, file.string());
+    std::vector<std::string> given;  // a scene key that the options made wrong: both are named
+    for (const auto& [option, value] : options) given.push_back(option);
+    throw InputError(error.key(), error.value(), fmt::format("{} (with {})", error.reason(), fmt::join(given, ", ")),
+                     file.string());
+  }
+}
+
 }  // namespace
 
 analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& file, const SceneOverrides& overrides) {
@@ -859,16 +895,7 @@ analysis::Scene parse_scene(std::string_view text, const std::filesystem::path& 
                        file.string());
     }
   }
-  std::set<std::string_view> applied;  // one option may serve two rows (--contact-stiffness)
-  for (const analysis::ContactSettingSpec& spec : analysis::contact_setting_specs()) {
-    if (spec.key == "gap_m") continue;  // --gap moves building 2 (gap_m and gaps, above), not only the key
-    const auto given = overrides.contact.find(spec.option);
-    if (given == overrides.contact.end() || !applied.insert(spec.option).second) continue;
-    apply_option(given->first.c_str(), [&] { analysis::set_key(scene.contact, spec, "contact", given->second); });
-  }
-  for (const auto& [option, value] : overrides.contact) {
-    if (!applied.contains(option)) throw InputError(option, "", "is not an option of a [contact] key", file.string());
-  }
+  apply_contact_options(scene, overrides.contact, file);
   if (!overrides.record.empty()) apply_record(scene, overrides.record);
   return scene;
 }

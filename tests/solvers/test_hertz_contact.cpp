@@ -328,7 +328,13 @@ BOOST_AUTO_TEST_CASE(StiffnessKeysBelongToTheirLaws) {
         paper_with("law = \"kelvin\"\nstiffness_kN_per_m = 1e5\n",
                    {.contact = {{"--contact-law", std::string("hertzdamp")}}});
       },
-      "--contact-law", {"stiffness_kN_per_m1_5"});
+      "contact.stiffness_kN_per_m", {"stiffness_kN_per_m1_5", "with --contact-law"});
+  // --contact-stiffness with another law replaces the scene's stiffness (pounding bracket's runs).
+  const analysis::Scene replaced =
+      paper_with("law = \"kelvin\"\nstiffness_kN_per_m = 1e5\n",
+                 {.contact = {{"--contact-law", std::string("hertzdamp")}, {"--contact-stiffness", 2e6}}});
+  BOOST_TEST(replaced.contact.used_stiffness() == 2e6);
+  BOOST_TEST(!replaced.contact.stiffness_kN_per_m.has_value());
 }
 
 BOOST_AUTO_TEST_CASE(JankowskiRefusesPlasticRestitution) {

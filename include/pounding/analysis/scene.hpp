@@ -50,8 +50,9 @@ struct ContactSettings {
   /// The stiffness a run uses, in the law's unit (contact_laws.hpp): the given one or the law's
   /// default (0 for impulse).
   double used_stiffness() const;
-  /// Sets the stiffness key of the law `law` names (--contact-stiffness); for the impulse law,
-  /// kelvin's key, which the validator then refuses naming the law.
+  /// Sets the stiffness key of the law `law` names (--contact-stiffness) and clears the other
+  /// (a stiffness the scene gave for its own law, which --contact-law replaced); for the impulse
+  /// law, kelvin's key, which the validator then refuses naming the law.
   void set_stiffness(double value);
 };
 
