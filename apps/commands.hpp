@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "pounding/analysis/key_spec.hpp"
+#include "pounding/key_spec.hpp"
 #include "pounding/analysis/methods.hpp"
 #include "pounding/excitation/record_choice.hpp"
 
@@ -156,11 +156,24 @@ struct SweepCommand {
   bool no_progress = false;
 };
 
+/// `pounding bracket SCENE` (python -m pounding.bracket): the scene across contact laws,
+/// restitutions and stiffnesses, with each demand's spread and each verdict's agreement.
+struct BracketCommand {
+  std::string scene;
+  std::string laws;               // comma-separated; empty: every law
+  std::string restitutions;       // comma-separated; empty: 0.5, 0.65, 0.8
+  std::string stiffness_factors;  // comma-separated multiples of each law's base stiffness; empty: 0.25, 1, 4
+  std::optional<std::string> method;
+  std::string out_dir;  // empty: out/bracket-<scene name>
+  bool no_progress = false;
+};
+
 int run_gap(const GapCommand& command, const std::string& command_line);  // in gap_command.cpp
 /// Replaces the process by `python3 -m pounding.sweep` (its exit code is the command's).
 /// @throws InputError when the interpreter or the module is missing.
 int run_sweep(const SweepCommand& command);                                         // in sweep_command.cpp
 int run_verify(const VerifyCommand& command);                                       // in sweep_command.cpp
+int run_bracket(const BracketCommand& command);                                     // in sweep_command.cpp
 int run_compare(const CompareCommand& command);                                     // in plan_command.cpp
 int run_spectrum(const SpectrumCommand& command, const std::string& command_line);  // in spectrum_command.cpp
 int run_plan(const PlanCommand& command, const std::string& command_line);          // in plan_command.cpp

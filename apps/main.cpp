@@ -113,7 +113,9 @@ void add_key_options(CLI::App& command, std::span<const pounding::analysis::KeyS
     std::visit(
         [&](auto Owner::*member) {
           using T = std::decay_t<decltype(Owner{}.*member)>;
-          using Parsed = std::conditional_t<std::is_same_v<T, std::string> || std::is_same_v<T, long>, T, double>;
+          using Parsed = std::conditional_t<
+              std::is_same_v<T, long>, long,
+              std::conditional_t<std::is_same_v<T, std::string> || std::is_same_v<T, bool>, std::string, double>>;
           command.add_option_function<Parsed>(
               option, [&given, option](const Parsed& value) { given[option] = value; },
               pounding::analysis::option_help(spec));
@@ -197,13 +199,15 @@ int main(int argc, char** argv) {
   pounding::cli::SettingsCommand settings;
   CLI::App* settings_app =
       app.add_subcommand("settings",
-                         "The [solver] and [contact] settings, the run limits and the [building.limit_states] and "
-                         "[building.shear_capacity] keys: key, option, type, "
+                         "The [solver] and [contact] settings, the run limits and the [excitation], [output], "
+                         "[building.hysteresis], [building.limit_states] and [building.shear_capacity] keys: key, "
+                         "option, type, "
                          "default, range (and the methods using each solver setting)");
   settings_app->add_flag("--json", settings.json,
                          "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
   settings_app->add_option("--markdown", settings.markdown,
-                           "solver, contact, limits, limit_states or shear_capacity: that section's tables in "
+                           "solver, contact, limits, excitation, output, hysteresis, limit_states or shear_capacity: "
+                           "that section's tables in "
                            "docs/scene-format.md (limits: docs/guide/limits.md)");
 
   pounding::cli::OutputsCommand outputs;
@@ -418,6 +422,23 @@ int main(int argc, char** argv) {
   sweep_app->add_option("--out", sweep.out_dir, "Output folder (default: the file's out, else out/<sweep file name>)");
   sweep_app->add_flag("--no-progress,--quiet", sweep.no_progress, "No progress bar");
 
+  pounding::cli::BracketCommand bracket;
+  CLI::App* bracket_app = app.add_subcommand(
+      "bracket",
+      "One scene run across contact laws, restitutions and contact stiffnesses: every demand's spread "
+      "(min, max, max/min) and whether each verdict is the same on all runs; OUT/bracket.csv and "
+      "bracket.json (python3 -m pounding.bracket)");
+  bracket_app->add_option("scene", bracket.scene, "Scene file (TOML)")->required();
+  bracket_app->add_option("--laws", bracket.laws, "Contact laws, comma-separated (default: every law)");
+  bracket_app->add_option("--restitutions", bracket.restitutions,
+                          "Restitutions in [0, 1], comma-separated (default 0.5,0.65,0.8)");
+  bracket_app->add_option("--stiffness-factors", bracket.stiffness_factors,
+                          "Multiples of each law's base stiffness (the scene's for its own law, else the "
+                          "law's default), comma-separated (default 0.25,1,4)");
+  bracket_app->add_option("--method", bracket.method, pounding::analysis::methods_help());
+  bracket_app->add_option("--out", bracket.out_dir, "Output folder (default out/bracket-<scene name>)");
+  bracket_app->add_flag("--no-progress,--quiet", bracket.no_progress, "No progress line");
+
   harden_options(app);
   if (const auto unknown = unknown_command(app, argc, argv)) {
     fmt::print(stderr, "error: {}\n", *unknown);
@@ -442,6 +463,7 @@ int main(int argc, char** argv) {
     if (*gap_app) return pounding::cli::run_gap(gap, command_line);
     if (*sweep_app) return pounding::cli::run_sweep(sweep);
     if (*verify_app) return pounding::cli::run_verify(verify);
+    if (*bracket_app) return pounding::cli::run_bracket(bracket);
     if (*compare_app) return pounding::cli::run_compare(compare);
     if (*spectrum_app) return pounding::cli::run_spectrum(spectrum, command_line);
     if (*plan_app) return pounding::cli::run_plan(plan, command_line);

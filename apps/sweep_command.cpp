@@ -1,6 +1,6 @@
-// `pounding sweep` and `pounding verify`: they run in Python (pounding.sweep, on Dask;
-// pounding.verify), so the command hands the process over to the interpreter the module was built
-// for, with the build's module folder on PYTHONPATH; both are fixed when the program is configured.
+// `pounding sweep`, `pounding verify` and `pounding bracket`: they run in Python (pounding.sweep,
+// on Dask; pounding.verify; pounding.bracket), so the command hands the process over to the interpreter the module was
+// built for, with the build's module folder on PYTHONPATH; both are fixed when the program is configured.
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -77,6 +77,20 @@ int run_verify(const VerifyCommand& command) {
   if (!command.out_dir.empty()) arguments.insert(arguments.end(), {"--out", command.out_dir});
   if (command.no_progress) arguments.emplace_back("--no-progress");
   exec_module("pounding.verify", "pounding verify", arguments);
+}
+
+int run_bracket(const BracketCommand& command) {
+  std::vector<std::string> arguments{command.scene};
+  const auto add = [&arguments](const char* option, const std::string& value) {
+    if (!value.empty()) arguments.insert(arguments.end(), {option, value});
+  };
+  add("--laws", command.laws);
+  add("--restitutions", command.restitutions);
+  add("--stiffness-factors", command.stiffness_factors);
+  add("--method", command.method.value_or(""));
+  add("--out", command.out_dir);
+  if (command.no_progress) arguments.emplace_back("--no-progress");
+  exec_module("pounding.bracket", "pounding bracket", arguments);
 }
 
 }  // namespace pounding::cli

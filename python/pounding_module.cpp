@@ -420,6 +420,13 @@ PYBIND11_MODULE(_pounding, m) {
       .def_property_readonly(
           "contact_law", [](const Scene& s) { return s.contact.law; }, "contact.law")
       .def_property_readonly(
+          "contact_stiffness",
+          [](const Scene& s) -> std::optional<double> {
+            if (pounding::analysis::contact_law_info(s.contact.law).stiffness_key.empty()) return std::nullopt;
+            return s.contact.used_stiffness();
+          },
+          "The stiffness the contact law uses, in its unit (the scene's, else the law's default); None for impulse")
+      .def_property_readonly(
           "record_file", [](const Scene& s) { return s.excitation.file; }, "excitation.file: the record")
       .def_property_readonly(
           "record2_file",
@@ -551,6 +558,22 @@ PYBIND11_MODULE(_pounding, m) {
       if (std::find(keywords.begin(), keywords.end(), keyword) == keywords.end()) keywords.push_back(keyword);
     }
     return keywords;
+  });
+  m.def("contact_laws", [] {  // `pounding laws`' table: name, stiffness key and unit, default, methods
+    py::list laws;
+    for (const pounding::analysis::ContactLawInfo& law : pounding::analysis::contact_laws()) {
+      py::list methods;
+      for (std::string_view method : law.methods) methods.append(std::string(method));
+      py::dict entry;
+      entry["name"] = std::string(law.name);
+      entry["stiffness_key"] =
+          law.stiffness_key.empty() ? py::object(py::none()) : py::str(std::string(law.stiffness_key));
+      entry["stiffness_unit"] = std::string(law.stiffness_unit);
+      entry["default_stiffness"] = law.default_stiffness;
+      entry["methods"] = methods;
+      laws.append(entry);
+    }
+    return laws;
   });
   m.def("limit_keys", [] {
     std::vector<std::string> keys;

@@ -26,7 +26,7 @@ import numpy as _np
 __all__ = ["InputError", "Scene", "RunResult", "GapResult", "load_scene", "scene_from_dict", "scene_toml",
            "record_list", "modes", "modes_frame",
            "run", "needed_gap", "ground_motion", "response_spectrum", "rotd_spectrum", "methods", "settings", "limits",
-           "contact_options", "output_schema", "sweep", "verify", "__version__"]
+           "contact_options", "contact_laws", "output_schema", "sweep", "verify", "bracket", "__version__"]
 
 
 class InputError(ValueError):
@@ -175,9 +175,9 @@ def load_scene(path, gap=None, **contact):
     The other keywords are the [contact] options without `--`, `-` as `_` (restitution,
     contact_law, contact_stiffness: `pounding settings` lists them in its python column).
     Returns a Scene with .name, .file, .gap_m, .pair_gaps, .building_names, .restitution, .method,
-    .contact_law, .record_file, .history, .peaks ([output]) and the with_gap(m),
-    with_pair_gap(first, second, m), with_restitution(k), with_record(path, ...),
-    with_outputs(history=, peaks=) copies. `contact_stiffness` is in the
+    .contact_law, .contact_stiffness (the law's, in its unit; None for impulse), .record_file,
+    .history, .peaks ([output]) and the with_gap(m), with_pair_gap(first, second, m),
+    with_restitution(k), with_record(path, ...), with_outputs(history=, peaks=) copies. `contact_stiffness` is in the
     law's unit: kN/m for kelvin, kN/m^1.5 for hertzdamp, hertzdamp-ye and jankowski."""
     gap_m, gaps = _gap_options(gap)
     return _pounding.load_scene(path, gap_m, gaps, _contact_keywords(contact))
@@ -247,11 +247,13 @@ def record_list(scene, list_or_folder):
 
 
 def __getattr__(name):
-    """pounding.sweep and pounding.verify, imported on first use: modules (`python3 -m
-    pounding.sweep SWEEP.toml`, `-m pounding.verify MANIFEST.toml`; pounding.sweep(SWEEP.toml, ...)
-    is pounding.sweep.run_sweep, pounding.verify.verify(MANIFEST.toml) runs a manifest). Not
-    imported with the package, so that `-m` runs each once."""
-    if name in ("sweep", "verify"):
+    """pounding.sweep, pounding.verify and pounding.bracket, imported on first use: modules
+    (`python3 -m pounding.sweep SWEEP.toml`, `-m pounding.verify MANIFEST.toml`, `-m
+    pounding.bracket SCENE.toml`; pounding.sweep(SWEEP.toml, ...) is pounding.sweep.run_sweep,
+    pounding.verify.verify(MANIFEST.toml) runs a manifest, pounding.bracket.bracket(SCENE.toml)
+    brackets a scene's contact parameters). Not imported with the package, so that `-m` runs
+    each once."""
+    if name in ("sweep", "verify", "bracket"):
         import importlib
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
@@ -276,6 +278,13 @@ def contact_options():
     """The [contact] options load_scene() and scene_from_dict() accept as keywords besides gap
     (restitution, contact_law, contact_stiffness), in the table's order."""
     return _pounding.contact_keywords()
+
+
+def contact_laws():
+    """The contact laws, as `pounding laws` lists them (impulse first): dicts with name,
+    stiffness_key (the [contact] key of its stiffness, None for impulse), stiffness_unit,
+    default_stiffness (in that unit) and methods (those that run it; empty: every method)."""
+    return _pounding.contact_laws()
 
 
 def output_schema():
