@@ -17,6 +17,7 @@ import math
 import pathlib
 import sys
 import time
+import tomllib
 
 import pounding
 
@@ -126,9 +127,24 @@ def verdicts(summary):
     return values
 
 
+def scene_for(scene_file, document, law, keywords):
+    """The scene of one run: the file with the run's [contact] options; for a law other than the
+    scene's, without the scene's stiffness keys (they are its own law's: the run's stiffness is the
+    bracket's, and the impulse law takes none)."""
+    contact = document.get("contact", {})
+    if law == contact.get("law", "impulse") or not any(key.startswith("stiffness_") for key in contact):
+        return pounding.load_scene(scene_file, **keywords)
+    changed = {**document, "contact": {k: v for k, v in contact.items() if not k.startswith("stiffness_")}}
+    return pounding.scene_from_dict(changed, folder=pathlib.Path(scene_file).resolve().parent, **keywords)
+
+
 def run_all(scene_file, runs, method, progress):
     """Each run's row: its parameters, status, demands and verdicts (a refused combination: its
     reason as message, no results)."""
+    try:
+        document = tomllib.loads(pathlib.Path(scene_file).read_text())
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        document = {}  # load_scene names what is wrong with the file
     rows = []
     for number, (law, restitution, stiffness, factor) in enumerate(runs, 1):
         row = {"contact_law": law, "restitution": restitution, "contact_stiffness": stiffness,
@@ -140,8 +156,7 @@ def run_all(scene_file, runs, method, progress):
         if stiffness is not None:
             keywords["contact_stiffness"] = stiffness
         try:
-            scene = pounding.load_scene(scene_file, **keywords)
-            scene = scene.with_outputs(history=False, peaks=["drifts"])
+            scene = scene_for(scene_file, document, law, keywords).with_outputs(history=False, peaks=["drifts"])
             result = pounding.run(scene, method)
         except pounding.InputError as error:
             row.update(status="refused", message=str(error))

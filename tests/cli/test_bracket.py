@@ -10,7 +10,9 @@ factor of its default stiffness, as `pounding laws --json` gives it), jankowski 
 completed row's impact count, largest impulse and peak storey drift ratios equal a separate
 `pounding run` with that law, restitution and stiffness (its summary.json read here, not through
 the bracket's code) to 1e-12 relative; the spread's min and max of each demand are the rows'
-least and largest, and a verdict is "the same on all" exactly when the rows agree on it.
+least and largest, and a verdict is "the same on all" exactly when the rows agree on it. Then a
+kelvin scene that gives its stiffness: its bracket runs impulse and hertzdamp too (without the
+scene's stiffness), and the impulse row is the paper scene's run.
 """
 import csv
 import json
@@ -58,6 +60,32 @@ def run_demands(program, scene, row, out):
                    for c in f[key]]
         values[f"{building['building']} peak_storey_drift_ratio"] = max(drifts)
     return values
+
+
+def kelvin_scene_with_its_stiffness(program, out, check):
+    """A scene of law kelvin that gives its stiffness: the bracket's other laws run without it
+    (impulse takes none, hertzdamp its default), kelvin at the scene's; the impulse row is the
+    paper scene's run (whose [contact] has no stiffness)."""
+    paper = ROOT / "examples" / "paper"
+    text = (paper / "paper.toml").read_text().replace('file = "../records/', f'file = "{ROOT}/examples/records/')
+    text, count = re.subn(r"\[contact\]\n", '[contact]\nlaw = "kelvin"\nstiffness_kN_per_m = 2e5\n', text)
+    assert count == 1, "paper.toml has no [contact] table: update the test"
+    scene = out / "paper-kelvin.toml"
+    scene.write_text(text)
+    bracket = subprocess.run([program, "bracket", str(scene), "--laws", "impulse,kelvin,hertzdamp", "--restitutions",
+                              "0.5", "--stiffness-factors", "1", "--out", str(out / "bracket-kelvin"), "--no-progress"],
+                             capture_output=True, text=True)
+    check(bracket.returncode == 0, f"the bracket of a kelvin scene with its stiffness runs {bracket.stderr[-300:]}")
+    if bracket.returncode != 0:
+        return
+    rows = json.loads((out / "bracket-kelvin/bracket.json").read_text())["runs"]
+    check([r["status"] for r in rows] == ["completed"] * 3, f"impulse, kelvin and hertzdamp all run "
+          f"({[(r['contact_law'], r['status'], r['message']) for r in rows]})")
+    check(rows[1]["contact_stiffness"] == 2e5, f"kelvin runs at the scene's stiffness ({rows[1]['contact_stiffness']})")
+    separate = run_demands(program, paper / "paper.toml", {**rows[0], "contact_law": "impulse"}, out / "run-paper")
+    for name in ("impact_count", "max_impulse_kNs"):
+        check(rows[0]["demands"].get(name) is not None and close(rows[0]["demands"][name], separate[name]),
+              f"the impulse row's {name} {rows[0]['demands'].get(name)} is the paper scene's {separate[name]}")
 
 
 def main():
@@ -128,6 +156,7 @@ def main():
     check(impulses["max_over_min"] is not None and impulses["max_over_min"] >= 1.0,
           f"the largest impulse spreads by x{impulses['max_over_min']}")
 
+    kelvin_scene_with_its_stiffness(program, out, check)
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)
