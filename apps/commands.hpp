@@ -129,6 +129,7 @@ struct ReportCommand {
   std::string run_dir;
   std::string scene;     // empty: the scene file named in the run's summary.json
   std::string out_file;  // empty: RUN_DIR/report.html
+  std::string bracket;   // bracket.json of `pounding bracket` (or its folder); empty: none
 };
 
 /// `pounding verify MANIFEST` (python -m pounding.verify).

@@ -380,6 +380,9 @@ int main(int argc, char** argv) {
       "(tools/report_run.py). Writes the plan of the run's scene to RUN_DIR/plan.json");
   add_run_folder_arguments(*report_app, report.run_dir, report.scene);
   report_app->add_option("--out", report.out_file, "HTML file (default RUN_DIR/report.html)");
+  report_app->add_option("--bracket", report.bracket,
+                         "bracket.json of `pounding bracket` on the run's scene, or its folder: the page shows its "
+                         "spread");
 
   pounding::cli::VerifyCommand verify;
   CLI::App* verify_app = app.add_subcommand(

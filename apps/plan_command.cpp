@@ -105,6 +105,7 @@ int run_animate(const AnimateCommand& command, const std::string& command_line) 
 int run_report(const ReportCommand& command, const std::string& command_line) {
   std::vector<std::string> arguments;
   if (!command.out_file.empty()) arguments = {"--out", command.out_file};
+  if (!command.bracket.empty()) arguments.insert(arguments.end(), {"--bracket", command.bracket});
   return draw_run(command.run_dir, command.scene, command_line, "report_run.py", arguments);
 }
 

@@ -12,7 +12,11 @@ can be mailed or archived alone. A few lines of script check, once the page is l
 figure decoded and count the table rows, and write what they found at the foot of the page (the
 project's browser test reads it).
 
-    tools/report_run.py RUN_DIR [--out FILE]
+    tools/report_run.py RUN_DIR [--out FILE] [--bracket BRACKET_DIR]
+
+With --bracket, the page also shows the spread of `pounding bracket` on the run's scene: each
+demand's least and largest over the contact laws, restitutions and stiffnesses, and whether each
+verdict is the same on every run.
 
 RUN_DIR needs summary.json and plan.json (`pounding report RUN_DIR` writes the plan of the run's
 scene there and runs this script); history.csv and impacts.csv are used when present.
@@ -291,6 +295,46 @@ def limit_states_table(summary):
     return table(header, rows, "limit-states", text_columns=header[:3] + ("where",) + header[5:])
 
 
+def read_bracket(path, summary):
+    """bracket.json of `pounding bracket` (PATH or PATH/bracket.json); exits naming the file when it
+    is missing, unreadable or of another scene."""
+    file = path / "bracket.json" if path.is_dir() else path
+    try:
+        document = json.loads(file.read_text())
+        scene, spread = document["scene"], document["spread"]
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        sys.exit(f"error: --bracket {file}: not a bracket.json of `pounding bracket` ({error})")
+    if scene != summary["scene"]:
+        sys.exit(f"error: --bracket {file}: is the bracket of scene '{scene}', the run is of '{summary['scene']}'")
+    return document
+
+
+def bracket_section(document):
+    """The bracket's spread: per demand its least and largest over the runs with the run at each,
+    per verdict whether every run gives it, and the runs that did not complete."""
+    runs = document["runs"]
+    completed = sum(r["status"] == "completed" for r in runs)
+    note = (f'<p class="note">{len(runs)} runs ({completed} completed) of laws {text(", ".join(document["laws"]))}, '
+            f"restitutions {text(', '.join(f'{e:g}' for e in document['restitutions']))} and stiffness factors "
+            f"{text(', '.join(f'{f:g}' for f in document['stiffness_factors']))} (pounding bracket; units in each "
+            "name, drifts as ratios).</p>")
+    demands = [[text(name), number(e["min"]), text(e["min_run"]), number(e["max"]), text(e["max_run"]),
+                "" if e["max_over_min"] is None else number(e["max_over_min"], 3)]
+               for name, e in document["spread"]["demands"].items()]
+    verdicts = [[text(name), "yes" if e["same_on_all"] else "<b>no</b>",
+                 text(", ".join(f"{value} on {count}" for value, count in e["values"].items()))]
+                for name, e in document["spread"]["verdicts"].items()]
+    others = "".join(f"<li>{text(r['contact_law'])}, e = {r['restitution']:g}: {text(r['status'])} {text(r['message'])}"
+                     "</li>" for r in runs if r["status"] != "completed")
+    return "".join([
+        note,
+        table(("demand", "least", "at", "largest", "at", "largest/least"), demands, "bracket-demands",
+              text_columns=("demand", "at")),
+        table(("verdict", "the same on every run", "values"), verdicts, "bracket-verdicts",
+              text_columns=("verdict", "the same on every run", "values")),
+        f"<ul>{others}</ul>" if others else ""])
+
+
 def structural_sections(summary):
     """The storeys' demands and the limit states, when the run has any."""
     storeys, limits = storeys_table(summary), limit_states_table(summary)
@@ -334,7 +378,7 @@ def row_sections(summary):
             demands_table(summary)]
 
 
-def page(folder, summary, plan):
+def page(folder, summary, plan, bracket=None):
     warnings = "".join(f"<li>{text(w)}</li>" for w in summary["warnings"]) or "<li>none</li>"
     sections = [
         f"<h1>pounding run: {text(summary['scene'])}</h1>",
@@ -343,6 +387,7 @@ def page(folder, summary, plan):
         "<h2>Plan and elevation</h2>", plan_html(summary, plan),
         *row_sections(summary),
         *structural_sections(summary),
+        *(["<h2>Contact parameters bracketed</h2>", bracket_section(bracket)] if bracket else []),
         "<h2>Histories</h2>", history_figure_html(folder, summary),
         f"<h2>Impacts ({summary['impact_count']})</h2>", impacts_table(summary),
         "<h2>Sustained contacts</h2>", sustained_table(summary),
@@ -364,13 +409,16 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder", type=Path, help="output folder of `pounding run`, with plan.json")
     parser.add_argument("--out", type=Path, help="HTML file (default: FOLDER/report.html)")
+    parser.add_argument("--bracket", type=Path, help="bracket.json of `pounding bracket` on the run's scene, "
+                        "or its folder: the page shows its spread")
     args = parser.parse_args()
     summary_file = args.folder / "summary.json"
     if not summary_file.is_file():
         sys.exit(f"error: {summary_file} not found (is {args.folder} the output folder of `pounding run`?)")
     summary = json.loads(summary_file.read_text())
     out = args.out or args.folder / "report.html"
-    out.write_text(page(args.folder, summary, read_plan(args.folder)), encoding="utf-8")
+    bracket = read_bracket(args.bracket, summary) if args.bracket else None
+    out.write_text(page(args.folder, summary, read_plan(args.folder), bracket), encoding="utf-8")
     print(f"Wrote {out}")
 
 

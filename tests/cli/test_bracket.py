@@ -12,7 +12,8 @@ completed row's impact count, largest impulse and peak storey drift ratios equal
 the bracket's code) to 1e-12 relative; the spread's min and max of each demand are the rows'
 least and largest, and a verdict is "the same on all" exactly when the rows agree on it. Then a
 kelvin scene that gives its stiffness: its bracket runs impulse and hertzdamp too (without the
-scene's stiffness), and the impulse row is the paper scene's run.
+scene's stiffness), and the impulse row is the paper scene's run. Last, `pounding report
+--bracket` shows the spread in report.html and refuses a bracket of another scene.
 """
 import csv
 import json
@@ -88,6 +89,31 @@ def kelvin_scene_with_its_stiffness(program, out, check):
               f"the impulse row's {name} {rows[0]['demands'].get(name)} is the paper scene's {separate[name]}")
 
 
+def report_shows_the_spread(program, out, spread, check):
+    """`pounding report RUN --bracket DIR`: a row per demand and per verdict of the spread; a
+    bracket of another scene is refused, naming it."""
+    run = out / "run-0"  # the first separate run, of the bracket's scene
+    report = subprocess.run([program, "report", str(run), "--bracket", str(out / "bracket")], capture_output=True,
+                            text=True)
+    check(report.returncode == 0, f"pounding report --bracket runs (exit {report.returncode}) {report.stderr[-300:]}")
+    if report.returncode != 0:
+        return
+    page = (run / "report.html").read_text()
+
+    def rows(table_id):
+        part = page.split(f'id="{table_id}"')
+        return len(re.findall(r"<tr>", part[1].split("</table>")[0].split("<tbody>")[1])) if len(part) > 1 else 0
+
+    check(rows("bracket-demands") == len(spread["demands"]),
+          f"report.html's bracket-demands table has a row per demand ({rows('bracket-demands')})")
+    check(rows("bracket-verdicts") == len(spread["verdicts"]),
+          f"report.html's bracket-verdicts table has a row per verdict ({rows('bracket-verdicts')})")
+    other = subprocess.run([program, "report", str(run), "--bracket", str(out / "bracket-kelvin"), "--out",
+                            str(out / "other.html")], capture_output=True, text=True)
+    check(other.returncode != 0 and "bracket-kelvin" in other.stderr and "scene" in other.stderr,
+          f"a bracket of another scene is refused ({other.stderr.strip()[-200:]})")
+
+
 def main():
     program = sys.argv[1]
     out = Path(sys.argv[2]) if len(sys.argv) > 2 else Path(tempfile.mkdtemp())
@@ -157,6 +183,7 @@ def main():
           f"the largest impulse spreads by x{impulses['max_over_min']}")
 
     kelvin_scene_with_its_stiffness(program, out, check)
+    report_shows_the_spread(program, out, spread, check)
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)
