@@ -251,7 +251,8 @@ def storeys_table(summary):
                 c = (y or {}).get("column_shear")
                 row += [f"{c['failures']} of {c['springs_with_capacity']}",
                         f"{c['first_failure_t_s']:.4f}" if c["first_failure_t_s"] is not None else "–",
-                        f"{c['largest_demand_capacity_ratio']:.3f} ({text(c['critical_column'])} "
+                        f"{c['largest_demand_capacity_ratio']:.3f} ({number(c['critical_peak_force_kN'], 4)} kN of "
+                        f"{number(c['critical_shear_capacity_kN'], 4)} kN, {text(c['critical_column'])} "
                         f"{c['critical_direction']})"] if c else ["–"] * 3
             if residual:
                 row += [percent(r["drift_ratio_x"]), percent(r["drift_ratio_y"]),

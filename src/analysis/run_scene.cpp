@@ -388,6 +388,8 @@ void add_shear_demand(const dynamics::YieldingSpring& spring, const solvers::Spr
     storey.largest_demand_capacity_ratio = ratio;
     storey.critical_column = spring.column;
     storey.critical_direction = spring.direction == 0 ? 'x' : 'y';
+    storey.critical_peak_force_kN = r.peak_force_kN;
+    storey.critical_capacity_kN = spring.shear_capacity_kN;
   }
 }
 

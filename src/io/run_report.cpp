@@ -167,10 +167,13 @@ void append_yielding(const analysis::RunReport& report, std::string& text) {
         s.hysteretic_kJ);
     if (s.springs_with_capacity == 0) continue;
     fmt::format_to(
-        out, "    column shear: {} of {} springs reached their capacity{}; largest demand/capacity {:.3f} ({} {})\n",
+        out,
+        "    column shear: {} of {} springs reached their capacity{}; largest demand/capacity {:.3f} ({:.1f} kN of "
+        "{:.1f} kN, {} {})\n",
         s.shear_failures, s.springs_with_capacity,
         s.shear_failures > 0 ? fmt::format(", first at {:.6f} s", s.first_shear_failure_t_s) : "",
-        s.largest_demand_capacity_ratio, s.critical_column, s.critical_direction);
+        s.largest_demand_capacity_ratio, s.critical_peak_force_kN, s.critical_capacity_kN, s.critical_column,
+        s.critical_direction);
   }
 }
 

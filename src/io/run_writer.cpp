@@ -169,7 +169,9 @@ json yielding_json(const analysis::RunReport& report) {
                                 {"first_failure_t_s", finite_or_null(s.first_shear_failure_t_s)},
                                 {"largest_demand_capacity_ratio", s.largest_demand_capacity_ratio},
                                 {"critical_column", s.critical_column},
-                                {"critical_direction", std::string(1, s.critical_direction)}};
+                                {"critical_direction", std::string(1, s.critical_direction)},
+                                {"critical_peak_force_kN", s.critical_peak_force_kN},
+                                {"critical_shear_capacity_kN", s.critical_capacity_kN}};
     }
     buildings.back()["storeys"].push_back(std::move(storey));
   }

@@ -173,7 +173,9 @@ def check_case(program, out, name, failures):
     expected = {"springs_with_capacity": 8, "failures": 4, "critical_direction": "x"}
     if any(shear.get(k) != v for k, v in expected.items()) or \
             abs(shear.get("first_failure_t_s", 0.0) - t_fail) > 1e-7 or \
-            abs(shear.get("largest_demand_capacity_ratio", 0.0) * capacity_kN / peak_kN - 1.0) > 1e-7:
+            abs(shear.get("largest_demand_capacity_ratio", 0.0) * capacity_kN / peak_kN - 1.0) > 1e-7 or \
+            abs(shear.get("critical_peak_force_kN", 0.0) / peak_kN - 1.0) > 1e-7 or \
+            shear.get("critical_shear_capacity_kN") != capacity_kN:
         failures.append(f"{name}: summary.json column_shear {shear}")
     report = subprocess.run([program, "report", str(folder / "run")], capture_output=True, text=True)
     if "has no Python" in report.stderr:  # a build without the Python module (the sanitizer pass)

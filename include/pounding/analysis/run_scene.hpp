@@ -143,13 +143,15 @@ struct StoreyYielding {
   std::array<double, 2> peak_column_force_kN{0.0, 0.0};
   /// With column shear capacities (column_shear_capacity_kN, [building.shear_capacity]): how many of its springs
   /// have one, how many reached it, the first instant one did (NaN: none), and the largest peak
-  /// force over capacity, with that spring's column and direction.
+  /// force over capacity, with that spring's column, direction, peak force and capacity (kN).
   int springs_with_capacity = 0;
   int shear_failures = 0;
   double first_shear_failure_t_s = 0.0;
   double largest_demand_capacity_ratio = 0.0;
   std::string critical_column;
   char critical_direction = 'x';
+  double critical_peak_force_kN = 0.0;
+  double critical_capacity_kN = 0.0;
 };
 /// Below this a contact-free drift ratio or ductility is round-off (y drift under pure x
 /// shaking): the pounding-induced ratio to it is not reported.
