@@ -43,15 +43,20 @@ def _numbers(text, option, low, high):
     return values
 
 
+def base_stiffness(scene, law):
+    """The stiffness a law's factors multiply: the scene's when it is the scene's law, else the
+    law's default (in the law's unit)."""
+    return scene.contact_stiffness if law["name"] == scene.contact_law else law["default_stiffness"]
+
+
 def combinations(scene, laws, restitutions, factors):
     """(law, restitution, stiffness or None, factor or None) for every run: the laws with a stiffness
-    at each factor of their base stiffness (the scene's when it is the scene's law, else the law's
-    default), the impulse law once per restitution."""
+    at each factor of their base stiffness, the impulse law once per restitution."""
     table = {law["name"]: law for law in pounding.contact_laws()}
     runs = []
     for name in laws:
         law = table[name]
-        base = scene.contact_stiffness if name == scene.contact_law else law["default_stiffness"]
+        base = base_stiffness(scene, law)
         for restitution in restitutions:
             if law["stiffness_key"] is None:
                 runs.append((name, restitution, None, None))
@@ -250,9 +255,8 @@ def bracket(scene_file, laws=None, restitutions=DEFAULT_RESTITUTIONS, stiffness_
     rows = run_all(scene_file, combinations(scene, laws, restitutions, stiffness_factors), method, progress)
     return {"scene": scene.name, "scene_file": str(scene_file), "method": method or scene.method, "laws": laws,
             "restitutions": list(restitutions), "stiffness_factors": list(stiffness_factors),
-            "base_stiffness": {law["name"]: (scene.contact_stiffness if law["name"] == scene.contact_law
-                                             else law["default_stiffness"])
-                               for law in pounding.contact_laws() if law["stiffness_key"] and law["name"] in laws},
+            "base_stiffness": {law["name"]: base_stiffness(scene, law) for law in pounding.contact_laws()
+                               if law["stiffness_key"] and law["name"] in laws},
             "wall_time_s": time.perf_counter() - started, "runs": rows, "spread": spread(rows)}
 
 
