@@ -132,12 +132,12 @@ def verdicts(summary):
     return values
 
 
-def scene_for(scene_file, document, law, keywords):
-    """The scene of one run: the file with the run's [contact] options; for a law other than the
-    scene's, without the scene's stiffness keys (they are its own law's: the run's stiffness is the
-    bracket's, and the impulse law takes none)."""
+def scene_for(scene_file, document, keywords):
+    """The scene of one run: the file with the run's [contact] options. A compliant law's
+    contact_stiffness replaces the scene's stiffness (load_scene does that); the impulse law takes
+    none, so its run leaves out the stiffness keys the scene gave for its own law."""
     contact = document.get("contact", {})
-    if law == contact.get("law", "impulse") or not any(key.startswith("stiffness_") for key in contact):
+    if "contact_stiffness" in keywords or not any(key.startswith("stiffness_") for key in contact):
         return pounding.load_scene(scene_file, **keywords)
     changed = {**document, "contact": {k: v for k, v in contact.items() if not k.startswith("stiffness_")}}
     return pounding.scene_from_dict(changed, folder=pathlib.Path(scene_file).resolve().parent, **keywords)
@@ -161,7 +161,7 @@ def run_all(scene_file, runs, method, progress):
         if stiffness is not None:
             keywords["contact_stiffness"] = stiffness
         try:
-            scene = scene_for(scene_file, document, law, keywords).with_outputs(history=False, peaks=["drifts"])
+            scene = scene_for(scene_file, document, keywords).with_outputs(history=False, peaks=["drifts"])
             result = pounding.run(scene, method)
         except pounding.InputError as error:
             row.update(status="refused", message=str(error))
@@ -251,6 +251,8 @@ def bracket(scene_file, laws=None, restitutions=DEFAULT_RESTITUTIONS, stiffness_
     for name in laws:
         if name not in known:
             raise pounding.InputError(f"--laws: \"{name}\": expected {', '.join(known)}")
+    if method is not None and method not in pounding.methods():  # one refusal, not one a run
+        raise pounding.InputError(f"--method: \"{method}\": expected {', '.join(pounding.methods())}")
     started = time.perf_counter()
     rows = run_all(scene_file, combinations(scene, laws, restitutions, stiffness_factors), method, progress)
     return {"scene": scene.name, "scene_file": str(scene_file), "method": method or scene.method, "laws": laws,
@@ -288,6 +290,9 @@ def main(argv=None):
     (out / "bracket.json").write_text(json.dumps(document, indent=2) + "\n")
     print(report(document["scene"], document["runs"], document["spread"]))
     print(f"Wrote {out}/bracket.json, bracket.csv ({document['wall_time_s']:.1f} s)")
+    if not any(row["status"] == "completed" for row in document["runs"]):
+        print("pounding bracket: no run completed: there is no spread", file=sys.stderr)
+        return 3  # as a run that does not complete
     return 0
 
 

@@ -15,6 +15,16 @@
 namespace pounding::model {
 namespace {
 
+// The ranges of HystereticLaw's parameters (hysteresis_specs()' rows).
+constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};
+constexpr Range kYieldDrift{0.0, 1.0, "m", true};
+constexpr Range kYieldShear{0.0, 1e9, "kN", true};
+constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
+constexpr Range kBoucWenA{0.0, 10.0, "", true};
+constexpr Range kBoucWenBeta{0.0, 10.0, "", true};
+constexpr Range kBoucWenGamma{-10.0, 10.0};
+constexpr Range kBoucWenN{1.0, 50.0};
+
 std::string indexed(const char* key, std::size_t index) { return fmt::format("{}[{}]", key, index + 1); }
 
 // Physical ranges (docs/scene-format.md lists each next to its key). Beyond them a value is a
@@ -321,8 +331,8 @@ std::span<const std::string_view> hysteretic_law_names() {
 }
 
 std::span<const HysteresisSpec> hysteresis_specs() {
-  const std::vector<std::string_view> yielding{"bilinear", "bouc-wen"};
-  const std::vector<std::string_view> smooth{"bouc-wen"};
+  static const std::vector<std::string_view> yielding{"bilinear", "bouc-wen"};
+  static const std::vector<std::string_view> smooth{"bouc-wen"};
   static const std::vector<HysteresisSpec> kSpecs{
       {.key = "yield_drift_ratio",
        .member = &HystereticLaw::yield_drift_ratio,
@@ -381,12 +391,7 @@ std::span<const HysteresisSpec> hysteresis_specs() {
 }
 
 const char* to_string(HystereticLaw::Kind kind) {
-  switch (kind) {
-    case HystereticLaw::Kind::elastic: return "elastic";
-    case HystereticLaw::Kind::bilinear: return "bilinear";
-    case HystereticLaw::Kind::bouc_wen: return "bouc-wen";
-  }
-  return "?";
+  return hysteretic_law_names()[static_cast<std::size_t>(kind)].data();  // literals: NUL-terminated
 }
 
 double uniform_polar_moment(const Polygon& slab, double mass_t) {

@@ -12,8 +12,10 @@ completed row's impact count, largest impulse and peak storey drift ratios equal
 the bracket's code) to 1e-12 relative; the spread's min and max of each demand are the rows'
 least and largest, and a verdict is "the same on all" exactly when the rows agree on it. Then a
 kelvin scene that gives its stiffness: its bracket runs impulse and hertzdamp too (without the
-scene's stiffness), and the impulse row is the paper scene's run. Last, `pounding report
---bracket` shows the spread in report.html and refuses a bracket of another scene.
+scene's stiffness), and the impulse row is the paper scene's run. Then `pounding report
+--bracket` shows the spread in report.html and refuses a bracket of another scene; last, an
+unknown --method is refused before any run (exit 2) and a bracket with no completed run ends
+with exit 3.
 """
 import csv
 import json
@@ -184,6 +186,14 @@ def main():
 
     kelvin_scene_with_its_stiffness(program, out, check)
     report_shows_the_spread(program, out, spread, check)
+    bad = subprocess.run([program, "bracket", str(scene), "--method", "nope", "--out", str(out / "bad"),
+                          "--no-progress"], capture_output=True, text=True)
+    check(bad.returncode == 2 and '--method: "nope"' in bad.stderr, f"an unknown method is refused once, exit 2 "
+          f"({bad.returncode}: {bad.stderr.strip()[-150:]})")
+    none = subprocess.run([program, "bracket", str(scene), "--laws", "jankowski", "--restitutions", "0", "--out",
+                           str(out / "none"), "--no-progress"], capture_output=True, text=True)
+    check(none.returncode == 3 and "no run completed" in none.stderr,
+          f"a bracket whose every run is refused ends with exit 3 ({none.returncode}: {none.stderr.strip()[-150:]})")
     if failures:
         print(f"{len(failures)} check(s) failed")
         sys.exit(1)

@@ -115,16 +115,9 @@ std::span<const std::string_view> hysteretic_law_names();
 using HysteresisSpec = KeySpec<HystereticLaw>;
 std::span<const HysteresisSpec> hysteresis_specs();
 
-/// The ranges of HystereticLaw's parameters, public for the scene reader's messages.
-inline constexpr Range kYieldDriftRatio{0.0, 0.05, "", true};
-inline constexpr Range kYieldDrift{0.0, 1.0, "m", true};
-inline constexpr Range kYieldShear{0.0, 1e9, "kN", true};
+/// The range of column_shear_capacity_kN, public for the scene reader's messages (the
+/// hysteresis parameters' ranges are their rows', hysteresis_specs()).
 inline constexpr Range kColumnShearCapacity{0.0, 1e6, "kN", true};
-inline constexpr Range kHardeningRatio{0.0, 1.0, "", false, "[0, 1)"};
-inline constexpr Range kBoucWenA{0.0, 10.0, "", true};
-inline constexpr Range kBoucWenBeta{0.0, 10.0, "", true};
-inline constexpr Range kBoucWenGamma{-10.0, 10.0};
-inline constexpr Range kBoucWenN{1.0, 50.0};
 
 /// The peak transient storey drift ratios that mark a building's structural performance levels
 /// ([building.limit_states], analysis/limit_states.hpp): immediate occupancy, life safety and
