@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pounding::dynamics {
 
@@ -11,6 +13,38 @@ namespace {
 std::optional<BoucWenShape> bouc_wen_shape(const model::HystereticLaw& law) {
   if (!law.is_smooth()) return std::nullopt;
   return BoucWenShape{.a = law.bouc_wen_a, .beta = law.bouc_wen_beta, .gamma = law.bouc_wen_gamma, .n = law.bouc_wen_n};
+}
+
+/// Storey j's value of an IMK list, or its positive side's where the negative side's is not given;
+/// `none` for an empty list of both.
+double storey_value(const std::vector<double>& own, const std::vector<double>& positive, int storey, double none) {
+  const std::vector<double>& values = own.empty() ? positive : own;
+  return values.empty() ? none : values.at(static_cast<std::size_t>(storey - 1));
+}
+
+std::optional<ImkParameters> imk_parameters(const model::HystereticLaw& law, int storey, double stiffness_kN_per_m,
+                                            double yield_drift_m) {
+  if (!law.degrades()) return std::nullopt;
+  const double none = std::numeric_limits<double>::infinity(), yield_force_kN = stiffness_kN_per_m * yield_drift_m;
+  const ImkSide positive{.yield_force_kN = yield_force_kN,
+                         .plastic_drift_m = storey_value(law.imk_up_pos_m, {}, storey, none),
+                         .post_cap_drift_m = storey_value(law.imk_upc_pos_m, {}, storey, none),
+                         .ultimate_drift_m = storey_value(law.imk_uu_pos_m, {}, storey, none),
+                         .cap_ratio = *law.imk_fmax_fy_pos,
+                         .residual_ratio = law.imk_fres_fy_pos,
+                         .deterioration_rate = law.imk_d_pos};
+  const ImkSide negative{.yield_force_kN = yield_force_kN,
+                         .plastic_drift_m = storey_value(law.imk_up_neg_m, law.imk_up_pos_m, storey, none),
+                         .post_cap_drift_m = storey_value(law.imk_upc_neg_m, law.imk_upc_pos_m, storey, none),
+                         .ultimate_drift_m = storey_value(law.imk_uu_neg_m, law.imk_uu_pos_m, storey, none),
+                         .cap_ratio = law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos),
+                         .residual_ratio = law.imk_fres_fy_neg.value_or(law.imk_fres_fy_pos),
+                         .deterioration_rate = law.imk_d_neg};
+  return ImkParameters{.stiffness_kN_per_m = stiffness_kN_per_m,
+                       .positive = positive,
+                       .negative = negative,
+                       .lamda_m = {law.imk_lamda_s_m, law.imk_lamda_c_m, law.imk_lamda_a_m, law.imk_lamda_k_m},
+                       .exponent = {law.imk_c_s, law.imk_c_c, law.imk_c_a, law.imk_c_k}};
 }
 
 /// The springs of one building (empty if its columns stay elastic).
@@ -26,17 +60,20 @@ void add_building_springs(const model::Building& building, int b, int offset, st
       // Row of T = [[1, 0, −Δy], [0, 1, Δx]] for each direction, upper floor minus lower floor.
       const std::array<std::array<double, 3>, 2> t_rows{{{1.0, 0.0, -arm.y()}, {0.0, 1.0, arm.x()}}};
       for (int direction = 0; direction < 2; ++direction) {
+        const double yield_drift_m = model::column_yield_drift_m(building, storey, direction);
         YieldingSpring spring{.building = b,
                               .storey = storey,
                               .direction = direction,
                               .column = column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key,
                               .stiffness_kN_per_m = k[direction],
-                              .hardening_ratio = d.hysteresis.hardening_ratio,
-                              .yield_drift_m = model::column_yield_drift_m(building, storey, direction),
+                              .hardening_ratio = d.hysteresis.degrades() ? 0.0 : d.hysteresis.hardening_ratio,
+                              .yield_drift_m = yield_drift_m,
                               .storey_height_m = height_m,
                               .indices = {},
                               .coefficients = {},
                               .bouc_wen = bouc_wen_shape(d.hysteresis),
+                              .z_index = -1,
+                              .imk = imk_parameters(d.hysteresis, storey, k[direction], yield_drift_m),
                               .shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction),
                               .loses_stiffness = d.shear_failure_loses_stiffness()};
         for (int floor : {storey, storey - 1}) {
@@ -88,6 +125,10 @@ double YieldingSprings::slip(const Eigen::Ref<const Eigen::VectorXd>& y, const S
     case SpringBranch::yielding_up: return drift(y.head(dof_), j) - spring.yield_drift_m;
     case SpringBranch::yielding_down: return drift(y.head(dof_), j) + spring.yield_drift_m;
     case SpringBranch::failed: return drift(y.head(dof_), j) / (1.0 - spring.hardening_ratio);
+    case SpringBranch::line: {  // α = 0: s = d − F/k
+      const double d = drift(y.head(dof_), j);
+      return d - states[j].line.force_at(d) / spring.stiffness_kN_per_m;
+    }
   }
   return 0.0;
 }
@@ -128,8 +169,12 @@ void YieldingSprings::add_tangent_rows(const SpringStates& states, const Eigen::
     if (!spring.bouc_wen && states[j].branch == SpringBranch::elastic) continue;
     // s_j = d_j ∓ d_y (or d_j − d_y z_j): the slip force (1 − α) k t tᵀ q adds to q̈ through M⁻¹;
     // failed, s_j = d_j/(1 − α): k t tᵀ q, the whole spring.
-    const double slope_kN_per_m =
-        states[j].branch == SpringBranch::failed ? spring.stiffness_kN_per_m : spring.plastic_stiffness();
+    // On a degrading spring's line, F = F_0 + K_b (d − d_0): the slip force k d − F, slope k − K_b.
+    const double slope_kN_per_m = states[j].branch == SpringBranch::failed ? spring.stiffness_kN_per_m
+                                  : states[j].branch == SpringBranch::line
+                                      ? spring.stiffness_kN_per_m - states[j].line.slope_kN_per_m
+                                      : spring.plastic_stiffness();
+    if (slope_kN_per_m == 0.0) continue;
     for (std::size_t a = 0; a < spring.indices.size(); ++a) {
       for (std::size_t c = 0; c < spring.indices.size(); ++c) {
         terms.emplace_back(
@@ -180,6 +225,13 @@ double YieldingSprings::witness(const Eigen::Ref<const Eigen::VectorXd>& y, cons
     case SpringBranch::yielding_up: return drift(y.segment(dof_, dof_), j);
     case SpringBranch::yielding_down: return -drift(y.segment(dof_, dof_), j);
     case SpringBranch::failed: return 1.0;
+    case SpringBranch::line: {
+      const LineBranch& line = states[j].line;
+      const double d = drift(y.head(dof_), j);
+      const double end_m = std::min(d - line.lower_m, line.upper_m - d);
+      if (line.reversal_sign == 0) return std::isfinite(end_m) ? end_m : 1.0;
+      return std::min(end_m, line.reversal_sign * drift(y.segment(dof_, dof_), j));
+    }
   }
   return 1.0;
 }
@@ -196,6 +248,12 @@ double YieldingSprings::stored_energy_change(const Eigen::Ref<const Eigen::Vecto
       continue;
     }
     const double d = drift(y.head(dof_), j);
+    if (states[j].branch == SpringBranch::line) {  // ½ k d² becomes ½F²/K_u
+      const double force_kN = states[j].line.force_at(d);
+      change_kJ +=
+          0.5 * (force_kN * force_kN / states[j].line.unloading_stiffness_kN_per_m - spring.stiffness_kN_per_m * d * d);
+      continue;
+    }
     if (states[j].branch == SpringBranch::failed) {  // its ½ k d² leaves ½ qᵀ K q: it stores nothing
       change_kJ -= 0.5 * spring.stiffness_kN_per_m * d * d;
       continue;

@@ -196,6 +196,13 @@ const std::vector<YieldingColumn>& yielding_columns() {
          return std::isfinite(r.shear_failure_t_s) ? fmt::format("{}", r.shear_failure_t_s) : std::string();
        },
        true},
+      {"degrading_failure_t_s", "s", Kind::real,
+       "when its degrading (IMK) law failed and the column lost its force (a deterioration parameter past 1, its "
+       "energy spent, the ultimate drift, or no residual strength); empty if it never did",
+       [](const YieldingSpring&, const SpringResult& r) {
+         return std::isfinite(r.degrading_failure_t_s) ? fmt::format("{}", r.degrading_failure_t_s) : std::string();
+       },
+       false, true},
   };
   return columns;
 }
@@ -203,9 +210,11 @@ const std::vector<YieldingColumn>& yielding_columns() {
 std::vector<YieldingColumn> yielding_columns(const std::vector<dynamics::YieldingSpring>& springs) {
   const bool capacities = std::any_of(springs.begin(), springs.end(),
                                       [](const dynamics::YieldingSpring& s) { return s.shear_capacity_kN > 0.0; });
+  const bool degrading =
+      std::any_of(springs.begin(), springs.end(), [](const dynamics::YieldingSpring& s) { return s.imk.has_value(); });
   std::vector<YieldingColumn> written;
   for (const YieldingColumn& c : yielding_columns()) {
-    if (capacities || !c.shear_capacity_only) written.push_back(c);
+    if ((capacities || !c.shear_capacity_only) && (degrading || !c.degrading_only)) written.push_back(c);
   }
   return written;
 }
@@ -258,6 +267,7 @@ json output_schema_json() {
     if (c.shear_capacity_only)
       yielding.back()["only_when"] =
           "some yielding column has a shear capacity (column_shear_capacity_kN or [building.shear_capacity])";
+    if (c.degrading_only) yielding.back()["only_when"] = "some column's law is imk-peak-oriented";
   }
   return {{"history", history},
           {"impacts", impacts},

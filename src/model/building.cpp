@@ -24,6 +24,12 @@ constexpr Range kBoucWenA{0.0, 10.0, "", true};
 constexpr Range kBoucWenBeta{0.0, 10.0, "", true};
 constexpr Range kBoucWenGamma{-10.0, 10.0};
 constexpr Range kBoucWenN{1.0, 50.0};
+constexpr Range kImkDrift{0.0, 10.0, "m", true};
+constexpr Range kImkCapRatio{1.0, 10.0};
+constexpr Range kImkResidualRatio{0.0, 1.0};
+constexpr Range kImkLamda{0.0, 1e6, "m"};
+constexpr Range kImkExponent{0.0, 10.0, "", true};
+constexpr Range kImkRate{0.0, 1.0, "", true};
 
 std::string indexed(const char* key, std::size_t index) { return fmt::format("{}[{}]", key, index + 1); }
 
@@ -124,10 +130,10 @@ void validate_shear_failure(const BuildingDefinition& b) {
                      "expected \"report\" or \"lose-stiffness\"");
   }
   if (choice == "report") return;
-  if (b.hysteresis.kind != HystereticLaw::Kind::bilinear) {
+  if (b.hysteresis.kind != HystereticLaw::Kind::bilinear && !b.hysteresis.degrades()) {
     throw InputError("column_shear_failure", "\"lose-stiffness\"",
-                     "needs bilinear columns ([building.hysteresis] law = \"bilinear\"): the columns' sway shear is "
-                     "checked where they yield");
+                     "needs bilinear or imk-peak-oriented columns ([building.hysteresis] law): the columns' sway "
+                     "shear is checked where they yield");
   }
   if (b.column_shear_capacity_kN.empty() && !b.shear_capacity) {
     throw InputError("column_shear_failure", "\"lose-stiffness\"",
@@ -230,6 +236,16 @@ void refuse_collapse_before_yield(const std::vector<double>& yield_drift_m, cons
   }
 }
 
+/// IMK's required keys, and a post-yield slope below k (U_p > (F_max/F_y − 1) d_y) for every
+/// column of every storey: the backbone would otherwise rise faster than the elastic branch.
+void validate_imk(const BuildingDefinition& b) {
+  const HystereticLaw& law = b.hysteresis;
+  if (law.imk_up_pos_m.empty()) throw InputError("hysteresis.Up_pos", "missing", "law \"imk-peak-oriented\" needs it");
+  if (law.imk_upc_pos_m.empty())
+    throw InputError("hysteresis.Upc_pos", "missing", "law \"imk-peak-oriented\" needs it");
+  if (!law.imk_fmax_fy_pos) throw InputError("hysteresis.FmaxFy_pos", "missing", "law \"imk-peak-oriented\" needs it");
+}
+
 void validate_hysteresis(const BuildingDefinition& b) {
   const HystereticLaw& law = b.hysteresis;
   if (!law.yields()) return;
@@ -257,6 +273,7 @@ void validate_hysteresis(const BuildingDefinition& b) {
   validate_keys(law, hysteresis_specs(), "hysteresis");
   if (!law.yield_drift_m.empty()) refuse_collapse_before_yield(law.yield_drift_m, b.storey_height_m);
   if (law.is_smooth()) validate_bouc_wen(law);
+  if (law.degrades()) validate_imk(b);
 }
 
 void validate_damping(const BuildingDefinition& b) {
@@ -326,12 +343,27 @@ void BuildingDefinition::validate() const {
 }
 
 std::span<const std::string_view> hysteretic_law_names() {
-  static constexpr std::array<std::string_view, 3> kNames{"elastic", "bilinear", "bouc-wen"};
+  static constexpr std::array<std::string_view, 4> kNames{"elastic", "bilinear", "bouc-wen", "imk-peak-oriented"};
   return kNames;
 }
 
+/// A row of IMK's (OpenSees' name as the key): every one applies to imk-peak-oriented only.
+template <typename Member>
+HysteresisSpec imk_row(std::string_view key, Member member, const Range& range, std::string_view description,
+                       std::string_view default_note = {}, std::string_view details = {}) {
+  static const std::vector<std::string_view> imk{"imk-peak-oriented"};
+  return {.key = key,
+          .member = member,
+          .range = range,
+          .description = description,
+          .details = details,
+          .default_note = default_note,
+          .applies_to = imk};
+}
+
 std::span<const HysteresisSpec> hysteresis_specs() {
-  static const std::vector<std::string_view> yielding{"bilinear", "bouc-wen"};
+  static const std::vector<std::string_view> yielding{"bilinear", "bouc-wen", "imk-peak-oriented"};
+  static const std::vector<std::string_view> hardening{"bilinear", "bouc-wen"};
   static const std::vector<std::string_view> smooth{"bouc-wen"};
   static const std::vector<HysteresisSpec> kSpecs{
       {.key = "yield_drift_ratio",
@@ -361,7 +393,7 @@ std::span<const HysteresisSpec> hysteresis_specs() {
        .member = &HystereticLaw::hardening_ratio,
        .range = kHardeningRatio,
        .description = "α: post-yield over initial stiffness (0: elastic–perfectly plastic)",
-       .applies_to = yielding},
+       .applies_to = hardening},
       {.key = "a",
        .member = &HystereticLaw::bouc_wen_a,
        .range = kBoucWenA,
@@ -386,6 +418,40 @@ std::span<const HysteresisSpec> hysteresis_specs() {
        .range = kBoucWenN,
        .description = "n, the sharpness of the transition (n → ∞: the bilinear law)",
        .applies_to = smooth},
+      imk_row("Up_pos", &HystereticLaw::imk_up_pos_m, kImkDrift,
+              "U_p: the drift (m) from yield to the cap, where F reaches F_max", "required",
+              "a list gives each storey its own, storey 1 first"),
+      imk_row("Upc_pos", &HystereticLaw::imk_upc_pos_m, kImkDrift,
+              "U_pc: the drift (m) from the cap to zero force along the post-capping slope", "required"),
+      imk_row("Uu_pos", &HystereticLaw::imk_uu_pos_m, kImkDrift,
+              "U_u: the ultimate drift (m); reached moving out, the column fails", "none"),
+      imk_row("FmaxFy_pos", &HystereticLaw::imk_fmax_fy_pos, kImkCapRatio, "F_max / F_y, the cap's force", "required",
+              "U_p must exceed (F_max/F_y − 1) d_y, so that the post-yield slope is below k"),
+      imk_row("FresFy_pos", &HystereticLaw::imk_fres_fy_pos, kImkResidualRatio, "F_res / F_y, the residual strength",
+              {}, "0: the column fails at the end of the post-capping branch"),
+      imk_row("Up_neg", &HystereticLaw::imk_up_neg_m, kImkDrift, "U_p of the negative side (m, positive)", "Up_pos"),
+      imk_row("Upc_neg", &HystereticLaw::imk_upc_neg_m, kImkDrift, "U_pc of the negative side (m, positive)",
+              "Upc_pos"),
+      imk_row("Uu_neg", &HystereticLaw::imk_uu_neg_m, kImkDrift, "U_u of the negative side (m, positive)", "Uu_pos"),
+      imk_row("FmaxFy_neg", &HystereticLaw::imk_fmax_fy_neg, kImkCapRatio, "F_max / F_y of the negative side",
+              "FmaxFy_pos"),
+      imk_row("FresFy_neg", &HystereticLaw::imk_fres_fy_neg, kImkResidualRatio, "F_res / F_y of the negative side",
+              "FresFy_pos"),
+      imk_row("Lamda_S", &HystereticLaw::imk_lamda_s_m, kImkLamda,
+              "Λ_S (m): basic strength deterioration, reference energy E_t = Λ_S F_y", {},
+              "0 turns the mode off (as every Lamda_*)"),
+      imk_row("Lamda_C", &HystereticLaw::imk_lamda_c_m, kImkLamda, "Λ_C (m): post-capping strength deterioration"),
+      imk_row("Lamda_A", &HystereticLaw::imk_lamda_a_m, kImkLamda,
+              "Λ_A (m): accelerated reloading stiffness deterioration"),
+      imk_row("Lamda_K", &HystereticLaw::imk_lamda_k_m, kImkLamda, "Λ_K (m): unloading stiffness deterioration"),
+      imk_row("c_S", &HystereticLaw::imk_c_s, kImkExponent, "c_S, the exponent of β_S"),
+      imk_row("c_C", &HystereticLaw::imk_c_c, kImkExponent, "c_C, the exponent of β_C"),
+      imk_row("c_A", &HystereticLaw::imk_c_a, kImkExponent, "c_A, the exponent of β_A"),
+      imk_row("c_K", &HystereticLaw::imk_c_k, kImkExponent, "c_K, the exponent of β_K"),
+      imk_row("D_pos", &HystereticLaw::imk_d_pos, kImkRate,
+              "D⁺, the rate of cyclic deterioration on the positive side"),
+      imk_row("D_neg", &HystereticLaw::imk_d_neg, kImkRate,
+              "D⁻, the rate of cyclic deterioration on the negative side"),
   };
   return kSpecs;
 }
@@ -530,6 +596,28 @@ void refuse_collapse_before_yield_shear(const Building& building) {
   }
 }
 
+/// IMK's post-yield slope (F_max/F_y − 1) F_y / U_p must stay below k, i.e. U_p > (F_max/F_y − 1) d_y,
+/// on each side of every storey along x and y (d_y known only once the frame factor is).
+void refuse_steep_imk_hardening(const Building& building) {
+  const HystereticLaw& law = building.definition.hysteresis;
+  for (const bool positive : {true, false}) {
+    const bool own = positive || !law.imk_up_neg_m.empty();
+    const std::vector<double>& up_m = own && !positive ? law.imk_up_neg_m : law.imk_up_pos_m;
+    const double cap_ratio = positive ? *law.imk_fmax_fy_pos : law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos);
+    const char* key = own && !positive ? "hysteresis.Up_neg" : "hysteresis.Up_pos";
+    for (std::size_t j = 0; j < up_m.size(); ++j) {
+      for (int direction = 0; direction < 2; ++direction) {
+        const double least_m = (cap_ratio - 1.0) * column_yield_drift_m(building, static_cast<int>(j) + 1, direction);
+        if (up_m[j] > least_m) continue;
+        throw InputError(indexed(key, j), format_value(up_m[j]),
+                         fmt::format("must exceed (FmaxFy - 1) d_y = {:.4g} m (storey {} along {}): the post-yield "
+                                     "slope would reach the elastic stiffness",
+                                     least_m, j + 1, direction == 0 ? "x" : "y"));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Building make_building(const BuildingDefinition& definition) {
@@ -556,6 +644,7 @@ Building make_building(const BuildingDefinition& definition) {
     building.stiffness = assemble_stiffness(definition.storey_stiffness);
   }
   if (definition.hysteresis.yields()) refuse_collapse_before_yield_shear(building);
+  if (definition.hysteresis.degrades()) refuse_steep_imk_hardening(building);
   if (definition.p_delta) building.stiffness += assemble_stiffness(geometric_storey_matrices(definition));
   require_positive_definite(building.stiffness, definition);
 

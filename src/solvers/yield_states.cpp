@@ -17,7 +17,44 @@ YieldStates::YieldStates(const dynamics::YieldingSprings& springs, double max_sw
       phase_start_slip_m_(springs.size(), 0.0),
       max_switches_per_s_(max_switches_per_s),
       locate_shear_failures_(locate_shear_failures),
-      recent_switches_s_(springs.size()) {}
+      recent_switches_s_(springs.size()) {
+  laws_.resize(springs.size());
+  for (std::size_t j = 0; j < springs.size(); ++j) {
+    if (!springs[j].imk) continue;
+    laws_[j].emplace(*springs[j].imk);
+    take_line(j);
+  }
+}
+
+void YieldStates::take_line(std::size_t j) {
+  const dynamics::ImkPeakOriented& law = *laws_[j];
+  const auto moves = [&] {
+    return states_[j].branch == SpringBranch::failed ||
+           (states_[j].branch == SpringBranch::line &&
+            states_[j].line.slope_kN_per_m != springs_[j].stiffness_kN_per_m);
+  };
+  if (moves()) --yielding_;
+  states_[j] = law.failed() ? dynamics::SpringState{.branch = SpringBranch::failed}
+                            : dynamics::SpringState{.branch = SpringBranch::line, .line = law.line()};
+  if (moves()) ++yielding_;
+}
+
+bool YieldStates::advance_degrading(std::size_t j, double t, const Eigen::VectorXd& y, double rate_mps,
+                                    double accel_mps2) {
+  const double heading = rate_mps != 0.0 ? rate_mps : accel_mps2;
+  if (heading == 0.0) return false;
+  dynamics::ImkPeakOriented& law = *laws_[j];
+  const int before = law.branch();
+  if (!law.advance(springs_.drift(y.head(springs_.dof()), j), heading > 0.0 ? 1 : -1)) return false;
+  SpringResult& result = results_[j];
+  if (before % 10 != 5 && law.branch() % 10 == 5) {  // onto a post-yield branch: a yielding phase
+    if (result.yield_count == 0) result.first_yield_t_s = t;
+    ++result.yield_count;
+  }
+  if (law.failed()) result.degrading_failure_t_s = t;
+  take_line(j);
+  return true;
+}
 
 void YieldStates::count_switch(std::size_t j, double t) {
   std::deque<double>& recent = recent_switches_s_[j];
@@ -64,6 +101,12 @@ int YieldStates::switch_branches(double t, const Eigen::VectorXd& y, const Eigen
     dynamics::SpringState& state = states_[j];
     SpringResult& result = results_[j];
     const double rate_mps = springs_.drift(y.segment(n, n), j), accel_mps2 = springs_.drift(y_dot.segment(n, n), j);
+    if (laws_[j]) {
+      if (!advance_degrading(j, t, y, rate_mps, accel_mps2)) continue;
+      count_switch(j, t);
+      ++switched;
+      continue;
+    }
     const double offset_m = springs_.drift(y.head(n), j) - (springs_[j].bouc_wen ? 0.0 : state.slip_m);
     if (springs_[j].bouc_wen || state.branch == SpringBranch::elastic) {
       const double outwards = offset_m >= 0.0 ? 1.0 : -1.0;
@@ -99,6 +142,11 @@ void YieldStates::fail(std::size_t j, const Eigen::VectorXd& y) {
   const dynamics::YieldingSpring& spring = springs_[j];
   // Its force at the failure (V_c) is its peak: observe() sees it only after, at zero.
   results_[j].peak_force_kN = std::max(results_[j].peak_force_kN, std::abs(springs_.force_kN(y, states_, j)));
+  if (laws_[j]) {  // a degrading spring: its law fails (all its work is dissipated)
+    laws_[j]->fail_at(springs_.drift(y.head(springs_.dof()), j));
+    take_line(j);
+    return;
+  }
   if (states_[j].branch != SpringBranch::elastic) end_yielding(j, springs_.slip(y, states_, j));
   const double d = springs_.drift(y.head(springs_.dof()), j), elastic_part = d - states_[j].slip_m;
   results_[j].hysteretic_kJ += 0.5 * spring.hardening_ratio * spring.stiffness_kN_per_m * d * d +
@@ -148,6 +196,8 @@ std::vector<SpringResult> YieldStates::finish(const Eigen::VectorXd& y, const st
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     if (springs_[j].bouc_wen) {
       results_[j].hysteretic_kJ = smooth_dissipated_kJ.at(j);
+    } else if (laws_[j]) {
+      results_[j].hysteretic_kJ = laws_[j]->dissipated_kJ(springs_.drift(y.head(springs_.dof()), j));
     } else if (states_[j].branch == SpringBranch::yielding_up || states_[j].branch == SpringBranch::yielding_down) {
       end_yielding(j, springs_.slip(y, states_, j));
     }

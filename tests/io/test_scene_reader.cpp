@@ -483,8 +483,42 @@ BOOST_AUTO_TEST_CASE(BoucWenParametersAreCheckedAndOnlyForTheirLaw) {
   BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\na = 0\n")), {"building[1].hysteresis.a = 0", "(0, 10]"}));
   BOOST_TEST(mentions(error_of(with_law("law = \"bilinear\"\nbeta = 0.3\n")),
                       {"building[1].hysteresis.beta = 0.3", "applies to law = \"bouc-wen\" only"}));
-  BOOST_TEST(mentions(error_of(with_law("law = \"plastic\"\n")),
-                      {"building[1].hysteresis.law", "\"elastic\", \"bilinear\" or \"bouc-wen\""}));
+  BOOST_TEST(
+      mentions(error_of(with_law("law = \"plastic\"\n")),
+               {"building[1].hysteresis.law", "\"elastic\", \"bilinear\", \"bouc-wen\" or \"imk-peak-oriented\""}));
+}
+
+BOOST_AUTO_TEST_CASE(ImkParametersHaveOpenSeesNamesAndAreChecked) {
+  const auto with_law = [](const std::string& lines) {
+    const std::string columns =
+        "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";
+    return edited(columns, columns +
+                               "\n[building.hysteresis]\nlaw = \"imk-peak-oriented\"\n"
+                               "yield_drift_ratio = 0.005\n" +
+                               lines);
+  };
+  const std::string required = "Up_pos = 0.05\nUpc_pos = [0.2, 0.15]\nFmaxFy_pos = 1.2\n";
+  Case given(with_law(required + "Lamda_S = 2.5\nc_K = 1.5\nUp_neg = 0.04\nD_neg = 0.8\n"));
+  const pounding::model::HystereticLaw law = read_scene(given.file).buildings[0].hysteresis;
+  BOOST_TEST((law.kind == pounding::model::HystereticLaw::Kind::imk_peak_oriented));
+  BOOST_TEST(law.imk_up_pos_m == std::vector<double>({0.05, 0.05}));  // one number: every storey
+  BOOST_TEST(law.imk_upc_pos_m == std::vector<double>({0.2, 0.15}));
+  BOOST_TEST(law.imk_up_neg_m == std::vector<double>({0.04, 0.04}));
+  BOOST_TEST(law.imk_upc_neg_m.empty());  // the positive side's
+  BOOST_TEST(*law.imk_fmax_fy_pos == 1.2);
+  BOOST_TEST(!law.imk_fmax_fy_neg);
+  BOOST_TEST(law.imk_fres_fy_pos == 0.0);
+  BOOST_TEST(law.imk_lamda_s_m == 2.5);
+  BOOST_TEST(law.imk_lamda_k_m == 0.0);  // off
+  BOOST_TEST(law.imk_c_k == 1.5);
+  BOOST_TEST(law.imk_d_neg == 0.8);
+  BOOST_TEST(mentions(error_of(with_law("Upc_pos = 0.2\nFmaxFy_pos = 1.2\n")),
+                      {"building[1].hysteresis.Up_pos", "missing", "imk-peak-oriented"}));
+  BOOST_TEST(mentions(error_of(with_law(required + "hardening_ratio = 0.05\n")),
+                      {"building[1].hysteresis.hardening_ratio", "applies to law = \"bilinear\" or \"bouc-wen\""}));
+  BOOST_TEST(mentions(error_of(with_law(required + "FresFy_pos = 1.5\n")),
+                      {"building[1].hysteresis.FresFy_pos = 1.5", "[0, 1]"}));
+  BOOST_TEST(mentions(error_of(with_law(required + "Lamda_A = -1\n")), {"building[1].hysteresis.Lamda_A = -1"}));
 }
 
 BOOST_AUTO_TEST_CASE(AStrengthIsOneNumberForEveryStoreyOrOneAStorey) {
@@ -570,7 +604,7 @@ BOOST_AUTO_TEST_CASE(AColumnShearCapacityIsOneNumberForEveryStoreyOrOneAStoreyOr
   BOOST_TEST(mentions(error_of(with("column_shear_failure = \"crumble\"\n")),
                       {"building[1].column_shear_failure = \"crumble\"", "\"report\" or \"lose-stiffness\""}));
   BOOST_TEST(mentions(error_of(with("column_shear_capacity_kN = 300.0\ncolumn_shear_failure = \"lose-stiffness\"\n")),
-                      {"building[1].column_shear_failure", "needs bilinear columns"}));
+                      {"building[1].column_shear_failure", "needs bilinear or imk-peak-oriented columns"}));
   BOOST_TEST(mentions(error_of(with("column_shear_failure = \"lose-stiffness\"\n[building.hysteresis]\nlaw = "
                                     "\"bilinear\"\nyield_drift_ratio = 0.005\n")),
                       {"building[1].column_shear_failure", "needs a shear capacity"}));

@@ -19,6 +19,12 @@
 // after (q, q̇) in y (z_index) obeying ż = (ḋ/d_y)(A − |z|ⁿ(β sgn(ḋ z) + γ)); it has no branches
 // and no witness. Its part stores ½ (1 − α) k d_y² z²/A and dissipates the rest of its work at
 // the rate dissipation_power() ≥ 0.
+// A degrading (IMK) spring (model::HystereticLaw::Kind::imk_peak_oriented, dynamics/imk_law.hpp) is
+// piecewise linear too, with α = 0 and its force on the line of its present branch (SpringBranch::
+// line, SpringState::line): F = F_0 + K_b (d − d_0), so its slip is s = d − F/k and its slip force
+// (k − K_b) moves with q; its witness is the nearest end of the branch, min(d − lower, upper − d),
+// and, on a loading branch, sign · ḋ. Its law's memory (peaks, backbone, energies) is the
+// solver's (solvers::YieldStates), which sets the line at each branch change. It stores ½F²/K_u.
 // A bilinear spring whose column has failed in shear and lost its stiffness (failed branch,
 // YieldingSpring::loses_stiffness) carries no force: its slip is d/(1 − α), so that its slip force
 // k d t cancels its share of K q; it has no witness and stores nothing.
@@ -31,16 +37,19 @@
 #include <string>
 #include <vector>
 
+#include "pounding/dynamics/imk_law.hpp"
 #include "pounding/model/building.hpp"
 
 namespace pounding::dynamics {
 
-enum class SpringBranch { elastic, yielding_up, yielding_down, failed };
+enum class SpringBranch { elastic, yielding_up, yielding_down, failed, line };
 
-/// One spring's discrete state: its branch, and its slip s (m; the plastic drift) while elastic.
+/// One spring's discrete state: its branch, its slip s (m; the plastic drift) while elastic, and
+/// a degrading spring's line (SpringBranch::line).
 struct SpringState {
   SpringBranch branch = SpringBranch::elastic;
   double slip_m = 0.0;
+  LineBranch line{};
 };
 
 /// The branch and slip of every yielding spring, one per spring: a run's discrete state.
@@ -66,6 +75,8 @@ struct YieldingSpring {
   /// A smooth (Bouc–Wen) spring: its shape, and the index in y of its z. Empty: bilinear.
   std::optional<BoucWenShape> bouc_wen;
   int z_index = -1;
+  /// A degrading (IMK) spring's law (K_e = k, F_y = k d_y on both sides). Empty: not degrading.
+  std::optional<ImkParameters> imk;
   double shear_capacity_kN = 0.0;  // V_c of its column along its direction; 0: not checked
   bool loses_stiffness = false;    // on reaching V_c its column loses its stiffness (failed branch)
 

@@ -67,12 +67,13 @@ struct YieldingColumn {
   std::string_view description;
   std::string (*cell)(const dynamics::YieldingSpring& spring, const solvers::SpringResult& result) = nullptr;
   bool shear_capacity_only = false;  // written only when some column has a shear capacity
+  bool degrading_only = false;       // written only when some column's law degrades (IMK)
 };
 
 /// In output order.
 const std::vector<YieldingColumn>& yielding_columns();
-/// Those a run's yielding.csv holds: all, or without the shear-capacity ones when no spring of
-/// `springs` has a capacity.
+/// Those a run's yielding.csv holds: all, without the shear-capacity ones when no spring of
+/// `springs` has a capacity, and without the degrading ones when none degrades.
 std::vector<YieldingColumn> yielding_columns(const std::vector<dynamics::YieldingSpring>& springs);
 
 /// The names of a file's columns (contact_force_columns(), yielding_columns()), in order: its header.

@@ -78,9 +78,12 @@ struct ShearCapacityFormula {
 /// that yields at the same drift. `bouc_wen`: the smooth law F = α k d + (1 − α) k d_y z with
 /// the hysteretic variable z (dimensionless) obeying ż = (ḋ/d_y)(A − |z|ⁿ(β sgn(ḋ z) + γ));
 /// with A = β + γ = 1 it saturates at the bilinear law's yield force and tends to it as n grows.
+/// `imk_peak_oriented`: the Ibarra–Medina–Krawinkler peak-oriented law with cyclic strength and
+/// stiffness deterioration, as OpenSees' IMKPeakOriented (dynamics/imk_law.hpp), with OpenSees'
+/// parameter names: K_e is the column's k, F_y its k d_y on both sides.
 /// Storeys given as 3×3 matrices stay elastic.
 struct HystereticLaw {
-  enum class Kind { elastic, bilinear, bouc_wen };
+  enum class Kind { elastic, bilinear, bouc_wen, imk_peak_oriented };
   Kind kind = Kind::elastic;
   /// The strength, exactly one of three, each one value a storey, storey 1 first (the reader
   /// spreads a single number over every storey): the yield drift as a fraction of the storey
@@ -98,13 +101,26 @@ struct HystereticLaw {
   double bouc_wen_beta = 0.5;
   double bouc_wen_gamma = 0.5;
   double bouc_wen_n = 2.0;
+  /// IMK's backbone (only for Kind::imk_peak_oriented), one value a storey for the drifts (m):
+  /// U_p (yield to the cap), U_pc (the cap to zero force), U_u (ultimate; empty: none); the
+  /// negative side's lists empty: the positive side's. F_max/F_y ≥ 1 (required), F_res/F_y.
+  std::vector<double> imk_up_pos_m, imk_upc_pos_m, imk_uu_pos_m, imk_up_neg_m, imk_upc_neg_m, imk_uu_neg_m;
+  std::optional<double> imk_fmax_fy_pos, imk_fmax_fy_neg, imk_fres_fy_neg;
+  double imk_fres_fy_pos = 0.0;
+  /// IMK's cyclic deterioration: Λ (m; the reference energy Λ F_y⁺; 0: the mode is off) and the
+  /// exponent c of strength (S), post-capping strength (C), accelerated reloading (A) and
+  /// unloading stiffness (K); the rates D per side.
+  double imk_lamda_s_m = 0.0, imk_lamda_c_m = 0.0, imk_lamda_a_m = 0.0, imk_lamda_k_m = 0.0;
+  double imk_c_s = 1.0, imk_c_c = 1.0, imk_c_a = 1.0, imk_c_k = 1.0;
+  double imk_d_pos = 1.0, imk_d_neg = 1.0;
 
   bool yields() const { return kind != Kind::elastic; }
   /// True for the laws whose state is an ODE variable (Bouc–Wen's z) rather than branches.
   bool is_smooth() const { return kind == Kind::bouc_wen; }
+  bool degrades() const { return kind == Kind::imk_peak_oriented; }
 };
 
-/// The scene's name of a law ("elastic", "bilinear", "bouc-wen").
+/// The scene's name of a law ("elastic", "bilinear", "bouc-wen", "imk-peak-oriented").
 const char* to_string(HystereticLaw::Kind kind);
 /// The laws' names in the order of HystereticLaw::Kind: what `hysteresis.law` accepts.
 std::span<const std::string_view> hysteretic_law_names();

@@ -174,6 +174,9 @@ struct SpringResult {
   /// When |force| first reached the column's shear capacity (located as an event); NaN: never, or
   /// no capacity given.
   double shear_failure_t_s = std::numeric_limits<double>::quiet_NaN();
+  /// When a degrading (IMK) spring's law failed (a β past 1, its energy spent, the ultimate
+  /// drift, no residual strength) and it lost its force; NaN: never, or not degrading.
+  double degrading_failure_t_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// "Inside means inside" (docs/model.md §5a), for a vertex `gap_m` (< 0) behind its edge's line

@@ -12,7 +12,10 @@
 // (YieldingSpring::shear_capacity_kN) and whose YieldStates locates shear failures adds the root
 // of (V_c − |F|)/k to its witness, until |F| first reaches V_c: that instant is its shear failure,
 // where a spring that loses its stiffness (YieldingSpring::loses_stiffness) goes to the failed
-// branch for good.
+// branch for good. A degrading (IMK) spring's law (dynamics::ImkPeakOriented) lives here: at each
+// root of its witness it takes the branch changes the motion makes (ImkPeakOriented::advance) and
+// hands its new line to the state; it dissipates its work less ½F²/K_u, all of it once failed
+// (the law's failure sends it to the failed branch for good, at SpringResult::degrading_failure_t_s).
 
 #include <Eigen/Core>
 #include <deque>
@@ -76,6 +79,12 @@ class YieldStates {
                                    double& hysteretic_kJ);
 
  private:
+  /// Degrading spring j's branch changes at (t, y) with drift rate `rate_mps` and drift
+  /// acceleration `accel_mps2`. @return whether its branch changed.
+  bool advance_degrading(std::size_t j, double t, const Eigen::VectorXd& y, double rate_mps, double accel_mps2);
+  /// Spring j's state from its law's present line (or the failed branch): keeps yielding_ counting
+  /// the springs whose force moves with q other than at k.
+  void take_line(std::size_t j);
   /// Ends a yielding phase of spring j at slip `slip_m`: adds its dissipation.
   void end_yielding(std::size_t j, double slip_m);
   double branch_witness(const Eigen::Ref<const Eigen::VectorXd>& y, std::size_t j) const;
@@ -92,9 +101,10 @@ class YieldStates {
   /// Records a switch of spring j at t for the chattering check.
   void count_switch(std::size_t j, double t);
 
-  std::vector<double> phase_start_slip_m_;  // the slip where the current yielding phase began
-  int yielding_ = 0;                        // springs on a yielding branch
-  int failed_ = 0;                          // springs whose column failed and lost its stiffness
+  std::vector<std::optional<dynamics::ImkPeakOriented>> laws_;  // degrading springs' laws (empty: none)
+  std::vector<double> phase_start_slip_m_;                      // the slip where the current yielding phase began
+  int yielding_ = 0;                                            // springs on a yielding branch
+  int failed_ = 0;                                              // springs whose column failed and lost its stiffness
   double max_switches_per_s_;
   bool locate_shear_failures_;
   std::vector<std::deque<double>> recent_switches_s_;  // per spring, its switches within the last second
