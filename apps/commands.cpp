@@ -210,6 +210,32 @@ std::string strength_text(const model::HystereticLaw& law) {
   return fmt::format("storey yield shear {} kN", values(law.yield_shear_kN));
 }
 
+/// IMK's backbone and deterioration as given: "Up 0.06 m, Upc 0.15 m, FmaxFy 1.2, FresFy 0.2;
+/// Lamda S 1, C 1, A 0, K 2 m (0: off), c 1, 1, 1, 1, D 1, 1" (the positive side's, and the
+/// negative side's where it differs).
+std::string imk_text(const model::HystereticLaw& law) {
+  const auto values = [](const std::vector<double>& v) {
+    if (v.empty()) return std::string("none");
+    return all_equal(v) ? fmt::format("{} m", v.front()) : fmt::format("[{}] m", fmt::join(v, ", "));
+  };
+  std::string text =
+      fmt::format("Up {}, Upc {}, Uu {}, FmaxFy {}, FresFy {}", values(law.imk_up_pos_m), values(law.imk_upc_pos_m),
+                  values(law.imk_uu_pos_m), *law.imk_fmax_fy_pos, law.imk_fres_fy_pos);
+  const bool symmetric = law.imk_up_neg_m.empty() && law.imk_upc_neg_m.empty() && law.imk_uu_neg_m.empty() &&
+                         !law.imk_fmax_fy_neg && !law.imk_fres_fy_neg;
+  if (!symmetric) {
+    text += fmt::format(" (negative: Up {}, Upc {}, Uu {}, FmaxFy {}, FresFy {})",
+                        values(law.imk_up_neg_m.empty() ? law.imk_up_pos_m : law.imk_up_neg_m),
+                        values(law.imk_upc_neg_m.empty() ? law.imk_upc_pos_m : law.imk_upc_neg_m),
+                        values(law.imk_uu_neg_m.empty() ? law.imk_uu_pos_m : law.imk_uu_neg_m),
+                        law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos),
+                        law.imk_fres_fy_neg.value_or(law.imk_fres_fy_pos));
+  }
+  return text + fmt::format("; Lamda S {}, C {}, A {}, K {} m (0: off), c {}, {}, {}, {}, D {}, {}", law.imk_lamda_s_m,
+                            law.imk_lamda_c_m, law.imk_lamda_a_m, law.imk_lamda_k_m, law.imk_c_s, law.imk_c_c,
+                            law.imk_c_a, law.imk_c_k, law.imk_d_pos, law.imk_d_neg);
+}
+
 /// Each storey's yield shear along x and y (kN): what the columns carry when they all yield
 /// together in a translation, Σ k · d_y.
 void print_storey_strengths(const model::Building& building) {
@@ -521,8 +547,12 @@ int run_check(const CheckCommand& command) {
       const std::string shape = law.is_smooth() ? fmt::format(", A {}, beta {}, gamma {}, n {}", law.bouc_wen_a,
                                                               law.bouc_wen_beta, law.bouc_wen_gamma, law.bouc_wen_n)
                                                 : std::string();
-      fmt::print("  columns {} in x and y: {}, hardening ratio {}{}\n", model::to_string(law.kind), strength_text(law),
-                 law.hardening_ratio, shape);
+      if (law.degrades()) {
+        fmt::print("  columns {} in x and y: {}, {}\n", model::to_string(law.kind), strength_text(law), imk_text(law));
+      } else {
+        fmt::print("  columns {} in x and y: {}, hardening ratio {}{}\n", model::to_string(law.kind),
+                   strength_text(law), law.hardening_ratio, shape);
+      }
       print_storey_strengths(system.building(static_cast<int>(i)));
       // One hysteretic variable per column, storey and direction (dynamics/yielding_springs.hpp).
       if (law.is_smooth()) hysteretic_states += 2 * static_cast<int>(definition.columns.size()) * definition.storeys;

@@ -228,7 +228,8 @@ def percent(ratio, digits=3):
 
 def storeys_table(summary):
     """Per building and storey, where the run has them: the columns' ductility and first yield, the
-    column shear failures against their capacity, and the residual drift ratio."""
+    degrading columns' failures, the column shear failures against their capacity, and the residual
+    drift ratio."""
     yielding = {(b["building"], s["storey"]): s for b in summary.get("yielding", {}).get("buildings", [])
                 for s in b["storeys"]}
     names = [b["building"] for b in summary["peaks"]]
@@ -237,7 +238,9 @@ def storeys_table(summary):
     if not yielding and not residual:
         return ""
     shear = any("column_shear" in s for s in yielding.values())
+    degrading = any("degrading" in s for s in yielding.values())
     header = ["building", "storey", "ductility x", "ductility y", "first yield [s]"]
+    header += ["degrading failures", "first degrading failure [s]"] if degrading else []
     header += ["shear failures", "first failure [s]", "largest demand/capacity"] if shear else []
     header += ["residual drift x (CM)", "residual drift y (CM)", "largest residual"] if residual else []
     rows = []
@@ -247,6 +250,10 @@ def storeys_table(summary):
             row = [text(name), storey]
             row += [number(y["peak_ductility_x"], 4), number(y["peak_ductility_y"], 4),
                     f"{y['first_yield_t_s']:.4f}" if y["first_yield_t_s"] is not None else "elastic"] if y else ["–"] * 3
+            if degrading:
+                d = (y or {}).get("degrading")
+                row += [f"{d['failures']} of {d['springs']}",
+                        f"{d['first_failure_t_s']:.4f}" if d["first_failure_t_s"] is not None else "–"] if d else ["–"] * 2
             if shear:
                 c = (y or {}).get("column_shear")
                 row += [f"{c['failures']} of {c['springs_with_capacity']}",

@@ -404,7 +404,8 @@ std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::Yielding
       storeys.push_back({.building = spring.building,
                          .storey = spring.storey,
                          .first_yield_t_s = std::numeric_limits<double>::quiet_NaN(),
-                         .first_shear_failure_t_s = std::numeric_limits<double>::quiet_NaN()});
+                         .first_shear_failure_t_s = std::numeric_limits<double>::quiet_NaN(),
+                         .first_degrading_failure_t_s = std::numeric_limits<double>::quiet_NaN()});
     }
     StoreyYielding& storey = storeys.back();
     const solvers::SpringResult& r = results[j];
@@ -419,6 +420,12 @@ std::vector<StoreyYielding> storey_yielding(const std::vector<dynamics::Yielding
     ++storey.springs;
     storey.hysteretic_kJ += r.hysteretic_kJ;
     if (spring.shear_capacity_kN > 0.0) add_shear_demand(spring, r, storey);
+    if (!spring.imk) continue;
+    ++storey.degrading_springs;
+    if (std::isnan(r.degrading_failure_t_s)) continue;
+    ++storey.degrading_failures;
+    if (!(storey.first_degrading_failure_t_s <= r.degrading_failure_t_s))
+      storey.first_degrading_failure_t_s = r.degrading_failure_t_s;
   }
   return storeys;
 }

@@ -163,6 +163,11 @@ json yielding_json(const analysis::RunReport& report) {
                    {"springs_yielded", s.springs_yielded},
                    {"springs", s.springs},
                    {"hysteretic_kJ", s.hysteretic_kJ}};
+    if (s.degrading_springs > 0) {
+      storey["degrading"] = {{"springs", s.degrading_springs},
+                             {"failures", s.degrading_failures},
+                             {"first_failure_t_s", finite_or_null(s.first_degrading_failure_t_s)}};
+    }
     if (s.springs_with_capacity > 0) {
       storey["column_shear"] = {{"springs_with_capacity", s.springs_with_capacity},
                                 {"failures", s.shear_failures},

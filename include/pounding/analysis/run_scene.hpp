@@ -152,6 +152,11 @@ struct StoreyYielding {
   char critical_direction = 'x';
   double critical_peak_force_kN = 0.0;
   double critical_capacity_kN = 0.0;
+  /// With degrading (IMK) columns: how many of its springs degrade, how many of them failed
+  /// (lost their force, SpringResult::degrading_failure_t_s) and the first instant one did (NaN: none).
+  int degrading_springs = 0;
+  int degrading_failures = 0;
+  double first_degrading_failure_t_s = 0.0;
 };
 /// Below this a contact-free drift ratio or ductility is round-off (y drift under pure x
 /// shaking): the pounding-induced ratio to it is not reported.
