@@ -231,6 +231,7 @@ std::string imk_text(const model::HystereticLaw& law) {
                         law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos),
                         law.imk_fres_fy_neg.value_or(law.imk_fres_fy_pos));
   }
+  if (law.imk_kappa_f) text += fmt::format(", kappaF {}, kappaD {}", *law.imk_kappa_f, law.imk_kappa_d.value_or(0.0));
   return text + fmt::format("; Lamda S {}, C {}, A {}, K {} m (0: off), c {}, {}, {}, {}, D {}, {}", law.imk_lamda_s_m,
                             law.imk_lamda_c_m, law.imk_lamda_a_m, law.imk_lamda_k_m, law.imk_c_s, law.imk_c_c,
                             law.imk_c_a, law.imk_c_k, law.imk_d_pos, law.imk_d_neg);

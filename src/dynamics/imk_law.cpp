@@ -10,7 +10,7 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr int kMaxChangesAtOneDrift = 16;  // the longest chain is elastic → post-yield → post-capping → residual
 
-int side_of(int branch) { return branch >= 13 ? -1 : 1; }
+int side_of(int branch) { return branch >= 12 ? -1 : 1; }
 
 }  // namespace
 
@@ -74,14 +74,16 @@ void ImkPeakOriented::enter(int branch, double drift_m) {
       line.upper_m = line.force_kN > 0.0 ? line.drift_m : zero_force_m;
       break;
     }
+    case 2: line = {.force_kN = pinch_force_kN_, .drift_m = pinch_drift_m_, .slope_kN_per_m = reload_slope_}; break;
     case 3: line = {.force_kN = s.local_force_kN, .drift_m = s.local_drift_m, .slope_kN_per_m = reload_slope_}; break;
     case 4: line = {.force_kN = s.global_force_kN, .drift_m = s.global_drift_m, .slope_kN_per_m = reload_slope_}; break;
     case 5: line = {.force_kN = s.cap_force_kN, .drift_m = s.cap_drift_m, .slope_kN_per_m = s.plastic_slope}; break;
     case 6: line = {.force_kN = s.cap_force_kN, .drift_m = s.cap_drift_m, .slope_kN_per_m = s.post_cap_slope}; break;
     case 7: line = {.force_kN = s.residual_force_kN, .drift_m = drift_m, .slope_kN_per_m = 0.0}; break;
   }
-  if (branch >= 3) {  // a loading branch: it ends at its target ahead, or where the motion turns
-    const double target_m = branch % 10 == 3   ? s.local_drift_m
+  if (branch % 10 >= 2) {  // a loading branch: it ends at its target ahead, or where the motion turns
+    const double target_m = branch % 10 == 2   ? pinch_drift_m_
+                            : branch % 10 == 3 ? s.local_drift_m
                             : branch % 10 == 4 ? s.global_drift_m
                             : branch % 10 == 5 ? s.cap_drift_m
                             : branch % 10 == 6 ? s.residual_drift_m
@@ -199,6 +201,18 @@ void ImkPeakOriented::reload(double drift_m, int direction) {
     s.global_force_kN = k * (at_m - zero_force_m);
     global_slope = k;
   }
+  if (parameters_.pinching) {
+    // The pinching point: κ_D back from the global peak's plastic drift, at κ_F of the force the
+    // line to the global peak has there.
+    const double plastic_m = s.global_drift_m - s.global_force_kN / unloading_stiffness_;
+    pinch_drift_m_ = (1.0 - parameters_.pinching->kappa_d) * plastic_m;
+    pinch_force_kN_ = parameters_.pinching->kappa_f * s.global_force_kN * (pinch_drift_m_ - zero_force_m) /
+                      (s.global_drift_m - zero_force_m);
+    if (sign * zero_force_m < sign * pinch_drift_m_) {
+      reload_slope_ = pinch_force_kN_ / (pinch_drift_m_ - zero_force_m);
+      return enter(direction > 0 ? 2 : 12, drift_m);
+    }
+  }
   const double local_slope = s.local_force_kN / (s.local_drift_m - zero_force_m);
   const bool to_local = sign * zero_force_m < sign * s.local_drift_m &&
                         sign * s.local_force_kN < sign * s.global_force_kN && local_slope > global_slope &&
@@ -206,6 +220,16 @@ void ImkPeakOriented::reload(double drift_m, int direction) {
   reload_slope_ = to_local ? local_slope : global_slope;
   const int branch = to_local ? 3 : 4;
   enter(direction > 0 ? branch : branch + 10, drift_m);
+}
+
+bool ImkPeakOriented::pinches_before_global(const Backbone& s, int direction) const {
+  if (!parameters_.pinching) return false;
+  const double sign = direction;
+  const double global_slope = (s.global_force_kN - s.local_force_kN) / (s.global_drift_m - s.local_drift_m);
+  const double pinch_slope = (pinch_force_kN_ - s.local_force_kN) / (pinch_drift_m_ - s.local_drift_m);
+  return sign * s.local_drift_m < sign * pinch_drift_m_ && sign * s.local_force_kN < sign * pinch_force_kN_ &&
+         sign * pinch_drift_m_ < sign * s.global_drift_m && sign * pinch_force_kN_ < sign * s.global_force_kN &&
+         pinch_slope < global_slope;
 }
 
 bool ImkPeakOriented::advance(double drift_m, int direction) {
@@ -233,11 +257,27 @@ bool ImkPeakOriented::advance(double drift_m, int direction) {
         if (direction * line_.force_kN > 0.0) {  // back at the reversal point: on to the global peak
           const bool beyond = direction * s.global_drift_m > direction * s.local_drift_m;
           if (beyond) reload_slope_ = (s.global_force_kN - s.local_force_kN) / (s.global_drift_m - s.local_drift_m);
+          if (beyond && pinches_before_global(s, direction)) {
+            reload_slope_ = (pinch_force_kN_ - s.local_force_kN) / (pinch_drift_m_ - s.local_drift_m);
+            enter(direction > 0 ? 2 : 12, drift_m);
+            break;
+          }
           enter((beyond ? 4 : 5) + (direction > 0 ? 0 : 10), drift_m);
         } else {
           new_excursion(drift_m, direction);
         }
         break;
+      case 2: {  // past the pinching point: on to the local peak if it lies ahead and steeper, else the global
+        const double global_slope = (s.global_force_kN - pinch_force_kN_) / (s.global_drift_m - pinch_drift_m_);
+        const double local_slope = (s.local_force_kN - pinch_force_kN_) / (s.local_drift_m - pinch_drift_m_);
+        const bool to_local = direction * pinch_drift_m_ < direction * s.local_drift_m &&
+                              direction * pinch_force_kN_ < direction * s.local_force_kN &&
+                              direction * s.local_force_kN < direction * s.global_force_kN &&
+                              local_slope > global_slope;
+        reload_slope_ = to_local ? local_slope : global_slope;
+        enter(branch_ + (to_local ? 1 : 2), drift_m);
+        break;
+      }
       case 3: {
         const bool beyond = direction * s.global_drift_m > direction * s.local_drift_m;
         if (beyond) reload_slope_ = (s.global_force_kN - s.local_force_kN) / (s.global_drift_m - s.local_drift_m);

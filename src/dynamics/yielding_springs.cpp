@@ -44,7 +44,10 @@ std::optional<ImkParameters> imk_parameters(const model::HystereticLaw& law, int
                        .positive = positive,
                        .negative = negative,
                        .lamda_m = {law.imk_lamda_s_m, law.imk_lamda_c_m, law.imk_lamda_a_m, law.imk_lamda_k_m},
-                       .exponent = {law.imk_c_s, law.imk_c_c, law.imk_c_a, law.imk_c_k}};
+                       .exponent = {law.imk_c_s, law.imk_c_c, law.imk_c_a, law.imk_c_k},
+                       .pinching = law.kind == model::HystereticLaw::Kind::imk_pinching
+                                       ? std::optional<ImkPinching>({*law.imk_kappa_f, *law.imk_kappa_d})
+                                       : std::nullopt};
 }
 
 /// The springs of one building (empty if its columns stay elastic).

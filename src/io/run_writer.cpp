@@ -183,7 +183,10 @@ json yielding_json(const analysis::RunReport& report) {
   // "bilinear", "bouc-wen", or "mixed" when the two buildings' columns follow different laws.
   std::string law;
   for (const dynamics::YieldingSpring& spring : report.springs) {
-    const std::string own = spring.bouc_wen ? "bouc-wen" : spring.imk ? "imk-peak-oriented" : "bilinear";
+    const std::string own = spring.bouc_wen                      ? "bouc-wen"
+                            : spring.imk && spring.imk->pinching ? "imk-pinching"
+                            : spring.imk                         ? "imk-peak-oriented"
+                                                                 : "bilinear";
     law = law.empty() || law == own ? own : "mixed";
   }
   return {{"law", law},

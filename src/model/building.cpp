@@ -30,6 +30,7 @@ constexpr Range kImkResidualRatio{0.0, 1.0};
 constexpr Range kImkLamda{0.0, 1e6, "m"};
 constexpr Range kImkExponent{0.0, 10.0, "", true};
 constexpr Range kImkRate{0.0, 1.0, "", true};
+constexpr Range kImkKappa{0.0, 1.0};
 
 std::string indexed(const char* key, std::size_t index) { return fmt::format("{}[{}]", key, index + 1); }
 
@@ -131,9 +132,10 @@ void validate_shear_failure(const BuildingDefinition& b) {
   }
   if (choice == "report") return;
   if (b.hysteresis.kind != HystereticLaw::Kind::bilinear && !b.hysteresis.degrades()) {
-    throw InputError("column_shear_failure", "\"lose-stiffness\"",
-                     "needs bilinear or imk-peak-oriented columns ([building.hysteresis] law): the columns' sway "
-                     "shear is checked where they yield");
+    throw InputError(
+        "column_shear_failure", "\"lose-stiffness\"",
+        "needs bilinear, imk-peak-oriented or imk-pinching columns ([building.hysteresis] law): the columns' sway "
+        "shear is checked where they yield");
   }
   if (b.column_shear_capacity_kN.empty() && !b.shear_capacity) {
     throw InputError("column_shear_failure", "\"lose-stiffness\"",
@@ -236,14 +238,18 @@ void refuse_collapse_before_yield(const std::vector<double>& yield_drift_m, cons
   }
 }
 
-/// IMK's required keys, and a post-yield slope below k (U_p > (F_max/F_y − 1) d_y) for every
-/// column of every storey: the backbone would otherwise rise faster than the elastic branch.
+/// IMK's required keys (their ranges are their rows', hysteresis_specs()).
 void validate_imk(const BuildingDefinition& b) {
   const HystereticLaw& law = b.hysteresis;
-  if (law.imk_up_pos_m.empty()) throw InputError("hysteresis.Up_pos", "missing", "law \"imk-peak-oriented\" needs it");
-  if (law.imk_upc_pos_m.empty())
-    throw InputError("hysteresis.Upc_pos", "missing", "law \"imk-peak-oriented\" needs it");
-  if (!law.imk_fmax_fy_pos) throw InputError("hysteresis.FmaxFy_pos", "missing", "law \"imk-peak-oriented\" needs it");
+  const auto require = [&law](bool given, const char* key) {
+    if (!given) throw InputError(key, "missing", fmt::format("law \"{}\" needs it", to_string(law.kind)));
+  };
+  require(!law.imk_up_pos_m.empty(), "hysteresis.Up_pos");
+  require(!law.imk_upc_pos_m.empty(), "hysteresis.Upc_pos");
+  require(law.imk_fmax_fy_pos.has_value(), "hysteresis.FmaxFy_pos");
+  if (law.kind != HystereticLaw::Kind::imk_pinching) return;
+  require(law.imk_kappa_f.has_value(), "hysteresis.kappaF");
+  require(law.imk_kappa_d.has_value(), "hysteresis.kappaD");
 }
 
 void validate_hysteresis(const BuildingDefinition& b) {
@@ -343,26 +349,27 @@ void BuildingDefinition::validate() const {
 }
 
 std::span<const std::string_view> hysteretic_law_names() {
-  static constexpr std::array<std::string_view, 4> kNames{"elastic", "bilinear", "bouc-wen", "imk-peak-oriented"};
+  static constexpr std::array<std::string_view, 5> kNames{"elastic", "bilinear", "bouc-wen", "imk-peak-oriented",
+                                                          "imk-pinching"};
   return kNames;
 }
 
-/// A row of IMK's (OpenSees' name as the key): every one applies to imk-peak-oriented only.
+/// A row of IMK's (OpenSees' name as the key), for both IMK laws, or for `laws`.
 template <typename Member>
 HysteresisSpec imk_row(std::string_view key, Member member, const Range& range, std::string_view description,
-                       std::string_view default_note = {}, std::string_view details = {}) {
-  static const std::vector<std::string_view> imk{"imk-peak-oriented"};
+                       std::string_view default_note = {}, std::string_view details = {},
+                       std::vector<std::string_view> laws = {"imk-peak-oriented", "imk-pinching"}) {
   return {.key = key,
           .member = member,
           .range = range,
           .description = description,
           .details = details,
           .default_note = default_note,
-          .applies_to = imk};
+          .applies_to = std::move(laws)};
 }
 
 std::span<const HysteresisSpec> hysteresis_specs() {
-  static const std::vector<std::string_view> yielding{"bilinear", "bouc-wen", "imk-peak-oriented"};
+  static const std::vector<std::string_view> yielding{"bilinear", "bouc-wen", "imk-peak-oriented", "imk-pinching"};
   static const std::vector<std::string_view> hardening{"bilinear", "bouc-wen"};
   static const std::vector<std::string_view> smooth{"bouc-wen"};
   static const std::vector<HysteresisSpec> kSpecs{
@@ -452,6 +459,12 @@ std::span<const HysteresisSpec> hysteresis_specs() {
               "D⁺, the rate of cyclic deterioration on the positive side"),
       imk_row("D_neg", &HystereticLaw::imk_d_neg, kImkRate,
               "D⁻, the rate of cyclic deterioration on the negative side"),
+      imk_row("kappaF", &HystereticLaw::imk_kappa_f, kImkKappa,
+              "κ_F: the pinching point's force over that of the line to the global peak", "required",
+              "1 with kappaD = 0: no pinching", {"imk-pinching"}),
+      imk_row("kappaD", &HystereticLaw::imk_kappa_d, kImkKappa,
+              "κ_D: the pinching point's drift, (1 − κ_D) × the global peak's plastic drift", "required", {},
+              {"imk-pinching"}),
   };
   return kSpecs;
 }

@@ -47,7 +47,8 @@ bool YieldStates::advance_degrading(std::size_t j, double t, const Eigen::Vector
   const int before = law.branch();
   if (!law.advance(springs_.drift(y.head(springs_.dof()), j), heading > 0.0 ? 1 : -1)) return false;
   SpringResult& result = results_[j];
-  if (before % 10 != 5 && law.branch() % 10 == 5) {  // onto a post-yield branch: a yielding phase
+  const auto on_backbone = [](int branch) { return branch % 10 >= 5; };  // post-yield, post-capping, residual
+  if (!on_backbone(before) && on_backbone(law.branch())) {               // a yielding phase begins
     if (result.yield_count == 0) result.first_yield_t_s = t;
     ++result.yield_count;
   }

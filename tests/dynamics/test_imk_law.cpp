@@ -4,7 +4,8 @@
 // F_max/F_y = 1.2 (the cap at 0.04 m, 12 kN, K_p = 2/0.03 kN/m), U_pc = 0.1 m (K_pc = −120 kN/m),
 // F_res/F_y = 0.25 (from 0.040 + 9.5/120 m), U_u = 0.3 m. Driving a drift history means what an
 // event-driven run does: the drift moves monotonically between turns, and the law is advanced at
-// each end of its present branch and at each turn. Tolerance 1e-12 relative (the hand formulas
+// each end of its present branch and at each turn. The pinching case (IMKPinching) adds κ_F = 0.4,
+// κ_D = 0.5. Tolerance 1e-12 relative (the hand formulas
 // and the law's differ by round-off only).
 
 #include <boost/test/unit_test.hpp>
@@ -182,4 +183,41 @@ BOOST_AUTO_TEST_CASE(the_spring_fails_where_its_energy_is_spent_or_its_strength_
   BOOST_TEST(!brittle.failed());
   drive(brittle, d, kUy + kUp + kUpc + 1e-9);
   BOOST_TEST(brittle.failed());
+}
+
+BOOST_AUTO_TEST_CASE(pinching_reloads_through_the_pinching_point) {
+  // IMKPinching: U_pinch = (1 − κ_D) (U_global − F_global/K_u), F_pinch = κ_F F_global (U_pinch − u0)/(U_global − u0).
+  constexpr double kappa_f = 0.4, kappa_d = 0.5;
+  ImkParameters p = parameters();
+  p.pinching = pounding::dynamics::ImkPinching{.kappa_f = kappa_f, .kappa_d = kappa_d};
+  ImkPeakOriented law(p);
+  double d = 0.0;
+  drive(law, d, 0.025);
+  const double f1 = kFy + kKp * 0.015, u0 = 0.025 - f1 / kKe;
+  // Towards the negative side, whose global peak (−U_y, −F_y) has no plastic drift: U_pinch = 0.
+  drive(law, d, 0.005);
+  const double f_pinch0 = kappa_f * -kFy * (0.0 - u0) / (-kUy - u0);
+  BOOST_TEST(law.branch() == 12);
+  BOOST_TEST(law.force_kN(d) == f_pinch0 / (0.0 - u0) * (d - u0), tt::tolerance(1e-12));
+  drive(law, d, -0.005);  // past the pinching point: to the global peak
+  BOOST_TEST(law.branch() == 14);
+  BOOST_TEST(law.force_kN(d) == f_pinch0 + (-kFy - f_pinch0) / (-kUy) * -0.005, tt::tolerance(1e-12));
+  drive(law, d, -0.02);
+  const double f2 = -kFy - kKp * 0.01, u1 = -0.02 - f2 / kKe;
+  drive(law, d, 0.0);  // towards the positive pinching point
+  const double u_pinch = (1.0 - kappa_d) * (0.025 - f1 / kKe);
+  const double f_pinch = kappa_f * f1 * (u_pinch - u1) / (0.025 - u1);
+  BOOST_TEST(law.branch() == 2);
+  BOOST_TEST(law.line().upper_m == u_pinch, tt::tolerance(1e-12));
+  BOOST_TEST(law.force_kN(0.0) == f_pinch / (u_pinch - u1) * (0.0 - u1), tt::tolerance(1e-12));
+  drive(law, d, 0.015);  // then to the global peak (0.025, 11)
+  BOOST_TEST(law.branch() == 4);
+  BOOST_TEST(law.force_kN(d) == f_pinch + (f1 - f_pinch) / (0.025 - u_pinch) * (0.015 - u_pinch), tt::tolerance(1e-12));
+  // The loop's work up to the positive zero-force drift u1 is all dissipated there.
+  const double loop = polygon_work(
+      {{0.0, 0.0}, {kUy, kFy}, {0.025, f1}, {u0, 0.0}, {0.0, f_pinch0}, {-kUy, -kFy}, {-0.02, f2}, {u1, 0.0}});
+  ImkPeakOriented again(p);
+  double e = 0.0;
+  for (double target : {0.025, u0 + 1e-3, -0.02, u1}) drive(again, e, target);
+  BOOST_TEST(again.dissipated_kJ(u1) == loop, tt::tolerance(1e-12));
 }

@@ -483,9 +483,9 @@ BOOST_AUTO_TEST_CASE(BoucWenParametersAreCheckedAndOnlyForTheirLaw) {
   BOOST_TEST(mentions(error_of(with_law("law = \"bouc-wen\"\na = 0\n")), {"building[1].hysteresis.a = 0", "(0, 10]"}));
   BOOST_TEST(mentions(error_of(with_law("law = \"bilinear\"\nbeta = 0.3\n")),
                       {"building[1].hysteresis.beta = 0.3", "applies to law = \"bouc-wen\" only"}));
-  BOOST_TEST(
-      mentions(error_of(with_law("law = \"plastic\"\n")),
-               {"building[1].hysteresis.law", "\"elastic\", \"bilinear\", \"bouc-wen\" or \"imk-peak-oriented\""}));
+  BOOST_TEST(mentions(error_of(with_law("law = \"plastic\"\n")),
+                      {"building[1].hysteresis.law",
+                       "\"elastic\", \"bilinear\", \"bouc-wen\", \"imk-peak-oriented\" or \"imk-pinching\""}));
 }
 
 BOOST_AUTO_TEST_CASE(ImkParametersHaveOpenSeesNamesAndAreChecked) {
@@ -519,6 +519,23 @@ BOOST_AUTO_TEST_CASE(ImkParametersHaveOpenSeesNamesAndAreChecked) {
   BOOST_TEST(mentions(error_of(with_law(required + "FresFy_pos = 1.5\n")),
                       {"building[1].hysteresis.FresFy_pos = 1.5", "[0, 1]"}));
   BOOST_TEST(mentions(error_of(with_law(required + "Lamda_A = -1\n")), {"building[1].hysteresis.Lamda_A = -1"}));
+  BOOST_TEST(mentions(error_of(with_law(required + "kappaF = 0.5\n")),
+                      {"building[1].hysteresis.kappaF", "applies to law = \"imk-pinching\" only"}));
+  // imk-pinching: the same keys and its two of its own, required.
+  const auto pinching = [&](const std::string& lines) {
+    std::string scene = with_law(required + lines);
+    const std::string law = "law = \"imk-peak-oriented\"";
+    scene.replace(scene.find(law), law.size(), "law = \"imk-pinching\"");
+    return scene;
+  };
+  Case pinched(pinching("kappaF = 0.4\nkappaD = 0.6\n"));
+  const pounding::model::HystereticLaw pinched_law = read_scene(pinched.file).buildings[0].hysteresis;
+  BOOST_TEST((pinched_law.kind == pounding::model::HystereticLaw::Kind::imk_pinching));
+  BOOST_TEST(*pinched_law.imk_kappa_f == 0.4);
+  BOOST_TEST(*pinched_law.imk_kappa_d == 0.6);
+  BOOST_TEST(mentions(error_of(pinching("kappaF = 0.4\n")),
+                      {"building[1].hysteresis.kappaD", "missing", "law \"imk-pinching\" needs it"}));
+  BOOST_TEST(mentions(error_of(pinching("kappaF = 1.4\nkappaD = 0.6\n")), {"building[1].hysteresis.kappaF = 1.4"}));
 }
 
 BOOST_AUTO_TEST_CASE(AStrengthIsOneNumberForEveryStoreyOrOneAStorey) {
@@ -603,8 +620,9 @@ BOOST_AUTO_TEST_CASE(AColumnShearCapacityIsOneNumberForEveryStoreyOrOneAStoreyOr
   // Losing the stiffness at the failure needs bilinear columns and a capacity.
   BOOST_TEST(mentions(error_of(with("column_shear_failure = \"crumble\"\n")),
                       {"building[1].column_shear_failure = \"crumble\"", "\"report\" or \"lose-stiffness\""}));
-  BOOST_TEST(mentions(error_of(with("column_shear_capacity_kN = 300.0\ncolumn_shear_failure = \"lose-stiffness\"\n")),
-                      {"building[1].column_shear_failure", "needs bilinear or imk-peak-oriented columns"}));
+  BOOST_TEST(
+      mentions(error_of(with("column_shear_capacity_kN = 300.0\ncolumn_shear_failure = \"lose-stiffness\"\n")),
+               {"building[1].column_shear_failure", "needs bilinear, imk-peak-oriented or imk-pinching columns"}));
   BOOST_TEST(mentions(error_of(with("column_shear_failure = \"lose-stiffness\"\n[building.hysteresis]\nlaw = "
                                     "\"bilinear\"\nyield_drift_ratio = 0.005\n")),
                       {"building[1].column_shear_failure", "needs a shear capacity"}));

@@ -6,10 +6,11 @@
 //   0  elastic, F = K_e d, until d reaches ±U_y (U_y = F_y/K_e);
 //   1  unloading at K_u from the last reversal, until F = 0 (a new excursion) or back at the
 //      reversal point (reloading on to the global peak);
+//   2  with pinching (OpenSees' IMKPinching, ImkPinching): reloading towards the pinching point;
 //   3, 4  reloading towards the local peak, then the global one (peak-oriented);
 //   5, 6, 7  the backbone: post-yield (slope K_p up to the cap), post-capping (K_pc < 0 down to the
 //      residual), residual (F_res);
-// and 13..17 their mirror images for negative drifts. The loading branches (3..7, 13..17) end
+// and 12..17 their mirror images for negative drifts. The loading branches (2..7, 12..17) end
 // also where the drift rate turns (a reversal). Deterioration, with E the work ∫F dd:
 //   at a reversal (stiffness):  β_K = ((E_i − ½F²/K_u) / (E_t,K − E + ½F²/K_u))^c_K, K_u ← (1 − β_K) K_u,
 //   at a new excursion (basic strength, post-capping strength, accelerated reloading):
@@ -26,6 +27,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 
 namespace pounding::dynamics {
 
@@ -43,11 +45,20 @@ struct ImkSide {
 /// The modes of cyclic deterioration, in the order of ImkParameters' arrays.
 enum ImkMode { kStrength = 0, kPostCap = 1, kAccelerated = 2, kStiffness = 3 };
 
+/// IMKPinching's pinching point: reloading heads first for (U_pinch, F_pinch), U_pinch =
+/// (1 − κ_D) × the global peak's plastic drift, F_pinch = κ_F × the force of the line to the
+/// global peak there.
+struct ImkPinching {
+  double kappa_f = 1.0;
+  double kappa_d = 0.0;
+};
+
 struct ImkParameters {
   double stiffness_kN_per_m = 0.0;  // K_e
   ImkSide positive, negative;
   std::array<double, 4> lamda_m{};                     // Λ_S, Λ_C, Λ_A, Λ_K: E_t = Λ F_y⁺; 0: the mode is off
   std::array<double, 4> exponent{1.0, 1.0, 1.0, 1.0};  // c_S, c_C, c_A, c_K
+  std::optional<ImkPinching> pinching;                 // empty: peak-oriented
 };
 
 /// The line a spring's force follows on its present branch: F = force_kN + slope (d − drift_m)
@@ -109,6 +120,9 @@ class ImkPeakOriented {
   void new_excursion(double drift_m, int direction);
   void deteriorate_backbone(Backbone& side, const std::array<double, 4>& beta);
   void reload(double drift_m, int direction);
+  /// Back at a local peak before the global one: whether the pinching point lies between them,
+  /// reached less steeply than the global peak (OpenSees' IMKPinching).
+  bool pinches_before_global(const Backbone& side, int direction) const;
   void enter(int branch, double drift_m);
   /// β of `mode` for work `numerator` against the energy left, E_t − `spent`; sets failing_.
   double beta(ImkMode mode, double numerator, double spent_kJ);
@@ -118,10 +132,12 @@ class ImkPeakOriented {
   ImkParameters parameters_;
   Backbone positive_{}, negative_{};
   double unloading_stiffness_ = 0.0;  // K_u
-  double reload_slope_ = 0.0;         // K_reload on branches 3, 4, 13, 14
-  double work_kJ_ = 0.0;              // ∫F dd up to the present branch's entry
-  double excursion_start_kJ_ = 0.0;   // the work where the present excursion began (engDspt)
-  double entry_drift_m_ = 0.0;        // where the present branch began
+  double pinch_drift_m_ = 0.0;        // the pinching point of the present excursion
+  double pinch_force_kN_ = 0.0;
+  double reload_slope_ = 0.0;        // K_reload on branches 2, 3, 4, 12, 13, 14
+  double work_kJ_ = 0.0;             // ∫F dd up to the present branch's entry
+  double excursion_start_kJ_ = 0.0;  // the work where the present excursion began (engDspt)
+  double entry_drift_m_ = 0.0;       // where the present branch began
   int branch_ = 0;
   bool failed_ = false;
   bool failing_ = false;  // a β exceeded 1 (or the energy was spent) during this change

@@ -80,10 +80,11 @@ struct ShearCapacityFormula {
 /// with A = β + γ = 1 it saturates at the bilinear law's yield force and tends to it as n grows.
 /// `imk_peak_oriented`: the Ibarra–Medina–Krawinkler peak-oriented law with cyclic strength and
 /// stiffness deterioration, as OpenSees' IMKPeakOriented (dynamics/imk_law.hpp), with OpenSees'
-/// parameter names: K_e is the column's k, F_y its k d_y on both sides.
+/// parameter names: K_e is the column's k, F_y its k d_y on both sides. `imk_pinching`: the same
+/// with OpenSees' IMKPinching's pinched reloading (κ_F, κ_D).
 /// Storeys given as 3×3 matrices stay elastic.
 struct HystereticLaw {
-  enum class Kind { elastic, bilinear, bouc_wen, imk_peak_oriented };
+  enum class Kind { elastic, bilinear, bouc_wen, imk_peak_oriented, imk_pinching };
   Kind kind = Kind::elastic;
   /// The strength, exactly one of three, each one value a storey, storey 1 first (the reader
   /// spreads a single number over every storey): the yield drift as a fraction of the storey
@@ -113,14 +114,16 @@ struct HystereticLaw {
   double imk_lamda_s_m = 0.0, imk_lamda_c_m = 0.0, imk_lamda_a_m = 0.0, imk_lamda_k_m = 0.0;
   double imk_c_s = 1.0, imk_c_c = 1.0, imk_c_a = 1.0, imk_c_k = 1.0;
   double imk_d_pos = 1.0, imk_d_neg = 1.0;
+  /// IMKPinching's κ_F and κ_D (required for Kind::imk_pinching).
+  std::optional<double> imk_kappa_f, imk_kappa_d;
 
   bool yields() const { return kind != Kind::elastic; }
   /// True for the laws whose state is an ODE variable (Bouc–Wen's z) rather than branches.
   bool is_smooth() const { return kind == Kind::bouc_wen; }
-  bool degrades() const { return kind == Kind::imk_peak_oriented; }
+  bool degrades() const { return kind == Kind::imk_peak_oriented || kind == Kind::imk_pinching; }
 };
 
-/// The scene's name of a law ("elastic", "bilinear", "bouc-wen", "imk-peak-oriented").
+/// The scene's name of a law ("elastic", "bilinear", "bouc-wen", "imk-peak-oriented", "imk-pinching").
 const char* to_string(HystereticLaw::Kind kind);
 /// The laws' names in the order of HystereticLaw::Kind: what `hysteresis.law` accepts.
 std::span<const std::string_view> hysteretic_law_names();
