@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""IMK peak-oriented columns against an independent computation (scipy with events, no code shared).
+"""IMK peak-oriented and pinching columns against an independent computation (scipy with events, no
+code shared).
 
     tests/solvers/test_imk_scipy.py POUNDING [OUT]
 
@@ -8,32 +9,52 @@ centre along x) on two column lines of different size at the same yield drift ra
 14 mm): 0.60 m square columns at y = 0 (x = 0 and 10 m), 0.35 m ones at y = 8 m, so the x springs'
 yield forces differ 8.6-fold, the stiffness centre sits near y = 0 and the slab twists under x
 shaking (u, v and phi coupled). Every column spring (x and y, 8 in all) follows the
-`imk-peak-oriented` law; the record is three cycles of a 1.7 m/s2 sine of period 0.45 s along x,
-then free vibration to 4 s (several reversals and new excursions per spring, up to 16). A second,
-elastic building stands 10 m away (no contact). Three cases, all with Lamda_S, Lamda_C, Lamda_A,
-Lamda_K on (0.4, 0.5, 0.8, 0.6 m), c_C = 1.1, c_A = 1.2, D_neg = 0.9 and unequal sides:
+`imk-peak-oriented` law (the `imk-pinching` one in the fourth case); the record is three cycles of a
+1.7 m/s2 sine of period 0.45 s along x, then free vibration to 4 s (several reversals and new
+excursions per spring, up to 16). A second, elastic building stands 10 m away (no contact). Four
+cases, all with Lamda_S, Lamda_C, Lamda_A, Lamda_K on (0.4, 0.5, 0.8, 0.6 m), c_C = 1.1, c_A = 1.2,
+D_neg = 0.9 and unequal sides:
   deteriorating:  Up 0.03 / 0.035 m, Upc 0.12 / 0.10 m: every spring yields, none reaches its cap;
                   the yield force falls to 84 % and K_unload to 80 % of the initial;
   post-capping:   Up 0.012 / 0.01 m, Upc 0.012 / 0.0225 m, FresFy 0.25 / 0.35: the small columns'
                   x springs pass their capping points and reach the residual branch on both sides;
   ultimate-drift: deteriorating with Uu 0.035 / 0.045 m: the small columns' x springs fail moving
-                  out past 0.035 m (at 0.936 s) and carry no force afterwards.
+                  out past 0.035 m (at 0.936 s) and carry no force afterwards;
+  pinching:       deteriorating with law = "imk-pinching", kappaF 0.4, kappaD 0.5: all 98 new
+                  excursions reload towards a pinching point (their u0 lies before it); of these
+                  and the two re-entries below, 52 reach it and go on, 10 to a local peak (2 -> 3,
+                  12 -> 13), 42 to the global one; the yield force falls to 88 % and K_unload to
+                  85 % of the initial. The large columns' x
+                  springs (columns[1] and [2]) also take the branch 1 -> 12 at 2.471 s, in the free
+                  vibration: on branch 12 from u0 = +0.089 mm towards the pinching point (-0.973 mm,
+                  -33.5 kN) they turn at -0.341 mm (-13.6 kN), unload 0.03 mm and reload past that
+                  local peak, back onto the line to the pinching point.
 The program runs each with cvode-bdf at rtol 1e-10, atol 1e-12. The peer implements OpenSees'
-IMKPeakOriented (setTrialStrain, revertToStart) itself in the limit of infinitesimal steps, with
-the program's stated differences (Lamda = 0: mode off; E_t - E <= 0 where a beta is formed: beta =
-1, failure; a failed spring carries nothing; exact transitions, u0 the exact zero-force drift): a
-state machine per spring over OpenSees' branches 0, 1, 3-7, 13-17, each a line F = a + b d, so
+IMKPeakOriented and IMKPinching (setTrialStrain, revertToStart) itself in the limit of
+infinitesimal steps, with the program's stated differences (Lamda = 0: mode off; E_t - E <= 0
+where a beta is formed: beta = 1, failure; a failed spring carries nothing; exact transitions, u0
+the exact zero-force drift): a state machine per spring over OpenSees' branches 0, 1, 3-7, 13-17
+(and 2/12, towards the pinching point, for IMKPinching), each a line F = a + b d, so
     M q'' + C q' + sum_j t_j (a_j + b_j t_j.q) = -M r a_g
 is linear between events; it integrates it with scipy's DOP853 (rtol 1e-11, atol 1e-13) over
 each record interval, restarting at every event: each spring's drift reaching its branch's bound
-(yield, local and global peak, cap, residual, the zero force of an unloading branch, the ultimate
-drift) and, on a loading branch, its drift rate turning (a reversal), plus any spring found at its
-bound at that instant (columns on one line have equal drifts along a direction). E_acml is
+(yield, pinching point, local and global peak, cap, residual, the zero force of an unloading
+branch, the ultimate drift) and, on a loading branch, its drift rate turning (a reversal), plus any
+spring found at its bound at that instant (columns on one line have equal drifts along a
+direction). IMKPinching's
+rules, from IMKPinching.cpp: at a new excursion U_pinch = (1 - kappaD)(U_global - F_global/K_unload),
+F_pinch = kappaF F_global (U_pinch - u0)/(U_global - u0), one point for both sides (the latest
+excursion's); if u0 lies before U_pinch, branch 2/12 at F_pinch/(U_pinch - u0), else as
+IMKPeakOriented; at U_pinch on to the local peak if it lies ahead, below the global peak, and
+(F_local - F_pinch)/(U_local - U_pinch) exceeds the slope to the global peak, else to the global
+peak; back at a local peak on the unloading line, to the pinching point if U_local < U_pinch <
+U_global, F_local < F_pinch < F_global (signs mirrored on the negative side) and the line to it is
+less steep than the one to the global peak, else to the global peak. E_acml is
 accumulated exactly (trapezoid on each line), the hysteretic energy is E_acml - F^2/(2 K_unload)
 (E_acml once failed), with its own K (12 E I / H^3), Rayleigh fit (modes 1 and 3, 5 %) and
 F_y = k d_y. The scenes never reach the reloading guard (a global peak reached more steeply than
-K_e or behind u0): the peer raises ReloadGuard there, which fails the test, and it reports that
-no reload towards a local peak is steeper than K_e. Checked per case:
+K_e or behind u0, from u0 or from a pinching point): the peer raises ReloadGuard there, which fails
+the test, and it reports that no reload towards a local peak is steeper than K_e. Checked per case:
   1. u, v, phi at every history row: within 1e-8 m and 2e-9 rad;
   2. per spring (yielding.csv): the stiffness (1e-12 relative), whether and when it first yields
      (1e-7 s), its peak drift (yielded springs: their peaks are reversal instants) and final drift
@@ -45,15 +66,22 @@ no reload towards a local peak is steeper than K_e. Checked per case:
      transitions (one per spring and event instant), the number of failed springs, and the
      energy audit's relative residual below 1e-6;
   4. the scene does what it is for (from the peer's logs): visible deterioration (yield force and
-     K_unload below 90 %) in the first two cases, no failure but in the third, post-capping and
-     residual branches only in the second.
+     K_unload below 90 %) in all but the third, no failure but in the third, post-capping and
+     residual branches only in the second; branches 2/12 only in the fourth, where they must be
+     visited, go on from a pinching point to a local peak at least once and be re-entered from an
+     unloading turned back before the pinching point (1 -> 2|12) at least once.
 Measured at these settings: 9.8e-10 m and 2.1e-10 rad in the history, 1.0e-9 m in peak drift,
 2.2e-10 m in final drift and slip, 3.8e-7 in hysteretic energy, 1.8e-8 s in first yield, 2.9e-9 s
-in failure time, audit residuals 5.6e-8; the history difference falls to 2.2e-11 m and the
-energy's to 1e-8 with the program at rtol 1e-12 (the program's integration error, not a
-disagreement). Each parameter matters far beyond the tolerance: the peer with any one Lamda at 0,
-or c_C, c_A or D_neg at 1, or FresFy_neg at 0.3, differs from the program's post-capping run by
-6.7e-5 m or more (Lamda_C and the residual only matter where a cap is passed).
+in failure time, audit residuals 5.6e-8 in the first three cases; in the pinching one 1.8e-9 m and
+2.1e-10 rad, 1.2e-9 m in peak drift, 1.3e-9 m in final drift, 1.2e-9 m in slip, 3.1e-7 in
+hysteretic energy, 7.7e-9 s in first yield, audit residual 3.4e-8. The history difference falls to
+2.2e-11 m (pinching: 3.9e-11 m) and the energy's to 1e-8 (1e-9) with the program at rtol 1e-12
+(the program's integration error, not a disagreement). Each parameter matters far beyond the
+tolerance: the peer with any one Lamda at 0, or c_C, c_A or D_neg at 1, or FresFy_neg at 0.3,
+differs from the program's post-capping run by 6.7e-5 m or more (Lamda_C and the residual only
+matter where a cap is passed); from the pinching run, with kappaF 0.41 by 1.9e-4 m, kappaD 0.51 by
+9.8e-5 m, always on to the global peak from a pinching point by 1.3e-4 m, without the branch
+1 -> 2|12 (back to the global peak instead) by 4.8e-4 m, as the peak-oriented law by 8.9e-3 m.
 Before, a self-check of the peer's law alone, driven along prescribed drifts, against numbers
 computed by hand (1e-12 relative): the backbone both ways (F_y at F_y/K_e, F_cap at U_y + U_p,
 the post-capping slope, F_res past U_res) and its work; one cycle with every mode on: beta_K =
@@ -62,7 +90,13 @@ excursion, the negative side's F_y, K_p, capping drift (beta_C), global peak (be
 slope, the force, work and hysteretic energy reloading and past the global peak; a partial unloading
 retracing its line back onto the backbone; the first reload towards (-U_y, -F_y); failure at the
 ultimate drift (no force after, hysteretic = E_acml) and at a new excursion whose energy is spent
-(E_t <= E) or whose beta_S exceeds 1.
+(E_t <= E) or whose beta_S exceeds 1; and one pinched cycle (kappaF 0.4, kappaD 0.5, Lamda_K on so
+that K_unload < K_e): the pinching point of a side that never yielded (behind zero, U_y - F_y/K_u
+< 0), those after yield on each side, the forces towards them and on from them to the global
+peak, a partial unloading on branch 12 that reloads past its local peak onto the line to the
+pinching point (1 -> 12), a reversal on branch 2, and a reload from a pinching point on to a
+local peak ahead (12 -> 13 -> 14), with the work and hysteretic energy along the path and the
+branch sequence.
 """
 import csv
 import sys
@@ -79,11 +113,13 @@ import program_run  # noqa: E402
 
 # ---------------------------------------------------------------------------------------------
 # The law: OpenSees' IMKPeakOriented (SRC/material/uniaxial/IMKPeakOriented.cpp, setTrialStrain
-# and revertToStart) in the limit of infinitesimal steps. Each branch is a straight line F(U);
-# leaving it is either U reaching a bound (thresholds()) or, on a backbone branch (3..7, 13..17),
-# the drift rate turning (a reversal). Branch numbers are OpenSees':
-#   0 elastic, 1 unloading, 3/13 towards the local peak, 4/14 towards the global peak,
-#   5/15 post-yield (towards the capping point), 6/16 post-capping, 7/17 residual.
+# and revertToStart) in the limit of infinitesimal steps, and with kappa = (kappaF, kappaD) its
+# IMKPinching (IMKPinching.cpp: the same but for the reload targets). Each branch is a straight
+# line F(U); leaving it is either U reaching a bound (thresholds()) or, on a backbone branch
+# (2..7, 12..17), the drift rate turning (a reversal). Branch numbers are OpenSees':
+#   0 elastic, 1 unloading, 2/12 towards the pinching point (IMKPinching only), 3/13 towards the
+#   local peak, 4/14 towards the global peak, 5/15 post-yield (towards the capping point),
+#   6/16 post-capping, 7/17 residual.
 # ---------------------------------------------------------------------------------------------
 
 FAR = 1.0e9  # "no bound"
@@ -115,8 +151,13 @@ class ImkSpring:
     """One spring's state. U is the drift the law was last moved to, E the work integral E_acml,
     Ed the E_acml of the last new excursion (engDspt)."""
 
-    def __init__(self, Ke, Fy, pos, neg, lamda, c, D_pos, D_neg):
+    def __init__(self, Ke, Fy, pos, neg, lamda, c, D_pos, D_neg, kappa=None):
         self.Ke = Ke
+        # IMKPinching: (kappaF, kappaD), and its one pinching point (Upinch, Fpinch), shared by both
+        # sides, set at every new excursion
+        self.kappa = kappa
+        self.Upinch = self.Fpinch = 0.0
+        self.pinch_resumed = 0  # branch 1 -> 2/12: an unloading turned back at a local peak before the pinching point
         self.Uu = {+1: pos.get("Uu"), -1: neg.get("Uu")}
         self.pos = Side(+1, Ke, Fy, pos["Up"], pos["Upc"], pos["FmaxFy"], pos["FresFy"])
         self.neg = Side(-1, Ke, Fy, neg["Up"], neg["Upc"], neg["FmaxFy"], neg["FresFy"])
@@ -141,7 +182,7 @@ class ImkSpring:
     def branch_side(self):
         if self.failed:
             return 0
-        return +1 if 3 <= self.branch <= 7 else (-1 if self.branch >= 13 else 0)
+        return +1 if 2 <= self.branch <= 7 else (-1 if self.branch >= 12 else 0)
 
     def line(self):
         """(a, b): F = a + b U on the current branch."""
@@ -154,6 +195,8 @@ class ImkSpring:
             return self.Frev - self.Kunload * self.Urev, self.Kunload
         sd = self.side(self.branch_side())
         k = b % 10
+        if k == 2:
+            return self.Fpinch - self.Kreload * self.Upinch, self.Kreload
         if k == 3:
             return sd.Flocal - self.Kreload * sd.Ulocal, self.Kreload
         if k == 4:
@@ -181,7 +224,7 @@ class ImkSpring:
             return (u0, local) if self.Frev > 0 else (local, u0)
         s = self.branch_side()
         sd = self.side(s)
-        bound = {3: sd.Ulocal, 4: sd.Uglobal, 5: sd.Ucap, 6: sd.Ures, 7: s * FAR}[b % 10]
+        bound = {2: self.Upinch, 3: sd.Ulocal, 4: sd.Uglobal, 5: sd.Ucap, 6: sd.Ures, 7: s * FAR}[b % 10]
         return (-FAR, bound) if s > 0 else (bound, FAR)
 
     def bounds(self):
@@ -226,7 +269,7 @@ class ImkSpring:
 
     def enter(self, branch):
         """Goes onto `branch` at the current U and cascades along the backbone while U is at or past
-        the next bound (OpenSees' chained checks 3 -> 4 -> 5 -> 6 -> 7 in one step)."""
+        the next bound (OpenSees' chained checks 2 -> 3|4 -> 4 -> 5 -> 6 -> 7 in one step)."""
         self.branch = branch
         self.log.append(("branch", self.U, branch))
         while not self.failed and self.branch_side() != 0:
@@ -240,10 +283,41 @@ class ImkSpring:
             bound = hi if s > 0 else lo
             if s * (self.U - bound) < 0.0:
                 break
-            if k == 3:
-                self.Kreload = (sd.Fglobal - sd.Flocal) / (sd.Uglobal - sd.Ulocal)
-            self.branch += 1
+            if k == 2:
+                self.branch = self.from_pinch(s)
+            else:
+                if k == 3:
+                    self.Kreload = (sd.Fglobal - sd.Flocal) / (sd.Uglobal - sd.Ulocal)
+                self.branch += 1
             self.log.append(("branch", self.U, self.branch))
+
+    def from_pinch(self, s):
+        """IMKPinching at the pinching point (Branch 2 -> 3 | 4, 12 -> 13 | 14): on to the local peak
+        if it lies ahead, below the global peak, and is reached more steeply than the global peak
+        is from the pinching point; else to the global peak. Sets Kreload, returns the branch."""
+        sd = self.side(s)
+        Kglobal = (sd.Fglobal - self.Fpinch) / (sd.Uglobal - self.Upinch)
+        if (s * self.Upinch < s * sd.Ulocal and s * self.Fpinch < s * sd.Flocal and s * sd.Flocal < s * sd.Fglobal
+                and (sd.Flocal - self.Fpinch) / (sd.Ulocal - self.Upinch) > Kglobal):
+            self.Kreload = (sd.Flocal - self.Fpinch) / (sd.Ulocal - self.Upinch)
+            if self.Kreload > self.Ke:
+                self.klocal_above_ke += 1
+            return 3 if s > 0 else 13
+        if not 0.0 < Kglobal <= self.Ke:
+            raise ReloadGuard(f"from the pinching point ({self.Upinch}, {self.Fpinch}): Kglobal {Kglobal} "
+                              f"(Ke {self.Ke})")
+        self.Kreload = Kglobal
+        return 4 if s > 0 else 14
+
+    def pinch_ahead(self, s):
+        """IMKPinching's Branch 1 -> 2 (12): back at the local peak on the unloading line, the pinching
+        point lies between the local and the global peak (drift and force) and the line to it is
+        less steep than the one to the global peak."""
+        sd = self.side(s)
+        if not (s * sd.Ulocal < s * self.Upinch < s * sd.Uglobal and s * sd.Flocal < s * self.Fpinch < s * sd.Fglobal):
+            return False
+        Kpinch = (self.Fpinch - sd.Flocal) / (self.Upinch - sd.Ulocal)
+        return Kpinch < (sd.Fglobal - sd.Flocal) / (sd.Uglobal - sd.Ulocal)
 
     def cross(self, U, direction):
         """U reached the current branch's bound moving in `direction` (+1 up, -1 down)."""
@@ -260,6 +334,11 @@ class ImkSpring:
             s = 1 if self.Frev > 0 else -1
             if direction == s:  # back at the local peak on the unloading line: towards the global peak
                 sd = self.side(s)
+                if self.kappa is not None and self.pinch_ahead(s):  # IMKPinching: to the pinching point ahead
+                    self.Kreload = (self.Fpinch - sd.Flocal) / (self.Upinch - sd.Ulocal)
+                    self.pinch_resumed += 1
+                    self.enter(2 if s > 0 else 12)
+                    return
                 if sd.Uglobal != sd.Ulocal:
                     self.Kreload = (sd.Fglobal - sd.Flocal) / (sd.Uglobal - sd.Ulocal)
                 self.enter(4 if s > 0 else 14)
@@ -267,6 +346,9 @@ class ImkSpring:
                 self.new_excursion(direction)
         else:
             assert direction == self.branch_side(), (b, direction)
+            if b % 10 == 2:
+                self.enter(self.from_pinch(direction))
+                return
             if b % 10 == 3:
                 sd = self.side(direction)
                 self.Kreload = (sd.Fglobal - sd.Flocal) / (sd.Uglobal - sd.Ulocal)
@@ -312,6 +394,15 @@ class ImkSpring:
         Klocal = sd.Flocal / (sd.Ulocal - u0)
         if not 0.0 < Kglobal <= self.Ke:
             raise ReloadGuard(f"Kglobal {Kglobal} (Ke {self.Ke}) at u0 {u0}")
+        if self.kappa is not None:  # IMKPinching: the pinching point, on the line from u0 to the global peak
+            kappaF, kappaD = self.kappa
+            self.Upinch = (1.0 - kappaD) * (sd.Uglobal - sd.Fglobal / self.Kunload)
+            self.Fpinch = kappaF * sd.Fglobal * (self.Upinch - u0) / (sd.Uglobal - u0)
+            self.log[-1][2].update(Upinch=self.Upinch, Fpinch=self.Fpinch)
+            if s * u0 < s * self.Upinch:
+                self.Kreload = self.Fpinch / (self.Upinch - u0)
+                self.enter(2 if s > 0 else 12)
+                return
         if s * u0 < s * sd.Ulocal and s * sd.Flocal < s * sd.Fglobal and Klocal > Kglobal:
             self.Kreload = Klocal
             if Klocal > self.Ke:
@@ -467,6 +558,106 @@ def self_check(failures):
         close(law.E, E0, f"work at zero force (Lamda_S = {lamda_s} m)")
         if not law.failed or law.force() != 0.0 or law.log[-1][1] != 0.025 - F1 / Ke:
             failures.append(f"self-check: Lamda_S = {lamda_s} m does not fail at the new excursion at u0")
+    # 5. IMKPinching (kappaF = 0.4, kappaD = 0.5) with only Lamda_K on (3 m, c_K = 1, so that K_u < K_e
+    #    enters the pinching drift): -0.02, then out to 0.025 (through a pinching point behind zero),
+    #    back to -0.002 (before the pinching point), a partial unloading to -0.001 and on to -0.012
+    #    (branch 1 -> 12, back on the pinched line), a short excursion to 0.005 (reversing on branch 2)
+    #    and out to -0.016 (from the pinching point towards the local peak at -0.012, then the global)
+    kF, kD, EtK = 0.4, 0.5, 3.0 * Fy
+    law = ImkSpring(Ke, Fy, side, side, dict(off, K=3.0), ones, 1.0, 1.0, kappa=(kF, kD))
+
+    def beta_K(E, Ed, F, Ku):  # (E_i - F^2/2K_u) / (E_t,K - (E - F^2/2K_u)), c_K = 1
+        return (E - Ed - 0.5 * F * F / Ku) / (EtK - (E - 0.5 * F * F / Ku))
+
+    def pinch(Ug, Fg, Ku, u0):  # the pinching point and the slope from u0 to it
+        Up = (1 - kD) * (Ug - Fg / Ku)
+        Fp = kF * Fg * (Up - u0) / (Ug - u0)
+        return Up, Fp, Fp / (Up - u0)
+
+    Fa = -Fy - Kp * 0.01  # a. yield on the negative side
+    law.drive(-0.02)
+    close(law.force(), Fa, "pinching: force at -0.02 m")
+    Ea = 0.5 * Fy * Uy + 0.5 * (Fy - Fa) * 0.01
+    Ku1 = Ke * (1 - beta_K(Ea, 0.0, Fa, Ke))  # b. the reversal; the positive side never yielded
+    u0 = -0.02 - Fa / Ku1
+    Ed = Ea - 0.5 * Fa * Fa / Ku1
+    Up, Fp, Kpin = pinch(Uy, Fy, Ku1, u0)  # Up < 0: U_y - F_y/K_u with K_u < K_e
+    law.drive(-0.004)
+    close(law.Kunload, Ku1, "pinching: K_unload after the first reversal")
+    close(law.Upinch, Up, "pinching: U_pinch behind zero for a side that never yielded")
+    close(law.Fpinch, Fp, "pinching: F_pinch = kappa_F F_global (U_pinch - u0)/(U_global - u0)")
+    close(law.force(), Kpin * (-0.004 - u0), "pinching: force at -0.004 m towards the pinching point")
+    if law.branch != 2 or not u0 < -0.004 < Up:
+        failures.append(f"self-check: pinching: branch {law.branch} at -0.004 m, expected 2 (u0 {u0}, U_pinch {Up})")
+    law.drive(0.025)  # past the pinching point towards the global peak (U_y, F_y), then post-yield
+    Fb = Fy + Kp * 0.015
+    close(law.force(), Fb, "pinching: post-yield force at 0.025 m")
+    Eb = Ed + 0.5 * Fp * (Up - u0) + 0.5 * (Fp + Fy) * (Uy - Up) + 0.5 * (Fy + Fb) * (0.025 - Uy)
+    close(law.E, Eb, "pinching: work at 0.025 m")
+    Ku2 = Ku1 * (1 - beta_K(Eb, Ed, Fb, Ku1))  # c. reversal, new excursion towards (-0.02, Fa)
+    u0 = 0.025 - Fb / Ku2
+    Ed = Eb - 0.5 * Fb * Fb / Ku2
+    Upc, Fpc, Kpc_ = pinch(-0.02, Fa, Ku2, u0)
+    law.drive(-0.002)
+    Fc = Kpc_ * (-0.002 - u0)
+    close(law.Upinch, Upc, "pinching: negative U_pinch = (1 - kappa_D)(U_global - F_global/K_u)")
+    close(law.Fpinch, Fpc, "pinching: negative F_pinch")
+    close(law.force(), Fc, "pinching: force at -0.002 m towards the pinching point")
+    if law.branch != 12 or not Upc < -0.002 < u0:
+        failures.append(f"self-check: pinching: branch {law.branch} at -0.002 m, expected 12")
+    Ec = Ed + 0.5 * Fc * (-0.002 - u0)
+    Ku3 = Ku2 * (1 - beta_K(Ec, Ed, Fc, Ku2))  # d. reversal on branch 12, a partial unloading
+    law.drive(-0.001)
+    Fd = Fc + Ku3 * 0.001
+    close(law.force(), Fd, "pinching: force unloading to -0.001 m")
+    if law.branch != 1 or not Fd < 0.0:
+        failures.append(f"self-check: pinching: branch {law.branch} at -0.001 m, expected 1 with F < 0")
+    law.drive(-0.004)  # e. back past the local peak at -0.002: branch 1 -> 12, on the line to the pinching point
+    Kres = (Fpc - Fc) / (Upc + 0.002)
+    close(law.Kreload, Kres, "pinching: reload slope from the local peak to the pinching point")
+    close(law.force(), Fpc + Kres * (-0.004 - Upc), "pinching: force at -0.004 m after the partial unloading")
+    if law.branch != 12 or law.pinch_resumed != 1:
+        failures.append(f"self-check: pinching: branch {law.branch} at -0.004 m after the partial unloading "
+                        f"({law.pinch_resumed} resumed), expected 12 (once)")
+    law.drive(-0.012)  # f. past the pinching point: the local peak (-0.002) lies behind it, towards the global
+    K14 = (Fa - Fpc) / (-0.02 - Upc)
+    Ff = Fpc + K14 * (-0.012 - Upc)
+    close(law.Kreload, K14, "pinching: slope from the pinching point to the global peak")
+    close(law.force(), Ff, "pinching: force at -0.012 m")
+    Ef = Ec + 0.5 * (Fc + Fpc) * (Upc + 0.002) + 0.5 * (Fpc + Ff) * (-0.012 - Upc)
+    close(law.E, Ef, "pinching: work at -0.012 m (the partial unloading returns what it took)")
+    Ku4 = Ku3 * (1 - beta_K(Ef, Ed, Ff, Ku3))  # g. reversal at -0.012 (the local peak), out to 0.005
+    u0 = -0.012 - Ff / Ku4
+    Ed = Ef - 0.5 * Ff * Ff / Ku4
+    Upg, Fpg, Kpg = pinch(0.025, Fb, Ku4, u0)
+    law.drive(0.005)
+    Fg = Kpg * (0.005 - u0)
+    close(law.Upinch, Upg, "pinching: U_pinch of the positive side after its yield")
+    close(law.Fpinch, Fpg, "pinching: F_pinch of the positive side")
+    close(law.force(), Fg, "pinching: force at 0.005 m")
+    if law.branch != 2 or not u0 < 0.005 < Upg:
+        failures.append(f"self-check: pinching: branch {law.branch} at 0.005 m, expected 2")
+    Eg = Ed + 0.5 * Fg * (0.005 - u0)
+    Ku5 = Ku4 * (1 - beta_K(Eg, Ed, Fg, Ku4))  # h. reversal on branch 2, out to -0.016
+    u0 = 0.005 - Fg / Ku5
+    Ed = Eg - 0.5 * Fg * Fg / Ku5
+    Uph, Fph, _ = pinch(-0.02, Fa, Ku5, u0)
+    Klocal, Kglobal = (Ff - Fph) / (-0.012 - Uph), (Fa - Fph) / (-0.02 - Uph)
+    law.drive(-0.016)
+    K14 = (Fa - Ff) / (-0.02 + 0.012)
+    Fh = Fa + K14 * (-0.016 + 0.02)
+    close(law.Upinch, Uph, "pinching: U_pinch of the last excursion")
+    close(law.Fpinch, Fph, "pinching: F_pinch of the last excursion")
+    close(law.force(), Fh, "pinching: force at -0.016 m, past the local peak")
+    Eh = Ed + 0.5 * Fph * (Uph - u0) + 0.5 * (Fph + Ff) * (-0.012 - Uph) + 0.5 * (Ff + Fh) * (-0.004)
+    close(law.E, Eh, "pinching: work at -0.016 m")
+    close(law.hysteretic(), Eh - 0.5 * Fh * Fh / Ku5, "pinching: hysteretic energy at -0.016 m")
+    branches = [x[2] for x in law.log if x[0] == "branch"]
+    if not Klocal > Kglobal or branches != [15, 2, 4, 5, 12, 12, 14, 2, 12, 13, 14]:
+        failures.append(f"self-check: pinching: branches {branches} (Klocal {Klocal}, Kglobal {Kglobal}), expected "
+                        f"[15, 2, 4, 5, 12, 12, 14, 2, 12, 13, 14]")
+    print(f"self-check: pinching points ({Up:.6g} m, {Fp:.6g} kN), ({Upc:.6g}, {Fpc:.6g}), ({Upg:.6g}, {Fpg:.6g}), "
+          f"({Uph:.6g}, {Fph:.6g}); K_u down to {Ku5 / Ke:.4f} K_e")
     print(f"self-check: {len(failures)} failures, largest relative error {worst:.1e} against the hand numbers")
 
 
@@ -482,7 +673,8 @@ YIELD_RATIO, ZETA = 0.004, 0.05
 PULSE_MPS2, PULSE_PERIOD_S, PULSE_CYCLES, DT_S, DURATION_S = 1.7, 0.45, 3, 0.005, 4.0
 LAW_KEYS = ("Up_pos", "Upc_pos", "Uu_pos", "FmaxFy_pos", "FresFy_pos", "Up_neg", "Upc_neg", "Uu_neg", "FmaxFy_neg",
             "FresFy_neg",
-            "Lamda_S", "Lamda_C", "Lamda_A", "Lamda_K", "c_S", "c_C", "c_A", "c_K", "D_pos", "D_neg")
+            "Lamda_S", "Lamda_C", "Lamda_A", "Lamda_K", "c_S", "c_C", "c_A", "c_K", "D_pos", "D_neg",
+            "kappaF", "kappaD")
 DETERIORATING = dict(Up_pos=0.03, Upc_pos=0.12, FmaxFy_pos=1.15, FresFy_pos=0.3,
                      Up_neg=0.035, Upc_neg=0.10, FmaxFy_neg=1.2, FresFy_neg=0.3,
                      Lamda_S=0.4, Lamda_C=0.5, Lamda_A=0.8, Lamda_K=0.6,
@@ -496,6 +688,9 @@ CASES = {
                          FresFy_pos=0.25, FresFy_neg=0.35),
     # an ultimate drift: the small columns' x springs fail moving out past 0.035 m and carry nothing after
     "ultimate-drift": dict(DETERIORATING, Uu_pos=0.035, Uu_neg=0.045),
+    # IMKPinching: every new excursion reloads first towards a pinching point at 40 % of the force,
+    # half-way back from the global peak's plastic drift
+    "pinching": dict(DETERIORATING, law="imk-pinching", kappaF=0.4, kappaD=0.5),
 }
 
 
@@ -521,7 +716,7 @@ columns = [{columns}]
 ratio = {ZETA}
 modes = [1, 3]
 [building.hysteresis]
-law = "imk-peak-oriented"
+law = "{params.get('law', 'imk-peak-oriented')}"
 yield_drift_ratio = {YIELD_RATIO}
 {law}
 
@@ -583,6 +778,7 @@ class Peer:
                    Uu=p.get("Uu_neg", pos["Uu"]))
         lamda = {m: p.get(f"Lamda_{m}", 0.0) for m in "SCAK"}
         c = {m: p.get(f"c_{m}", 1.0) for m in "SCAK"}
+        kappa = (p["kappaF"], p["kappaD"]) if p.get("law") == "imk-pinching" else None
         rows, self.k, self.springs, self.names = [], [], [], []
         for index, ((x, y), size) in enumerate(COLUMNS):
             k = 12.0 * E_KPA * size ** 4 / 12.0 / HEIGHT_M ** 3  # fixed-fixed, square: same along x and y
@@ -592,7 +788,7 @@ class Peer:
                 self.k.append(k)
                 self.names.append((f"columns[{index + 1}]", direction))
                 self.springs.append(ImkSpring(k, k * YIELD_RATIO * HEIGHT_M, pos, neg, lamda, c,
-                                              p.get("D_pos", 1.0), p.get("D_neg", 1.0)))
+                                              p.get("D_pos", 1.0), p.get("D_neg", 1.0), kappa))
         self.t, self.k = np.array(rows), np.array(self.k)
         K = (self.t.T * self.k) @ self.t
         w2, _ = eigh(K, np.diag(self.m))
@@ -785,7 +981,9 @@ def check_case(program, out, label, params, failures):
 
 def describe(label, peer, failures):
     """What the scene exercises (from the peer's own logs): the deterioration must be visible, no spring
-    may fail, and the post-capping case must reach a post-capping branch while the other must not."""
+    may fail, the post-capping case must reach a post-capping branch while the others must not, and the
+    pinching case must visit branches 2 and 12, go on from a pinching point to a local peak and turn
+    back at a local peak before a pinching point (branch 1 -> 2|12)."""
     strength = min(min(sp.pos.Fy / (sp.Ke * YIELD_RATIO * HEIGHT_M), -sp.neg.Fy / (sp.Ke * YIELD_RATIO * HEIGHT_M))
                    for sp in peer.springs)
     unloading = min(sp.Kunload / sp.Ke for sp in peer.springs)
@@ -808,6 +1006,29 @@ def describe(label, peer, failures):
               f"({[x[2] for sp in peer.springs for x in sp.log if x[0] == 'fail']})")
     if bool(capped) != (label == "post-capping") or residual != ([7, 17] if label == "post-capping" else []):
         failures.append(f"{label}: post-capping springs {capped}, residual branches {residual}")
+    # the pinching case: new excursions reloading towards a pinching point (branches 2 and 12), on from it
+    # to a local or the global peak, and an unloading turned back at a local peak before the pinching point
+    # (branch 1 -> 2|12)
+    pinched = sum(1 for sp in peer.springs for x in sp.log if x[0] == "branch" and x[2] in (2, 12))
+    onward = {}
+    for sp in peer.springs:
+        previous = 0
+        for what, _, branch in sp.log:
+            if what == "branch":
+                if previous % 10 == 2:
+                    onward[branch % 10] = onward.get(branch % 10, 0) + 1
+                previous = branch
+    resumed = [(n, sp.pinch_resumed) for n, sp in zip(peer.names, peer.springs) if sp.pinch_resumed]
+    if label == "pinching":
+        print(f"  peer: {pinched} entries onto a branch towards a pinching point, on from it to a local peak "
+              f"{onward.get(3, 0)} times and to the global {onward.get(4, 0)}; back at a local peak before the "
+              f"pinching point (1 -> 2|12): "
+              f"{resumed or 'none'}")
+        if not {2, 12} <= set(kinds) or not onward.get(3) or not resumed:
+            failures.append(f"{label}: branches {kinds}, on from the pinching point {onward}, 1 -> 2|12 {resumed}: "
+                            f"the scene does not exercise the pinching rules")
+    elif pinched:
+        failures.append(f"{label}: {pinched} reloads towards a pinching point in a peak-oriented scene")
 
 
 def main():
