@@ -363,11 +363,13 @@ void check_row_ranges(const analysis::Scene& base, std::span<const KeySpec<Owner
       for (double outside : {spec.range->min - 1.0, spec.range->max * 2.0 + 1.0}) {
         analysis::Scene scene = base;
         Owner& target = owner(scene);
-        if (is_per_storey(spec)) {  // the law's one strength: this row's
+        const auto is_strength = [](const KeySpec<Owner>& row) { return row.key.starts_with("yield_"); };
+        if (is_strength(spec)) {  // the law's one strength: this row's
           for (const KeySpec<Owner>& other : specs)
-            if (is_per_storey(other)) (target.*std::get<std::vector<double> Owner::*>(other.member)).clear();
-          (target.*std::get<std::vector<double> Owner::*>(spec.member)).assign(scene.buildings[0].storeys, 1.0);
+            if (is_strength(other)) (target.*std::get<std::vector<double> Owner::*>(other.member)).clear();
         }
+        if (is_per_storey(spec))
+          (target.*std::get<std::vector<double> Owner::*>(spec.member)).assign(scene.buildings[0].storeys, 1.0);
         BOOST_REQUIRE(set_number(target, spec, outside));
         try {
           scene.validate();
