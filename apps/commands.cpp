@@ -197,8 +197,9 @@ std::string storeys_text(const model::BuildingDefinition& b) {
                       : fmt::format("{} storeys of {} m", b.storeys, fmt::join(h, ", "));
 }
 
-/// "0.005 of the storey height", "[0.004, 0.005] of the storey heights", "0.01 m", or "storey
-/// yield shear [5200, 4100] kN": the strength as the scene gave it (one number for all storeys).
+/// "0.005 of the storey height", "[0.004, 0.005] of the storey heights", "0.01 m", "storey
+/// yield shear [5200, 4100] kN", or (none given) "each column grid's yield force": the strength as
+/// the scene gave it (one number for all storeys).
 std::string strength_text(const model::HystereticLaw& law) {
   const auto values = [](const std::vector<double>& v) {
     return all_equal(v) ? fmt::format("{}", v.front()) : fmt::format("[{}]", fmt::join(v, ", "));
@@ -207,7 +208,8 @@ std::string strength_text(const model::HystereticLaw& law) {
   if (!law.yield_drift_ratio.empty()) {
     return fmt::format("yield drift {} of the storey height", values(law.yield_drift_ratio));
   }
-  return fmt::format("storey yield shear {} kN", values(law.yield_shear_kN));
+  if (!law.yield_shear_kN.empty()) return fmt::format("storey yield shear {} kN", values(law.yield_shear_kN));
+  return "each column grid's yield force";
 }
 
 /// IMK's backbone and deterioration as given: "Up 0.06 m, Upc 0.15 m, FmaxFy 1.2, FresFy 0.2;
@@ -242,9 +244,15 @@ std::string imk_text(const model::HystereticLaw& law) {
 void print_storey_strengths(const model::Building& building) {
   std::vector<std::string> storeys;
   for (int storey = 1; storey <= building.storeys(); ++storey) {
-    const auto shear_kN = [&](int direction) {
-      return model::storey_column_stiffness(building, storey, direction) *
-             model::column_yield_drift_m(building, storey, direction);
+    const auto shear_kN = [&](int direction) {  // Σ k_c d_y,c over the storey's columns
+      const model::BuildingDefinition& d = building.definition;
+      double sum_kN = 0.0;
+      for (std::size_t c = 0; c < d.columns.size(); ++c) {
+        sum_kN += model::column_stiffness(d.columns[c], d.E_kPa, d.storey_height_m[storey - 1],
+                                          building.frame_factor)[direction] *
+                  model::column_yield_drift_m(building, storey, c, direction);
+      }
+      return sum_kN;
     };
     storeys.push_back(fmt::format("{:.5g} | {:.5g}", shear_kN(0), shear_kN(1)));
   }

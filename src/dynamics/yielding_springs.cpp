@@ -63,7 +63,7 @@ void add_building_springs(const model::Building& building, int b, int offset, st
       // Row of T = [[1, 0, −Δy], [0, 1, Δx]] for each direction, upper floor minus lower floor.
       const std::array<std::array<double, 3>, 2> t_rows{{{1.0, 0.0, -arm.y()}, {0.0, 1.0, arm.x()}}};
       for (int direction = 0; direction < 2; ++direction) {
-        const double yield_drift_m = model::column_yield_drift_m(building, storey, direction);
+        const double yield_drift_m = model::column_yield_drift_m(building, storey, c, direction);
         YieldingSpring spring{.building = b,
                               .storey = storey,
                               .direction = direction,

@@ -320,7 +320,21 @@ std::vector<double> polar_moments(TableReader& table, const model::BuildingDefin
   return moments;
 }
 
-std::vector<model::Column> read_columns(TableReader& table) {
+/// A column grid's `yield_force_kN`: one number for every storey or a list of one a storey, each
+/// in model::kColumnYieldForce; empty if absent.
+std::vector<double> grid_yield_forces(TableReader& grid, int storeys) {
+  std::vector<double> forces = per_storey(grid, "yield_force_kN", model::kColumnYieldForce, storeys);
+  const std::string key = grid.key_path("yield_force_kN");
+  if (!forces.empty() && forces.size() != static_cast<std::size_t>(storeys)) {
+    throw InputError(key, fmt::format("{} values", forces.size()),
+                     fmt::format("needs one value per storey ({})", storeys));
+  }
+  for (std::size_t j = 0; j < forces.size(); ++j)
+    require_range(fmt::format("{}[{}]", key, j + 1), forces[j], model::kColumnYieldForce);
+  return forces;
+}
+
+std::vector<model::Column> read_columns(TableReader& table, int storeys) {
   std::vector<model::Column> columns;
   if (const toml::node* node = table.find("columns")) {
     const std::string key = table.key_path("columns");
@@ -345,6 +359,7 @@ std::vector<model::Column> read_columns(TableReader& table) {
       const auto ys = grid.numbers_of(grid.require("y"), grid.key_path("y"));
       const double b = in_range(grid, grid.require("b_m"), grid.key_path("b_m"), model::kColumnSize);
       const double h = in_range(grid, grid.require("h_m"), grid.key_path("h_m"), model::kColumnSize);
+      const std::vector<double> yield_force_kN = grid_yield_forces(grid, storeys);
       grid.finish();
       // Counted before a column is made: 10 000 × 10 000 would be 10⁸ columns from 150 kB of text.
       const double total = static_cast<double>(columns.size()) + static_cast<double>(xs.size()) * ys.size();
@@ -356,8 +371,8 @@ std::vector<model::Column> read_columns(TableReader& table) {
       // Each named by its grid lines, so a message points at the x or y value to change.
       for (std::size_t iy = 0; iy < ys.size(); ++iy) {
         for (std::size_t ix = 0; ix < xs.size(); ++ix) {
-          columns.push_back(
-              {Point2(xs[ix], ys[iy]), b, h, fmt::format("column_grid[{}] x[{}] y[{}]", g + 1, ix + 1, iy + 1)});
+          columns.push_back({Point2(xs[ix], ys[iy]), b, h,
+                             fmt::format("column_grid[{}] x[{}] y[{}]", g + 1, ix + 1, iy + 1), yield_force_kN});
         }
       }
     }
@@ -402,7 +417,7 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
     b.storey_stiffness = storey_matrices(table, *node, b.storeys);
     return;
   }
-  b.columns = read_columns(table);
+  b.columns = read_columns(table, b.storeys);
   b.E_kPa = table.number("E_kPa");
   const toml::node* factor = table.find("frame_factor");
   const toml::node* period = table.find("target_period_s");

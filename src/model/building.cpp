@@ -252,8 +252,23 @@ void validate_imk(const BuildingDefinition& b) {
   require(law.imk_kappa_d.has_value(), "hysteresis.kappaD");
 }
 
+/// A column's own strength key as the scene gave it: its grid's, `column_grid[g].yield_force_kN`.
+std::string own_strength_key(const Column& c) { return c.key.substr(0, c.key.find(' ')) + ".yield_force_kN"; }
+
+/// The first column with a yield force of its own, if any.
+const Column* column_with_own_strength(const BuildingDefinition& b) {
+  for (const Column& c : b.columns)
+    if (!c.yield_force_kN.empty()) return &c;
+  return nullptr;
+}
+
 void validate_hysteresis(const BuildingDefinition& b) {
   const HystereticLaw& law = b.hysteresis;
+  const Column* own = column_with_own_strength(b);
+  if (!law.yields() && own != nullptr) {
+    throw InputError(own_strength_key(*own), format_value(own->yield_force_kN.front()),
+                     "needs yielding columns ([building.hysteresis] law)");
+  }
   if (!law.yields()) return;
   if (!b.uses_columns()) {
     throw InputError("hysteresis.law", fmt::format("\"{}\"", to_string(law.kind)),
@@ -263,10 +278,13 @@ void validate_hysteresis(const BuildingDefinition& b) {
   if (!law.yield_drift_ratio.empty()) strengths.push_back("yield_drift_ratio");
   if (!law.yield_drift_m.empty()) strengths.push_back("yield_drift_m");
   if (!law.yield_shear_kN.empty()) strengths.push_back("yield_shear_kN");
-  if (strengths.size() != 1) {
+  const bool every_column_own =
+      std::all_of(b.columns.begin(), b.columns.end(), [](const Column& c) { return !c.yield_force_kN.empty(); });
+  if (strengths.size() != 1 && !(strengths.empty() && every_column_own)) {
     throw InputError("hysteresis." + (strengths.empty() ? std::string("yield_drift_ratio") : strengths[0]),
                      strengths.empty() ? "missing" : "given with " + strengths[1],
-                     "give one of yield_drift_ratio, yield_drift_m and yield_shear_kN");
+                     "give one of yield_drift_ratio, yield_drift_m and yield_shear_kN (or every column grid "
+                     "its yield_force_kN)");
   }
   for (const HysteresisSpec& spec : hysteresis_specs()) {
     if (!is_per_storey(spec)) continue;
@@ -552,12 +570,20 @@ double storey_column_stiffness(const Building& building, int storey, int directi
   return sum_kN_per_m;
 }
 
+double column_yield_drift_m(const Building& building, int storey, std::size_t column, int direction) {
+  const BuildingDefinition& d = building.definition;
+  const Column& c = d.columns.at(column);
+  if (c.yield_force_kN.empty()) return column_yield_drift_m(building, storey, direction);
+  const double k = column_stiffness(c, d.E_kPa, d.storey_height_m[storey - 1], building.frame_factor)[direction];
+  return c.yield_force_kN.at(static_cast<std::size_t>(storey - 1)) / k;
+}
+
 double column_yield_drift_m(const Building& building, int storey, int direction) {
   const HystereticLaw& law = building.definition.hysteresis;
   const std::size_t j = storey - 1;
   if (!law.yield_drift_m.empty()) return law.yield_drift_m[j];
   if (!law.yield_drift_ratio.empty()) return law.yield_drift_ratio[j] * building.definition.storey_height_m[j];
-  return law.yield_shear_kN[j] / storey_column_stiffness(building, storey, direction);
+  return law.yield_shear_kN.at(j) / storey_column_stiffness(building, storey, direction);
 }
 
 double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction) {
@@ -595,6 +621,20 @@ namespace {
 /// A storey yield shear sets the yield drift through the columns' stiffness, known only once the
 /// frame factor is: refused here, as refuse_collapse_before_yield() refuses a yield drift.
 void refuse_collapse_before_yield_shear(const Building& building) {
+  const BuildingDefinition& d = building.definition;
+  for (std::size_t c = 0; c < d.columns.size(); ++c) {
+    for (std::size_t j = 0; j < d.columns[c].yield_force_kN.size(); ++j) {
+      for (int direction = 0; direction < 2; ++direction) {
+        const double drift_m = column_yield_drift_m(building, static_cast<int>(j) + 1, c, direction);
+        if (drift_m <= 0.05 * d.storey_height_m[j]) continue;
+        throw InputError(
+            fmt::format("{}[{}]", own_strength_key(d.columns[c]), j + 1), format_value(d.columns[c].yield_force_kN[j]),
+            fmt::format("gives {} a yield drift of {:.4g} m along {}, over 5 % of storey {}'s height "
+                        "({:g} m): a drift of 10 % of a storey ends a run as a collapse",
+                        d.columns[c].key, drift_m, direction == 0 ? "x" : "y", j + 1, d.storey_height_m[j]));
+      }
+    }
+  }
   const std::vector<double>& shears_kN = building.definition.hysteresis.yield_shear_kN;
   for (std::size_t j = 0; j < shears_kN.size(); ++j) {
     const double height_m = building.definition.storey_height_m[j];
@@ -619,13 +659,16 @@ void refuse_steep_imk_hardening(const Building& building) {
     const double cap_ratio = positive ? *law.imk_fmax_fy_pos : law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos);
     const char* key = own && !positive ? "hysteresis.Up_neg" : "hysteresis.Up_pos";
     for (std::size_t j = 0; j < up_m.size(); ++j) {
-      for (int direction = 0; direction < 2; ++direction) {
-        const double least_m = (cap_ratio - 1.0) * column_yield_drift_m(building, static_cast<int>(j) + 1, direction);
-        if (up_m[j] > least_m) continue;
-        throw InputError(indexed(key, j), format_value(up_m[j]),
-                         fmt::format("must exceed (FmaxFy - 1) d_y = {:.4g} m (storey {} along {}): the post-yield "
-                                     "slope would reach the elastic stiffness",
-                                     least_m, j + 1, direction == 0 ? "x" : "y"));
+      for (std::size_t c = 0; c < building.definition.columns.size(); ++c) {
+        for (int direction = 0; direction < 2; ++direction) {
+          const double least_m =
+              (cap_ratio - 1.0) * column_yield_drift_m(building, static_cast<int>(j) + 1, c, direction);
+          if (up_m[j] > least_m) continue;
+          throw InputError(indexed(key, j), format_value(up_m[j]),
+                           fmt::format("must exceed (FmaxFy - 1) d_y = {:.4g} m (storey {} along {}): the post-yield "
+                                       "slope would reach the elastic stiffness",
+                                       least_m, j + 1, direction == 0 ? "x" : "y"));
+        }
       }
     }
   }

@@ -488,6 +488,26 @@ BOOST_AUTO_TEST_CASE(BoucWenParametersAreCheckedAndOnlyForTheirLaw) {
                        "\"elastic\", \"bilinear\", \"bouc-wen\", \"imk-peak-oriented\" or \"imk-pinching\""}));
 }
 
+BOOST_AUTO_TEST_CASE(AColumnGridMayGiveItsColumnsTheirOwnYieldForce) {
+  const std::string columns =
+      "columns = [[-10.0, 0.0, 0.4, 0.4], [0.0, 0.0, 0.4, 0.4], [0.0, 8.0, 0.4, 0.4], [-10.0, 8.0, 0.4, 0.4]]";
+  const std::string grid = "[[building.column_grid]]\nx = [-10.0, 0.0]\ny = [0.0, 8.0]\nb_m = 0.4\nh_m = 0.4\n";
+  const auto with = [&](const std::string& grid_lines, const std::string& law_lines) {
+    return edited(columns, grid + grid_lines + "[building.hysteresis]\nlaw = \"bilinear\"\n" + law_lines);
+  };
+  Case spread(with("yield_force_kN = 150.0\n", ""));  // every column its own: no storey strength needed
+  const auto scene = read_scene(spread.file);
+  const auto& read = scene.buildings[0];
+  BOOST_TEST(read.columns.size() == 4u);
+  BOOST_TEST(read.columns[0].yield_force_kN == std::vector<double>({150.0, 150.0}));
+  BOOST_TEST(mentions(error_of(with("yield_force_kN = [150.0]\n", "")),
+                      {"building[1].column_grid[1].yield_force_kN", "needs one value per storey (2)"}));
+  BOOST_TEST(mentions(error_of(with("yield_force_kN = [150.0, -1.0]\n", "")),
+                      {"building[1].column_grid[1].yield_force_kN[2] = -1"}));
+  BOOST_TEST(mentions(error_of(edited(columns, grid + "yield_force_kN = 150.0\n")),
+                      {"building[1].column_grid[1].yield_force_kN", "needs yielding columns"}));
+}
+
 BOOST_AUTO_TEST_CASE(ImkParametersHaveOpenSeesNamesAndAreChecked) {
   const auto with_law = [](const std::string& lines) {
     const std::string columns =

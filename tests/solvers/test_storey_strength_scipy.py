@@ -34,7 +34,12 @@ B (storey 1 weaker) storey 1 does. A third case, C, is A under the pulse cut at 
 sample 4.8 m/s2, not zero) with `free_vibration_s = 5.5`: the program appends the quiet tail to
 6.0 s, the peer integrates its own record of zeros after 0.5 s (a_g linear from the last sample to
 0 over the first interval), and the building must have come to rest (settled) with the storeys'
-permanent drifts left, 1 to 4 checked as for A.
+permanent drifts left, 1 to 4 checked as for A. A fourth case, D, gives each column line its own
+strength instead of the storeys (a `[[building.column_grid]]` per line with `yield_force_kN`:
+700 and 300 kN a column for the x = 0 line's storeys 1 and 2, 450 and 200 kN for the x = 16 m
+line's), so that each column yields at its own d_y = F_y / k along each direction: 1 to 4 checked
+as for A (check's storey yield shear is then the sum of the columns' forces, 3450 and 1500 kN), and
+the x = 16 m line, stiffer but weaker by force, yields first.
 """
 import csv
 import re
@@ -56,16 +61,30 @@ CM = np.array([9.0, 5.0])
 COLUMNS = [((0.0, y), 0.40, 0.40) for y in (0.0, 5.0, 10.0)] + [((16.0, y), 0.55, 0.45) for y in (0.0, 5.0, 10.0)]
 ALPHA, ZETA = 0.05, 0.05
 PULSE_MPS2, PULSE_S, DT_S, DURATION_S, DIRECTION_DEG = 5.0, 0.6, 0.005, 3.0, 30.0
-STRENGTHS = {"A": ("yield_shear_kN", (4000.0, 1500.0)), "B": ("yield_drift_ratio", (0.004, 0.003))}
+# D: each column line its own yield force per column (kN), storey 1 and 2: the x = 16 m line's
+# stiffer columns are the weaker by force, so they yield first (a column grid's yield_force_kN)
+LINE_FORCES_KN = {0.0: (700.0, 300.0), 16.0: (450.0, 200.0)}
+STRENGTHS = {"A": ("yield_shear_kN", (4000.0, 1500.0)), "B": ("yield_drift_ratio", (0.004, 0.003)),
+             "D": ("column_line", LINE_FORCES_KN)}
+LINES_FIRST_YIELD = {}  # case D: each column line's first yield (s), from the peer
 CUT_S, FREE_VIBRATION_S = 0.5, 5.5  # case C: the pulse cut at CUT_S, then the program's quiet tail
-CASES = {"A": ("A", None), "B": ("B", None), "C": ("A", FREE_VIBRATION_S)}  # strength, quiet tail
+CASES = {"A": ("A", None), "B": ("B", None), "C": ("A", FREE_VIBRATION_S), "D": ("D", None)}  # strength, tail
 
 
 def scene_text(key, values, free_vibration_s=None):
     tail = "" if free_vibration_s is None else f"free_vibration_s = {free_vibration_s}\n"
 
     def text(record):
-        columns = ", ".join(f"[{x}, {y}, {b}, {h}]" for (x, y), b, h in COLUMNS)
+        columns = "columns = [" + ", ".join(f"[{x}, {y}, {b}, {h}]" for (x, y), b, h in COLUMNS) + "]"
+        if key != "column_line":
+            strength = f"{key} = [{values[0]!r}, {values[1]!r}]"
+        else:  # a grid per column line, each with its yield force; none for the storeys
+            lines = sorted({x for (x, _), _, _ in COLUMNS})
+            columns = "\n".join(
+                f"[[building.column_grid]]\nx = [{x}]\ny = [{', '.join(str(c[0][1]) for c in COLUMNS if c[0][0] == x)}]\n"
+                f"b_m = {next(c[1] for c in COLUMNS if c[0][0] == x)}\nh_m = {next(c[2] for c in COLUMNS if c[0][0] == x)}\n"
+                f"yield_force_kN = [{values[x][0]!r}, {values[x][1]!r}]" for x in lines)
+            strength = ""
         x0, y0, x1, y1 = SLAB
         return f"""name = "storey-strength-peer"
 [[building]]
@@ -78,13 +97,13 @@ mass_t = {MASS_T}
 polar_moment_tm2 = "uniform"
 E_kPa = {E_KPA}
 frame_factor = 1.0
-columns = [{columns}]
+{columns}
 [building.damping]
 ratio = {ZETA}
 modes = [1, 3]
 [building.hysteresis]
 law = "bilinear"
-{key} = [{values[0]!r}, {values[1]!r}]
+{strength}
 hardening_ratio = {ALPHA}
 
 [[building]]
@@ -161,7 +180,10 @@ class Peer:
         # each storey's stiffness along each direction: the sum over its columns
         self.storey_k = np.array([[self.k[(self.storey == j) & (self.direction == d)].sum() for d in (0, 1)]
                                   for j in (0, 1)])
-        if key == "yield_shear_kN":
+        if key == "column_line":  # each column its line's force over its own stiffness, per direction
+            forces = [values[x][storey] for storey in range(2) for (x, _), _, _ in COLUMNS for _direction in (0, 1)]
+            self.d_y = np.array(forces) / self.k
+        elif key == "yield_shear_kN":
             self.d_y = np.array([values[j] / self.storey_k[j, d] for j, d in zip(self.storey, self.direction)])
         else:
             self.d_y = np.array([values[j] * HEIGHTS_M[j] for j in self.storey])
@@ -359,8 +381,8 @@ def check_case(program, out, label, failures):
         if worst[name] > limit:
             failures.append(f"{label}: {name} differs by {worst[name]:.2e} (limit {limit:g})")
     printed, line = printed_storey_shears(program, folder / "scene.toml")
-    expected = peer.storey_k * np.array([[peer.d_y[(peer.storey == j) & (peer.direction == d)][0] for d in (0, 1)]
-                                         for j in (0, 1)])
+    expected = np.array([[np.sum((peer.k * peer.d_y)[(peer.storey == j) & (peer.direction == d)]) for d in (0, 1)]
+                         for j in (0, 1)])
     print(f"  check: {line}")
     if printed.shape != expected.shape or np.max(np.abs(printed / expected - 1)) > 5e-5:
         failures.append(f"{label}: check prints storey yield shears {printed.tolist()}, the peer {expected.tolist()}")
@@ -368,6 +390,9 @@ def check_case(program, out, label, failures):
     if tail_s is not None and not run.summary["residual_drift"]["buildings"][0]["settled"]:
         failures.append(f"{label}: still moving after a {tail_s} s quiet tail")
     never = np.where(np.isnan(peer.first_yield), np.inf, peer.first_yield)
+    if key == "column_line":
+        line_of = np.array([x for _storey in range(2) for (x, _), _, _ in COLUMNS for _direction in (0, 1)])
+        LINES_FIRST_YIELD.update({x: float(np.min(never[line_of == x])) for x in LINE_FORCES_KN})
     return [float(np.min(never[peer.storey == j])) for j in (0, 1)]  # inf: the storey never yields
 
 
@@ -377,10 +402,15 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     failures = []
     orders = {label: check_case(program, out, label, failures) for label in CASES}
+    lines_first = LINES_FIRST_YIELD
     if all(orders.values()):
         print(f"first yield by storey 1, 2 (s; inf: never): A {orders['A']}, B {orders['B']}")
         if not (orders["A"][1] < orders["A"][0] and orders["B"][0] < orders["B"][1]):
             failures.append("storey 2 should yield first in A, storey 1 in B")
+    if lines_first:
+        print(f"D: first yield of the x = 0 m and x = 16 m lines' columns (s): {lines_first}")
+        if not lines_first[16.0] < lines_first[0.0]:
+            failures.append("D: the x = 16 m line (weaker by force) should yield first")
     program_run.finish(failures)
 
 

@@ -44,6 +44,9 @@ struct Column {
   double h_m = 0.0;
   /// Where the scene gave it, for messages ("column_grid[1] x[5] y[2]"); empty: columns[i].
   std::string key = {};
+  /// Its own yield force (kN), along x and along y alike, one a storey (storey 1 first; a column
+  /// grid's `yield_force_kN`); empty: its storey's strength ([building.hysteresis]).
+  std::vector<double> yield_force_kN = {};
 };
 
 /// Rayleigh damping C = a0 M + a1 K fitted to one ratio at two modes (1-based, sorted by period
@@ -137,6 +140,8 @@ std::span<const HysteresisSpec> hysteresis_specs();
 /// The range of column_shear_capacity_kN, public for the scene reader's messages (the
 /// hysteresis parameters' ranges are their rows', hysteresis_specs()).
 inline constexpr Range kColumnShearCapacity{0.0, 1e6, "kN", true};
+/// The range of a column grid's yield_force_kN (Column::yield_force_kN), for the scene reader.
+inline constexpr Range kColumnYieldForce{0.0, 1e6, "kN", true};
 
 /// The peak transient storey drift ratios that mark a building's structural performance levels
 /// ([building.limit_states], analysis/limit_states.hpp): immediate occupancy, life safety and
@@ -259,6 +264,10 @@ double storey_column_stiffness(const Building& building, int storey, int directi
 /// The yield drift (m) of every column of storey `storey` (1-based) along `direction` (0: x,
 /// 1: y), from the law's strength (HystereticLaw). @pre building.definition.hysteresis.yields().
 double column_yield_drift_m(const Building& building, int storey, int direction);
+/// Column `column` (0-based)'s yield drift (m) in storey `storey` along x (0) or y (1): its own
+/// yield force over its stiffness, F_y / k, where it has one (Column::yield_force_kN), else its
+/// storey's (above). @pre as above.
+double column_yield_drift_m(const Building& building, int storey, std::size_t column, int direction);
 /// Column `column` (0-based)'s shear capacity (kN) in storey `storey` along x (0) or y (1): the
 /// given column_shear_capacity_kN, or ShearCapacityFormula's, whose axial load defaults to the
 /// storey's gravity share g Σ (floor masses from `storey` up) / columns; 0 when none is given.
