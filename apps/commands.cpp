@@ -246,6 +246,12 @@ void print_storey_strengths(const model::Building& building) {
   for (int storey = 1; storey <= building.storeys(); ++storey) {
     const auto shear_kN = [&](int direction) {  // Σ k_c d_y,c over the storey's columns
       const model::BuildingDefinition& d = building.definition;
+      const bool storey_strength = std::all_of(d.columns.begin(), d.columns.end(),
+                                               [](const model::Column& c) { return c.yield_force_kN.empty(); });
+      if (storey_strength) {  // one d_y for all: (Σ k_c) d_y, as printed before columns had their own
+        return model::storey_column_stiffness(building, storey, direction) *
+               model::column_yield_drift_m(building, storey, direction);
+      }
       double sum_kN = 0.0;
       for (std::size_t c = 0; c < d.columns.size(); ++c) {
         sum_kN += model::column_stiffness(d.columns[c], d.E_kPa, d.storey_height_m[storey - 1],
