@@ -11,7 +11,9 @@ largest peak force in yielding.csv), and, after the 10 s quiet tail, every build
 drift with `settled` true and its largest residual the largest of its storeys'; `pounding report`
 writes report.html with the storeys table (a row per storey of the three buildings) and the
 limit-states table (a row per building with contact and one without); and the same scene with
-column_shear_failure = "lose-stiffness" ends as a collapse of B3's ground storey.
+column_shear_failure = "lose-stiffness" ends as a collapse of B3's ground storey. The street with
+B3's columns degrading (weak-ground-storey-imk.toml, IMK peak-oriented) ends as a collapse too,
+its failed columns counted per storey in summary.json as in yielding.csv and carrying no force.
 """
 import csv
 import json
@@ -23,6 +25,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "examples" / "street" / "weak-ground-storey.toml"
+IMK_SCENE = ROOT / "examples" / "street" / "weak-ground-storey-imk.toml"
 
 
 def main():
@@ -89,7 +92,36 @@ def main():
     check(status.get("status") == "collapse" and "B3 storey 1" in status.get("status_detail", ""),
           f"losing their stiffness, B3's ground storey collapses ({status.get('status')}: "
           f"{status.get('status_detail', '')[:80]})")
+    check_degrading(program, out, check)
     sys.exit(1 if failures else 0)
+
+
+def check_degrading(program, out, check):
+    """examples/street/weak-ground-storey-imk.toml: B3's degrading columns fail and its ground storey
+    collapses; summary.json's per-storey degrading failures are yielding.csv's, whose failed springs
+    carry no force at the end (final slip = final drift: F = k (d - s) = 0)."""
+    folder = out / "imk"
+    run = subprocess.run([program, "run", str(IMK_SCENE), "--out", str(folder), "--no-progress"],
+                         capture_output=True, text=True)
+    summary = json.loads((folder / "summary.json").read_text()) if (folder / "summary.json").is_file() else {}
+    check(run.returncode == 3 and summary.get("status") == "collapse" and "B3 storey 1" in summary.get("status_detail", ""),
+          f"with degrading columns B3's ground storey collapses (exit {run.returncode}, {summary.get('status')})")
+    with open(folder / "yielding.csv") as f:
+        springs = list(csv.DictReader(f))
+    failed = [s for s in springs if s["degrading_failure_t_s"]]
+    b3 = next(b for b in summary["yielding"]["buildings"] if b["building"] == 3)
+    for storey in b3["storeys"]:
+        own = [s for s in failed if s["building"] == "3" and int(s["storey"]) == storey["storey"]]
+        d = storey["degrading"]
+        first = min((float(s["degrading_failure_t_s"]) for s in own), default=None)
+        check(d["failures"] == len(own) and d["first_failure_t_s"] == first and d["springs"] == 30,
+              f"B3 storey {storey['storey']}: {d['failures']} of {d['springs']} degrading springs failed, first at "
+              f"{d['first_failure_t_s']} s, as yielding.csv says ({len(own)}, {first})")
+    check(len(failed) > 0 and all(abs(float(s["final_slip_m"]) - float(s["final_drift_m"])) <= 1e-12 for s in failed),
+          f"the {len(failed)} failed springs carry no force at the end (final slip = final drift)")
+    check(all(s["building"] == "3" for s in failed) and all("degrading" not in st for b in summary["yielding"]["buildings"]
+                                                             if b["building"] != 3 for st in b["storeys"]),
+          "only B3's columns degrade (B1 and B2 are bilinear)")
 
 
 if __name__ == "__main__":
