@@ -8,7 +8,9 @@ namespace pounding::dynamics {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr int kMaxChangesAtOneDrift = 16;  // the longest chain is elastic → post-yield → post-capping → residual
+// The longest chain at one drift: a reversal, an unloading of zero length, a new excursion and the
+// reload on through 4 → 5 → 6 → 7 (seven changes).
+constexpr int kMaxChangesAtOneDrift = 16;
 
 int side_of(int branch) { return branch >= 12 ? -1 : 1; }
 
@@ -124,7 +126,7 @@ double ImkPeakOriented::beta(ImkMode mode, double numerator_kJ, double spent_kJ)
     return 1.0;
   }
   const double b = std::pow(std::max(0.0, numerator_kJ / left_kJ), parameters_.exponent[mode]);
-  if (b > 1.0) failing_ = true;
+  if (b >= 1.0) failing_ = true;  // (OpenSees: > 1) at 1 a stiffness would fall to zero
   return std::min(b, 1.0);
 }
 
@@ -149,6 +151,9 @@ void ImkPeakOriented::reverse(double drift_m) {
   const double recoverable_kJ = 0.5 * force * force / unloading_stiffness_;
   const double beta_k = beta(kStiffness, work_kJ_ - excursion_start_kJ_ - recoverable_kJ, work_kJ_ - recoverable_kJ);
   unloading_stiffness_ *= 1.0 - beta_k;
+  // Unloading would return ½F²/K_u: more than the spring ever received, and the law would make
+  // energy. Its energy is spent (this program's rule; OpenSees lets the work go negative).
+  if (!(unloading_stiffness_ > 0.0) || 0.5 * force * force > work_kJ_ * unloading_stiffness_) failing_ = true;
   line_.force_kN = force;
   line_.drift_m = drift_m;
   if (failing_) return fail(drift_m);

@@ -267,7 +267,7 @@ json output_schema_json() {
     if (c.shear_capacity_only)
       yielding.back()["only_when"] =
           "some yielding column has a shear capacity (column_shear_capacity_kN or [building.shear_capacity])";
-    if (c.degrading_only) yielding.back()["only_when"] = "some column's law is imk-peak-oriented";
+    if (c.degrading_only) yielding.back()["only_when"] = "some column's law is imk-peak-oriented or imk-pinching";
   }
   return {{"history", history},
           {"impacts", impacts},

@@ -166,7 +166,7 @@ void append_yielding(const analysis::RunReport& report, std::string& text) {
         std::isfinite(s.first_yield_t_s) ? fmt::format("first yield {:.6f} s", s.first_yield_t_s) : "elastic",
         s.hysteretic_kJ);
     if (s.degrading_springs > 0) {
-      fmt::format_to(out, "    degrading columns: {} of {} springs failed and lost their force{}\n",
+      fmt::format_to(out, "    degrading columns: {} of {} springs failed by their law and lost their force{}\n",
                      s.degrading_failures, s.degrading_springs,
                      s.degrading_failures > 0 ? fmt::format(", first at {:.6f} s", s.first_degrading_failure_t_s) : "");
     }

@@ -180,7 +180,8 @@ json yielding_json(const analysis::RunReport& report) {
     }
     buildings.back()["storeys"].push_back(std::move(storey));
   }
-  // "bilinear", "bouc-wen", or "mixed" when the two buildings' columns follow different laws.
+  // "bilinear", "bouc-wen", "imk-peak-oriented", "imk-pinching", or "mixed" when the buildings'
+  // columns follow different laws.
   std::string law;
   for (const dynamics::YieldingSpring& spring : report.springs) {
     const std::string own = spring.bouc_wen                      ? "bouc-wen"

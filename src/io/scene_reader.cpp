@@ -320,20 +320,6 @@ std::vector<double> polar_moments(TableReader& table, const model::BuildingDefin
   return moments;
 }
 
-/// A column grid's `yield_force_kN`: one number for every storey or a list of one a storey, each
-/// in model::kColumnYieldForce; empty if absent.
-std::vector<double> grid_yield_forces(TableReader& grid, int storeys) {
-  std::vector<double> forces = per_storey(grid, "yield_force_kN", model::kColumnYieldForce, storeys);
-  const std::string key = grid.key_path("yield_force_kN");
-  if (!forces.empty() && forces.size() != static_cast<std::size_t>(storeys)) {
-    throw InputError(key, fmt::format("{} values", forces.size()),
-                     fmt::format("needs one value per storey ({})", storeys));
-  }
-  for (std::size_t j = 0; j < forces.size(); ++j)
-    require_range(fmt::format("{}[{}]", key, j + 1), forces[j], model::kColumnYieldForce);
-  return forces;
-}
-
 std::vector<model::Column> read_columns(TableReader& table, int storeys) {
   std::vector<model::Column> columns;
   if (const toml::node* node = table.find("columns")) {
@@ -359,7 +345,8 @@ std::vector<model::Column> read_columns(TableReader& table, int storeys) {
       const auto ys = grid.numbers_of(grid.require("y"), grid.key_path("y"));
       const double b = in_range(grid, grid.require("b_m"), grid.key_path("b_m"), model::kColumnSize);
       const double h = in_range(grid, grid.require("h_m"), grid.key_path("h_m"), model::kColumnSize);
-      const std::vector<double> yield_force_kN = grid_yield_forces(grid, storeys);
+      // One number for every storey or one a storey (a list checked by validate()).
+      const std::vector<double> yield_force_kN = per_storey(grid, "yield_force_kN", model::kColumnYieldForce, storeys);
       grid.finish();
       // Counted before a column is made: 10 000 × 10 000 would be 10⁸ columns from 150 kB of text.
       const double total = static_cast<double>(columns.size()) + static_cast<double>(xs.size()) * ys.size();

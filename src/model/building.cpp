@@ -143,6 +143,9 @@ void validate_shear_failure(const BuildingDefinition& b) {
   }
 }
 
+/// A column's own strength key as the scene gave it: its grid's, `column_grid[g].yield_force_kN`.
+std::string own_strength_key(const Column& c) { return c.key.substr(0, c.key.find(' ')) + ".yield_force_kN"; }
+
 void validate_columns(const BuildingDefinition& b) {
   if (b.columns.empty()) {
     throw InputError("columns", "none", "give columns (or column_grid), or storey_stiffness");
@@ -162,6 +165,10 @@ void validate_columns(const BuildingDefinition& b) {
     require_range(key + ".h", c.h_m, kColumnSize);
   }
   refuse_repeated_columns(b.columns);
+  for (const Column& c : b.columns) {  // a grid's own yield forces (each of its columns holds them)
+    if (c.yield_force_kN.empty()) continue;
+    validate_per_floor(c.yield_force_kN, own_strength_key(c).c_str(), b.storeys, kColumnYieldForce, "storey");
+  }
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
   if (!b.column_shear_capacity_kN.empty()) {
     validate_per_floor(b.column_shear_capacity_kN, "column_shear_capacity_kN", b.storeys, kColumnShearCapacity,
@@ -251,9 +258,6 @@ void validate_imk(const BuildingDefinition& b) {
   require(law.imk_kappa_f.has_value(), "hysteresis.kappaF");
   require(law.imk_kappa_d.has_value(), "hysteresis.kappaD");
 }
-
-/// A column's own strength key as the scene gave it: its grid's, `column_grid[g].yield_force_kN`.
-std::string own_strength_key(const Column& c) { return c.key.substr(0, c.key.find(' ')) + ".yield_force_kN"; }
 
 /// The first column with a yield force of its own, if any.
 const Column* column_with_own_strength(const BuildingDefinition& b) {
@@ -479,7 +483,7 @@ std::span<const HysteresisSpec> hysteresis_specs() {
               "D⁻, the rate of cyclic deterioration on the negative side"),
       imk_row("kappaF", &HystereticLaw::imk_kappa_f, kImkKappa,
               "κ_F: the pinching point's force over that of the line to the global peak", "required",
-              "1 with kappaD = 0: no pinching", {"imk-pinching"}),
+              "1 with kappaD = 0: the pinching point on the line to the global peak", {"imk-pinching"}),
       imk_row("kappaD", &HystereticLaw::imk_kappa_d, kImkKappa,
               "κ_D: the pinching point's drift, (1 − κ_D) × the global peak's plastic drift", "required", {},
               {"imk-pinching"}),
@@ -658,16 +662,18 @@ void refuse_steep_imk_hardening(const Building& building) {
     const std::vector<double>& up_m = own && !positive ? law.imk_up_neg_m : law.imk_up_pos_m;
     const double cap_ratio = positive ? *law.imk_fmax_fy_pos : law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos);
     const char* key = own && !positive ? "hysteresis.Up_neg" : "hysteresis.Up_pos";
+    const char* cap_key = !positive && law.imk_fmax_fy_neg ? "FmaxFy_neg" : "FmaxFy_pos";
     for (std::size_t j = 0; j < up_m.size(); ++j) {
       for (std::size_t c = 0; c < building.definition.columns.size(); ++c) {
         for (int direction = 0; direction < 2; ++direction) {
           const double least_m =
               (cap_ratio - 1.0) * column_yield_drift_m(building, static_cast<int>(j) + 1, c, direction);
           if (up_m[j] > least_m) continue;
-          throw InputError(indexed(key, j), format_value(up_m[j]),
-                           fmt::format("must exceed (FmaxFy - 1) d_y = {:.4g} m (storey {} along {}): the post-yield "
-                                       "slope would reach the elastic stiffness",
-                                       least_m, j + 1, direction == 0 ? "x" : "y"));
+          throw InputError(
+              indexed(key, j), format_value(up_m[j]),
+              fmt::format("must exceed ({} - 1) d_y = {:.4g} m on the {} side (storey {} along {}): the "
+                          "post-yield slope would reach the elastic stiffness",
+                          cap_key, least_m, positive ? "positive" : "negative", j + 1, direction == 0 ? "x" : "y"));
         }
       }
     }

@@ -176,6 +176,20 @@ BOOST_AUTO_TEST_CASE(the_spring_fails_where_its_energy_is_spent_or_its_strength_
   drive(spent, d, 0.025);
   drive(spent, d, -0.005);
   BOOST_TEST(spent.failed());
+  // A stiffness deterioration that would let unloading return more than the spring received,
+  // ½F²/K_u > E (this program's rule): β_K = 0.147/(10 Λ_K − 0.147) at the first reversal, so
+  // Λ_K = 0.033 gives β_K = 0.80, K_u = 200 kN/m, ½ 11²/200 = 0.30 kJ > E = 0.2075 kJ: fails; Λ_K =
+  // 0.05 gives β_K = 0.42, 0.10 kJ: goes on unloading.
+  for (const auto& [lamda_k, fails] : {std::pair{0.033, true}, std::pair{0.05, false}}) {
+    ImkParameters only_k = parameters();
+    only_k.lamda_m = {0.0, 0.0, 0.0, lamda_k};
+    ImkPeakOriented law(only_k);
+    d = 0.0;
+    drive(law, d, 0.025);
+    drive(law, d, 0.024);
+    BOOST_TEST(law.failed() == fails);
+    BOOST_TEST(law.dissipated_kJ(d) >= 0.0);
+  }
   // No residual strength: fails at the end of the post-capping branch, at U_cap + F_max/|K_pc|.
   ImkPeakOriented brittle(parameters(0.0, 0.0));
   d = 0.0;
