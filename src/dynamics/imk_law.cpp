@@ -255,49 +255,48 @@ bool ImkPeakOriented::advance(double drift_m, int direction) {
       break;
     }
     close_segment(drift_m);
-    Backbone& s = side(direction);
-    switch (branch_ % 10) {
-      case 0: enter(direction > 0 ? 5 : 15, drift_m); break;
-      case 1:
-        if (direction * line_.force_kN > 0.0) {  // back at the reversal point: on to the global peak
-          const bool beyond = direction * s.global_drift_m > direction * s.local_drift_m;
-          if (beyond) reload_slope_ = (s.global_force_kN - s.local_force_kN) / (s.global_drift_m - s.local_drift_m);
-          if (beyond && pinches_before_global(s, direction)) {
-            reload_slope_ = (pinch_force_kN_ - s.local_force_kN) / (pinch_drift_m_ - s.local_drift_m);
-            enter(direction > 0 ? 2 : 12, drift_m);
-            break;
-          }
-          enter((beyond ? 4 : 5) + (direction > 0 ? 0 : 10), drift_m);
-        } else {
-          new_excursion(drift_m, direction);
-        }
-        break;
-      case 2: {  // past the pinching point: on to the local peak if it lies ahead and steeper, else the global
-        const double global_slope = (s.global_force_kN - pinch_force_kN_) / (s.global_drift_m - pinch_drift_m_);
-        const double local_slope = (s.local_force_kN - pinch_force_kN_) / (s.local_drift_m - pinch_drift_m_);
-        const bool to_local = direction * pinch_drift_m_ < direction * s.local_drift_m &&
-                              direction * pinch_force_kN_ < direction * s.local_force_kN &&
-                              direction * s.local_force_kN < direction * s.global_force_kN &&
-                              local_slope > global_slope;
-        reload_slope_ = to_local ? local_slope : global_slope;
-        enter(branch_ + (to_local ? 1 : 2), drift_m);
-        break;
-      }
-      case 3: {
-        const bool beyond = direction * s.global_drift_m > direction * s.local_drift_m;
-        if (beyond) reload_slope_ = (s.global_force_kN - s.local_force_kN) / (s.global_drift_m - s.local_drift_m);
-        enter(branch_ + (beyond ? 1 : 2), drift_m);
-        break;
-      }
-      case 4:
-      case 5: enter(branch_ + 1, drift_m); break;
-      case 6:
-        enter(branch_ + 1, drift_m);
-        if (direction * s.residual_force_kN <= 0.0) fail(drift_m);  // no residual strength
-        break;
-    }
+    pass_end(drift_m, direction);
   }
   return changed;
+}
+
+void ImkPeakOriented::pass_end(double drift_m, int direction) {
+  const Backbone& s = side(direction);
+  const auto slope = [](double d0, double f0, double d1, double f1) { return (f1 - f0) / (d1 - d0); };
+  const bool global_beyond_local = direction * s.global_drift_m > direction * s.local_drift_m;
+  const int mirror = direction > 0 ? 0 : 10;
+  switch (branch_ % 10) {
+    case 0: return enter(5 + mirror, drift_m);
+    case 1:
+      if (direction * line_.force_kN <= 0.0) return new_excursion(drift_m, direction);  // zero force
+      // Back at the reversal point: on to the global peak (through the pinching point, IMKPinching).
+      if (global_beyond_local && pinches_before_global(s, direction)) {
+        reload_slope_ = slope(s.local_drift_m, s.local_force_kN, pinch_drift_m_, pinch_force_kN_);
+        return enter(2 + mirror, drift_m);
+      }
+      if (global_beyond_local)
+        reload_slope_ = slope(s.local_drift_m, s.local_force_kN, s.global_drift_m, s.global_force_kN);
+      return enter((global_beyond_local ? 4 : 5) + mirror, drift_m);
+    case 2: {  // past the pinching point: on to the local peak if it lies ahead and steeper, else the global
+      const double to_global = slope(pinch_drift_m_, pinch_force_kN_, s.global_drift_m, s.global_force_kN);
+      const double to_local = slope(pinch_drift_m_, pinch_force_kN_, s.local_drift_m, s.local_force_kN);
+      const bool local = direction * pinch_drift_m_ < direction * s.local_drift_m &&
+                         direction * pinch_force_kN_ < direction * s.local_force_kN &&
+                         direction * s.local_force_kN < direction * s.global_force_kN && to_local > to_global;
+      reload_slope_ = local ? to_local : to_global;
+      return enter(branch_ + (local ? 1 : 2), drift_m);
+    }
+    case 3:
+      if (global_beyond_local)
+        reload_slope_ = slope(s.local_drift_m, s.local_force_kN, s.global_drift_m, s.global_force_kN);
+      return enter(branch_ + (global_beyond_local ? 1 : 2), drift_m);
+    case 4:
+    case 5: return enter(branch_ + 1, drift_m);
+    case 6:
+      enter(branch_ + 1, drift_m);
+      if (direction * s.residual_force_kN <= 0.0) fail(drift_m);  // no residual strength
+      return;
+  }
 }
 
 }  // namespace pounding::dynamics

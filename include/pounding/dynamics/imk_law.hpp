@@ -117,6 +117,9 @@ class ImkPeakOriented {
   /// F on side's backbone at d (elastic below the yield drift, at least the residual force).
   static double backbone_force(const Backbone& side, double drift_m, double stiffness);
   void reverse(double drift_m);
+  /// The present branch's end reached at drift d heading `direction` (not the ultimate drift):
+  /// the next branch (or a new excursion at zero force).
+  void pass_end(double drift_m, int direction);
   void new_excursion(double drift_m, int direction);
   void deteriorate_backbone(Backbone& side, const std::array<double, 4>& beta);
   void reload(double drift_m, int direction);
