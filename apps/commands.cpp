@@ -242,12 +242,12 @@ std::string imk_text(const model::HystereticLaw& law) {
 /// Each storey's yield shear along x and y (kN): what the columns carry when they all yield
 /// together in a translation, Σ k · d_y.
 void print_storey_strengths(const model::Building& building) {
+  const model::BuildingDefinition& d = building.definition;
+  const bool storey_strength =
+      std::all_of(d.columns.begin(), d.columns.end(), [](const model::Column& c) { return c.yield_force_kN.empty(); });
   std::vector<std::string> storeys;
   for (int storey = 1; storey <= building.storeys(); ++storey) {
     const auto shear_kN = [&](int direction) {  // Σ k_c d_y,c over the storey's columns
-      const model::BuildingDefinition& d = building.definition;
-      const bool storey_strength = std::all_of(d.columns.begin(), d.columns.end(),
-                                               [](const model::Column& c) { return c.yield_force_kN.empty(); });
       if (storey_strength) {  // one d_y for all: (Σ k_c) d_y, as printed before columns had their own
         return model::storey_column_stiffness(building, storey, direction) *
                model::column_yield_drift_m(building, storey, direction);

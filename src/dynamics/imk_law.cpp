@@ -59,7 +59,7 @@ void ImkPeakOriented::enter(int branch, double drift_m) {
   branch_ = branch;
   entry_drift_m_ = drift_m;
   const double k = parameters_.stiffness_kN_per_m;
-  LineBranch line{.unloading_stiffness_kN_per_m = unloading_stiffness_};
+  LineBranch line;
   const Backbone& s = side_of(branch) > 0 ? positive_ : negative_;
   switch (branch % 10) {
     case 0:  // elastic, about the origin

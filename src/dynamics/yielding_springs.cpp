@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace pounding::dynamics {
 
@@ -15,34 +14,22 @@ std::optional<BoucWenShape> bouc_wen_shape(const model::HystereticLaw& law) {
   return BoucWenShape{.a = law.bouc_wen_a, .beta = law.bouc_wen_beta, .gamma = law.bouc_wen_gamma, .n = law.bouc_wen_n};
 }
 
-/// Storey j's value of an IMK list, or its positive side's where the negative side's is not given;
-/// `none` for an empty list of both.
-double storey_value(const std::vector<double>& own, const std::vector<double>& positive, int storey, double none) {
-  const std::vector<double>& values = own.empty() ? positive : own;
-  return values.empty() ? none : values.at(static_cast<std::size_t>(storey - 1));
-}
-
 std::optional<ImkParameters> imk_parameters(const model::HystereticLaw& law, int storey, double stiffness_kN_per_m,
                                             double yield_drift_m) {
   if (!law.degrades()) return std::nullopt;
-  const double none = std::numeric_limits<double>::infinity(), yield_force_kN = stiffness_kN_per_m * yield_drift_m;
-  const ImkSide positive{.yield_force_kN = yield_force_kN,
-                         .plastic_drift_m = storey_value(law.imk_up_pos_m, {}, storey, none),
-                         .post_cap_drift_m = storey_value(law.imk_upc_pos_m, {}, storey, none),
-                         .ultimate_drift_m = storey_value(law.imk_uu_pos_m, {}, storey, none),
-                         .cap_ratio = *law.imk_fmax_fy_pos,
-                         .residual_ratio = law.imk_fres_fy_pos,
-                         .deterioration_rate = law.imk_d_pos};
-  const ImkSide negative{.yield_force_kN = yield_force_kN,
-                         .plastic_drift_m = storey_value(law.imk_up_neg_m, law.imk_up_pos_m, storey, none),
-                         .post_cap_drift_m = storey_value(law.imk_upc_neg_m, law.imk_upc_pos_m, storey, none),
-                         .ultimate_drift_m = storey_value(law.imk_uu_neg_m, law.imk_uu_pos_m, storey, none),
-                         .cap_ratio = law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos),
-                         .residual_ratio = law.imk_fres_fy_neg.value_or(law.imk_fres_fy_pos),
-                         .deterioration_rate = law.imk_d_neg};
+  const auto side = [&](bool positive) {  // F_y = k d_y on both sides
+    const model::ImkSideKeys given = model::imk_side(law, storey, positive);
+    return ImkSide{.yield_force_kN = stiffness_kN_per_m * yield_drift_m,
+                   .plastic_drift_m = given.plastic_drift_m,
+                   .post_cap_drift_m = given.post_cap_drift_m,
+                   .ultimate_drift_m = given.ultimate_drift_m,
+                   .cap_ratio = given.cap_ratio,
+                   .residual_ratio = given.residual_ratio,
+                   .deterioration_rate = given.rate};
+  };
   return ImkParameters{.stiffness_kN_per_m = stiffness_kN_per_m,
-                       .positive = positive,
-                       .negative = negative,
+                       .positive = side(true),
+                       .negative = side(false),
                        .lamda_m = {law.imk_lamda_s_m, law.imk_lamda_c_m, law.imk_lamda_a_m, law.imk_lamda_k_m},
                        .exponent = {law.imk_c_s, law.imk_c_c, law.imk_c_a, law.imk_c_k},
                        .pinching = law.kind == model::HystereticLaw::Kind::imk_pinching

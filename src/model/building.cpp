@@ -491,6 +491,28 @@ std::span<const HysteresisSpec> hysteresis_specs() {
   return kSpecs;
 }
 
+ImkSideKeys imk_side(const HystereticLaw& law, int storey, bool positive) {
+  const auto at = [storey](const std::vector<double>& own, const std::vector<double>& fallback, double none) {
+    const std::vector<double>& values = own.empty() ? fallback : own;
+    return values.empty() ? none : values.at(static_cast<std::size_t>(storey - 1));
+  };
+  const double none = std::numeric_limits<double>::infinity();
+  if (positive) {
+    return {.plastic_drift_m = at(law.imk_up_pos_m, {}, none),
+            .post_cap_drift_m = at(law.imk_upc_pos_m, {}, none),
+            .ultimate_drift_m = at(law.imk_uu_pos_m, {}, none),
+            .cap_ratio = *law.imk_fmax_fy_pos,
+            .residual_ratio = law.imk_fres_fy_pos,
+            .rate = law.imk_d_pos};
+  }
+  return {.plastic_drift_m = at(law.imk_up_neg_m, law.imk_up_pos_m, none),
+          .post_cap_drift_m = at(law.imk_upc_neg_m, law.imk_upc_pos_m, none),
+          .ultimate_drift_m = at(law.imk_uu_neg_m, law.imk_uu_pos_m, none),
+          .cap_ratio = law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos),
+          .residual_ratio = law.imk_fres_fy_neg.value_or(law.imk_fres_fy_pos),
+          .rate = law.imk_d_neg};
+}
+
 const char* to_string(HystereticLaw::Kind kind) {
   return hysteretic_law_names()[static_cast<std::size_t>(kind)].data();  // literals: NUL-terminated
 }
@@ -658,19 +680,17 @@ void refuse_collapse_before_yield_shear(const Building& building) {
 void refuse_steep_imk_hardening(const Building& building) {
   const HystereticLaw& law = building.definition.hysteresis;
   for (const bool positive : {true, false}) {
-    const bool own = positive || !law.imk_up_neg_m.empty();
-    const std::vector<double>& up_m = own && !positive ? law.imk_up_neg_m : law.imk_up_pos_m;
-    const double cap_ratio = positive ? *law.imk_fmax_fy_pos : law.imk_fmax_fy_neg.value_or(*law.imk_fmax_fy_pos);
-    const char* key = own && !positive ? "hysteresis.Up_neg" : "hysteresis.Up_pos";
+    const char* key = !positive && !law.imk_up_neg_m.empty() ? "hysteresis.Up_neg" : "hysteresis.Up_pos";
     const char* cap_key = !positive && law.imk_fmax_fy_neg ? "FmaxFy_neg" : "FmaxFy_pos";
-    for (std::size_t j = 0; j < up_m.size(); ++j) {
+    for (int storey = 1; storey <= building.definition.storeys; ++storey) {
+      const ImkSideKeys side = imk_side(law, storey, positive);
+      const std::size_t j = static_cast<std::size_t>(storey - 1);
       for (std::size_t c = 0; c < building.definition.columns.size(); ++c) {
         for (int direction = 0; direction < 2; ++direction) {
-          const double least_m =
-              (cap_ratio - 1.0) * column_yield_drift_m(building, static_cast<int>(j) + 1, c, direction);
-          if (up_m[j] > least_m) continue;
+          const double least_m = (side.cap_ratio - 1.0) * column_yield_drift_m(building, storey, c, direction);
+          if (side.plastic_drift_m > least_m) continue;
           throw InputError(
-              indexed(key, j), format_value(up_m[j]),
+              indexed(key, j), format_value(side.plastic_drift_m),
               fmt::format("must exceed ({} - 1) d_y = {:.4g} m on the {} side (storey {} along {}): the "
                           "post-yield slope would reach the elastic stiffness",
                           cap_key, least_m, positive ? "positive" : "negative", j + 1, direction == 0 ? "x" : "y"));

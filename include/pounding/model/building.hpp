@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -125,6 +126,19 @@ struct HystereticLaw {
   bool is_smooth() const { return kind == Kind::bouc_wen; }
   bool degrades() const { return kind == Kind::imk_peak_oriented || kind == Kind::imk_pinching; }
 };
+
+/// One side of an IMK law's backbone in one storey, as the scene gave it (both sides as positive
+/// numbers; the negative side's keys left out are the positive side's).
+struct ImkSideKeys {
+  double plastic_drift_m = 0.0;                                       // U_p
+  double post_cap_drift_m = 0.0;                                      // U_pc
+  double ultimate_drift_m = std::numeric_limits<double>::infinity();  // U_u; infinite: not given
+  double cap_ratio = 1.0;                                             // F_max / F_y
+  double residual_ratio = 0.0;                                        // F_res / F_y
+  double rate = 1.0;                                                  // D
+};
+/// Storey `storey` (1-based)'s positive or negative side. @pre law.degrades(), validated.
+ImkSideKeys imk_side(const HystereticLaw& law, int storey, bool positive);
 
 /// The scene's name of a law ("elastic", "bilinear", "bouc-wen", "imk-peak-oriented", "imk-pinching").
 const char* to_string(HystereticLaw::Kind kind);
