@@ -244,6 +244,7 @@ std::string imk_text(const model::HystereticLaw& law) {
 void print_storey_strengths(const model::Building& building) {
   const model::BuildingDefinition& d = building.definition;
   const bool storey_strength =
+      !d.flexural_strength &&
       std::all_of(d.columns.begin(), d.columns.end(), [](const model::Column& c) { return c.yield_force_kN.empty(); });
   std::vector<std::string> storeys;
   for (int storey = 1; storey <= building.storeys(); ++storey) {
@@ -262,10 +263,11 @@ void print_storey_strengths(const model::Building& building) {
     };
     storeys.push_back(fmt::format("{:.5g} | {:.5g}", shear_kN(0), shear_kN(1)));
   }
+  const std::string source = d.flexural_strength ? " (columns from their sections, 2 M_y / H)" : "";
   if (all_equal(storeys)) {
-    fmt::print("  storey yield shear x | y: {} kN, every storey\n", storeys.front());
+    fmt::print("  storey yield shear{} x | y: {} kN, every storey\n", source, storeys.front());
   } else {
-    fmt::print("  storey yield shears x | y (kN), storey 1 first: {}\n", fmt::join(storeys, "; "));
+    fmt::print("  storey yield shears{} x | y (kN), storey 1 first: {}\n", source, fmt::join(storeys, "; "));
   }
 }
 
@@ -275,7 +277,9 @@ void print_storey_strengths(const model::Building& building) {
 void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
   const model::Building& building = system.building(b);
   const model::BuildingDefinition& d = building.definition;
-  if (d.column_shear_capacity_kN.empty() && !d.shear_capacity) return;
+  const bool own_capacity = std::any_of(d.columns.begin(), d.columns.end(),
+                                        [](const model::Column& c) { return !c.shear_capacity_kN.empty(); });
+  if (d.column_shear_capacity_kN.empty() && !d.shear_capacity && !own_capacity) return;
   std::vector<std::string> storeys;
   for (int storey = 1; storey <= d.storeys; ++storey) {
     std::array<std::string, 2> along;

@@ -200,13 +200,15 @@ int main(int argc, char** argv) {
   CLI::App* settings_app =
       app.add_subcommand("settings",
                          "The [solver] and [contact] settings, the run limits and the [excitation], [output], "
-                         "[building.hysteresis], [building.limit_states] and [building.shear_capacity] keys: key, "
+                         "[building.hysteresis], [building.limit_states], [building.shear_capacity] and "
+                         "[building.flexural_strength] keys: key, "
                          "option, type, "
                          "default, range (and the methods using each solver setting)");
   settings_app->add_flag("--json", settings.json,
                          "As JSON (key, toml, option, python, type, default, range or choices, unit, methods)");
   settings_app->add_option("--markdown", settings.markdown,
-                           "solver, contact, limits, excitation, output, hysteresis, limit_states or shear_capacity: "
+                           "solver, contact, limits, excitation, output, hysteresis, limit_states, shear_capacity or "
+                           "flexural_strength: "
                            "that section's tables in "
                            "docs/scene-format.md (limits: docs/guide/limits.md)");
 

@@ -1,7 +1,7 @@
 // `pounding settings`: the [solver] and [contact] settings, the run limits, the [excitation] and
 // [output] keys and the building's key tables (analysis::setting_specs(), contact_setting_specs(),
 // limit_specs(), excitation::excitation_specs(), output_specs(), model::hysteresis_specs(),
-// drift_limit_specs(), shear_capacity_specs()) as text, JSON, or the
+// drift_limit_specs(), shear_capacity_specs(), flexural_strength_specs()) as text, JSON, or the
 // Markdown tables docs/scene-format.md and docs/guide/limits.md hold (tools/doc_tables.py writes
 // and checks them).
 
@@ -231,10 +231,12 @@ int run_settings(const SettingsCommand& command) {
       print_limit_states_markdown();
     } else if (*command.markdown == "shear_capacity") {
       print_keys_markdown(analysis::shear_capacity_specs());
+    } else if (*command.markdown == "flexural_strength") {
+      print_keys_markdown(analysis::flexural_strength_specs());
     } else {
       throw InputError("--markdown", *command.markdown,
-                       "expected solver, contact, limits, excitation, output, hysteresis, limit_states or "
-                       "shear_capacity");
+                       "expected solver, contact, limits, excitation, output, hysteresis, limit_states, "
+                       "shear_capacity or flexural_strength");
     }
     return 0;
   }
@@ -255,6 +257,9 @@ int run_settings(const SettingsCommand& command) {
     nlohmann::json shear_capacity = nlohmann::json::array();
     for (const auto& spec : analysis::shear_capacity_specs())
       shear_capacity.push_back(as_json(spec, "building.shear_capacity"));
+    nlohmann::json flexural_strength = nlohmann::json::array();
+    for (const auto& spec : analysis::flexural_strength_specs())
+      flexural_strength.push_back(as_json(spec, "building.flexural_strength"));
     fmt::print("{}\n", nlohmann::json{{"solver", solver},
                                       {"contact", contact},
                                       {"limits", limits},
@@ -263,6 +268,7 @@ int run_settings(const SettingsCommand& command) {
                                       {"hysteresis", hysteresis},
                                       {"limit_states", limit_states},
                                       {"shear_capacity", shear_capacity},
+                                      {"flexural_strength", flexural_strength},
                                       {"structural_types", structural_types_json()}}
                            .dump(2));
     return 0;
@@ -279,6 +285,7 @@ int run_settings(const SettingsCommand& command) {
   print_keys_text(model::hysteresis_specs(), "building.hysteresis");
   print_keys_text(analysis::drift_limit_specs(), "building.limit_states");
   print_keys_text(analysis::shear_capacity_specs(), "building.shear_capacity");
+  print_keys_text(analysis::flexural_strength_specs(), "building.flexural_strength");
   return 0;
 }
 

@@ -3,7 +3,8 @@
 document's `COMMAND:SECTION:begin` and `COMMAND:SECTION:end` markers is what
 `pounding COMMAND --markdown SECTION` prints, so the documented settings (analysis::setting_specs(),
 analysis::contact_setting_specs(), analysis::limit_specs(), model::hysteresis_specs(),
-analysis::drift_limit_specs(), analysis::shear_capacity_specs(), excitation::excitation_specs(),
+analysis::drift_limit_specs(), analysis::shear_capacity_specs(), analysis::flexural_strength_specs(),
+excitation::excitation_specs(),
 analysis::output_specs()) and output fields (io::output_schema_json()) are the code's.
 
 Usage: doc_tables.py [--check] POUNDING_PROGRAM [REPO_ROOT]   (CTest: docs_tables)"""
@@ -18,6 +19,7 @@ TABLES = (("docs/scene-format.md", "settings", "solver"),
           ("docs/scene-format.md", "settings", "excitation"),
           ("docs/scene-format.md", "settings", "output"),
           ("docs/scene-format.md", "settings", "shear_capacity"),
+          ("docs/scene-format.md", "settings", "flexural_strength"),
           ("docs/guide/limits.md", "settings", "limits"),
           ("docs/guide/output-columns.md", "outputs", "history"),
           ("docs/guide/output-columns.md", "outputs", "impacts"),

@@ -96,6 +96,35 @@ const std::vector<ShearCapacitySpec> kShearCapacitySpecs = {
      .details = "fixed for the run, not updated with the demand"},
 };
 
+const std::vector<FlexuralStrengthSpec> kFlexuralStrengthSpecs = {
+    {.key = "longitudinal_ratio",
+     .member = &model::FlexuralStrengthFormula::longitudinal_ratio,
+     .required = true,
+     .range = Range{0.001, 0.08, ""},
+     .description = "rho_l: the area of all longitudinal bars over b h",
+     .details = "a list gives each storey its own, storey 1 first; half of the bars in each face across the sway"},
+    {.key = "steel_yield_strength_MPa",
+     .member = &model::FlexuralStrengthFormula::steel_yield_strength_MPa,
+     .required = true,
+     .range = Range{200.0, 1000.0, "MPa"},
+     .description = "f_y: the longitudinal bars' yield strength (MPa)"},
+    {.key = "concrete_strength_MPa",
+     .member = &model::FlexuralStrengthFormula::concrete_strength_MPa,
+     .required = true,
+     .range = Range{10.0, 120.0, "MPa"},
+     .description = "f'c: the concrete's compressive strength (MPa)"},
+    {.key = "axial_load_kN",
+     .member = &model::FlexuralStrengthFormula::axial_load_kN,
+     .range = Range{0.0, 1e6, "kN"},
+     .description = "N: each column's axial compression (kN)",
+     .details = "unset: the storey's gravity share, g times the floor masses it carries over its number of columns; "
+                "at most the balanced load N_b"},
+    {.key = "cover_ratio",
+     .member = &model::FlexuralStrengthFormula::cover_ratio,
+     .range = Range{0.02, 0.3, ""},
+     .description = "d'/D: the bars' centroid from the face over the section's depth along the sway"},
+};
+
 const StructuralType& structural_type(std::string_view name) {
   const auto* type = std::find_if(kStructuralTypes.begin(), kStructuralTypes.end(),
                                   [&](const StructuralType& t) { return t.name == name; });
@@ -147,6 +176,37 @@ std::span<const ResidualDamageState> residual_damage_states() {
 
 void validate_shear_capacity(const model::ShearCapacityFormula& formula) {
   validate_keys<model::ShearCapacityFormula>(formula, kShearCapacitySpecs, "shear_capacity");
+}
+
+std::span<const FlexuralStrengthSpec> flexural_strength_specs() { return kFlexuralStrengthSpecs; }
+
+void validate_flexural_strength(const model::BuildingDefinition& building) {
+  const model::FlexuralStrengthFormula& formula = building.flexural_strength.value();
+  validate_keys<model::FlexuralStrengthFormula>(formula, kFlexuralStrengthSpecs, "flexural_strength");
+  if (formula.longitudinal_ratio.size() != static_cast<std::size_t>(building.storeys)) {
+    throw InputError("flexural_strength.longitudinal_ratio",
+                     fmt::format("{} values", formula.longitudinal_ratio.size()),
+                     fmt::format("needs one value per storey ({})", building.storeys));
+  }
+  for (int storey = 1; storey <= building.storeys; ++storey) {
+    for (std::size_t c = 0; c < building.columns.size(); ++c) {
+      if (!building.columns[c].yield_force_kN.empty()) continue;  // its own strength, not its section's
+      for (int direction = 0; direction < 2; ++direction) {
+        const model::SectionStrength strength = model::column_section_strength(building, storey, c, direction);
+        if (strength.axial_load_kN <= strength.balanced_axial_load_kN) continue;
+        const model::Column& column = building.columns[c];
+        throw InputError(
+            "flexural_strength.axial_load_kN", fmt::format("{:.5g} kN", strength.axial_load_kN),
+            fmt::format("is above the balanced load N_b = {:.5g} kN of {} in storey {} along {} ({}): the "
+                        "section's formula assumes the tension bars yield, which they do not beyond N_b; give the "
+                        "column's yield_force_kN instead",
+                        strength.balanced_axial_load_kN,
+                        column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key, storey,
+                        direction == 0 ? "x" : "y",
+                        formula.axial_load_kN ? "N given" : "N the storey's gravity share"));
+      }
+    }
+  }
 }
 
 std::array<double, 3> resolved_drift_limits(const model::DriftLimits& limits) {

@@ -690,6 +690,7 @@ void Scene::validate() const {
       buildings[i].validate();
       if (buildings[i].drift_limits) validate_drift_limits(*buildings[i].drift_limits);
       if (buildings[i].shear_capacity) validate_shear_capacity(*buildings[i].shear_capacity);
+      if (buildings[i].flexural_strength) validate_flexural_strength(buildings[i]);
     } catch (const InputError& error) {
       throw error.in_context(file.string(), building_key(i));
     }

@@ -266,7 +266,8 @@ json output_schema_json() {
                         {"description", c.description}});
     if (c.shear_capacity_only)
       yielding.back()["only_when"] =
-          "some yielding column has a shear capacity (column_shear_capacity_kN or [building.shear_capacity])";
+          "some yielding column has a shear capacity (column_shear_capacity_kN, [building.shear_capacity] or its own "
+          "shear_capacity_kN)";
     if (c.degrading_only) yielding.back()["only_when"] = "some column's law is imk-peak-oriented or imk-pinching";
   }
   return {{"history", history},

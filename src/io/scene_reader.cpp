@@ -320,6 +320,20 @@ std::vector<double> polar_moments(TableReader& table, const model::BuildingDefin
   return moments;
 }
 
+/// One entry of `columns` given as a table: `x`, `y` (m), `b_m`, `h_m` (m) and optionally its own
+/// `yield_force_kN` and `shear_capacity_kN` (one number or one a storey).
+model::Column column_of_table(TableReader& table, const toml::node& node, const std::string& key, int storeys) {
+  TableReader entry(*node.as_table(), key, table.file());
+  model::Column column;
+  column.position_m = Point2(entry.number("x"), entry.number("y"));
+  column.b_m = in_range(entry, entry.require("b_m"), entry.key_path("b_m"), model::kColumnSize);
+  column.h_m = in_range(entry, entry.require("h_m"), entry.key_path("h_m"), model::kColumnSize);
+  column.yield_force_kN = per_storey(entry, "yield_force_kN", model::kColumnYieldForce, storeys);
+  column.shear_capacity_kN = per_storey(entry, "shear_capacity_kN", model::kColumnShearCapacity, storeys);
+  entry.finish();
+  return column;
+}
+
 std::vector<model::Column> read_columns(TableReader& table, int storeys) {
   std::vector<model::Column> columns;
   if (const toml::node* node = table.find("columns")) {
@@ -330,7 +344,13 @@ std::vector<model::Column> read_columns(TableReader& table, int storeys) {
                         fmt::format("{} columns: a storey may have at most {}", array.size(), model::kMaxColumns));
     }
     for (std::size_t i = 0; i < array.size(); ++i) {
-      const auto v = table.numbers_of(array[i], fmt::format("{}[{}]", key, i + 1), 4);
+      const std::string entry_key = fmt::format("{}[{}]", key, i + 1);
+      if (array[i].is_table()) {
+        columns.push_back(column_of_table(table, array[i], entry_key, storeys));
+        columns.back().key = fmt::format("columns[{}]", i + 1);
+        continue;
+      }
+      const auto v = table.numbers_of(array[i], entry_key, 4);
       columns.push_back({Point2(v[0], v[1]), v[2], v[3]});
     }
   }
@@ -347,6 +367,8 @@ std::vector<model::Column> read_columns(TableReader& table, int storeys) {
       const double h = in_range(grid, grid.require("h_m"), grid.key_path("h_m"), model::kColumnSize);
       // One number for every storey or one a storey (a list checked by validate()).
       const std::vector<double> yield_force_kN = per_storey(grid, "yield_force_kN", model::kColumnYieldForce, storeys);
+      const std::vector<double> shear_capacity_kN =
+          per_storey(grid, "shear_capacity_kN", model::kColumnShearCapacity, storeys);
       grid.finish();
       // Counted before a column is made: 10 000 × 10 000 would be 10⁸ columns from 150 kB of text.
       const double total = static_cast<double>(columns.size()) + static_cast<double>(xs.size()) * ys.size();
@@ -359,7 +381,8 @@ std::vector<model::Column> read_columns(TableReader& table, int storeys) {
       for (std::size_t iy = 0; iy < ys.size(); ++iy) {
         for (std::size_t ix = 0; ix < xs.size(); ++ix) {
           columns.push_back({Point2(xs[ix], ys[iy]), b, h,
-                             fmt::format("column_grid[{}] x[{}] y[{}]", g + 1, ix + 1, iy + 1), yield_force_kN});
+                             fmt::format("column_grid[{}] x[{}] y[{}]", g + 1, ix + 1, iy + 1), yield_force_kN,
+                             shear_capacity_kN});
         }
       }
     }
@@ -395,7 +418,7 @@ std::vector<Eigen::Matrix3d> storey_matrices(TableReader& table, const toml::nod
 void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (const toml::node* node = table.find("storey_stiffness")) {
     for (const char* other : {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s",
-                              "column_shear_capacity_kN", "shear_capacity"}) {
+                              "column_shear_capacity_kN", "shear_capacity", "flexural_strength"}) {
       if (table.has(other)) {
         throw table.error(*node, table.key_path("storey_stiffness"),
                           fmt::format("give either storey_stiffness or columns with {}, not both", other));
@@ -443,6 +466,7 @@ void read_keys(TableReader& table, Owner& owner, std::span<const KeySpec<Owner>>
           } else if constexpr (std::is_same_v<T, bool>) {
             value = table.optional_boolean(spec.key).value_or(value);
           } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+            if (required(spec)) table.require(spec.key);
             value = per_storey(table, spec.key.data(), *spec.range, storeys);
           } else {
             value = table.optional_number(spec.key);
@@ -491,9 +515,10 @@ model::HystereticLaw read_hysteresis(TableReader& table, int storeys) {
 /// A table whose keys are all `specs`' rows ([building.limit_states], [building.shear_capacity]),
 /// its required ones required.
 template <typename Owner>
-Owner read_table_of_keys(TableReader table, std::span<const analysis::KeySpec<Owner>> specs) {
+Owner read_table_of_keys(TableReader table, std::span<const analysis::KeySpec<Owner>> specs, int storeys = 0) {
   Owner owner;
-  read_keys(table, owner, specs, [](const analysis::KeySpec<Owner>& spec) { return spec.required; });
+  read_keys(
+      table, owner, specs, [](const analysis::KeySpec<Owner>& spec) { return spec.required; }, storeys);
   table.finish();
   return owner;
 }
@@ -536,6 +561,8 @@ model::BuildingDefinition read_building(TableReader table) {
     b.drift_limits = read_table_of_keys(*limits, analysis::drift_limit_specs());
   if (auto capacity = table.optional_subtable("shear_capacity"))
     b.shear_capacity = read_table_of_keys(*capacity, analysis::shear_capacity_specs());
+  if (auto strength = table.optional_subtable("flexural_strength"))
+    b.flexural_strength = read_table_of_keys(*strength, analysis::flexural_strength_specs(), b.storeys);
   if (const toml::node* p_delta = table.find("p_delta")) {
     if (!p_delta->is_boolean()) throw table.error(*p_delta, table.key_path("p_delta"), "expected true or false");
     b.p_delta = **p_delta->as_boolean();

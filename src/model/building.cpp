@@ -137,14 +137,19 @@ void validate_shear_failure(const BuildingDefinition& b) {
         "needs bilinear, imk-peak-oriented or imk-pinching columns ([building.hysteresis] law): the columns' sway "
         "shear is checked where they yield");
   }
-  if (b.column_shear_capacity_kN.empty() && !b.shear_capacity) {
+  const bool own_capacity =
+      std::any_of(b.columns.begin(), b.columns.end(), [](const Column& c) { return !c.shear_capacity_kN.empty(); });
+  if (b.column_shear_capacity_kN.empty() && !b.shear_capacity && !own_capacity) {
     throw InputError("column_shear_failure", "\"lose-stiffness\"",
-                     "needs a shear capacity: column_shear_capacity_kN or [building.shear_capacity]");
+                     "needs a shear capacity: column_shear_capacity_kN, [building.shear_capacity] or a column's "
+                     "shear_capacity_kN");
   }
 }
 
-/// A column's own strength key as the scene gave it: its grid's, `column_grid[g].yield_force_kN`.
-std::string own_strength_key(const Column& c) { return c.key.substr(0, c.key.find(' ')) + ".yield_force_kN"; }
+/// A column's own key as the scene gave it: its grid's, `column_grid[g].<key>`, or its entry's,
+/// `columns[i].<key>`.
+std::string own_key(const Column& c, const char* key) { return c.key.substr(0, c.key.find(' ')) + "." + key; }
+std::string own_strength_key(const Column& c) { return own_key(c, "yield_force_kN"); }
 
 void validate_columns(const BuildingDefinition& b) {
   if (b.columns.empty()) {
@@ -166,8 +171,12 @@ void validate_columns(const BuildingDefinition& b) {
   }
   refuse_repeated_columns(b.columns);
   for (const Column& c : b.columns) {  // a grid's own yield forces (each of its columns holds them)
-    if (c.yield_force_kN.empty()) continue;
-    validate_per_floor(c.yield_force_kN, own_strength_key(c).c_str(), b.storeys, kColumnYieldForce, "storey");
+    if (!c.yield_force_kN.empty())
+      validate_per_floor(c.yield_force_kN, own_strength_key(c).c_str(), b.storeys, kColumnYieldForce, "storey");
+    if (!c.shear_capacity_kN.empty()) {
+      validate_per_floor(c.shear_capacity_kN, own_key(c, "shear_capacity_kN").c_str(), b.storeys, kColumnShearCapacity,
+                         "storey");
+    }
   }
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
   if (!b.column_shear_capacity_kN.empty()) {
@@ -269,6 +278,9 @@ const Column* column_with_own_strength(const BuildingDefinition& b) {
 void validate_hysteresis(const BuildingDefinition& b) {
   const HystereticLaw& law = b.hysteresis;
   const Column* own = column_with_own_strength(b);
+  if (!law.yields() && b.flexural_strength) {
+    throw InputError("flexural_strength", "given", "needs yielding columns ([building.hysteresis] law)");
+  }
   if (!law.yields() && own != nullptr) {
     throw InputError(own_strength_key(*own), format_value(own->yield_force_kN.front()),
                      "needs yielding columns ([building.hysteresis] law)");
@@ -284,11 +296,17 @@ void validate_hysteresis(const BuildingDefinition& b) {
   if (!law.yield_shear_kN.empty()) strengths.push_back("yield_shear_kN");
   const bool every_column_own =
       std::all_of(b.columns.begin(), b.columns.end(), [](const Column& c) { return !c.yield_force_kN.empty(); });
-  if (strengths.size() != 1 && !(strengths.empty() && every_column_own)) {
-    throw InputError("hysteresis." + (strengths.empty() ? std::string("yield_drift_ratio") : strengths[0]),
-                     strengths.empty() ? "missing" : "given with " + strengths[1],
-                     "give one of yield_drift_ratio, yield_drift_m and yield_shear_kN (or every column grid "
-                     "its yield_force_kN)");
+  if (b.flexural_strength && !strengths.empty()) {
+    throw InputError("hysteresis." + strengths[0], "given with [building.flexural_strength]",
+                     "give the columns' strength one way: the section's ([building.flexural_strength]) or the "
+                     "storey's (yield_drift_ratio, yield_drift_m or yield_shear_kN)");
+  }
+  if (strengths.size() != 1 && !(strengths.empty() && (every_column_own || b.flexural_strength))) {
+    throw InputError(
+        "hysteresis." + (strengths.empty() ? std::string("yield_drift_ratio") : strengths[0]),
+        strengths.empty() ? "missing" : "given with " + strengths[1],
+        "give one of yield_drift_ratio, yield_drift_m and yield_shear_kN (or [building.flexural_strength], "
+        "or every column its yield_force_kN)");
   }
   for (const HysteresisSpec& spec : hysteresis_specs()) {
     if (!is_per_storey(spec)) continue;
@@ -598,10 +616,60 @@ double storey_column_stiffness(const Building& building, int storey, int directi
 
 double column_yield_drift_m(const Building& building, int storey, std::size_t column, int direction) {
   const BuildingDefinition& d = building.definition;
+  const std::optional<double> force_kN = column_yield_force_kN(d, storey, column, direction);
+  if (!force_kN) return column_yield_drift_m(building, storey, direction);
   const Column& c = d.columns.at(column);
-  if (c.yield_force_kN.empty()) return column_yield_drift_m(building, storey, direction);
-  const double k = column_stiffness(c, d.E_kPa, d.storey_height_m[storey - 1], building.frame_factor)[direction];
-  return c.yield_force_kN.at(static_cast<std::size_t>(storey - 1)) / k;
+  return *force_kN / column_stiffness(c, d.E_kPa, d.storey_height_m[storey - 1], building.frame_factor)[direction];
+}
+
+std::optional<double> column_yield_force_kN(const BuildingDefinition& definition, int storey, std::size_t column,
+                                            int direction) {
+  const Column& c = definition.columns.at(column);
+  if (!c.yield_force_kN.empty()) return c.yield_force_kN.at(static_cast<std::size_t>(storey - 1));
+  if (!definition.flexural_strength) return std::nullopt;
+  return column_section_strength(definition, storey, column, direction).yield_force_kN;
+}
+
+double column_axial_load_kN(const BuildingDefinition& definition, int storey, std::optional<double> given) {
+  if (given) return *given;
+  double carried_t = 0.0;
+  for (std::size_t floor = static_cast<std::size_t>(storey - 1); floor < definition.mass_t.size(); ++floor)
+    carried_t += definition.mass_t[floor];
+  return carried_t * (definition.g_mps2 / static_cast<double>(definition.columns.size()));
+}
+
+namespace {
+
+/// ACI 318-19 Table 22.2.2.4.3: the stress block's depth over the neutral axis' depth.
+double stress_block_factor(double concrete_strength_MPa) {
+  return std::clamp(0.85 - 0.05 * (concrete_strength_MPa - 28.0) / 7.0, 0.65, 0.85);
+}
+
+}  // namespace
+
+SectionStrength column_section_strength(const BuildingDefinition& definition, int storey, std::size_t column,
+                                        int direction) {
+  const FlexuralStrengthFormula& f = definition.flexural_strength.value();
+  const Column& c = definition.columns.at(column);
+  // N, mm, MPa throughout; D along the sway, W across it.
+  const double depth_mm = 1000.0 * (direction == 0 ? c.b_m : c.h_m);
+  const double width_mm = 1000.0 * (direction == 0 ? c.h_m : c.b_m);
+  const double cover_mm = f.cover_ratio * depth_mm;
+  const double face_steel_mm2 =
+      0.5 * f.longitudinal_ratio.at(static_cast<std::size_t>(storey - 1)) * depth_mm * width_mm;
+  const double axial_N = 1000.0 * column_axial_load_kN(definition, storey, f.axial_load_kN);
+  const double block_mm = axial_N / (0.85 * f.concrete_strength_MPa * width_mm);
+  const double moment_Nmm =
+      face_steel_mm2 * f.steel_yield_strength_MPa * (depth_mm - 2.0 * cover_mm) + axial_N * (depth_mm - block_mm) / 2.0;
+  const double balanced_axis_mm = 600.0 * (depth_mm - cover_mm) / (600.0 + f.steel_yield_strength_MPa);
+  const double height_m = definition.storey_height_m.at(static_cast<std::size_t>(storey - 1));
+  SectionStrength strength;
+  strength.axial_load_kN = axial_N / 1000.0;
+  strength.balanced_axial_load_kN = 0.85 * f.concrete_strength_MPa * width_mm *
+                                    stress_block_factor(f.concrete_strength_MPa) * balanced_axis_mm / 1000.0;
+  strength.moment_kNm = moment_Nmm / 1e6;
+  strength.yield_force_kN = 2.0 * strength.moment_kNm / height_m;
+  return strength;
 }
 
 double column_yield_drift_m(const Building& building, int storey, int direction) {
@@ -614,10 +682,11 @@ double column_yield_drift_m(const Building& building, int storey, int direction)
 
 double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction) {
   const BuildingDefinition& d = building.definition;
+  const Column& c = d.columns.at(column);
+  if (!c.shear_capacity_kN.empty()) return c.shear_capacity_kN.at(static_cast<std::size_t>(storey - 1));
   if (!d.column_shear_capacity_kN.empty()) return d.column_shear_capacity_kN.at(static_cast<std::size_t>(storey - 1));
   if (!d.shear_capacity) return 0.0;
   const ShearCapacityFormula& f = *d.shear_capacity;
-  const Column& c = d.columns.at(column);
   const double depth_mm = 1000.0 * (direction == 0 ? c.b_m : c.h_m);
   const double gross_area_mm2 = 1e6 * c.b_m * c.h_m;
   const double d_mm = f.effective_depth_ratio * depth_mm;
@@ -625,14 +694,7 @@ double column_shear_capacity_kN(const Building& building, int storey, std::size_
       std::clamp(1000.0 * d.storey_height_m.at(static_cast<std::size_t>(storey - 1)) / 2.0 / d_mm, 2.0, 4.0);
   const double spacing_ratio = f.transverse_spacing_mm / d_mm;
   const double steel_share = std::clamp((1.0 - spacing_ratio) / 0.25, 0.0, 1.0);
-  double axial_kN = 0.0;
-  if (f.axial_load_kN) {
-    axial_kN = *f.axial_load_kN;
-  } else {
-    for (std::size_t floor = static_cast<std::size_t>(storey - 1); floor < d.mass_t.size(); ++floor)
-      axial_kN += d.mass_t[floor];
-    axial_kN *= d.g_mps2 / static_cast<double>(d.columns.size());
-  }
+  const double axial_kN = column_axial_load_kN(d, storey, f.axial_load_kN);
   const double root_fc = std::sqrt(f.concrete_strength_MPa);
   const double steel_N =
       steel_share * f.transverse_area_mm2 * f.transverse_yield_strength_MPa * d_mm / f.transverse_spacing_mm;
@@ -649,15 +711,24 @@ namespace {
 void refuse_collapse_before_yield_shear(const Building& building) {
   const BuildingDefinition& d = building.definition;
   for (std::size_t c = 0; c < d.columns.size(); ++c) {
-    for (std::size_t j = 0; j < d.columns[c].yield_force_kN.size(); ++j) {
+    const Column& column = d.columns[c];
+    for (int storey = 1; storey <= d.storeys; ++storey) {
+      const std::size_t j = static_cast<std::size_t>(storey - 1);
       for (int direction = 0; direction < 2; ++direction) {
-        const double drift_m = column_yield_drift_m(building, static_cast<int>(j) + 1, c, direction);
+        const std::optional<double> force_kN = column_yield_force_kN(d, storey, c, direction);
+        if (!force_kN) continue;
+        const double drift_m = column_yield_drift_m(building, storey, c, direction);
         if (drift_m <= 0.05 * d.storey_height_m[j]) continue;
+        const std::string name = column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key;
         throw InputError(
-            fmt::format("{}[{}]", own_strength_key(d.columns[c]), j + 1), format_value(d.columns[c].yield_force_kN[j]),
-            fmt::format("gives {} a yield drift of {:.4g} m along {}, over 5 % of storey {}'s height "
+            column.yield_force_kN.empty() ? std::string("flexural_strength")
+                                          : fmt::format("{}[{}]", own_strength_key(column), j + 1),
+            format_value(*force_kN),
+            fmt::format("gives {} a yield drift of {:.4g} m along {}{}, over 5 % of storey {}'s height "
                         "({:g} m): a drift of 10 % of a storey ends a run as a collapse",
-                        d.columns[c].key, drift_m, direction == 0 ? "x" : "y", j + 1, d.storey_height_m[j]));
+                        name, drift_m, direction == 0 ? "x" : "y",
+                        column.yield_force_kN.empty() ? " (its section's yield force 2 M_y / H over k)" : "", storey,
+                        d.storey_height_m[j]));
       }
     }
   }

@@ -45,6 +45,18 @@ std::span<const ShearCapacitySpec> shear_capacity_specs();
 /// @throws InputError(`shear_capacity.<key>`, value, reason) for a value out of range.
 void validate_shear_capacity(const model::ShearCapacityFormula& formula);
 
+/// One key of [building.flexural_strength] (model::FlexuralStrengthFormula), declared once as
+/// DriftLimitSpec is.
+using FlexuralStrengthSpec = KeySpec<model::FlexuralStrengthFormula>;
+
+/// Every [building.flexural_strength] key, in the order the docs list them.
+std::span<const FlexuralStrengthSpec> flexural_strength_specs();
+
+/// Checks the keys' ranges, one ρ_l a storey, and every column's axial load against its balanced
+/// load along x and y, where the formula stops holding (model::column_section_strength()).
+/// @pre building.flexural_strength. @throws InputError(`flexural_strength.<key>`, value, reason).
+void validate_flexural_strength(const model::BuildingDefinition& building);
+
 /// The performance levels' short names, in order: "IO", "LS", "CP".
 inline constexpr std::array<std::string_view, 3> kPerformanceLevels{"IO", "LS", "CP"};
 

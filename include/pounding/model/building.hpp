@@ -46,8 +46,12 @@ struct Column {
   /// Where the scene gave it, for messages ("column_grid[1] x[5] y[2]"); empty: columns[i].
   std::string key = {};
   /// Its own yield force (kN), along x and along y alike, one a storey (storey 1 first; a column
-  /// grid's `yield_force_kN`); empty: its storey's strength ([building.hysteresis]).
+  /// grid's or a listed column's `yield_force_kN`); empty: the building's strength (the section's,
+  /// FlexuralStrengthFormula, or its storey's in [building.hysteresis]).
   std::vector<double> yield_force_kN = {};
+  /// Its own shear capacity (kN), along x and along y alike, one a storey (`shear_capacity_kN` of
+  /// its grid or its entry); empty: the building's (column_shear_capacity_kN or the section's).
+  std::vector<double> shear_capacity_kN = {};
 };
 
 /// Rayleigh damping C = a0 M + a1 K fitted to one ratio at two modes (1-based, sorted by period
@@ -72,6 +76,24 @@ struct ShearCapacityFormula {
   std::optional<double> axial_load_kN;         // N per column, compression; unset: the gravity share
   double effective_depth_ratio = 0.8;          // d over the section's depth along the sway
   double ductility_factor = 1.0;               // k_nl: 1 at displacement ductility ≤ 2, 0.7 at ≥ 6
+};
+
+/// A reinforced-concrete column's flexural strength from its section (docs/model.md §2a, "Column
+/// strength from the section"), SI units (N, mm, MPa): the rectangular stress block 0.85 f'c over a
+/// depth a with the bars of the two faces across the sway, each half of ρ_l A_g, at f_y:
+///   M_y = (ρ_l A_g / 2) f_y (D − 2 d') + N (D − a) / 2,   a = N / (0.85 f'c W)
+/// for a sway along x (y) of a column b × h: D = b (h) the section's depth along the sway, W = h (b)
+/// the other side, d' = cover_ratio · D, N the axial compression. The column's yield force is the
+/// shear of its double curvature over the storey height, F_y = 2 M_y / H. The formula holds up to
+/// the balanced load N_b = 0.85 f'c W β₁ c_b, c_b = 600 d / (600 + f_y), d = D − d' (ACI 318:
+/// ε_cu = 0.003, E_s = 200 GPa, β₁ of f'c): a larger N is refused. The same keys for every column of
+/// the building but ρ_l, one a storey.
+struct FlexuralStrengthFormula {
+  std::vector<double> longitudinal_ratio;  // ρ_l: all longitudinal bars over A_g, one a storey (required)
+  double steel_yield_strength_MPa = 0.0;   // f_y of the longitudinal bars (required)
+  double concrete_strength_MPa = 0.0;      // f'c (required)
+  std::optional<double> axial_load_kN;     // N per column, compression; unset: the gravity share
+  double cover_ratio = 0.1;                // d' / D: the bars' centroid from the face, over the depth
 };
 
 /// The force–drift law of every column of a building (docs/model.md, "Yielding columns"). Each
@@ -187,8 +209,12 @@ struct BuildingDefinition {
   /// their shear demand against it (docs/model.md §6b), and yielding columns whose sway shear
   /// reaches it fail in shear (§2a).
   std::vector<double> column_shear_capacity_kN;
-  /// ... or every column's from its section (excludes column_shear_capacity_kN).
+  /// ... or every column's from its section (excludes column_shear_capacity_kN). A column's own
+  /// (Column::shear_capacity_kN) comes before either.
   std::optional<ShearCapacityFormula> shear_capacity;
+  /// Every column's yield force from its section (excludes the storey strength keys of
+  /// [building.hysteresis]); a column's own (Column::yield_force_kN) comes before it.
+  std::optional<FlexuralStrengthFormula> flexural_strength;
   /// What a yielding column does when its sway shear reaches its capacity: "report" (the instant
   /// is reported, the column keeps its law) or "lose-stiffness" (bilinear columns only: it
   /// carries no force for the rest of the run).
@@ -278,13 +304,32 @@ double storey_column_stiffness(const Building& building, int storey, int directi
 /// The yield drift (m) of every column of storey `storey` (1-based) along `direction` (0: x,
 /// 1: y), from the law's strength (HystereticLaw). @pre building.definition.hysteresis.yields().
 double column_yield_drift_m(const Building& building, int storey, int direction);
-/// Column `column` (0-based)'s yield drift (m) in storey `storey` along x (0) or y (1): its own
-/// yield force over its stiffness, F_y / k, where it has one (Column::yield_force_kN), else its
-/// storey's (above). @pre as above.
+/// Column `column` (0-based)'s yield drift (m) in storey `storey` along x (0) or y (1): its yield
+/// force over its stiffness, F_y / k, where it has one (column_yield_force_kN()), else its storey's
+/// (above). @pre as above.
 double column_yield_drift_m(const Building& building, int storey, std::size_t column, int direction);
-/// Column `column` (0-based)'s shear capacity (kN) in storey `storey` along x (0) or y (1): the
-/// given column_shear_capacity_kN, or ShearCapacityFormula's, whose axial load defaults to the
-/// storey's gravity share g Σ (floor masses from `storey` up) / columns; 0 when none is given.
+/// Column `column`'s own yield force (kN) in storey `storey` along x (0) or y (1): its
+/// Column::yield_force_kN, else its section's 2 M_y / H (FlexuralStrengthFormula); none: the
+/// storey's strength applies.
+std::optional<double> column_yield_force_kN(const BuildingDefinition& definition, int storey, std::size_t column,
+                                            int direction);
+
+/// A column's section strength along one direction (FlexuralStrengthFormula).
+struct SectionStrength {
+  double axial_load_kN = 0.0;           // N
+  double balanced_axial_load_kN = 0.0;  // N_b: the formula holds for N ≤ N_b
+  double moment_kNm = 0.0;              // M_y
+  double yield_force_kN = 0.0;          // 2 M_y / H
+};
+/// @pre definition.flexural_strength, its keys within their ranges.
+SectionStrength column_section_strength(const BuildingDefinition& definition, int storey, std::size_t column,
+                                        int direction);
+/// A column's axial compression (kN) in storey `storey`: `given`, else the storey's gravity share
+/// g Σ (floor masses from `storey` up) / its number of columns.
+double column_axial_load_kN(const BuildingDefinition& definition, int storey, std::optional<double> given);
+/// Column `column` (0-based)'s shear capacity (kN) in storey `storey` along x (0) or y (1): its
+/// own (Column::shear_capacity_kN), else the given column_shear_capacity_kN, or ShearCapacityFormula's, whose axial
+/// load defaults to the storey's gravity share g Σ (floor masses from `storey` up) / columns; 0 when none is given.
 double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction);
 
 /// Validates `definition`, solves the frame factor if a target period is given (for the frame
