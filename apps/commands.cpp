@@ -311,6 +311,37 @@ void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
   }
 }
 
+/// For each pair whose buildings give slab_thickness_m, each slab's axial stiffness along the
+/// pair's direction, the two in series and the contact's linear stiffness against them: the
+/// members' own scale for a contact stiffness (docs/model.md §6a).
+void print_slab_axial_stiffness(const analysis::Scene& scene) {
+  const analysis::ContactLawInfo& law = analysis::contact_law_info(scene.contact.law);
+  for (const analysis::BuildingPair& pair : scene.pairs()) {
+    const model::BuildingDefinition& a = scene.buildings[static_cast<std::size_t>(pair.first)];
+    const model::BuildingDefinition& b = scene.buildings[static_cast<std::size_t>(pair.second)];
+    if (!a.slab_thickness_m && !b.slab_thickness_m) continue;
+    const model::Point2 direction = model::clearance(a.slab, b.slab).direction + model::Point2(0.0, 0.0);  // no -0
+    std::vector<std::string> parts;
+    std::vector<double> stiffnesses;
+    for (const model::BuildingDefinition* building : {&a, &b}) {
+      if (!building->slab_thickness_m) continue;
+      stiffnesses.push_back(model::slab_axial_stiffness_kN_per_m(*building, direction));
+      parts.push_back(fmt::format("{} {:.4g} kN/m", building->name, stiffnesses.back()));
+    }
+    std::string verdict;
+    if (stiffnesses.size() == 2) {
+      const double series = stiffnesses[0] * stiffnesses[1] / (stiffnesses[0] + stiffnesses[1]);
+      parts.push_back(fmt::format("in series {:.4g} kN/m", series));
+      if (law.stiffness_unit == "kN/m") {
+        verdict = fmt::format("; the {} stiffness {:g} kN/m is {:.3g} times that", law.name,
+                              scene.contact.used_stiffness(), scene.contact.used_stiffness() / series);
+      }
+    }
+    fmt::print("  slab axial stiffness E t w / L, {} - {} along ({:.3g}, {:.3g}): {}{}\n", a.name, b.name,
+               direction.x(), direction.y(), fmt::join(parts, ", "), verdict);
+  }
+}
+
 }  // namespace
 
 /// The command-line options of `run` replace their scene keys. `--method` keeps the file's keys
@@ -590,6 +621,7 @@ int run_check(const CheckCommand& command) {
   fmt::print("Contact: {}, restitution k = {}{}\n",
              scene.is_row() ? std::string("gaps per pair (above)") : fmt::format("gap {} m", scene.contact.gap_m),
              scene.contact.restitution, law);
+  print_slab_axial_stiffness(scene);
   const auto candidates = analysis::scene_candidates(scene);
   const auto column_pairs = std::count_if(candidates.begin(), candidates.end(), [](const auto& c) { return c.column; });
   if (column_pairs == 0) {

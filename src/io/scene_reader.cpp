@@ -418,7 +418,7 @@ std::vector<Eigen::Matrix3d> storey_matrices(TableReader& table, const toml::nod
 void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (const toml::node* node = table.find("storey_stiffness")) {
     for (const char* other : {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s",
-                              "column_shear_capacity_kN", "shear_capacity", "flexural_strength"}) {
+                              "column_shear_capacity_kN", "shear_capacity", "flexural_strength", "slab_thickness_m"}) {
       if (table.has(other)) {
         throw table.error(*node, table.key_path("storey_stiffness"),
                           fmt::format("give either storey_stiffness or columns with {}, not both", other));
@@ -441,6 +441,7 @@ void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (factor) b.frame_factor = table.number_of(*factor, table.key_path("frame_factor"));
   if (period) b.target_period_s = table.number_of(*period, table.key_path("target_period_s"));
   b.column_shear_capacity_kN = per_storey(table, "column_shear_capacity_kN", model::kColumnShearCapacity, b.storeys);
+  b.slab_thickness_m = table.optional_number("slab_thickness_m");
   b.column_shear_failure = table.optional_string("column_shear_failure").value_or(b.column_shear_failure);
 }
 

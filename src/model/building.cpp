@@ -179,6 +179,7 @@ void validate_columns(const BuildingDefinition& b) {
     }
   }
   require_range("E_kPa", b.E_kPa, kYoungsModulus);
+  if (b.slab_thickness_m) require_range("slab_thickness_m", *b.slab_thickness_m, kSlabThickness);
   if (!b.column_shear_capacity_kN.empty()) {
     validate_per_floor(b.column_shear_capacity_kN, "column_shear_capacity_kN", b.storeys, kColumnShearCapacity,
                        "storey");
@@ -636,6 +637,19 @@ double column_axial_load_kN(const BuildingDefinition& definition, int storey, st
   for (std::size_t floor = static_cast<std::size_t>(storey - 1); floor < definition.mass_t.size(); ++floor)
     carried_t += definition.mass_t[floor];
   return carried_t * (definition.g_mps2 / static_cast<double>(definition.columns.size()));
+}
+
+double slab_axial_stiffness_kN_per_m(const BuildingDefinition& definition, const Point2& direction) {
+  const Point2 across(-direction.y(), direction.x());
+  const auto extent_m = [&](const Point2& axis) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const Point2& vertex : definition.slab.vertices()) {
+      low = std::min(low, vertex.dot(axis));
+      high = std::max(high, vertex.dot(axis));
+    }
+    return high - low;
+  };
+  return definition.E_kPa * definition.slab_thickness_m.value() * extent_m(across) / extent_m(direction);
 }
 
 namespace {

@@ -263,3 +263,20 @@ BOOST_AUTO_TEST_CASE(StoreyHeightsAreValidatedOneByOne) {
     return e.key() == "storey_height_m[2]" && e.value() == "inf" && e.reason() == "must lie in [1, 20] m";
   });
 }
+
+BOOST_AUTO_TEST_CASE(SlabAxialStiffnessIsETimesTheSectionOverTheLength) {
+  BuildingDefinition b = square_building(1, 10.0, 100.0, 1000.0);
+  b.slab_thickness_m = 2.5;
+  BOOST_CHECK_EXCEPTION(b.validate(), pounding::InputError, [](const pounding::InputError& e) {
+    return std::string(e.what()).find("slab_thickness_m") != std::string::npos;
+  });
+  b.slab_thickness_m = 0.2;
+  b.validate();
+  b.slab = Polygon({{0.0, 0.0}, {16.0, 0.0}, {16.0, 10.0}, {0.0, 10.0}});
+  const double e_kPa = b.E_kPa;
+  // Along x: the section across is 10 m wide, the length 16 m; along y the other way round.
+  BOOST_TEST(slab_axial_stiffness_kN_per_m(b, Point2(1.0, 0.0)) == e_kPa * 0.2 * 10.0 / 16.0, tt::tolerance(1e-14));
+  BOOST_TEST(slab_axial_stiffness_kN_per_m(b, Point2(0.0, -1.0)) == e_kPa * 0.2 * 16.0 / 10.0, tt::tolerance(1e-14));
+  // Along (0.6, 0.8): the outline's extents, 16·0.8 + 10·0.6 = 18.8 m across and 16·0.6 + 10·0.8 = 17.6 m along.
+  BOOST_TEST(slab_axial_stiffness_kN_per_m(b, Point2(0.6, 0.8)) == e_kPa * 0.2 * 18.8 / 17.6, tt::tolerance(1e-14));
+}

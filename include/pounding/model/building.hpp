@@ -173,6 +173,9 @@ std::span<const std::string_view> hysteretic_law_names();
 using HysteresisSpec = KeySpec<HystereticLaw>;
 std::span<const HysteresisSpec> hysteresis_specs();
 
+/// The range of slab_thickness_m (m).
+inline constexpr Range kSlabThickness{0.0, 2.0, "m", true};
+
 /// The range of column_shear_capacity_kN, public for the scene reader's messages (the
 /// hysteresis parameters' ranges are their rows', hysteresis_specs()).
 inline constexpr Range kColumnShearCapacity{0.0, 1e6, "kN", true};
@@ -220,6 +223,9 @@ struct BuildingDefinition {
   /// carries no force for the rest of the run).
   std::string column_shear_failure = "report";
   bool shear_failure_loses_stiffness() const { return column_shear_failure == "lose-stiffness"; }
+  /// The floor slabs' thickness (m), for their axial stiffness E t w / L (slab_axial_stiffness_kN_per_m),
+  /// which `check` sets beside the contact stiffness; unset: not shown. Only with columns (E_kPa).
+  std::optional<double> slab_thickness_m;
   // ... or given directly: one 3×3 matrix per storey about the CM (kN/m, kN, kN·m/rad).
   std::vector<Eigen::Matrix3d> storey_stiffness;
 
@@ -331,6 +337,13 @@ double column_axial_load_kN(const BuildingDefinition& definition, int storey, st
 /// own (Column::shear_capacity_kN), else the given column_shear_capacity_kN, or ShearCapacityFormula's, whose axial
 /// load defaults to the storey's gravity share g Σ (floor masses from `storey` up) / columns; 0 when none is given.
 double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction);
+
+/// A floor slab's axial stiffness along the plan direction `direction` (kN/m): E t w / L, E the
+/// building's E_kPa, t its slab_thickness_m, w the slab's width across `direction` and L its length
+/// along it (the extents of its outline). The contact spring that Anagnostopoulos (1988) and Maison
+/// & Kasai (1992) derive from the colliding members is of this order (docs/model.md §6a).
+/// @pre definition valid, uses_columns(), slab_thickness_m given, |direction| = 1.
+double slab_axial_stiffness_kN_per_m(const BuildingDefinition& definition, const Point2& direction);
 
 /// Validates `definition`, solves the frame factor if a target period is given (for the frame
 /// without P-Δ), assembles M, K (with P-Δ if asked), C and solves the modes. @throws InputError (field relative to the
