@@ -170,6 +170,42 @@ def impacts_table(summary):
     return table(header, rows, "impacts") + note
 
 
+def ratio_cell(ratio):
+    """A demand over capacity, flagged above 1; '' without a capacity."""
+    if ratio is None:
+        return ""
+    return text(f"{ratio:.3g} EXCEEDED") if ratio > 1.0 else number(ratio, 3)
+
+
+def struck_columns_table(summary):
+    """Per struck column (slab to column): its impacts, the largest peak force with the end shear it
+    causes, and the largest shear with the column's sway (docs/model.md 6b), each against the
+    column's capacity."""
+    columns = {}
+    for i in summary["impacts"]:
+        if i["level"] != 0:
+            continue
+        # floors: the slab's floor and the column's storey, in building order (a row: the pair's).
+        in_order = sorted((i["striking_building"], i["struck_building"]))
+        key = (i["struck_building"], i["column"], i["floors"][in_order.index(i["struck_building"])])
+        entry = columns.setdefault(key, {"count": 0, "force": i, "total": i})
+        entry["count"] += 1
+        if i["peak_force_kN"] > entry["force"]["peak_force_kN"]:
+            entry["force"] = i
+        if i["column_total_shear_kN"] > entry["total"]["column_total_shear_kN"]:
+            entry["total"] = i
+    if not columns:
+        return ""
+    header = ("column", "storey", "impacts", "peak force [kN]", "impact shear [kN]", "over capacity",
+              "with sway [kN]", "at [s]", "sway [kN]", "with sway over capacity")
+    rows = [(f"B{b} column {c}", storey, e["count"], number(e["force"]["peak_force_kN"], 5),
+             number(e["force"]["column_shear_kN"], 5), ratio_cell(e["force"].get("column_shear_ratio")),
+             number(e["total"]["column_total_shear_kN"], 5), f"{e['total']['column_total_shear_t_s']:.4f}",
+             number(e["total"]["column_sway_shear_kN"], 5), ratio_cell(e["total"].get("column_total_shear_ratio")))
+            for (b, c, storey), e in sorted(columns.items())]
+    return table(header, rows, "struck-columns", text_columns=("column", "over capacity", "with sway over capacity"))
+
+
 def sustained_table(summary):
     holds = summary["sustained_contacts"]
     if not holds:
@@ -398,6 +434,10 @@ def page(folder, summary, plan, bracket=None):
         *(["<h2>Contact parameters bracketed</h2>", bracket_section(bracket)] if bracket else []),
         "<h2>Histories</h2>", history_figure_html(folder, summary),
         f"<h2>Impacts ({summary['impact_count']})</h2>", impacts_table(summary),
+        *(["<h2>Struck columns</h2>",
+           '<p class="note">Slab to column: per column its largest impact force and end shear, and its largest '
+           "shear with its sway (the larger of the shears below and above the load).</p>",
+           struck_columns_table(summary)] if any(i["level"] == 0 for i in summary["impacts"]) else []),
         "<h2>Sustained contacts</h2>", sustained_table(summary),
         "<h2>Peaks</h2>", '<p class="note">Value at its time; units in each name (drifts as ratios).</p>',
         peaks_tables(summary),

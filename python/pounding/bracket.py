@@ -93,6 +93,8 @@ def demands(summary):
         else _largest([i.get("peak_force_kN") for i in impacts]),
         "max_struck_column_shear_kN": _largest([i.get("column_shear_kN") for i in impacts]),
         "max_struck_column_shear_ratio": _largest([i.get("column_shear_ratio") for i in impacts]),
+        "max_struck_column_total_shear_kN": _largest([i.get("column_total_shear_kN") for i in impacts]),
+        "max_struck_column_total_shear_ratio": _largest([i.get("column_total_shear_ratio") for i in impacts]),
     }
     for building in summary["peaks"]:
         values[f"{building['building']} peak_storey_drift_ratio"] = peak_storey_drift(building)
@@ -117,6 +119,8 @@ def verdicts(summary):
     if any(i.get("column_shear_ratio") is not None for i in impacts):
         values["struck column over capacity"] = "yes" if any(
             (i.get("column_shear_ratio") or 0.0) > 1.0 for i in impacts) else "no"
+        values["struck column with its sway over capacity"] = "yes" if any(
+            (i.get("column_total_shear_ratio") or 0.0) > 1.0 for i in impacts) else "no"
     for building in (summary.get("limit_states") or {}).get("buildings", []):
         exceeded = [level["level"] for level in building["levels"] if level["exceeded"]]
         values[f"{building['building']} limit state exceeded"] = exceeded[-1] if exceeded else "none"

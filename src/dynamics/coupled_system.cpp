@@ -365,6 +365,24 @@ void CoupledSystem::add_contact_force_jacobian(ConstVectorRef y, std::size_t ind
   rows -= contact_force_rows(y, index, stiffness_kN_per_m, damping_kNs_per_m);
 }
 
+double CoupledSystem::column_sway_shear_kN(ConstVectorRef y, int building, int storey, std::size_t column,
+                                           int direction, const SpringStates* springs) const {
+  if (springs != nullptr) {
+    if (const std::optional<std::size_t> j = springs_.index_of(building, storey, column, direction))
+      return springs_.force_kN(y, *springs, *j);
+  }
+  const model::Building& b = buildings_[building];
+  const model::Column& c = b.definition.columns.at(column);
+  const double height_m = b.definition.storey_height_m[static_cast<std::size_t>(storey - 1)];
+  const double k_kN_per_m = model::column_stiffness(c, b.definition.E_kPa, height_m, b.frame_factor)[direction];
+  const model::Point2 arm = c.position_m - b.definition.centre_of_mass;
+  const Eigen::RowVector3d row =
+      direction == 0 ? Eigen::RowVector3d(1.0, 0.0, -arm.y()) : Eigen::RowVector3d(0.0, 1.0, arm.x());
+  double drift_m = row * y.segment<3>(floor_index(building, storey));
+  if (storey > 1) drift_m -= row * y.segment<3>(floor_index(building, storey - 1));
+  return k_kN_per_m * drift_m;
+}
+
 double CoupledSystem::kinetic_energy(ConstVectorRef y) const {
   return 0.5 * y.segment(dof_, dof_).cwiseAbs2().dot(mass_);
 }

@@ -55,6 +55,7 @@ void add_building_springs(const model::Building& building, int b, int offset, st
                               .storey = storey,
                               .direction = direction,
                               .column = column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key,
+                              .column_index = c,
                               .stiffness_kN_per_m = k[direction],
                               .hardening_ratio = d.hysteresis.degrades() ? 0.0 : d.hysteresis.hardening_ratio,
                               .yield_drift_m = yield_drift_m,
@@ -92,11 +93,23 @@ double bouc_wen_factor(const BoucWenShape& shape, double z, double drift_rate) {
 
 YieldingSprings::YieldingSprings(const std::vector<model::Building>& buildings, const std::vector<int>& offsets)
     : dof_(offsets.back() + buildings.back().dof()) {
-  for (std::size_t b = 0; b < buildings.size(); ++b)
+  for (std::size_t b = 0; b < buildings.size(); ++b) {
+    const std::size_t first = springs_.size();
     add_building_springs(buildings[b], static_cast<int>(b), offsets[b], springs_);
+    first_spring_.push_back(springs_.size() > first ? std::optional<std::size_t>(first) : std::nullopt);
+    column_count_.push_back(buildings[b].definition.columns.size());
+  }
   for (YieldingSpring& spring : springs_) {
     if (spring.bouc_wen) spring.z_index = 2 * dof_ + smooth_count_++;
   }
+}
+
+std::optional<std::size_t> YieldingSprings::index_of(int building, int storey, std::size_t column,
+                                                     int direction) const {
+  const std::size_t b = static_cast<std::size_t>(building);
+  if (b >= first_spring_.size() || !first_spring_[b]) return std::nullopt;
+  return *first_spring_[b] + 2 * (static_cast<std::size_t>(storey - 1) * column_count_[b] + column) +
+         static_cast<std::size_t>(direction);
 }
 
 double YieldingSprings::drift(const Eigen::Ref<const Eigen::VectorXd>& q, std::size_t j) const {

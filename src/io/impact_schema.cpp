@@ -114,6 +114,25 @@ const std::vector<ImpactField>& impact_fields() {
        "slab to column: column_shear_kN over the column building's column_shear_capacity_kN (above 1: the "
        "column fails in shear, which this model does not follow); empty (CSV) or null (JSON) when no capacity is given",
        ImpactField::kSlabToColumn},
+      {"column_total_shear", "kN", {}, Type::real,
+       [](const ImpactRecord& i) { return std::vector{i.column_total_shear_kN}; },
+       "slab to column: the column's largest shear over the contact with its sway shear, along the axis of its "
+       "capacity: the larger of the shears below and above the load (docs/model.md 6b)",
+       ImpactField::kSlabToColumn},
+      {"column_total_shear_t", "s", {}, Type::real,
+       [](const ImpactRecord& i) { return std::vector{i.column_total_shear_t_s}; },
+       "slab to column: when column_total_shear was reached (the largest of the samples the contact's steps are "
+       "integrated on)",
+       ImpactField::kSlabToColumn},
+      {"column_sway_shear", "kN", {}, Type::real,
+       [](const ImpactRecord& i) { return std::vector{i.column_sway_shear_kN}; },
+       "slab to column: the column's sway shear then, along +x or +y (its spring's force, or k times its drift)",
+       ImpactField::kSlabToColumn},
+      {"column_total_shear_ratio", "", {}, Type::real,
+       [](const ImpactRecord& i) { return std::vector{i.column_total_shear_ratio}; },
+       "slab to column: column_total_shear_kN over the column's shear capacity (above 1: sway and impact together "
+       "exceed it); empty (CSV) or null (JSON) when no capacity is given",
+       ImpactField::kSlabToColumn},
   };
   // clang-format on
   return kFields;

@@ -58,32 +58,46 @@ std::string striker(const solvers::ImpactRecord& r) {
   return fmt::format("{} strikes", who(r));
 }
 
+/// " (0.5 of its capacity)", with the verdict above 1; empty without a capacity (NaN).
+std::string capacity_text(double ratio) {
+  if (std::isnan(ratio)) return {};
+  return fmt::format(" ({:.3g} of its capacity{})", ratio,
+                     ratio > 1.0 ? ": EXCEEDED, the column would fail in shear" : "");
+}
+
 /// Per struck column (building, column, storey): its slab-to-column impacts and the largest
-/// peak force, with the shear and moment it causes (the impact's column_demand).
+/// peak force, with the shear and moment it causes (the impact's column_demand), and the largest
+/// shear with the column's sway.
 void append_column_demands(const std::vector<solvers::ImpactRecord>& impacts, std::string& text) {
-  std::map<std::array<int, 3>, std::pair<int, const solvers::ImpactRecord*>> worst;  // count, largest force
+  struct Column {
+    int impacts = 0;
+    const solvers::ImpactRecord* largest_force = nullptr;
+    const solvers::ImpactRecord* largest_total = nullptr;
+  };
+  std::map<std::array<int, 3>, Column> worst;
   for (const solvers::ImpactRecord& i : impacts) {
     if (i.level != 0) continue;
-    auto& [count, largest] = worst[{i.struck_building, i.column, solvers::floor_of(i, i.struck_building)}];
-    ++count;
-    if (largest == nullptr || i.peak_force_kN > largest->peak_force_kN) largest = &i;
+    Column& column = worst[{i.struck_building, i.column, solvers::floor_of(i, i.struck_building)}];
+    ++column.impacts;
+    if (column.largest_force == nullptr || i.peak_force_kN > column.largest_force->peak_force_kN)
+      column.largest_force = &i;
+    if (column.largest_total == nullptr || i.column_total_shear_kN > column.largest_total->column_total_shear_kN)
+      column.largest_total = &i;
   }
   if (worst.empty()) return;
   auto out = std::back_inserter(text);
   fmt::format_to(out, "Column demands (slab to column; the fixed-fixed column under the peak force):\n");
-  for (const auto& [where, entry] : worst) {
-    const solvers::ImpactRecord& i = *entry.second;
-    fmt::format_to(
-        out,
-        "  B{} column {} storey {} at {:.3g}: {} impact{}, peak force {:.1f} kN at {:.4f} s, shear {:.1f} kN{}, "
-        "moment {:.1f} kN·m\n",
-        where[0], where[1], where[2], i.height_ratio, entry.first, entry.first == 1 ? "" : "s", i.peak_force_kN, i.t_s,
-        i.column_shear_kN,
-        std::isnan(i.column_shear_ratio)
-            ? std::string()
-            : fmt::format(" ({:.3g} of its capacity{})", i.column_shear_ratio,
-                          i.column_shear_ratio > 1.0 ? ": EXCEEDED, the column would fail in shear" : ""),
-        i.column_moment_kNm);
+  for (const auto& [where, column] : worst) {
+    const solvers::ImpactRecord& i = *column.largest_force;
+    fmt::format_to(out,
+                   "  B{} column {} storey {} at {:.3g}: {} impact{}, peak force {:.1f} kN at {:.4f} s, shear {:.1f} "
+                   "kN{}, moment {:.1f} kN·m\n",
+                   where[0], where[1], where[2], i.height_ratio, column.impacts, column.impacts == 1 ? "" : "s",
+                   i.peak_force_kN, i.t_s, i.column_shear_kN, capacity_text(i.column_shear_ratio), i.column_moment_kNm);
+    const solvers::ImpactRecord& total = *column.largest_total;
+    fmt::format_to(out, "    with its sway shear: {:.1f} kN at {:.4f} s (sway {:.1f} kN){}\n",
+                   total.column_total_shear_kN, total.column_total_shear_t_s, total.column_sway_shear_kN,
+                   capacity_text(total.column_total_shear_ratio));
   }
 }
 

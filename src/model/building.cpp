@@ -696,11 +696,13 @@ double column_yield_drift_m(const Building& building, int storey, int direction)
 
 double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction) {
   const BuildingDefinition& d = building.definition;
-  const Column& c = d.columns.at(column);
-  if (!c.shear_capacity_kN.empty()) return c.shear_capacity_kN.at(static_cast<std::size_t>(storey - 1));
-  if (!d.column_shear_capacity_kN.empty()) return d.column_shear_capacity_kN.at(static_cast<std::size_t>(storey - 1));
+  const std::size_t j = static_cast<std::size_t>(storey - 1);
+  if (column < d.columns.size() && !d.columns[column].shear_capacity_kN.empty())
+    return d.columns[column].shear_capacity_kN.at(j);
+  if (!d.column_shear_capacity_kN.empty()) return d.column_shear_capacity_kN.at(j);
   if (!d.shear_capacity) return 0.0;
   const ShearCapacityFormula& f = *d.shear_capacity;
+  const Column& c = d.columns.at(column);
   const double depth_mm = 1000.0 * (direction == 0 ? c.b_m : c.h_m);
   const double gross_area_mm2 = 1e6 * c.b_m * c.h_m;
   const double d_mm = f.effective_depth_ratio * depth_mm;

@@ -97,6 +97,9 @@ class CompliantEvents final : public LawEvents {
     open_[i]->record.duration_s = t - open_[i]->record.t_s;
   }
   void end_contact(std::size_t i, double t, const VectorXd& y);
+  /// Slab-to-column contact i pushing with `force_kN` at (t, y): its column's shear with the
+  /// sway, kept in its record where it is the largest so far.
+  void note_column_shear(std::size_t i, double t, const VectorXd& y, double force_kN);
 
   std::vector<std::optional<OpenContact>> open_;  // set from onset until the gap opens
 };
@@ -152,7 +155,39 @@ void CompliantEvents::begin_contact(std::size_t i, double t, const VectorXd& y) 
                                 system_.normal_inverse_mass(y, i), system_.candidates()[i].flexibility_m_per_kN),
       impact_at(system_, t, i, s)});
   open_[i]->record.peak_force_kN = std::max(0.0, force_kN(i, y));
+  note_column_shear(i, t, y, open_[i]->record.peak_force_kN);
   states_.start_acting(i);
+}
+
+namespace {
+
+/// The plan axis (0: x, 1: y) nearer a slab-to-column contact's normal, the force's direction:
+/// the one whose capacity and sway shear its column's demands are measured along.
+int capacity_axis(const contact::Candidate& c) {
+  return std::abs(c.normal_rest.x()) >= std::abs(c.normal_rest.y()) ? 0 : 1;
+}
+
+}  // namespace
+
+void CompliantEvents::note_column_shear(std::size_t i, double t, const VectorXd& y, double force_kN) {
+  const contact::Candidate& c = system_.candidates()[i];
+  // A column point needs its column (a scene's always has one; a test's may stand for it alone).
+  if (!c.column || c.column_index >= system_.building(c.striking_building).definition.columns.size()) return;
+  // The force pushes the column along +n; the floors' shares N₁ F and N₂ F (column_shape) are the
+  // end reactions of the fixed–fixed member, which the sway shear V_s adds to below the load and
+  // takes from above it.
+  const int axis = capacity_axis(c);
+  const int storey = c.lower_floor + 1;
+  const double sway_kN =
+      system_.column_sway_shear_kN(y, c.striking_building, storey, c.column_index, axis, context_.springs);
+  const std::array<double, 2> shares = contact::column_shape(c.height_ratio);
+  const double along_kN = force_kN * c.normal_rest[axis];
+  const double total_kN = std::max(std::abs(sway_kN + shares[0] * along_kN), std::abs(sway_kN - shares[1] * along_kN));
+  ImpactRecord& r = open_[i]->record;
+  if (total_kN <= r.column_total_shear_kN) return;
+  r.column_total_shear_kN = total_kN;
+  r.column_total_shear_t_s = t;
+  r.column_sway_shear_kN = sway_kN;
 }
 
 void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
@@ -170,10 +205,12 @@ void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
     r.column_shear_kN = demand.shear_kN;
     r.column_moment_kNm = demand.moment_kNm;
     // The capacity along the plan axis nearer the struck edge's normal (the force's direction).
-    const int direction = std::abs(c.normal_rest.x()) >= std::abs(c.normal_rest.y()) ? 0 : 1;
     const double capacity_kN = model::column_shear_capacity_kN(system_.building(c.striking_building), c.lower_floor + 1,
-                                                               c.column_index, direction);
-    if (capacity_kN > 0.0) r.column_shear_ratio = demand.shear_kN / capacity_kN;
+                                                               c.column_index, capacity_axis(c));
+    if (capacity_kN > 0.0) {
+      r.column_shear_ratio = demand.shear_kN / capacity_kN;
+      r.column_total_shear_ratio = r.column_total_shear_kN / capacity_kN;
+    }
   }
   recorder_.add_impact_loss(r.energy_lost_kJ);
   result_.impacts.push_back(r);
@@ -200,6 +237,7 @@ void CompliantEvents::integrate(double t_a, double t_b, const VectorXd& y_b, con
       const double force = force_kN(i, y);
       OpenContact& open = *open_[i];
       open.record.peak_force_kN = std::max(open.record.peak_force_kN, force);
+      note_column_shear(i, k == kIntervals ? t_b : t_a + k * h, y, std::max(0.0, force));
       open.record.impulse_kNs += weight * force;
       open.work_kJ += weight * force * system_.gap(y, i).gap_rate_mps;
     }

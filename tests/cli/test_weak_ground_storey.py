@@ -10,7 +10,9 @@ limit states with and without contact, its storeys the pounding-induced column f
 largest peak force in yielding.csv), and, after the 10 s quiet tail, every building's residual
 drift with `settled` true and its largest residual the largest of its storeys'; `pounding report`
 writes report.html with the storeys table (a row per storey of the three buildings) and the
-limit-states table (a row per building with contact and one without); and the same scene with
+limit-states table (a row per building with contact and one without) and the struck-columns
+table (a row per struck column and storey), the struck columns' shear with their sway at least its
+sway part and B3's over their capacity; and the same scene with
 column_shear_failure = "lose-stiffness" ends as a collapse of B3's ground storey. The street with
 B3's columns degrading (weak-ground-storey-imk.toml, IMK peak-oriented) ends as a collapse too,
 its failed columns counted per storey in summary.json as in yielding.csv and carrying no force.
@@ -82,6 +84,18 @@ def main():
         check(report.returncode == 0 and rows("storeys") == storeys,
               f"report.html's storeys table has a row per storey ({rows('storeys')} of {storeys})")
         check(rows("limit-states") == 6, f"report.html's limit-states table has 6 rows ({rows('limit-states')})")
+        struck = {(i["struck_building"], i["column"], i["floors"][sorted((i["striking_building"],
+                                                                          i["struck_building"])).index(i["struck_building"])])
+                  for i in summary["impacts"] if i["level"] == 0}
+        check(len(struck) > 0 and rows("struck-columns") == len(struck),
+              f"report.html's struck-columns table has a row per struck column and storey "
+              f"({rows('struck-columns')} of {len(struck)})")
+    # The struck columns' shear with their sway (docs/model.md 6b): at least the sway part, and over
+    # B3's capacities somewhere (its columns are shear-critical).
+    on_columns = [i for i in summary["impacts"] if i["level"] == 0]
+    check(all(i["column_total_shear_kN"] >= abs(i["column_sway_shear_kN"]) for i in on_columns) and
+          any((i["column_total_shear_ratio"] or 0.0) > 1.0 for i in on_columns if i["struck_building"] == 3),
+          "every struck column's shear with its sway is at least its sway part; some of B3's exceed capacity")
 
     scene = SCENE.read_text().replace('column_shear_failure = "report"', 'column_shear_failure = "lose-stiffness"')
     scene = scene.replace('"../records/', f'"{ROOT}/examples/records/')

@@ -403,7 +403,7 @@ def check_impacts(case, info, pairs, cands, rows, summary, problems):
         problems.append(f"{len(level0)} level-0 rows, impacts_slab_to_column {summary.get('impacts_slab_to_column')}")
     for r in rows:
         for key, value in r.items():
-            if key == "column_shear_ratio" and value == "":
+            if key in ("column_shear_ratio", "column_total_shear_ratio") and value == "":
                 continue
             try:
                 if not math.isfinite(float(value)):
@@ -452,6 +452,14 @@ def check_impacts(case, info, pairs, cands, rows, summary, problems):
             problems.append(f"level-0 impact t={t}: column_shear_ratio {given} without a capacity")
         if capacity is not None and (given == "" or abs(float(given) - shear / capacity) > 1e-9 * max(1.0, shear / capacity)):
             problems.append(f"level-0 impact t={t}: column_shear_ratio {given!r}, expected {shear / capacity}")
+        # With the sway (docs/model.md 6b): max(|V_s + N1 F n_a|, |V_s - N2 F n_a|) is at least |V_s|.
+        total, sway = float(r["column_total_shear_kN"]), float(r["column_sway_shear_kN"])
+        if not total >= abs(sway) - 1e-9 * max(1.0, total):
+            problems.append(f"level-0 impact t={t}: column_total_shear_kN {total} below its sway part {sway}")
+        given = r.get("column_total_shear_ratio", "")
+        if (capacity is None) != (given == "") or (
+                capacity is not None and abs(float(given) - total / capacity) > 1e-9 * max(1.0, total / capacity)):
+            problems.append(f"level-0 impact t={t}: column_total_shear_ratio {given!r} (capacity {capacity})")
 
 
 def check_energy(summary, problems):

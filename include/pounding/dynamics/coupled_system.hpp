@@ -183,6 +183,14 @@ class CoupledSystem {
   void add_contact_force_jacobian(ConstVectorRef y, std::size_t index, double stiffness_kN_per_m,
                                   double damping_kNs_per_m, Eigen::SparseMatrix<double>& rows) const;
 
+  /// The sway shear (kN) of column `column` (0-based) of building b's storey `storey` along x (0)
+  /// or y (1) in state y: its spring's force where b's columns yield, else k d with its elastic
+  /// stiffness k and its drift d = t·(q_storey − q_storey−1) (the rows of T, model/building.hpp).
+  /// Positive when the storey's top has moved along +x (+y) relative to its bottom.
+  /// @pre building b uses columns.
+  double column_sway_shear_kN(ConstVectorRef y, int building, int storey, std::size_t column, int direction,
+                              const SpringStates* springs = nullptr) const;
+
   /// Energies (kJ) and powers (kW) of the relative motion.
   double kinetic_energy(ConstVectorRef y) const;
   /// With `springs`: the energy the yielding springs store (YieldingSprings::stored_energy_change).

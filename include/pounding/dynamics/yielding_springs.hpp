@@ -65,6 +65,7 @@ struct YieldingSpring {
   int storey = 1;                   // 1-based: joins floor storey − 1 (the ground for 1) and floor storey
   int direction = 0;                // 0: x, 1: y
   std::string column;               // the column's scene key ("columns[3]", "column_grid[1] x[2] y[1]")
+  std::size_t column_index = 0;     // 0-based in its building's column list
   double stiffness_kN_per_m = 0.0;  // initial k
   double hardening_ratio = 0.0;     // α
   double yield_drift_m = 0.0;       // d_y
@@ -99,6 +100,9 @@ class YieldingSprings {
   std::size_t size() const { return springs_.size(); }
   const YieldingSpring& operator[](std::size_t j) const { return springs_[j]; }
   const std::vector<YieldingSpring>& all() const { return springs_; }
+  /// The spring of column `column` (0-based) of building `building`'s storey `storey` along x (0)
+  /// or y (1); none when that building's columns do not yield.
+  std::optional<std::size_t> index_of(int building, int storey, std::size_t column, int direction) const;
   /// The number of smooth (Bouc–Wen) springs: the ODE states z after (q, q̇) in y.
   int smooth_count() const { return smooth_count_; }
   /// n, the number of displacements: y = (q, q̇, z).
@@ -138,6 +142,10 @@ class YieldingSprings {
 
  private:
   std::vector<YieldingSpring> springs_;
+  /// Per building: the index of its first spring (none: its columns do not yield) and its number
+  /// of columns; its springs run storey by storey, column by column, x then y.
+  std::vector<std::optional<std::size_t>> first_spring_;
+  std::vector<std::size_t> column_count_;
   int dof_ = 0;           // n: y = (q, q̇, z)
   int smooth_count_ = 0;  // the springs with a z
 };

@@ -72,6 +72,14 @@ struct ImpactRecord : ContactIdentity {
   double column_moment_kNm = 0.0;
   /// column_shear_kN over the column building's column_shear_capacity_kN; NaN when it gives none.
   double column_shear_ratio = std::numeric_limits<double>::quiet_NaN();
+  /// Slab to column: the struck column's largest shear over the contact with its sway
+  /// (docs/model.md §6b, "Sway and impact together"), along the plan axis of its capacity: the
+  /// larger of |V_s + N₁ F n_a| and |V_s − N₂ F n_a|, V_s the column's sway shear; when it was
+  /// largest, and V_s then (signed along +x or +y); over the capacity (NaN without one).
+  double column_total_shear_kN = 0.0;
+  double column_total_shear_t_s = 0.0;
+  double column_sway_shear_kN = 0.0;
+  double column_total_shear_ratio = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct TouchRecord : ContactIdentity {  // contact with ġ ≥ 0: no impulse
