@@ -347,6 +347,8 @@ def test_slab_to_column_scenes_add_their_columns(serial, tmp_path):
     assert row["slab_to_column_impact_count"] == run.summary["impacts_slab_to_column"] == len(run.impacts) > 0
     assert row["max_column_shear_kN"] == max(i["column_shear_kN"] for i in run.impacts)
     assert row["max_column_shear_ratio"] is None
+    assert row["max_column_total_shear_kN"] == max(i["column_total_shear_kN"] for i in run.impacts) > 0
+    assert row["max_column_total_shear_ratio"] is None
 
 
 def test_a_contact_free_reference_adds_the_pounding_induced_drifts(serial, tmp_path):

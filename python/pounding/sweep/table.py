@@ -25,8 +25,10 @@ ALL_ANGLES = ("all_angles_needed_gap_m", "all_angles_angle_deg")
 # ductility, the energy the columns dissipated and their branch changes.
 YIELDING = ("b1_max_ductility", "b2_max_ductility", "hysteretic_kJ", "yield_events")
 # Written when some scene of the sweep has slabs that can strike columns: how many impacts were
-# slab to column, the largest shear they caused in a column and (with a capacity) its ratio.
-SLAB_TO_COLUMN = ("slab_to_column_impact_count", "max_column_shear_kN", "max_column_shear_ratio")
+# slab to column, the largest shear they caused in a column and (with a capacity) its ratio, and
+# the same with the columns' sway shear (docs/model.md 6b).
+SLAB_TO_COLUMN = ("slab_to_column_impact_count", "max_column_shear_kN", "max_column_shear_ratio",
+                  "max_column_total_shear_kN", "max_column_total_shear_ratio")
 # Written when some scene of the sweep asks for the run without contact ([output]
 # contact_free_reference): each building's largest storey drift ratio at the CM (over x and y),
 # with contact and without.

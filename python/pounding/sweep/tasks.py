@@ -120,7 +120,8 @@ def _summarise(result):
     if "impacts_slab_to_column" in result.summary:
         on_columns = [i for i in impacts if i["level"] == 0]
         row["slab_to_column_impact_count"] = len(on_columns)
-        row["max_column_shear_kN"] = max((i["column_shear_kN"] for i in on_columns), default=0.0)
-        ratios = [i["column_shear_ratio"] for i in on_columns if i["column_shear_ratio"] is not None]
-        row["max_column_shear_ratio"] = max(ratios) if ratios else None
+        for name in ("column_shear", "column_total_shear"):
+            row[f"max_{name}_kN"] = max((i[f"{name}_kN"] for i in on_columns), default=0.0)
+            ratios = [i[f"{name}_ratio"] for i in on_columns if i[f"{name}_ratio"] is not None]
+            row[f"max_{name}_ratio"] = max(ratios) if ratios else None
     return row
