@@ -573,7 +573,7 @@ int run_check(const CheckCommand& command) {
   const excitation::GroundMotion& motion = system.ground_motion();
 
   fmt::print("Scene '{}' ({}) is valid.\n", scene.name, scene.file.string());
-  int total_dof = 0, hysteretic_states = 0;
+  int total_dof = 0;
   for (std::size_t i = 0; i < buildings.size(); ++i) {
     const auto& b = buildings[i];
     const auto& definition = scene.buildings[i];
@@ -604,11 +604,11 @@ int run_check(const CheckCommand& command) {
                    strength_text(law), law.hardening_ratio, shape);
       }
       print_storey_strengths(system.building(static_cast<int>(i)));
-      // One hysteretic variable per column, storey and direction (dynamics/yielding_springs.hpp).
-      if (law.is_smooth()) hysteretic_states += 2 * static_cast<int>(definition.columns.size()) * definition.storeys;
     }
     print_shear_capacities(system, static_cast<int>(i));
   }
+  // One hysteretic variable per Bouc–Wen spring (dynamics/yielding_springs.hpp).
+  const int hysteretic_states = system.springs().smooth_count();
   fmt::print("Coupled system: {} DOF ({} first-order states{})\n", total_dof, 2 * total_dof + hysteretic_states,
              hysteretic_states > 0 ? fmt::format(", {} of them Bouc-Wen's z", hysteretic_states) : std::string());
   print_levels(scene);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace pounding::dynamics {
@@ -37,11 +38,60 @@ std::optional<ImkParameters> imk_parameters(const model::HystereticLaw& law, int
                                        : std::nullopt};
 }
 
-/// The springs of one building (empty if its columns stay elastic).
+/// Writes d = t·(q_storey − q_storey−1) into `spring` (its indices and coefficients), t the row
+/// over (u, v, φ) of its direction; the ground's floor 0 does not move relative to the base.
+void set_drift_row(YieldingSpring& spring, const std::array<double, 3>& row, int offset) {
+  for (int floor : {spring.storey, spring.storey - 1}) {
+    if (floor == 0) continue;
+    const double sign = floor == spring.storey ? 1.0 : -1.0;
+    for (int i = 0; i < 3; ++i) {
+      if (row[i] == 0.0) continue;
+      spring.indices.push_back(offset + 3 * (floor - 1) + i);
+      spring.coefficients.push_back(sign * row[i]);
+    }
+  }
+}
+
+/// A spring of building b's storey along `direction` (0: x, 1: y) of stiffness k and its law's
+/// parameters, named `name`, its drift row still to set.
+YieldingSpring make_spring(const model::Building& building, int b, int storey, int direction, std::string name,
+                           double stiffness_kN_per_m, double yield_drift_m) {
+  const model::BuildingDefinition& d = building.definition;
+  return YieldingSpring{.building = b,
+                        .storey = storey,
+                        .direction = direction,
+                        .column = std::move(name),
+                        .column_index = 0,
+                        .stiffness_kN_per_m = stiffness_kN_per_m,
+                        .hardening_ratio = d.hysteresis.degrades() ? 0.0 : d.hysteresis.hardening_ratio,
+                        .yield_drift_m = yield_drift_m,
+                        .storey_height_m = d.storey_height_m[storey - 1],
+                        .indices = {},
+                        .coefficients = {},
+                        .bouc_wen = bouc_wen_shape(d.hysteresis),
+                        .z_index = -1,
+                        .imk = imk_parameters(d.hysteresis, storey, stiffness_kN_per_m, yield_drift_m),
+                        .shear_capacity_kN = 0.0,
+                        .loses_stiffness = false};
+}
+
+/// The springs of one building (empty if it stays elastic): a column's in x and in y, or, for a
+/// storey given as a matrix, its storey springs (model::storey_springs).
 void add_building_springs(const model::Building& building, int b, int offset, std::vector<YieldingSpring>& springs) {
   const model::BuildingDefinition& d = building.definition;
   if (!d.hysteresis.yields()) return;
   for (int storey = 1; storey <= d.storeys; ++storey) {
+    if (!d.uses_columns()) {
+      const model::StoreySprings storey_springs = model::storey_springs(d, storey);
+      for (int direction = 0; direction < 2; ++direction) {
+        YieldingSpring spring = make_spring(building, b, storey, direction, fmt::format("storey_stiffness[{}]", storey),
+                                            storey_springs.stiffness_kN_per_m[direction],
+                                            model::column_yield_drift_m(building, storey, direction));
+        set_drift_row(spring, storey_springs.rows[direction], offset);
+        springs.push_back(std::move(spring));
+      }
+      continue;
+    }
     const double height_m = d.storey_height_m[storey - 1];
     for (std::size_t c = 0; c < d.columns.size(); ++c) {
       const model::Column& column = d.columns[c];
@@ -50,32 +100,13 @@ void add_building_springs(const model::Building& building, int b, int offset, st
       // Row of T = [[1, 0, −Δy], [0, 1, Δx]] for each direction, upper floor minus lower floor.
       const std::array<std::array<double, 3>, 2> t_rows{{{1.0, 0.0, -arm.y()}, {0.0, 1.0, arm.x()}}};
       for (int direction = 0; direction < 2; ++direction) {
-        const double yield_drift_m = model::column_yield_drift_m(building, storey, c, direction);
-        YieldingSpring spring{.building = b,
-                              .storey = storey,
-                              .direction = direction,
-                              .column = column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key,
-                              .column_index = c,
-                              .stiffness_kN_per_m = k[direction],
-                              .hardening_ratio = d.hysteresis.degrades() ? 0.0 : d.hysteresis.hardening_ratio,
-                              .yield_drift_m = yield_drift_m,
-                              .storey_height_m = height_m,
-                              .indices = {},
-                              .coefficients = {},
-                              .bouc_wen = bouc_wen_shape(d.hysteresis),
-                              .z_index = -1,
-                              .imk = imk_parameters(d.hysteresis, storey, k[direction], yield_drift_m),
-                              .shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction),
-                              .loses_stiffness = d.shear_failure_loses_stiffness()};
-        for (int floor : {storey, storey - 1}) {
-          if (floor == 0) continue;  // the ground does not move relative to the base
-          const double sign = floor == storey ? 1.0 : -1.0;
-          for (int i = 0; i < 3; ++i) {
-            if (t_rows[direction][i] == 0.0) continue;
-            spring.indices.push_back(offset + 3 * (floor - 1) + i);
-            spring.coefficients.push_back(sign * t_rows[direction][i]);
-          }
-        }
+        YieldingSpring spring = make_spring(building, b, storey, direction,
+                                            column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key,
+                                            k[direction], model::column_yield_drift_m(building, storey, c, direction));
+        spring.column_index = c;
+        spring.shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction);
+        spring.loses_stiffness = d.shear_failure_loses_stiffness();
+        set_drift_row(spring, t_rows[direction], offset);
         springs.push_back(std::move(spring));
       }
     }
@@ -107,7 +138,7 @@ YieldingSprings::YieldingSprings(const std::vector<model::Building>& buildings, 
 std::optional<std::size_t> YieldingSprings::index_of(int building, int storey, std::size_t column,
                                                      int direction) const {
   const std::size_t b = static_cast<std::size_t>(building);
-  if (b >= first_spring_.size() || !first_spring_[b]) return std::nullopt;
+  if (b >= first_spring_.size() || !first_spring_[b] || column >= column_count_[b]) return std::nullopt;
   return *first_spring_[b] + 2 * (static_cast<std::size_t>(storey - 1) * column_count_[b] + column) +
          static_cast<std::size_t>(direction);
 }

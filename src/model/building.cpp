@@ -269,6 +269,18 @@ void validate_imk(const BuildingDefinition& b) {
   require(law.imk_kappa_d.has_value(), "hysteresis.kappaD");
 }
 
+/// Storeys given as matrices yield as springs along x and y (storey_springs()), which K must split
+/// into without a coupling K_uv between them.
+void refuse_coupled_storey_springs(const BuildingDefinition& b) {
+  for (std::size_t j = 0; j < b.storey_stiffness.size(); ++j) {
+    const Eigen::Matrix3d& k = b.storey_stiffness[j];
+    if (std::abs(k(0, 1)) <= 1e-12 * std::sqrt(k(0, 0) * k(1, 1))) continue;
+    throw InputError(indexed("storey_stiffness", j), fmt::format("K_uv = {:g} kN/m", k(0, 1)),
+                     "a storey that yields (hysteresis.law) is a storey spring along x and one along y, so its "
+                     "matrix must not couple u and v (K_uv = 0; docs/model.md §2a, \"Storey springs\")");
+  }
+}
+
 /// The first column with a yield force of its own, if any.
 const Column* column_with_own_strength(const BuildingDefinition& b) {
   for (const Column& c : b.columns)
@@ -287,10 +299,7 @@ void validate_hysteresis(const BuildingDefinition& b) {
                      "needs yielding columns ([building.hysteresis] law)");
   }
   if (!law.yields()) return;
-  if (!b.uses_columns()) {
-    throw InputError("hysteresis.law", fmt::format("\"{}\"", to_string(law.kind)),
-                     "needs columns: storeys given as storey_stiffness matrices stay elastic");
-  }
+  if (!b.uses_columns()) refuse_coupled_storey_springs(b);
   std::vector<std::string> strengths;
   if (!law.yield_drift_ratio.empty()) strengths.push_back("yield_drift_ratio");
   if (!law.yield_drift_m.empty()) strengths.push_back("yield_drift_m");
@@ -607,8 +616,15 @@ RayleighCoefficients fit_rayleigh(double omega_i, double omega_j, double ratio) 
   return {2.0 * ratio * omega_i * omega_j / sum, 2.0 * ratio / sum};
 }
 
+StoreySprings storey_springs(const BuildingDefinition& definition, int storey) {
+  const Eigen::Matrix3d& k = definition.storey_stiffness.at(static_cast<std::size_t>(storey - 1));
+  const double e_y = -k(0, 2) / k(0, 0), e_x = k(1, 2) / k(1, 1);
+  return {.stiffness_kN_per_m = {k(0, 0), k(1, 1)}, .rows = {{{1.0, 0.0, -e_y}, {0.0, 1.0, e_x}}}};
+}
+
 double storey_column_stiffness(const Building& building, int storey, int direction) {
   const BuildingDefinition& d = building.definition;
+  if (!d.uses_columns()) return storey_springs(d, storey).stiffness_kN_per_m[static_cast<std::size_t>(direction)];
   double sum_kN_per_m = 0.0;
   for (const Column& column : d.columns)
     sum_kN_per_m += column_stiffness(column, d.E_kPa, d.storey_height_m[storey - 1], building.frame_factor)[direction];
@@ -772,9 +788,14 @@ void refuse_steep_imk_hardening(const Building& building) {
     for (int storey = 1; storey <= building.definition.storeys; ++storey) {
       const ImkSideKeys side = imk_side(law, storey, positive);
       const std::size_t j = static_cast<std::size_t>(storey - 1);
-      for (std::size_t c = 0; c < building.definition.columns.size(); ++c) {
+      // A storey given as a matrix: its storey springs', which yield at the storey's d_y.
+      const std::size_t springs = std::max<std::size_t>(building.definition.columns.size(), 1);
+      for (std::size_t c = 0; c < springs; ++c) {
         for (int direction = 0; direction < 2; ++direction) {
-          const double least_m = (side.cap_ratio - 1.0) * column_yield_drift_m(building, storey, c, direction);
+          const double yield_m = building.definition.uses_columns()
+                                     ? column_yield_drift_m(building, storey, c, direction)
+                                     : column_yield_drift_m(building, storey, direction);
+          const double least_m = (side.cap_ratio - 1.0) * yield_m;
           if (side.plastic_drift_m > least_m) continue;
           throw InputError(
               indexed(key, j), format_value(side.plastic_drift_m),

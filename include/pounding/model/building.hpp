@@ -108,7 +108,7 @@ struct FlexuralStrengthFormula {
 /// stiffness deterioration, as OpenSees' IMKPeakOriented (dynamics/imk_law.hpp), with OpenSees'
 /// parameter names: K_e is the column's k, F_y its k d_y on both sides. `imk_pinching`: the same
 /// with OpenSees' IMKPinching's pinched reloading (κ_F, κ_D).
-/// Storeys given as 3×3 matrices stay elastic.
+/// Storeys given as 3×3 matrices yield as storey springs (storey_springs()).
 struct HystereticLaw {
   enum class Kind { elastic, bilinear, bouc_wen, imk_peak_oriented, imk_pinching };
   Kind kind = Kind::elastic;
@@ -304,8 +304,20 @@ struct Building {
 };
 
 /// Σ k (kN/m) of storey `storey`'s columns (1-based) along `direction` (0: x, 1: y), with the
-/// building's frame factor. @pre building.definition.uses_columns().
+/// building's frame factor; a storey given as a matrix: its storey spring's (storey_springs()).
 double storey_column_stiffness(const Building& building, int storey, int direction);
+
+/// A storey given as a 3×3 matrix K (about the CM) yields as two storey springs (docs/model.md
+/// §2a, "Storey springs"): along x, k_x = K_uu acting at the storey's centre of rigidity along y,
+/// e_y = −K_uφ/K_uu, on the drift Δu − e_y Δφ (row t_x = (1, 0, −e_y)); along y, k_y = K_vv at
+/// e_x = K_vφ/K_vv on Δv + e_x Δφ (t_y = (0, 1, e_x)). K is k_x t_x t_xᵀ + k_y t_y t_yᵀ plus an
+/// elastic torsional remainder, which needs K_uv = 0 (validate() refuses a coupled matrix).
+struct StoreySprings {
+  std::array<double, 2> stiffness_kN_per_m{};   // k_x, k_y
+  std::array<std::array<double, 3>, 2> rows{};  // t_x, t_y over (Δu, Δv, Δφ)
+};
+/// @pre definition valid, !uses_columns(), 1 ≤ storey ≤ storeys.
+StoreySprings storey_springs(const BuildingDefinition& definition, int storey);
 
 /// The yield drift (m) of every column of storey `storey` (1-based) along `direction` (0: x,
 /// 1: y), from the law's strength (HystereticLaw). @pre building.definition.hysteresis.yields().
