@@ -200,16 +200,29 @@ std::string storeys_text(const model::BuildingDefinition& b) {
 /// "0.005 of the storey height", "[0.004, 0.005] of the storey heights", "0.01 m", "storey
 /// yield shear [5200, 4100] kN", or (none given) "each column grid's yield force": the strength as
 /// the scene gave it (one number for all storeys).
-std::string strength_text(const model::HystereticLaw& law) {
+/// True when every column of `d` has its own yield force (the storey's and the section's unused).
+bool every_column_own_strength(const model::BuildingDefinition& d) {
+  return d.uses_columns() && std::all_of(d.columns.begin(), d.columns.end(),
+                                         [](const model::Column& c) { return !c.yield_force_kN.empty(); });
+}
+
+std::string strength_text(const model::BuildingDefinition& d) {
+  const model::HystereticLaw& law = d.hysteresis;
   const auto values = [](const std::vector<double>& v) {
     return all_equal(v) ? fmt::format("{}", v.front()) : fmt::format("[{}]", fmt::join(v, ", "));
   };
+  if (every_column_own_strength(d)) return "each column's own yield force";
+  if (const auto& f = d.flexural_strength) {
+    return fmt::format("yield force 2 M_n / H from the section (rho_l {}, f_y {} MPa, f'c {} MPa, N {}, cover {} D)",
+                       values(f->longitudinal_ratio), f->steel_yield_strength_MPa, f->concrete_strength_MPa,
+                       f->axial_load_kN ? fmt::format("{} kN", *f->axial_load_kN) : std::string("the gravity share"),
+                       f->cover_ratio);
+  }
   if (!law.yield_drift_m.empty()) return fmt::format("yield drift {} m", values(law.yield_drift_m));
   if (!law.yield_drift_ratio.empty()) {
     return fmt::format("yield drift {} of the storey height", values(law.yield_drift_ratio));
   }
-  if (!law.yield_shear_kN.empty()) return fmt::format("storey yield shear {} kN", values(law.yield_shear_kN));
-  return "each column grid's yield force";
+  return fmt::format("storey yield shear {} kN", values(law.yield_shear_kN));
 }
 
 /// IMK's backbone and deterioration as given: "Up 0.06 m, Upc 0.15 m, FmaxFy 1.2, FresFy 0.2;
@@ -244,8 +257,8 @@ std::string imk_text(const model::HystereticLaw& law) {
 void print_storey_strengths(const model::Building& building) {
   const model::BuildingDefinition& d = building.definition;
   const bool storey_strength =
-      !d.flexural_strength &&
-      std::all_of(d.columns.begin(), d.columns.end(), [](const model::Column& c) { return c.yield_force_kN.empty(); });
+      !d.flexural_strength && std::none_of(d.columns.begin(), d.columns.end(),
+                                           [](const model::Column& c) { return !c.yield_force_kN.empty(); });
   std::vector<std::string> storeys;
   for (int storey = 1; storey <= building.storeys(); ++storey) {
     const auto shear_kN = [&](int direction) {  // Σ k_c d_y,c over the storey's columns
@@ -263,7 +276,8 @@ void print_storey_strengths(const model::Building& building) {
     };
     storeys.push_back(fmt::format("{:.5g} | {:.5g}", shear_kN(0), shear_kN(1)));
   }
-  const std::string source = d.flexural_strength ? " (columns from their sections, 2 M_y / H)" : "";
+  const std::string source =
+      d.flexural_strength && !every_column_own_strength(d) ? " (columns from their sections, 2 M_n / H)" : "";
   if (all_equal(storeys)) {
     fmt::print("  storey yield shear{} x | y: {} kN, every storey\n", source, storeys.front());
   } else {
@@ -277,16 +291,17 @@ void print_storey_strengths(const model::Building& building) {
 void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
   const model::Building& building = system.building(b);
   const model::BuildingDefinition& d = building.definition;
-  const bool own_capacity = std::any_of(d.columns.begin(), d.columns.end(),
-                                        [](const model::Column& c) { return !c.shear_capacity_kN.empty(); });
-  if (d.column_shear_capacity_kN.empty() && !d.shear_capacity && !own_capacity) return;
+  if (!model::has_shear_capacity(d)) return;
   std::vector<std::string> storeys;
   for (int storey = 1; storey <= d.storeys; ++storey) {
     std::array<std::string, 2> along;
     for (int direction = 0; direction < 2; ++direction) {
-      std::vector<double> kN;
-      for (std::size_t c = 0; c < d.columns.size(); ++c)
-        kN.push_back(model::column_shear_capacity_kN(building, storey, c, direction));
+      std::vector<double> kN;  // of the columns that have one (0: none)
+      for (std::size_t c = 0; c < d.columns.size(); ++c) {
+        const double capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction);
+        if (capacity_kN > 0.0) kN.push_back(capacity_kN);
+      }
+      if (kN.empty()) kN.push_back(0.0);
       const auto [low, high] = std::minmax_element(kN.begin(), kN.end());
       along[direction] = *low == *high ? fmt::format("{:.5g}", *low) : fmt::format("{:.5g}-{:.5g}", *low, *high);
     }
@@ -301,7 +316,7 @@ void print_shear_capacities(const dynamics::CoupledSystem& system, int b) {
   }
   int springs = 0, critical = 0;
   for (const dynamics::YieldingSpring& s : system.springs().all()) {
-    if (s.building != b) continue;
+    if (s.building != b || s.shear_capacity_kN <= 0.0) continue;  // no capacity: not checked
     ++springs;
     if (s.shear_capacity_kN < s.stiffness_kN_per_m * s.yield_drift_m) ++critical;
   }
@@ -598,10 +613,11 @@ int run_check(const CheckCommand& command) {
                                                               law.bouc_wen_beta, law.bouc_wen_gamma, law.bouc_wen_n)
                                                 : std::string();
       if (law.degrades()) {
-        fmt::print("  columns {} in x and y: {}, {}\n", model::to_string(law.kind), strength_text(law), imk_text(law));
+        fmt::print("  columns {} in x and y: {}, {}\n", model::to_string(law.kind), strength_text(definition),
+                   imk_text(law));
       } else {
         fmt::print("  columns {} in x and y: {}, hardening ratio {}{}\n", model::to_string(law.kind),
-                   strength_text(law), law.hardening_ratio, shape);
+                   strength_text(definition), law.hardening_ratio, shape);
       }
       print_storey_strengths(system.building(static_cast<int>(i)));
     }

@@ -177,6 +177,15 @@ def ratio_cell(ratio):
     return text(f"{ratio:.3g} EXCEEDED") if ratio > 1.0 else number(ratio, 3)
 
 
+def total_cells(impact):
+    """The shear with the sway, when, the sway then and its ratio; empty for a run written before
+    these fields existed."""
+    if "column_total_shear_kN" not in impact:
+        return "", "", "", ""
+    return (number(impact["column_total_shear_kN"], 5), f"{impact['column_total_shear_t_s']:.4f}",
+            number(impact["column_sway_shear_kN"], 5), ratio_cell(impact.get("column_total_shear_ratio")))
+
+
 def struck_columns_table(summary):
     """Per struck column (slab to column): its impacts, the largest peak force with the end shear it
     causes, and the largest shear with the column's sway (docs/model.md 6b), each against the
@@ -192,7 +201,7 @@ def struck_columns_table(summary):
         entry["count"] += 1
         if i["peak_force_kN"] > entry["force"]["peak_force_kN"]:
             entry["force"] = i
-        if i["column_total_shear_kN"] > entry["total"]["column_total_shear_kN"]:
+        if i.get("column_total_shear_kN", 0.0) > entry["total"].get("column_total_shear_kN", 0.0):
             entry["total"] = i
     if not columns:
         return ""
@@ -200,8 +209,7 @@ def struck_columns_table(summary):
               "with sway [kN]", "at [s]", "sway [kN]", "with sway over capacity")
     rows = [(f"B{b} column {c}", storey, e["count"], number(e["force"]["peak_force_kN"], 5),
              number(e["force"]["column_shear_kN"], 5), ratio_cell(e["force"].get("column_shear_ratio")),
-             number(e["total"]["column_total_shear_kN"], 5), f"{e['total']['column_total_shear_t_s']:.4f}",
-             number(e["total"]["column_sway_shear_kN"], 5), ratio_cell(e["total"].get("column_total_shear_ratio")))
+             *total_cells(e["total"]))
             for (b, c, storey), e in sorted(columns.items())]
     return table(header, rows, "struck-columns", text_columns=("column", "over capacity", "with sway over capacity"))
 

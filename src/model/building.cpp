@@ -137,9 +137,7 @@ void validate_shear_failure(const BuildingDefinition& b) {
         "needs bilinear, imk-peak-oriented or imk-pinching columns ([building.hysteresis] law): the columns' sway "
         "shear is checked where they yield");
   }
-  const bool own_capacity =
-      std::any_of(b.columns.begin(), b.columns.end(), [](const Column& c) { return !c.shear_capacity_kN.empty(); });
-  if (b.column_shear_capacity_kN.empty() && !b.shear_capacity && !own_capacity) {
+  if (!has_shear_capacity(b)) {
     throw InputError("column_shear_failure", "\"lose-stiffness\"",
                      "needs a shear capacity: column_shear_capacity_kN, [building.shear_capacity] or a column's "
                      "shear_capacity_kN");
@@ -304,7 +302,9 @@ void validate_hysteresis(const BuildingDefinition& b) {
   if (!law.yield_drift_ratio.empty()) strengths.push_back("yield_drift_ratio");
   if (!law.yield_drift_m.empty()) strengths.push_back("yield_drift_m");
   if (!law.yield_shear_kN.empty()) strengths.push_back("yield_shear_kN");
+  // A storey given as a matrix has no columns to give a force of their own.
   const bool every_column_own =
+      b.uses_columns() &&
       std::all_of(b.columns.begin(), b.columns.end(), [](const Column& c) { return !c.yield_force_kN.empty(); });
   if (b.flexural_strength && !strengths.empty()) {
     throw InputError("hysteresis." + strengths[0], "given with [building.flexural_strength]",
@@ -675,6 +675,43 @@ double stress_block_factor(double concrete_strength_MPa) {
   return std::clamp(0.85 - 0.05 * (concrete_strength_MPa - 28.0) / 7.0, 0.65, 0.85);
 }
 
+/// A rectangular section of two bar layers at its ultimate strain (N, mm, MPa): the stress block
+/// 0.85 f'c over β₁ c and each layer's stress from the strain ε_cu (c − y)/c at its depth y,
+/// bounded by ±f_y (compression positive).
+struct TwoLayerSection {
+  double depth_mm, width_mm, cover_mm, layer_area_mm2, steel_yield_MPa, concrete_MPa;
+  static constexpr double kUltimateStrain = 0.003, kSteelModulus_MPa = 200'000.0;
+
+  double block_mm(double axis_mm) const { return std::min(stress_block_factor(concrete_MPa) * axis_mm, depth_mm); }
+  double layer_stress_MPa(double axis_mm, double layer_depth_mm) const {
+    const double strain = kUltimateStrain * (axis_mm - layer_depth_mm) / axis_mm;
+    return std::clamp(kSteelModulus_MPa * strain, -steel_yield_MPa, steel_yield_MPa);
+  }
+  /// The axial force the section carries (N, compression positive) with its neutral axis at c.
+  double axial_N(double axis_mm) const {
+    return 0.85 * concrete_MPa * block_mm(axis_mm) * width_mm +
+           layer_area_mm2 * (layer_stress_MPa(axis_mm, cover_mm) + layer_stress_MPa(axis_mm, depth_mm - cover_mm));
+  }
+  /// The moment about the section's centre (N·mm) with its neutral axis at c.
+  double moment_Nmm(double axis_mm) const {
+    const double half_mm = depth_mm / 2.0, block = block_mm(axis_mm);
+    return 0.85 * concrete_MPa * block * width_mm * (half_mm - block / 2.0) +
+           layer_area_mm2 * (layer_stress_MPa(axis_mm, cover_mm) - layer_stress_MPa(axis_mm, depth_mm - cover_mm)) *
+               (half_mm - cover_mm);
+  }
+  /// The neutral axis' depth at which the section carries `axial_N`: axial_N() rises with c, so
+  /// bisection. @pre axial_N below the section's squash load.
+  double axis_for_mm(double target_N) const {
+    double low = 1e-9 * depth_mm, high = depth_mm;
+    while (axial_N(high) < target_N && high < 1e6 * depth_mm) high *= 2.0;
+    for (int i = 0; i < 200 && high - low > 1e-13 * high; ++i) {
+      const double mid = 0.5 * (low + high);
+      (axial_N(mid) < target_N ? low : high) = mid;
+    }
+    return 0.5 * (low + high);
+  }
+};
+
 }  // namespace
 
 SectionStrength column_section_strength(const BuildingDefinition& definition, int storey, std::size_t column,
@@ -684,21 +721,25 @@ SectionStrength column_section_strength(const BuildingDefinition& definition, in
   // N, mm, MPa throughout; D along the sway, W across it.
   const double depth_mm = 1000.0 * (direction == 0 ? c.b_m : c.h_m);
   const double width_mm = 1000.0 * (direction == 0 ? c.h_m : c.b_m);
-  const double cover_mm = f.cover_ratio * depth_mm;
-  const double face_steel_mm2 =
-      0.5 * f.longitudinal_ratio.at(static_cast<std::size_t>(storey - 1)) * depth_mm * width_mm;
-  const double axial_N = 1000.0 * column_axial_load_kN(definition, storey, f.axial_load_kN);
-  const double block_mm = axial_N / (0.85 * f.concrete_strength_MPa * width_mm);
-  const double moment_Nmm =
-      face_steel_mm2 * f.steel_yield_strength_MPa * (depth_mm - 2.0 * cover_mm) + axial_N * (depth_mm - block_mm) / 2.0;
-  const double balanced_axis_mm = 600.0 * (depth_mm - cover_mm) / (600.0 + f.steel_yield_strength_MPa);
-  const double height_m = definition.storey_height_m.at(static_cast<std::size_t>(storey - 1));
+  const TwoLayerSection section{
+      .depth_mm = depth_mm,
+      .width_mm = width_mm,
+      .cover_mm = f.cover_ratio * depth_mm,
+      .layer_area_mm2 = 0.5 * f.longitudinal_ratio.at(static_cast<std::size_t>(storey - 1)) * depth_mm * width_mm,
+      .steel_yield_MPa = f.steel_yield_strength_MPa,
+      .concrete_MPa = f.concrete_strength_MPa};
+  // Balanced: the tension layer just yields as the concrete reaches ε_cu.
+  const double tension_depth_mm = depth_mm - section.cover_mm;
+  const double balanced_axis_mm =
+      TwoLayerSection::kUltimateStrain * tension_depth_mm /
+      (TwoLayerSection::kUltimateStrain + f.steel_yield_strength_MPa / TwoLayerSection::kSteelModulus_MPa);
   SectionStrength strength;
-  strength.axial_load_kN = axial_N / 1000.0;
-  strength.balanced_axial_load_kN = 0.85 * f.concrete_strength_MPa * width_mm *
-                                    stress_block_factor(f.concrete_strength_MPa) * balanced_axis_mm / 1000.0;
-  strength.moment_kNm = moment_Nmm / 1e6;
-  strength.yield_force_kN = 2.0 * strength.moment_kNm / height_m;
+  strength.axial_load_kN = column_axial_load_kN(definition, storey, f.axial_load_kN);
+  strength.balanced_axial_load_kN = section.axial_N(balanced_axis_mm) / 1000.0;
+  const double axis_mm = section.axis_for_mm(1000.0 * strength.axial_load_kN);
+  strength.moment_kNm = section.moment_Nmm(axis_mm) / 1e6;
+  strength.yield_force_kN =
+      2.0 * strength.moment_kNm / definition.storey_height_m.at(static_cast<std::size_t>(storey - 1));
   return strength;
 }
 
@@ -708,6 +749,12 @@ double column_yield_drift_m(const Building& building, int storey, int direction)
   if (!law.yield_drift_m.empty()) return law.yield_drift_m[j];
   if (!law.yield_drift_ratio.empty()) return law.yield_drift_ratio[j] * building.definition.storey_height_m[j];
   return law.yield_shear_kN.at(j) / storey_column_stiffness(building, storey, direction);
+}
+
+bool has_shear_capacity(const BuildingDefinition& definition) {
+  return !definition.column_shear_capacity_kN.empty() || definition.shear_capacity ||
+         std::any_of(definition.columns.begin(), definition.columns.end(),
+                     [](const Column& c) { return !c.shear_capacity_kN.empty(); });
 }
 
 double column_shear_capacity_kN(const Building& building, int storey, std::size_t column, int direction) {
@@ -759,7 +806,7 @@ void refuse_collapse_before_yield_shear(const Building& building) {
             fmt::format("gives {} a yield drift of {:.4g} m along {}{}, over 5 % of storey {}'s height "
                         "({:g} m): a drift of 10 % of a storey ends a run as a collapse",
                         name, drift_m, direction == 0 ? "x" : "y",
-                        column.yield_force_kN.empty() ? " (its section's yield force 2 M_y / H over k)" : "", storey,
+                        column.yield_force_kN.empty() ? " (its section's yield force 2 M_n / H over k)" : "", storey,
                         d.storey_height_m[j]));
       }
     }

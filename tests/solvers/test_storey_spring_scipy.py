@@ -33,7 +33,8 @@ and its own branch rules. Checked, for A and for B:
 And the springs matter: the peer with its springs kept elastic, and the peer whose springs act at
 the CM (e_x = e_y = 0 in their rows, K unchanged), each differ from the yielding peer by more than
 1000 times the history tolerance. And a storey matrix that couples u and v (K_uv != 0) under a
-yielding law is refused by `pounding check` (non-zero exit, naming `storey_stiffness` and K_uv),
+yielding law is refused by `pounding check` (non-zero exit, naming `storey_stiffness` and K_uv), as is
+a yielding law without a strength key (exit 2, naming hysteresis.yield_drift_ratio as missing),
 while the same matrix elastic is accepted.
 """
 import csv
@@ -370,6 +371,17 @@ def check_refusal(program, out, failures):
                 failures.append(f"the refusal of K_uv != 0 does not name storey_stiffness and K_uv: {message[-300:]}")
         elif check.returncode != 0:
             failures.append(f"the elastic storey matrix with K_uv != 0 is refused: {message[-300:]}")
+    # A yielding law without a strength: refused by name (exit 2), not a crash on the missing list.
+    folder = out / "no-strength"
+    folder.mkdir(parents=True, exist_ok=True)
+    program_run.write_record(folder / "pulse.txt", accel)
+    text = scene_text(key, values)(folder / "pulse.txt")
+    (folder / "scene.toml").write_text(text.replace(f"{key} = [{values[0]!r}, {values[1]!r}]\n", "", 1))
+    check = subprocess.run([program, "check", str(folder / "scene.toml")], capture_output=True, text=True)
+    message = (check.stderr + check.stdout).strip()
+    print(f"no strength key: exit {check.returncode}: {message.splitlines()[-1][:200] if message else ''}")
+    if check.returncode != 2 or "hysteresis.yield_drift_ratio" not in message or "missing" not in message:
+        failures.append(f"a yielding storey matrix without a strength: exit {check.returncode}: {message[-300:]}")
 
 
 def main():

@@ -79,15 +79,16 @@ struct ShearCapacityFormula {
 };
 
 /// A reinforced-concrete column's flexural strength from its section (docs/model.md §2a, "Column
-/// strength from the section"), SI units (N, mm, MPa): the rectangular stress block 0.85 f'c over a
-/// depth a with the bars of the two faces across the sway, each half of ρ_l A_g, at f_y:
-///   M_y = (ρ_l A_g / 2) f_y (D − 2 d') + N (D − a) / 2,   a = N / (0.85 f'c W)
-/// for a sway along x (y) of a column b × h: D = b (h) the section's depth along the sway, W = h (b)
-/// the other side, d' = cover_ratio · D, N the axial compression. The column's yield force is the
-/// shear of its double curvature over the storey height, F_y = 2 M_y / H. The formula holds up to
-/// the balanced load N_b = 0.85 f'c W β₁ c_b, c_b = 600 d / (600 + f_y), d = D − d' (ACI 318:
-/// ε_cu = 0.003, E_s = 200 GPa, β₁ of f'c): a larger N is refused. The same keys for every column of
-/// the building but ρ_l, one a storey.
+/// strength from the section"), SI units (N, mm, MPa): the nominal moment M_n of the section at
+/// the concrete's ultimate strain ε_cu = 0.003 under its axial compression N, by strain
+/// compatibility (ACI 318's assumptions: the stress block 0.85 f'c over β₁ c, E_s = 200 GPa, bars
+/// elastic–perfectly plastic at ±f_y), with its bars as two layers of ρ_l D W / 2 each at
+/// d' = cover_ratio · D from the faces across the sway: for a sway along x (y) of a column b × h,
+/// D = b (h) the depth along the sway and W = h (b) the other side. The column's yield force is the
+/// shear of its double curvature over the storey height, F_y = 2 M_n / H. A section whose tension
+/// bars would not yield (N above the balanced load N_b, where the tension layer reaches f_y as the
+/// concrete reaches ε_cu) is refused. The same keys for every column of the building but ρ_l, one a
+/// storey.
 struct FlexuralStrengthFormula {
   std::vector<double> longitudinal_ratio;  // ρ_l: all longitudinal bars over A_g, one a storey (required)
   double steel_yield_strength_MPa = 0.0;   // f_y of the longitudinal bars (required)
@@ -327,7 +328,7 @@ double column_yield_drift_m(const Building& building, int storey, int direction)
 /// (above). @pre as above.
 double column_yield_drift_m(const Building& building, int storey, std::size_t column, int direction);
 /// Column `column`'s own yield force (kN) in storey `storey` along x (0) or y (1): its
-/// Column::yield_force_kN, else its section's 2 M_y / H (FlexuralStrengthFormula); none: the
+/// Column::yield_force_kN, else its section's 2 M_n / H (FlexuralStrengthFormula); none: the
 /// storey's strength applies.
 std::optional<double> column_yield_force_kN(const BuildingDefinition& definition, int storey, std::size_t column,
                                             int direction);
@@ -335,9 +336,9 @@ std::optional<double> column_yield_force_kN(const BuildingDefinition& definition
 /// A column's section strength along one direction (FlexuralStrengthFormula).
 struct SectionStrength {
   double axial_load_kN = 0.0;           // N
-  double balanced_axial_load_kN = 0.0;  // N_b: the formula holds for N ≤ N_b
-  double moment_kNm = 0.0;              // M_y
-  double yield_force_kN = 0.0;          // 2 M_y / H
+  double balanced_axial_load_kN = 0.0;  // N_b: the tension bars yield for N ≤ N_b
+  double moment_kNm = 0.0;              // M_n at N
+  double yield_force_kN = 0.0;          // 2 M_n / H
 };
 /// @pre definition.flexural_strength, its keys within their ranges.
 SectionStrength column_section_strength(const BuildingDefinition& definition, int storey, std::size_t column,
@@ -345,6 +346,9 @@ SectionStrength column_section_strength(const BuildingDefinition& definition, in
 /// A column's axial compression (kN) in storey `storey`: `given`, else the storey's gravity share
 /// g Σ (floor masses from `storey` up) / its number of columns.
 double column_axial_load_kN(const BuildingDefinition& definition, int storey, std::optional<double> given);
+/// Whether some column of `definition` has a shear capacity (its own, column_shear_capacity_kN or
+/// [building.shear_capacity]).
+bool has_shear_capacity(const BuildingDefinition& definition);
 /// Column `column` (0-based)'s shear capacity (kN) in storey `storey` along x (0) or y (1): its
 /// own (Column::shear_capacity_kN), else the given column_shear_capacity_kN, or ShearCapacityFormula's, whose axial
 /// load defaults to the storey's gravity share g Σ (floor masses from `storey` up) / columns; 0 when none is given.
