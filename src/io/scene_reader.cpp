@@ -417,8 +417,9 @@ std::vector<Eigen::Matrix3d> storey_matrices(TableReader& table, const toml::nod
 
 void read_stiffness(TableReader& table, model::BuildingDefinition& b) {
   if (const toml::node* node = table.find("storey_stiffness")) {
-    for (const char* other : {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s",
-                              "column_shear_capacity_kN", "shear_capacity", "flexural_strength", "slab_thickness_m"}) {
+    for (const char* other :
+         {"columns", "column_grid", "E_kPa", "frame_factor", "target_period_s", "column_shear_capacity_kN",
+          "column_shear_failure", "shear_capacity", "flexural_strength", "slab_thickness_m"}) {
       if (table.has(other)) {
         throw table.error(*node, table.key_path("storey_stiffness"),
                           fmt::format("give either storey_stiffness or columns with {}, not both", other));
