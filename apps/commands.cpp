@@ -198,20 +198,14 @@ std::string storeys_text(const model::BuildingDefinition& b) {
 }
 
 /// "0.005 of the storey height", "[0.004, 0.005] of the storey heights", "0.01 m", "storey
-/// yield shear [5200, 4100] kN", or (none given) "each column grid's yield force": the strength as
-/// the scene gave it (one number for all storeys).
-/// True when every column of `d` has its own yield force (the storey's and the section's unused).
-bool every_column_own_strength(const model::BuildingDefinition& d) {
-  return d.uses_columns() && std::all_of(d.columns.begin(), d.columns.end(),
-                                         [](const model::Column& c) { return !c.yield_force_kN.empty(); });
-}
-
+/// yield shear [5200, 4100] kN", the section's keys, or "each column's own yield force": the
+/// strength as the scene gave it (one number for all storeys).
 std::string strength_text(const model::BuildingDefinition& d) {
   const model::HystereticLaw& law = d.hysteresis;
   const auto values = [](const std::vector<double>& v) {
     return all_equal(v) ? fmt::format("{}", v.front()) : fmt::format("[{}]", fmt::join(v, ", "));
   };
-  if (every_column_own_strength(d)) return "each column's own yield force";
+  if (model::every_column_has_own_strength(d)) return "each column's own yield force";
   if (const auto& f = d.flexural_strength) {
     return fmt::format("yield force 2 M_n / H from the section (rho_l {}, f_y {} MPa, f'c {} MPa, N {}, cover {} D)",
                        values(f->longitudinal_ratio), f->steel_yield_strength_MPa, f->concrete_strength_MPa,
@@ -276,8 +270,9 @@ void print_storey_strengths(const model::Building& building) {
     };
     storeys.push_back(fmt::format("{:.5g} | {:.5g}", shear_kN(0), shear_kN(1)));
   }
-  const std::string source =
-      d.flexural_strength && !every_column_own_strength(d) ? " (columns from their sections, 2 M_n / H)" : "";
+  const std::string source = d.flexural_strength && !model::every_column_has_own_strength(d)
+                                 ? " (columns from their sections, 2 M_n / H)"
+                                 : "";
   if (all_equal(storeys)) {
     fmt::print("  storey yield shear{} x | y: {} kN, every storey\n", source, storeys.front());
   } else {
@@ -335,7 +330,7 @@ void print_slab_axial_stiffness(const analysis::Scene& scene) {
     const model::BuildingDefinition& a = scene.buildings[static_cast<std::size_t>(pair.first)];
     const model::BuildingDefinition& b = scene.buildings[static_cast<std::size_t>(pair.second)];
     if (!a.slab_thickness_m && !b.slab_thickness_m) continue;
-    const model::Point2 direction = model::clearance(a.slab, b.slab).direction + model::Point2(0.0, 0.0);  // no -0
+    const model::Point2 direction = model::clearance(a.slab, b.slab).direction;
     std::vector<std::string> parts;
     std::vector<double> stiffnesses;
     for (const model::BuildingDefinition* building : {&a, &b}) {
@@ -353,7 +348,7 @@ void print_slab_axial_stiffness(const analysis::Scene& scene) {
       }
     }
     fmt::print("  slab axial stiffness E t w / L, {} - {} along ({:.3g}, {:.3g}): {}{}\n", a.name, b.name,
-               direction.x(), direction.y(), fmt::join(parts, ", "), verdict);
+               direction.x() + 0.0, direction.y() + 0.0, fmt::join(parts, ", "), verdict);  // + 0: no "-0"
   }
 }
 

@@ -194,14 +194,12 @@ void validate_flexural_strength(const model::BuildingDefinition& building) {
       for (int direction = 0; direction < 2; ++direction) {
         const model::SectionStrength strength = model::column_section_strength(building, storey, c, direction);
         if (strength.axial_load_kN <= strength.balanced_axial_load_kN) continue;
-        const model::Column& column = building.columns[c];
         throw InputError(
             "flexural_strength.axial_load_kN", fmt::format("{:.5g} kN", strength.axial_load_kN),
             fmt::format("is above the balanced load N_b = {:.5g} kN of {} in storey {} along {} ({}): the "
                         "section's formula assumes the tension bars yield, which they do not beyond N_b; give the "
                         "column's yield_force_kN instead",
-                        strength.balanced_axial_load_kN,
-                        column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key, storey,
+                        strength.balanced_axial_load_kN, model::column_key(building, c), storey,
                         direction == 0 ? "x" : "y",
                         formula.axial_load_kN ? "N given" : "N the storey's gravity share"));
       }

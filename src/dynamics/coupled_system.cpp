@@ -375,9 +375,8 @@ double CoupledSystem::column_sway_shear_kN(ConstVectorRef y, int building, int s
   const model::Column& c = b.definition.columns.at(column);
   const double height_m = b.definition.storey_height_m[static_cast<std::size_t>(storey - 1)];
   const double k_kN_per_m = model::column_stiffness(c, b.definition.E_kPa, height_m, b.frame_factor)[direction];
-  const model::Point2 arm = c.position_m - b.definition.centre_of_mass;
-  const Eigen::RowVector3d row =
-      direction == 0 ? Eigen::RowVector3d(1.0, 0.0, -arm.y()) : Eigen::RowVector3d(0.0, 1.0, arm.x());
+  const std::array<double, 3> t = model::column_drift_row(b.definition, column, direction);
+  const Eigen::RowVector3d row(t[0], t[1], t[2]);
   double drift_m = row * y.segment<3>(floor_index(building, storey));
   if (storey > 1) drift_m -= row * y.segment<3>(floor_index(building, storey - 1));
   return k_kN_per_m * drift_m;

@@ -94,19 +94,14 @@ void add_building_springs(const model::Building& building, int b, int offset, st
     }
     const double height_m = d.storey_height_m[storey - 1];
     for (std::size_t c = 0; c < d.columns.size(); ++c) {
-      const model::Column& column = d.columns[c];
-      const Eigen::Vector2d k = model::column_stiffness(column, d.E_kPa, height_m, building.frame_factor);
-      const model::Point2 arm = column.position_m - d.centre_of_mass;
-      // Row of T = [[1, 0, −Δy], [0, 1, Δx]] for each direction, upper floor minus lower floor.
-      const std::array<std::array<double, 3>, 2> t_rows{{{1.0, 0.0, -arm.y()}, {0.0, 1.0, arm.x()}}};
+      const Eigen::Vector2d k = model::column_stiffness(d.columns[c], d.E_kPa, height_m, building.frame_factor);
       for (int direction = 0; direction < 2; ++direction) {
-        YieldingSpring spring = make_spring(building, b, storey, direction,
-                                            column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key,
-                                            k[direction], model::column_yield_drift_m(building, storey, c, direction));
+        YieldingSpring spring = make_spring(building, b, storey, direction, model::column_key(d, c), k[direction],
+                                            model::column_yield_drift_m(building, storey, c, direction));
         spring.column_index = c;
         spring.shear_capacity_kN = model::column_shear_capacity_kN(building, storey, c, direction);
         spring.loses_stiffness = d.shear_failure_loses_stiffness();
-        set_drift_row(spring, t_rows[direction], offset);
+        set_drift_row(spring, model::column_drift_row(d, c, direction), offset);
         springs.push_back(std::move(spring));
       }
     }

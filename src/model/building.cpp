@@ -302,10 +302,7 @@ void validate_hysteresis(const BuildingDefinition& b) {
   if (!law.yield_drift_ratio.empty()) strengths.push_back("yield_drift_ratio");
   if (!law.yield_drift_m.empty()) strengths.push_back("yield_drift_m");
   if (!law.yield_shear_kN.empty()) strengths.push_back("yield_shear_kN");
-  // A storey given as a matrix has no columns to give a force of their own.
-  const bool every_column_own =
-      b.uses_columns() &&
-      std::all_of(b.columns.begin(), b.columns.end(), [](const Column& c) { return !c.yield_force_kN.empty(); });
+  const bool every_column_own = every_column_has_own_strength(b);
   if (b.flexural_strength && !strengths.empty()) {
     throw InputError("hysteresis." + strengths[0], "given with [building.flexural_strength]",
                      "give the columns' strength one way: the section's ([building.flexural_strength]) or the "
@@ -751,6 +748,21 @@ double column_yield_drift_m(const Building& building, int storey, int direction)
   return law.yield_shear_kN.at(j) / storey_column_stiffness(building, storey, direction);
 }
 
+std::string column_key(const BuildingDefinition& definition, std::size_t column) {
+  const std::string& key = definition.columns.at(column).key;
+  return key.empty() ? fmt::format("columns[{}]", column + 1) : key;
+}
+
+std::array<double, 3> column_drift_row(const BuildingDefinition& definition, std::size_t column, int direction) {
+  const Point2 arm = definition.columns.at(column).position_m - definition.centre_of_mass;
+  return direction == 0 ? std::array<double, 3>{1.0, 0.0, -arm.y()} : std::array<double, 3>{0.0, 1.0, arm.x()};
+}
+
+bool every_column_has_own_strength(const BuildingDefinition& definition) {
+  return definition.uses_columns() && std::all_of(definition.columns.begin(), definition.columns.end(),
+                                                  [](const Column& c) { return !c.yield_force_kN.empty(); });
+}
+
 bool has_shear_capacity(const BuildingDefinition& definition) {
   return !definition.column_shear_capacity_kN.empty() || definition.shear_capacity ||
          std::any_of(definition.columns.begin(), definition.columns.end(),
@@ -798,14 +810,13 @@ void refuse_collapse_before_yield_shear(const Building& building) {
         if (!force_kN) continue;
         const double drift_m = column_yield_drift_m(building, storey, c, direction);
         if (drift_m <= 0.05 * d.storey_height_m[j]) continue;
-        const std::string name = column.key.empty() ? fmt::format("columns[{}]", c + 1) : column.key;
         throw InputError(
             column.yield_force_kN.empty() ? std::string("flexural_strength")
                                           : fmt::format("{}[{}]", own_strength_key(column), j + 1),
             format_value(*force_kN),
             fmt::format("gives {} a yield drift of {:.4g} m along {}{}, over 5 % of storey {}'s height "
                         "({:g} m): a drift of 10 % of a storey ends a run as a collapse",
-                        name, drift_m, direction == 0 ? "x" : "y",
+                        column_key(d, c), drift_m, direction == 0 ? "x" : "y",
                         column.yield_force_kN.empty() ? " (its section's yield force 2 M_n / H over k)" : "", storey,
                         d.storey_height_m[j]));
       }

@@ -346,6 +346,15 @@ SectionStrength column_section_strength(const BuildingDefinition& definition, in
 /// A column's axial compression (kN) in storey `storey`: `given`, else the storey's gravity share
 /// g Σ (floor masses from `storey` up) / its number of columns.
 double column_axial_load_kN(const BuildingDefinition& definition, int storey, std::optional<double> given);
+/// Column `column` (0-based)'s scene key, for messages and outputs: "columns[3]" or
+/// "column_grid[1] x[2] y[1]" (Column::key, else its place in the list).
+std::string column_key(const BuildingDefinition& definition, std::size_t column);
+/// The row t over (u, v, φ) whose product with a storey's floor difference is column `column`'s
+/// drift along x (0) or y (1): (1, 0, −Δy) or (0, 1, Δx), Δ its position from the CM (the rows of T).
+std::array<double, 3> column_drift_row(const BuildingDefinition& definition, std::size_t column, int direction);
+/// True when every column has its own yield force (Column::yield_force_kN), so neither the storey's
+/// strength nor the section's is used; false for storeys given as matrices.
+bool every_column_has_own_strength(const BuildingDefinition& definition);
 /// Whether some column of `definition` has a shear capacity (its own, column_shear_capacity_kN or
 /// [building.shear_capacity]).
 bool has_shear_capacity(const BuildingDefinition& definition);
