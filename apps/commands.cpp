@@ -374,6 +374,7 @@ void apply_run_options(const RunCommand& command, analysis::SolverSettings& solv
 /// `--history` and `--peaks` replace output.history and output.peaks (checked by Scene::validate).
 void apply_output_options(const RunCommand& command, analysis::OutputSettings& output) {
   if (command.contact_free_reference) output.contact_free_reference = true;
+  if (command.member_forces) output.member_forces = true;
   if (command.history) {
     if (*command.history != "on" && *command.history != "off") {
       throw InputError("--history", *command.history, "expected on or off");

@@ -63,6 +63,7 @@ struct RunCommand {
   GivenKeys limits;                     // --max-steps, ... (analysis::limit_specs()); unset: RunLimits' defaults
   bool no_progress = false;             // no progress line even on a terminal
   bool contact_free_reference = false;  // --contact-free-reference: sets output.contact_free_reference
+  bool member_forces = false;           // --member-forces: sets output.member_forces
 };
 
 struct StudyCommand {

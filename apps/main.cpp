@@ -247,6 +247,9 @@ int main(int argc, char** argv) {
   run_app->add_flag("--contact-free-reference", run.contact_free_reference,
                     "Also run without contact and report the pounding-induced change of each storey's peak drift "
                     "(and ductility) (sets output.contact_free_reference)");
+  run_app->add_flag("--member-forces", run.member_forces,
+                    "Record the storeys' shears and torques and the columns' shears and end moments: peaks in "
+                    "summary.json, histories in history.csv (sets output.member_forces)");
   run_app->add_option("--history", run.history,
                       "on or off: write history.csv and contacts_history.csv (replaces output.history; off computes "
                       "neither)");

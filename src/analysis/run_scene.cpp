@@ -340,7 +340,9 @@ WorkEstimate estimate_work(const Scene& scene, const dynamics::CoupledSystem& sy
   if (scene.output.history) {
     estimate.history_rows = std::floor(estimate.duration_s / scene.output.history_interval_s) + 1.0;
     estimate.history_columns = static_cast<double>(
-        solvers::history_columns(system, {scene.output.history_floors, scene.history_other_floors()}).size());
+        solvers::history_columns(system, {scene.output.history_floors, scene.history_other_floors()},
+                                 scene.output.member_forces)
+            .size());
   }
   const UsedSettings used = resolve(scene.solver, &system);
   if (!used.method->event_driven) {

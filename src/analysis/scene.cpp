@@ -387,7 +387,8 @@ solvers::OutputSelection OutputSettings::selection() const {
   return {.history = history,
           .displacement_peaks = asked(kPeakGroups[0]),
           .acceleration_peaks = asked(kPeakGroups[1]),
-          .drift_peaks = asked(kPeakGroups[2])};
+          .drift_peaks = asked(kPeakGroups[2]),
+          .member_forces = member_forces};
 }
 
 std::span<const ContactSettingSpec> contact_setting_specs() { return contact_specs(); }
@@ -407,6 +408,14 @@ std::span<const OutputSpec> output_specs() {
                   "x and y with contact, without, and their ratio (and, for yielding columns, the storey's largest "
                   "ductility and column shear likewise), with the report's \"Pounding-induced demand\" lines; needs "
                   "the `drifts` group; `--contact-free-reference` on `pounding run`"},
+      {.key = "member_forces",
+       .member = &OutputSettings::member_forces,
+       .description = "record the storeys' shears and torques and the columns' shears and end moments",
+       .details = "the columns' own forces (a yielding column's spring force), without damping or P-Delta "
+                  "([model.md](model.md) §2c); their peaks in `summary.json`'s `member_forces` and the run's text, "
+                  "their histories as `history.csv`'s last columns (`B{b}_s{j}_Vx_kN`, `_Vy_kN`, `_T_kNm`, then per "
+                  "column `B{b}_s{j}_col{n}_Vx_kN`, `_Vy_kN`, `_Mx_kNm`, `_My_kNm`); with `contact_free_reference`, "
+                  "the storey shears with and without contact; `--member-forces` on `pounding run`"},
       {.key = "history_interval_s",
        .member = &OutputSettings::history_interval_s,
        .range = kHistoryInterval,

@@ -133,8 +133,10 @@ YieldingSprings::YieldingSprings(const std::vector<model::Building>& buildings, 
 std::optional<std::size_t> YieldingSprings::index_of(int building, int storey, std::size_t column,
                                                      int direction) const {
   const std::size_t b = static_cast<std::size_t>(building);
-  if (b >= first_spring_.size() || !first_spring_[b] || column >= column_count_[b]) return std::nullopt;
-  return *first_spring_[b] + 2 * (static_cast<std::size_t>(storey - 1) * column_count_[b] + column) +
+  if (b >= first_spring_.size() || !first_spring_[b]) return std::nullopt;
+  const std::size_t columns = std::max<std::size_t>(column_count_[b], 1);  // a storey matrix: its 2 springs
+  if (column >= columns) return std::nullopt;
+  return *first_spring_[b] + 2 * (static_cast<std::size_t>(storey - 1) * columns + column) +
          static_cast<std::size_t>(direction);
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "pounding/analysis/scene.hpp"
@@ -228,6 +229,23 @@ json output_schema_json() {
                        {"unit", q.unit},
                        {"per", kPer[static_cast<int>(q.per)]},
                        {"description", q.description}});
+  }
+  // With output.member_forces, after the slabs: solvers/member_forces.hpp.
+  static constexpr std::array<std::array<std::string_view, 4>, 7> kMemberForces{{
+      {"B{b}_s{j}_Vx_kN", "kN", "storey", "storey j's shear along x: the sum of its columns' forces (model.md §2c)"},
+      {"B{b}_s{j}_Vy_kN", "kN", "storey", "storey j's shear along y"},
+      {"B{b}_s{j}_T_kNm", "kNm", "storey", "storey j's torque about the CM"},
+      {"B{b}_s{j}_col{n}_Vx_kN", "kN", "column", "column n's shear along x (a yielding column's spring force)"},
+      {"B{b}_s{j}_col{n}_Vy_kN", "kN", "column", "column n's shear along y"},
+      {"B{b}_s{j}_col{n}_Mx_kNm", "kNm", "column", "column n's end moment under its sway along x, Vx H / 2"},
+      {"B{b}_s{j}_col{n}_My_kNm", "kNm", "column", "column n's end moment under its sway along y, Vy H / 2"},
+  }};
+  for (const auto& [column, unit, per, description] : kMemberForces) {
+    history.push_back({{"column", column},
+                       {"unit", unit},
+                       {"per", per},
+                       {"description", description},
+                       {"only_when", "output.member_forces"}});
   }
   json impacts = json::array();
   for (const ImpactField& f : impact_fields()) {

@@ -196,6 +196,43 @@ void append_yielding(const analysis::RunReport& report, std::string& text) {
   }
 }
 
+/// Per building with member forces: its largest storey shear along x and y and torque, and its
+/// largest column shear, each with its storey and instant.
+void append_member_forces(const analysis::RunReport& report, std::string& text) {
+  using Kind = solvers::MemberForce::Kind;
+  const solvers::RunResult& r = report.result;
+  if (r.member_forces.empty()) return;
+  std::vector<std::array<const solvers::MemberForce*, 4>> largest(r.peaks.size());  // Vx, Vy, T, column V
+  auto keep = [](const solvers::MemberForce*& held, const solvers::MemberForce& q) {
+    if (held == nullptr || std::abs(q.peak.value) > std::abs(held->peak.value)) held = &q;
+  };
+  for (const solvers::MemberForce& q : r.member_forces) {
+    auto& held = largest.at(static_cast<std::size_t>(q.building));
+    if (q.column >= 0) {
+      if (q.kind == Kind::shear_x || q.kind == Kind::shear_y) keep(held[3], q);
+    } else {
+      keep(held[static_cast<std::size_t>(q.kind)], q);
+    }
+  }
+  auto out = std::back_inserter(text);
+  for (std::size_t b = 0; b < largest.size(); ++b) {
+    const auto& [vx, vy, torque, column] = largest[b];
+    if (vx == nullptr) continue;
+    auto at = [](const solvers::MemberForce& q) {
+      return fmt::format("storey {}, t = {:.4f} s", q.storey, q.peak.t_s);
+    };
+    fmt::format_to(
+        out, "Member forces {}: storey shear |Vx| {:.1f} kN ({}), |Vy| {:.1f} kN ({}), torque |T| {:.1f} kNm ({})",
+        r.peaks[b].name, std::abs(vx->peak.value), at(*vx), std::abs(vy->peak.value), at(*vy),
+        std::abs(torque->peak.value), at(*torque));
+    if (column != nullptr) {
+      fmt::format_to(out, "; column shear |V| {:.1f} kN ({} along {}, {})", std::abs(column->peak.value),
+                     column->column_key, column->kind == Kind::shear_x ? "x" : "y", at(*column));
+    }
+    fmt::format_to(out, "\n");
+  }
+}
+
 /// Per storey: the peak drift ratios at the CM with contact over those of the contact-free run.
 void append_pounding_demand(const analysis::RunReport& report, std::string& text) {
   if (!report.contact_free) return;
@@ -296,6 +333,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   }
   append_design_peaks(report, text);
   append_yielding(report, text);
+  append_member_forces(report, text);
   append_pounding_demand(report, text);
   append_limit_states(report, text);
   append_residual_drifts(report, text);

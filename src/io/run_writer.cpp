@@ -135,7 +135,9 @@ json outputs_json(const solvers::OutputSelection& outputs) {
   for (std::size_t k = 0; k < analysis::kPeakGroups.size(); ++k) {
     if (asked(outputs, static_cast<PeakField::Group>(k))) groups.push_back(analysis::kPeakGroups[k]);
   }
-  return {{"history", outputs.history}, {"peaks", groups}};
+  json selection = {{"history", outputs.history}, {"peaks", groups}};
+  if (outputs.member_forces) selection["member_forces"] = true;
+  return selection;
 }
 
 json energy_json(const solvers::EnergyAudit& e, bool yielding) {
@@ -295,8 +297,23 @@ json residual_drift_json(const analysis::RunReport& report) {
           {"buildings", buildings}};
 }
 
+/// Each storey's peak |V_x|, |V_y| (kN) by building and storey (1-based: [b][storey − 1]); empty
+/// without member forces.
+std::vector<std::vector<std::array<double, 2>>> storey_shear_peaks(const solvers::RunResult& result) {
+  std::vector<std::vector<std::array<double, 2>>> peaks(result.member_forces.empty() ? 0 : result.peaks.size());
+  for (const solvers::MemberForce& q : result.member_forces) {
+    if (q.column >= 0 || q.kind == solvers::MemberForce::Kind::torque) continue;
+    auto& storeys = peaks.at(static_cast<std::size_t>(q.building));
+    if (storeys.size() < static_cast<std::size_t>(q.storey)) storeys.resize(static_cast<std::size_t>(q.storey));
+    storeys[static_cast<std::size_t>(q.storey - 1)][q.kind == solvers::MemberForce::Kind::shear_x ? 0 : 1] =
+        std::abs(q.peak.value);
+  }
+  return peaks;
+}
+
 /// The pounding-induced change of each storey's peak drift ratio at the CM (and of its columns'
-/// ductility, when they yield) against the same run without contact.
+/// ductility, when they yield, and of its shear, with member forces) against the same run
+/// without contact.
 json pounding_demand_json(const analysis::RunReport& report) {
   const solvers::RunResult& with = report.result;
   const solvers::RunResult& without = *report.contact_free;
@@ -305,6 +322,7 @@ json pounding_demand_json(const analysis::RunReport& report) {
     yield_with = analysis::storey_yielding(report.springs, with.springs);
     yield_without = analysis::storey_yielding(report.springs, without.springs);
   }
+  const auto shear_with = storey_shear_peaks(with), shear_without = storey_shear_peaks(without);
   json buildings = json::array();
   for (std::size_t b = 0; b < with.peaks.size(); ++b) {
     json storeys = json::array();
@@ -314,6 +332,11 @@ json pounding_demand_json(const analysis::RunReport& report) {
       json storey = {{"storey", a.floor},
                      {"drift_x", with_without(std::abs(a.drift_x.value), std::abs(c.drift_x.value))},
                      {"drift_y", with_without(std::abs(a.drift_y.value), std::abs(c.drift_y.value))}};
+      if (!shear_with.empty() && !shear_without.empty()) {
+        const std::size_t j = static_cast<std::size_t>(a.floor - 1);
+        storey["storey_shear_x_kN"] = with_without(shear_with[b].at(j)[0], shear_without[b].at(j)[0]);
+        storey["storey_shear_y_kN"] = with_without(shear_with[b].at(j)[1], shear_without[b].at(j)[1]);
+      }
       for (std::size_t k = 0; k < yield_with.size(); ++k) {
         if (yield_with[k].building != static_cast<int>(b) || yield_with[k].storey != a.floor) continue;
         storey["ductility_x"] = with_without(yield_with[k].peak_ductility[0], yield_without[k].peak_ductility[0]);
@@ -327,12 +350,40 @@ json pounding_demand_json(const analysis::RunReport& report) {
     }
     buildings.push_back({{"building", with.peaks[b].name}, {"storeys", storeys}});
   }
-  return {{"reference", "the same scene and method without contact"},
-          {"reference_status", solvers::to_string(without.status)},
-          {"drift", "peak drift ratio of the storey below each floor, at the CM (as peaks' drift_x, drift_y)"},
-          {"column_force",
-           "yielding columns: the largest peak |force| of the storey's columns along x, y (kN; "
-           "yielding.csv's peak_force_kN)"},
+  json demand = {{"reference", "the same scene and method without contact"},
+                 {"reference_status", solvers::to_string(without.status)},
+                 {"drift", "peak drift ratio of the storey below each floor, at the CM (as peaks' drift_x, drift_y)"},
+                 {"column_force",
+                  "yielding columns: the largest peak |force| of the storey's columns along x, y (kN; "
+                  "yielding.csv's peak_force_kN)"},
+                 {"buildings", buildings}};
+  if (!shear_with.empty()) demand["storey_shear"] = "the storey's peak |Vx|, |Vy| (kN; member_forces)";
+  return demand;
+}
+
+/// The storeys' and columns' peak member forces (solvers/member_forces.hpp), building by building
+/// and storey by storey, each column's after its storey's.
+json member_forces_json(const solvers::RunResult& result) {
+  json buildings = json::array();
+  for (const solvers::MemberForce& q : result.member_forces) {
+    const std::size_t b = static_cast<std::size_t>(q.building);
+    if (buildings.size() <= b) buildings.push_back({{"building", result.peaks.at(b).name}, {"storeys", json::array()}});
+    json& storeys = buildings[b]["storeys"];
+    if (storeys.empty() || storeys.back()["storey"] != q.storey) storeys.push_back({{"storey", q.storey}});
+    json& storey = storeys.back();
+    json& entry = q.column < 0 ? storey : storey["columns"];
+    if (q.column >= 0) {
+      if (entry.is_null()) entry = json::array();
+      if (entry.empty() || entry.back()["column"] != q.column_key) entry.push_back({{"column", q.column_key}});
+    }
+    (q.column < 0 ? entry : entry.back())[solvers::member_force_name(q.kind)] = {{"value", q.peak.value},
+                                                                                 {"t_s", q.peak.t_s}};
+  }
+  return {{"definition",
+           "the columns' own forces (a yielding column's spring force; no damping, no P-Delta): a storey's shears "
+           "Vx, Vy (kN) and torque T (kN m, about the CM), a column's shears and end moments M = V H / 2 (Mx: "
+           "under its sway along x); signed as the drift that calls them up"},
+          {"instants", "the largest |value| over every step end, event and history sample (not located between them)"},
           {"buildings", buildings}};
 }
 
@@ -507,13 +558,15 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
     scaling["record_factor"] = sa.record_factor;
     summary["spectral_scaling"] = scaling;
   }
-  if (report.springs.empty() && !report.contact_free && report.limit_states.empty() && report.residual_drifts.empty()) {
+  if (report.springs.empty() && !report.contact_free && report.limit_states.empty() && report.residual_drifts.empty() &&
+      report.result.member_forces.empty()) {
     return summary;
   }
   // The yielding and pounding-demand sections go before the energy audit.
   json extended;
   for (auto& [key, value] : summary.items()) {
     if (key == "energy") {
+      if (!report.result.member_forces.empty()) extended["member_forces"] = member_forces_json(report.result);
       if (!report.springs.empty()) extended["yielding"] = yielding_json(report);
       if (report.contact_free) extended["pounding_demand"] = pounding_demand_json(report);
       if (!report.limit_states.empty()) extended["limit_states"] = limit_states_json(report);

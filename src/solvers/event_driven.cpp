@@ -120,7 +120,9 @@ class EventDrivenSystem final : public HybridSystem {
         gap_components_(gap_components(system)),
         recorder_(system, recorded_dynamics(), {options.history_floors, options.history_other_floors},
                   options.history_interval_s, options.outputs, options.sink),
-        law_(make_law_events()) {}
+        law_(make_law_events()) {
+    recorder_.set_spring_states(yields_.states());
+  }
 
   int state_size() const override { return system_.state_size(); }
   int root_count() const override { return witnesses_.size(); }

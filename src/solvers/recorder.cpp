@@ -42,7 +42,8 @@ std::vector<std::array<int, 2>> chosen_slabs(const dynamics::CoupledSystem& syst
 
 }  // namespace
 
-std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const HistorySlabs& slabs) {
+std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const HistorySlabs& slabs,
+                                         bool member_forces) {
   std::vector<std::string> columns{"t_s"};
   std::vector<std::vector<int>> numbers;
   for (int b = 0; b < system.building_count(); ++b) {
@@ -58,6 +59,9 @@ std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, 
       columns.push_back(prefix + quantity.column(vertex ? numbers[b][k] : static_cast<int>(k) + 1));
     });
   }
+  if (member_forces) {
+    for (std::string& name : MemberForces(system).column_names()) columns.push_back(std::move(name));
+  }
   return columns;
 }
 
@@ -72,10 +76,15 @@ Recorder::Recorder(const dynamics::CoupledSystem& system, RecordedDynamics dynam
       energy_(system),
       sink_(sink) {
   next_sample_s_ = system.ground_motion().start_s();
+  if (outputs_.member_forces) {
+    member_forces_.emplace(system);
+    member_peaks_ = member_forces_->quantities();
+    member_values_.resize(static_cast<Eigen::Index>(member_peaks_.size()));
+  }
   if (outputs_.history) {
     for (const contact::Level& level : chosen_levels(system, slabs.levels)) history_.levels.push_back(level.index);
     history_.interval_s = interval_s_;
-    history_.columns = history_columns(system, slabs);
+    history_.columns = history_columns(system, slabs, outputs_.member_forces);
     row_.resize(static_cast<Eigen::Index>(history_.columns.size()) - 1);
   }
 }
@@ -94,6 +103,7 @@ void Recorder::append_row(const Instant& at) {
     for_each_slab_column(kinematics_.contact_vertices(b).size(), system_.building(b).definition.slab.size(),
                          [&](const HistoryQuantity& quantity, std::size_t k) { row_[c++] = quantity.value(slab, k); });
   }
+  if (member_forces_) row_.tail(member_values_.size()) = member_values_;
   std::vector<ContactForceSample> forces;
   if (kinematics_.dynamics().contact_forces) {
     for (const ContactForce& f : kinematics_.dynamics().contact_forces(t, y)) {
@@ -126,7 +136,15 @@ void Recorder::sample(double t, const dynamics::VectorXd& y) {
   const bool row = outputs_.history && last_row_t_s_ != t;
   kinematics_.measure(t, y, row || outputs_.acceleration_peaks, row || outputs_.drift_peaks, last_);
   peaks_.update(last_);
+  measure_member_forces(t, y);
   if (row) append_row(last_);
+}
+
+void Recorder::measure_member_forces(double t, const dynamics::VectorXd& y) {
+  if (!member_forces_) return;
+  member_forces_->measure(y, spring_states_, member_values_);
+  for (std::size_t i = 0; i < member_peaks_.size(); ++i)
+    member_peaks_[i].peak.update(member_values_[static_cast<Eigen::Index>(i)], t);
 }
 
 void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
@@ -154,7 +172,10 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
           interval_s_ * std::round((next_sample_s_ - system_.ground_motion().start_s()) / interval_s_ + 1.0);
     }
   }
-  if (!peaks) return;
+  if (!peaks) {
+    measure_member_forces(t_b, y_b);
+    return;
+  }
   // Turning points are found from the rates at the piece ends, so a piece must be too short for
   // a rate to change sign twice unseen (peak_step_s_).
   const double length_s = t_b - t_a;
@@ -166,6 +187,7 @@ void Recorder::advance(double t_a, double t_b, const dynamics::VectorXd& y_b,
     kinematics_.measure(s_b, k == pieces ? y_b : at(s_b), outputs_.acceleration_peaks, outputs_.drift_peaks, last_);
     peaks_.locate(s_a, s_b, start_, last_, at, components_at);
     peaks_.update(last_);
+    measure_member_forces(*last_.t_s, last_.y);
   }
 }
 
@@ -181,6 +203,7 @@ void Recorder::finish(const dynamics::VectorXd& final_state, RunResult& result, 
   result.peaks = peaks_.take();
   if (outputs_.drift_peaks) record_end_drifts(final_state, result.peaks);
   result.history = std::move(history_);
+  result.member_forces = std::move(member_peaks_);
 }
 
 void Recorder::record_end_drifts(const dynamics::VectorXd& final_state, std::vector<BuildingPeaks>& peaks) const {

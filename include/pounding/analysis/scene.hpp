@@ -84,6 +84,9 @@ struct OutputSettings {
   /// Also run the scene without contact (same method and settings) and report the pounding-
   /// induced change of the storeys' peak drifts (and ductilities): needs the drifts peak group.
   bool contact_free_reference = false;
+  /// Storey and column forces (solvers/member_forces.hpp): their peaks in summary.json and, with
+  /// the history, their histories in history.csv's last columns.
+  bool member_forces = false;
   /// What the solvers record. @pre valid (Scene::validate).
   solvers::OutputSelection selection() const;
 };

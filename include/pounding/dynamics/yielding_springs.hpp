@@ -101,7 +101,8 @@ class YieldingSprings {
   const YieldingSpring& operator[](std::size_t j) const { return springs_[j]; }
   const std::vector<YieldingSpring>& all() const { return springs_; }
   /// The spring of column `column` (0-based) of building `building`'s storey `storey` along x (0)
-  /// or y (1); none when that building's columns do not yield.
+  /// or y (1); none when that building's columns do not yield. A storey given as a matrix: its
+  /// storey spring for `column` 0.
   std::optional<std::size_t> index_of(int building, int storey, std::size_t column, int direction) const;
   /// The number of smooth (Bouc–Wen) springs: the ODE states z after (q, q̇) in y.
   int smooth_count() const { return smooth_count_; }

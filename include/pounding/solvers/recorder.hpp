@@ -16,6 +16,7 @@
 #include "pounding/dynamics/coupled_system.hpp"
 #include "pounding/solvers/energy_balance.hpp"
 #include "pounding/solvers/integrator.hpp"
+#include "pounding/solvers/member_forces.hpp"
 #include "pounding/solvers/peak_tracker.hpp"
 #include "pounding/solvers/run_kinematics.hpp"
 #include "pounding/solvers/run_result.hpp"
@@ -35,8 +36,10 @@ struct HistorySlabs {
 };
 
 /// The columns of history.csv for `slabs`: `t_s` first, then per slab the columns of
-/// history_quantities() (history_schema.hpp). @pre indices valid.
-std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const HistorySlabs& slabs);
+/// history_quantities() (history_schema.hpp), then with `member_forces` MemberForces' columns.
+/// @pre indices valid.
+std::vector<std::string> history_columns(const dynamics::CoupledSystem& system, const HistorySlabs& slabs,
+                                         bool member_forces = false);
 
 class Recorder {
  public:
@@ -68,6 +71,9 @@ class Recorder {
                const std::function<dynamics::VectorXd(double)>& at,
                const std::function<double(double, const dynamics::VectorXd&)>& constraint_power,
                const std::optional<StretchEnergy>& closed_form = std::nullopt, const ComponentsAt& components_at = {});
+  /// The yielding springs' states the member forces read (outputs.member_forces), kept by the
+  /// solver and changed only at events; null (the default): every column elastic.
+  void set_spring_states(const dynamics::SpringStates* states) { spring_states_ = states; }
   /// Peaks are located on pieces of a stretch no longer than this (s; 0: whole stretches), for
   /// paths whose steps may span more than a quarter of the shortest oscillation period (the exact
   /// path's clearance steps): within a quarter period no rate changes sign twice unseen.
@@ -90,6 +96,9 @@ class Recorder {
 
  private:
   void append_row(const Instant& at);
+  /// The member forces at (t, y) (outputs.member_forces): their peaks, and the values a history
+  /// row written at t ends with.
+  void measure_member_forces(double t, const dynamics::VectorXd& y);
   /// Every floor's storey drift ratios and rates at the final state (FloorPeaks::end_drift).
   void record_end_drifts(const dynamics::VectorXd& final_state, std::vector<BuildingPeaks>& peaks) const;
 
@@ -108,6 +117,10 @@ class Recorder {
   double peak_step_s_ = 0.0;
   Instant start_, last_;  // the stretch being advanced starts at start_; last_: the latest instant
   Eigen::VectorXd row_;
+  std::optional<MemberForces> member_forces_;
+  std::vector<MemberForce> member_peaks_;
+  Eigen::VectorXd member_values_;
+  const dynamics::SpringStates* spring_states_ = nullptr;
   std::size_t impacts_streamed_ = 0;
 };
 

@@ -9,6 +9,7 @@
 #include <utility>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pounding/model/polygon.hpp"
@@ -111,6 +112,22 @@ struct Peak {
     }
   }
 };
+
+/// One member-force quantity of a storey or a column (solvers/member_forces.hpp) and its peak.
+struct MemberForce {
+  enum class Kind { shear_x, shear_y, torque, moment_x, moment_y };  // kN, kN, kN·m, kN·m, kN·m
+  int building = 0;                                                  // 0-based in the scene
+  int storey = 1;                                                    // 1-based
+  int column = -1;         // 0-based in its building's column list; -1: the storey's resultant
+  std::string column_key;  // the column's scene key (model::column_key); empty for a storey
+  Kind kind = Kind::shear_x;
+  /// The largest |value| (with its sign) over the instants the recorder measures: every step's
+  /// end, every event and every history sample (not located between them).
+  Peak peak;
+};
+
+/// "Vx_kN", "Vy_kN", "T_kNm", "Mx_kNm", "My_kNm".
+std::string_view member_force_name(MemberForce::Kind kind);
 
 struct FloorPeaks {
   int floor = 0;
@@ -275,6 +292,7 @@ struct OutputSelection {
   bool displacement_peaks = true;  // FloorPeaks' u_m, v_m, phi_rad and vertex_dx_m
   bool acceleration_peaks = true;  // ax_abs_mps2, ay_abs_mps2, phi_ddot_radps2
   bool drift_peaks = true;         // drift_x, drift_y and the corner drifts
+  bool member_forces = false;      // storey and column forces (MemberForce), in the history too
   bool any_peaks() const { return displacement_peaks || acceleration_peaks || drift_peaks; }
 };
 
@@ -292,7 +310,8 @@ struct RunResult {
   EnergyAudit energy;
   SolverStatistics statistics;
   History history;
-  std::vector<SpringResult> springs;  // empty unless some building's columns yield
+  std::vector<SpringResult> springs;       // empty unless some building's columns yield
+  std::vector<MemberForce> member_forces;  // empty unless outputs.member_forces
 };
 
 }  // namespace pounding::solvers
