@@ -196,6 +196,26 @@ void append_yielding(const analysis::RunReport& report, std::string& text) {
   }
 }
 
+/// The struck columns that reached their shear capacity under a slab's push (or that none did).
+void append_struck_column_failures(const analysis::RunReport& report, std::string& text) {
+  const solvers::RunResult& r = report.result;
+  if (!r.struck_columns_watched) return;
+  auto out = std::back_inserter(text);
+  if (r.struck_column_failures.empty()) {
+    fmt::format_to(out, "Struck columns: none reached its shear capacity with its sway\n");
+    return;
+  }
+  fmt::format_to(out, "Struck columns failed in shear (the push's shear with the sway at the capacity): {}\n",
+                 r.struck_column_failures.size());
+  for (const solvers::StruckColumnFailure& f : r.struck_column_failures) {
+    fmt::format_to(
+        out, "  {} {} storey {} along {} at {:.6f} s: {:.1f} kN of {:.1f} kN (sway {:.1f} kN, force {:.1f} kN){}\n",
+        r.peaks.at(static_cast<std::size_t>(f.struck_building - 1)).name, f.column_key, f.storey,
+        f.axis == 0 ? "x" : "y", f.t_s, f.shear_kN, f.capacity_kN, f.sway_shear_kN, f.force_kN,
+        f.loses_stiffness ? "; loses its stiffness" : "");
+  }
+}
+
 /// Per building with member forces: its largest storey shear along x and y and torque, and its
 /// largest column shear, each with its storey and instant.
 void append_member_forces(const analysis::RunReport& report, std::string& text) {
@@ -334,6 +354,7 @@ void append_response(const analysis::RunReport& report, std::string& text) {
   append_design_peaks(report, text);
   append_yielding(report, text);
   append_member_forces(report, text);
+  append_struck_column_failures(report, text);
   append_pounding_demand(report, text);
   append_limit_states(report, text);
   append_residual_drifts(report, text);

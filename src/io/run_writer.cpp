@@ -361,6 +361,34 @@ json pounding_demand_json(const analysis::RunReport& report) {
   return demand;
 }
 
+/// The struck columns that reached their shear capacity under a slab's push, in order of time.
+json struck_column_failures_json(const solvers::RunResult& result) {
+  json failures = json::array();
+  for (const solvers::StruckColumnFailure& f : result.struck_column_failures) {
+    failures.push_back({{"t_s", f.t_s},
+                        {"struck_building", f.struck_building},
+                        {"column", f.column},
+                        {"column_key", f.column_key},
+                        {"column_rest", point(f.column_rest)},
+                        {"storey", f.storey},
+                        {"axis", f.axis == 0 ? "x" : "y"},
+                        {"striking_building", f.striking_building},
+                        {"floors", f.floors},
+                        {"candidate", f.candidate},
+                        {"capacity_kN", f.capacity_kN},
+                        {"shear_kN", f.shear_kN},
+                        {"ratio", f.shear_kN / f.capacity_kN},
+                        {"sway_shear_kN", f.sway_shear_kN},
+                        {"force_kN", f.force_kN},
+                        {"loses_stiffness", f.loses_stiffness}});
+  }
+  return {{"definition",
+           "a struck column whose shear with its sway, the larger of |V_s + N1 F n_a| and |V_s - N2 F n_a| along the "
+           "plan axis nearer the edge's normal, reached its shear capacity during a compliant contact: located as a "
+           "root (or found over it at the contact's onset), once a column and axis (docs/model.md 6b)"},
+          {"failures", failures}};
+}
+
 /// The storeys' and columns' peak member forces (solvers/member_forces.hpp), building by building
 /// and storey by storey, each column's after its storey's.
 json member_forces_json(const solvers::RunResult& result) {
@@ -559,7 +587,7 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
     summary["spectral_scaling"] = scaling;
   }
   if (report.springs.empty() && !report.contact_free && report.limit_states.empty() && report.residual_drifts.empty() &&
-      report.result.member_forces.empty()) {
+      report.result.member_forces.empty() && !report.result.struck_columns_watched) {
     return summary;
   }
   // The yielding and pounding-demand sections go before the energy audit.
@@ -567,6 +595,8 @@ json run_json(const analysis::RunReport& report, const Provenance& provenance) {
   for (auto& [key, value] : summary.items()) {
     if (key == "energy") {
       if (!report.result.member_forces.empty()) extended["member_forces"] = member_forces_json(report.result);
+      if (report.result.struck_columns_watched)
+        extended["struck_column_failures"] = struck_column_failures_json(report.result);
       if (!report.springs.empty()) extended["yielding"] = yielding_json(report);
       if (report.contact_free) extended["pounding_demand"] = pounding_demand_json(report);
       if (!report.limit_states.empty()) extended["limit_states"] = limit_states_json(report);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 
 #include "law_events.hpp"
 #include "pounding/contact/column_contact.hpp"
@@ -22,9 +23,57 @@ struct OpenContact {
   double work_kJ = 0.0;  // ∫F ġ dt: the contact's work on the slabs (−energy lost)
 };
 
+/// The plan axis (0: x, 1: y) nearer a slab-to-column contact's normal, the force's direction:
+/// the one whose capacity and sway shear its column's demands are measured along.
+int capacity_axis(const contact::Candidate& c) {
+  return std::abs(c.normal_rest.x()) >= std::abs(c.normal_rest.y()) ? 0 : 1;
+}
+
+/// The column a slab-to-column candidate strikes, watched against its shear capacity.
+struct StruckColumn {
+  int building = 0;  // 0-based
+  int storey = 1;
+  std::size_t column = 0;
+  int axis = 0;
+  double capacity_kN = 0.0;
+  std::optional<std::size_t> spring;  // its yielding spring along the axis
+};
+
+/// Per candidate: its struck column when it is a slab-to-column candidate whose column has a
+/// capacity along capacity_axis().
+std::vector<std::optional<StruckColumn>> struck_columns(const dynamics::CoupledSystem& system) {
+  std::vector<std::optional<StruckColumn>> struck(system.candidates().size());
+  for (std::size_t i = 0; i < struck.size(); ++i) {
+    const contact::Candidate& c = system.candidates()[i];
+    // A column point needs its column (a scene's always has one; a test's may stand for it alone).
+    if (!c.column || c.column_index >= system.building(c.striking_building).definition.columns.size()) continue;
+    const int axis = capacity_axis(c), storey = c.lower_floor + 1;
+    const double capacity_kN =
+        model::column_shear_capacity_kN(system.building(c.striking_building), storey, c.column_index, axis);
+    if (capacity_kN <= 0.0) continue;
+    struck[i] = StruckColumn{.building = c.striking_building,
+                             .storey = storey,
+                             .column = c.column_index,
+                             .axis = axis,
+                             .capacity_kN = capacity_kN,
+                             .spring = system.springs().index_of(c.striking_building, storey, c.column_index, axis)};
+  }
+  return struck;
+}
+
+/// A struck column's shear with its sway under a push F (kN) and the sway shear V_s in it.
+struct ColumnShear {
+  double total_kN = 0.0;
+  double sway_kN = 0.0;
+};
+
 class CompliantEvents final : public LawEvents {
  public:
-  explicit CompliantEvents(const EventContext& context) : LawEvents(context), open_(system_.candidates().size()) {}
+  explicit CompliantEvents(const EventContext& context)
+      : LawEvents(context), open_(system_.candidates().size()), struck_(struck_columns(system_)) {
+    result_.struck_columns_watched =
+        std::any_of(struck_.begin(), struck_.end(), [](const auto& column) { return column.has_value(); });
+  }
 
   void add_forces(const Eigen::Ref<const VectorXd>& y, Eigen::Ref<VectorXd> y_dot) const override {
     for (std::size_t i : states_.acting()) system_.add_contact_force(y, i, force_kN(i, y), y_dot);
@@ -46,7 +95,10 @@ class CompliantEvents final : public LawEvents {
       g[layout.at(Witness::gap, i)] = -s.gap_m;
       g[layout.at(Witness::force, i)] = open_[i]->law.switch_value(-s.gap_m, -s.gap_rate_mps);
     }
-    for (std::size_t i : states_.acting()) g[layout.at(Witness::edge, i)] = edge_witness(system_.gap(y, i));
+    for (std::size_t i : states_.acting()) {
+      g[layout.at(Witness::edge, i)] = edge_witness(system_.gap(y, i));
+      if (watches(i)) g[layout.at(Witness::column, i)] = column_witness(i, y);
+    }
   }
   std::vector<ContactForce> contact_forces(double, const VectorXd& y) const override {
     std::vector<ContactForce> forces;
@@ -98,16 +150,43 @@ class CompliantEvents final : public LawEvents {
   }
   void end_contact(std::size_t i, double t, const VectorXd& y);
   /// Slab-to-column contact i pushing with `force_kN` at (t, y): its column's shear with the
-  /// sway, kept in its record where it is the largest so far.
+  /// sway (docs/model.md §6b).
+  ColumnShear column_shear(std::size_t i, const Eigen::Ref<const VectorXd>& y, double force_kN) const;
+  /// The same, kept in contact i's record where it is the largest so far.
   void note_column_shear(std::size_t i, double t, const VectorXd& y, double force_kN);
+  /// Whether contact i's struck column is watched against its capacity: it has one and has not
+  /// failed yet (by a push or, for a yielding column, its sway).
+  bool watches(std::size_t i) const {
+    if (!struck_[i] || failed_.count(column_of(i)) > 0) return false;
+    return !struck_[i]->spring || !context_.spring_failed(*struck_[i]->spring);
+  }
+  /// (V_c − its shear with the sway)/V_c for watched contact i in state y: falls where it fails.
+  double column_witness(std::size_t i, const Eigen::Ref<const VectorXd>& y) const {
+    return 1.0 - column_shear(i, y, std::max(0.0, force_kN(i, y))).total_kN / struck_[i]->capacity_kN;
+  }
+  /// Contact i's struck column has reached its capacity at (t, y): a failure, and, where its
+  /// building's columns lose their stiffness, its spring's failed branch.
+  void fail_column(std::size_t i, double t, const VectorXd& y);
+  std::array<std::size_t, 4> column_of(std::size_t i) const {
+    const StruckColumn& c = *struck_[i];
+    return {static_cast<std::size_t>(c.building), static_cast<std::size_t>(c.storey), c.column,
+            static_cast<std::size_t>(c.axis)};
+  }
 
   std::vector<std::optional<OpenContact>> open_;  // set from onset until the gap opens
+  std::vector<std::optional<StruckColumn>> struck_;
+  std::set<std::array<std::size_t, 4>> failed_;  // struck columns failed by a push: building, storey, column, axis
 };
 
 void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Crossed& crossed) {
   // A root is located to the solver's tolerance on either side of zero, so after the restart the
   // same function may cross again: each root acts only if the state at it moves in the direction
-  // of its switch (closing gap, falling switch function, opening gap).
+  // of its switch (closing gap, falling switch function, opening gap). A column fails where its
+  // witness is at or below zero (just above it, the next root finds it).
+  for (std::size_t i : crossed.column) {
+    if (open_[i] && states_.is(i, ContactMode::compliant) && watches(i) && column_witness(i, y) <= 0.0)
+      fail_column(i, t, y);
+  }
   for (std::size_t i : crossed.edge) {
     if (!states_.is(i, ContactMode::compliant)) continue;
     if (const std::optional<std::size_t> j = context_.successor(i, y, true)) {
@@ -157,22 +236,12 @@ void CompliantEvents::begin_contact(std::size_t i, double t, const VectorXd& y) 
   open_[i]->record.peak_force_kN = std::max(0.0, force_kN(i, y));
   note_column_shear(i, t, y, open_[i]->record.peak_force_kN);
   states_.start_acting(i);
+  // A push whose first force (a kelvin law's c v) already takes the column over: it fails at onset.
+  if (watches(i) && column_witness(i, y) <= 0.0) fail_column(i, t, y);
 }
 
-namespace {
-
-/// The plan axis (0: x, 1: y) nearer a slab-to-column contact's normal, the force's direction:
-/// the one whose capacity and sway shear its column's demands are measured along.
-int capacity_axis(const contact::Candidate& c) {
-  return std::abs(c.normal_rest.x()) >= std::abs(c.normal_rest.y()) ? 0 : 1;
-}
-
-}  // namespace
-
-void CompliantEvents::note_column_shear(std::size_t i, double t, const VectorXd& y, double force_kN) {
+ColumnShear CompliantEvents::column_shear(std::size_t i, const Eigen::Ref<const VectorXd>& y, double force_kN) const {
   const contact::Candidate& c = system_.candidates()[i];
-  // A column point needs its column (a scene's always has one; a test's may stand for it alone).
-  if (!c.column || c.column_index >= system_.building(c.striking_building).definition.columns.size()) return;
   // The force pushes the column along +n; the floors' shares N₁ F and N₂ F (column_shape) are the
   // end reactions of the fixed–fixed member, which the sway shear V_s adds to below the load and
   // takes from above it.
@@ -182,12 +251,44 @@ void CompliantEvents::note_column_shear(std::size_t i, double t, const VectorXd&
       system_.column_sway_shear_kN(y, c.striking_building, storey, c.column_index, axis, context_.springs);
   const std::array<double, 2> shares = contact::column_shape(c.height_ratio);
   const double along_kN = force_kN * c.normal_rest[axis];
-  const double total_kN = std::max(std::abs(sway_kN + shares[0] * along_kN), std::abs(sway_kN - shares[1] * along_kN));
+  return {.total_kN = std::max(std::abs(sway_kN + shares[0] * along_kN), std::abs(sway_kN - shares[1] * along_kN)),
+          .sway_kN = sway_kN};
+}
+
+void CompliantEvents::note_column_shear(std::size_t i, double t, const VectorXd& y, double force_kN) {
+  const contact::Candidate& c = system_.candidates()[i];
+  // A column point needs its column (a scene's always has one; a test's may stand for it alone).
+  if (!c.column || c.column_index >= system_.building(c.striking_building).definition.columns.size()) return;
+  const ColumnShear shear = column_shear(i, y, force_kN);
   ImpactRecord& r = open_[i]->record;
-  if (total_kN <= r.column_total_shear_kN) return;
-  r.column_total_shear_kN = total_kN;
+  if (shear.total_kN <= r.column_total_shear_kN) return;
+  r.column_total_shear_kN = shear.total_kN;
   r.column_total_shear_t_s = t;
-  r.column_sway_shear_kN = sway_kN;
+  r.column_sway_shear_kN = shear.sway_kN;
+}
+
+void CompliantEvents::fail_column(std::size_t i, double t, const VectorXd& y) {
+  const StruckColumn& column = *struck_[i];
+  const double force = std::max(0.0, force_kN(i, y));
+  const ColumnShear shear = column_shear(i, y, force);
+  const ImpactRecord& r = open_[i]->record;
+  StruckColumnFailure failure{};
+  static_cast<ContactIdentity&>(failure) = r;
+  failure.t_s = t;
+  failure.column_key = model::column_key(system_.building(column.building).definition, column.column);
+  failure.column_rest = r.vertex_rest;
+  failure.storey = column.storey;
+  failure.axis = column.axis;
+  failure.capacity_kN = column.capacity_kN;
+  failure.shear_kN = shear.total_kN;
+  failure.sway_shear_kN = shear.sway_kN;
+  failure.force_kN = force;
+  failed_.insert(column_of(i));
+  if (column.spring) {
+    context_.fail_spring(*column.spring, t, y);
+    failure.loses_stiffness = system_.springs()[*column.spring].loses_stiffness;
+  }
+  result_.struck_column_failures.push_back(std::move(failure));
 }
 
 void CompliantEvents::end_contact(std::size_t i, double t, const VectorXd& y) {
@@ -254,6 +355,12 @@ void CompliantEvents::finish(double t, const VectorXd& y) {
 }
 
 }  // namespace
+
+bool watches_struck_columns(const dynamics::CoupledSystem& system, const EventOptions& options) {
+  if (options.law == contact::ContactLaw::impulse) return false;
+  const std::vector<std::optional<StruckColumn>> struck = struck_columns(system);
+  return std::any_of(struck.begin(), struck.end(), [](const auto& column) { return column.has_value(); });
+}
 
 std::unique_ptr<LawEvents> make_compliant_events(const EventContext& context) {
   return std::make_unique<CompliantEvents>(context);

@@ -119,6 +119,7 @@ WitnessLayout::Crossed WitnessLayout::crossed(const std::vector<int>& flags) con
     if (flagged(flags, Witness::gap, i)) crossed.gap.push_back(i);
     if (flagged(flags, Witness::force, i)) crossed.force.push_back(i);
     if (flagged(flags, Witness::edge, i)) crossed.edge.push_back(i);
+    if (has_struck_columns() && flagged(flags, Witness::column, i)) crossed.column.push_back(i);
   }
   return crossed;  // the springs' witnesses: YieldStates::switch_branches finds those that crossed
 }

@@ -116,7 +116,7 @@ class EventDrivenSystem final : public HybridSystem {
                options.contact_tolerance_m),
         yields_(system.springs(), options.max_events_per_s, /*locate_shear_failures=*/true),
         building_names_(building_names(system)),
-        witnesses_(count_, yields_.size()),
+        witnesses_(count_, yields_.size(), watches_struck_columns(system, options)),
         gap_components_(gap_components(system)),
         recorder_(system, recorded_dynamics(), {options.history_floors, options.history_other_floors},
                   options.history_interval_s, options.outputs, options.sink),
@@ -188,11 +188,16 @@ class EventDrivenSystem final : public HybridSystem {
     law_->add_force_jacobian(y, rows);
   }
   std::unique_ptr<LawEvents> make_law_events() {
-    const EventContext context{
-        system_,          options_,
-        states_,          cover_,
-        recorder_,        result_,
-        yields_.states(), [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); }};
+    const EventContext context{system_,
+                               options_,
+                               states_,
+                               cover_,
+                               recorder_,
+                               result_,
+                               yields_.states(),
+                               [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); },
+                               [this](std::size_t j) { return yields_.failed_in_shear(j); },
+                               [this](std::size_t j, double t, const VectorXd& y) { yields_.fail_in_shear(j, t, y); }};
     return options_.law == contact::ContactLaw::impulse ? make_impulse_events(context) : make_compliant_events(context);
   }
   /// For the recorder: this rhs, the law's contact forces, and whether none acts (is_free_motion).

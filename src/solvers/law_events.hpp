@@ -35,6 +35,10 @@ struct EventContext {
   const dynamics::SpringStates* springs;
   /// The run's ẏ at (t, y), with the present holds and contact forces.
   std::function<void(double, const dynamics::VectorXd&, Eigen::Ref<dynamics::VectorXd>)> derivative;
+  /// Whether yielding spring j's column has failed in shear (YieldStates).
+  std::function<bool(std::size_t j)> spring_failed;
+  /// Spring j's column failed in shear at (t, y) under a slab's push (YieldStates::fail_in_shear).
+  std::function<void(std::size_t j, double t, const dynamics::VectorXd& y)> fail_spring;
 
   /// Masks candidate i until its gap exceeds reopen_m, with a root at its floor.
   void mask(std::size_t i, double reopen_m, const dynamics::VectorXd& y) const {
@@ -139,6 +143,10 @@ class LawEvents {
   Recorder& recorder_;
   RunResult& result_;
 };
+
+/// Whether some compliant slab-to-column candidate's column has a shear capacity along the plan
+/// axis nearer its edge's normal, so that its shear with the sway is watched (Witness::column).
+bool watches_struck_columns(const dynamics::CoupledSystem& system, const EventOptions& options);
 
 std::unique_ptr<LawEvents> make_impulse_events(const EventContext& context);
 std::unique_ptr<LawEvents> make_compliant_events(const EventContext& context);

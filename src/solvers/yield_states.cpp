@@ -139,6 +139,13 @@ void YieldStates::end_yielding(std::size_t j, double slip_m) {
   --yielding_;
 }
 
+void YieldStates::fail_in_shear(std::size_t j, double t, const Eigen::VectorXd& y) {
+  results_[j].shear_failure_t_s = t;
+  if (!springs_[j].loses_stiffness) return;
+  fail(j, y);
+  count_switch(j, t);
+}
+
 void YieldStates::fail(std::size_t j, const Eigen::VectorXd& y) {
   const dynamics::YieldingSpring& spring = springs_[j];
   // Its force at the failure (V_c) is its peak: observe() sees it only after, at zero.

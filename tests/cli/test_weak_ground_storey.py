@@ -12,8 +12,10 @@ drift with `settled` true and its largest residual the largest of its storeys'; 
 writes report.html with the storeys table (a row per storey of the three buildings) and the
 limit-states table (a row per building with contact and one without) and the struck-columns
 table (a row per struck column and storey), the struck columns' shear with their sway at least its
-sway part and B3's over their capacity; and the same scene with
-column_shear_failure = "lose-stiffness" ends as a collapse of B3's ground storey. The street with
+sway part and B3's over their capacity, and the struck columns that reach their capacity with their
+sway listed, each inside one of its contacts; and the same scene with
+column_shear_failure = "lose-stiffness" ends as a collapse of B3's ground storey, its struck columns
+failed by a push losing their stiffness at that instant (yielding.csv's shear_failure_t_s). The street with
 B3's columns degrading (weak-ground-storey-imk.toml, IMK peak-oriented) ends as a collapse too,
 its failed columns counted per storey in summary.json as in yielding.csv and carrying no force.
 """
@@ -97,6 +99,15 @@ def main():
           any((i["column_total_shear_ratio"] or 0.0) > 1.0 for i in on_columns if i["struck_building"] == 3),
           "every struck column's shear with its sway is at least its sway part; some of B3's exceed capacity")
 
+    # Struck columns that reach their capacity with their sway while a slab pushes them (6b): B3's
+    # (the only columns with a capacity), each at its capacity or over it, inside one of its contacts.
+    struck_failures = summary.get("struck_column_failures", {}).get("failures")
+    check(bool(struck_failures) and all(f["struck_building"] == 3 and f["ratio"] >= 1 - 1e-9 and not f["loses_stiffness"]
+                                        and any(i["struck_building"] == 3 and i["column"] == f["column"] and
+                                                i["t_s"] <= f["t_s"] <= i["t_s"] + i["duration_s"] for i in on_columns)
+                                        for f in struck_failures),
+          f"{len(struck_failures or [])} of B3's struck columns fail with their sway, each inside one of its contacts")
+
     scene = SCENE.read_text().replace('column_shear_failure = "report"', 'column_shear_failure = "lose-stiffness"')
     scene = scene.replace('"../records/', f'"{ROOT}/examples/records/')
     (out / "lose.toml").write_text(scene)
@@ -106,6 +117,16 @@ def main():
     check(status.get("status") == "collapse" and "B3 storey 1" in status.get("status_detail", ""),
           f"losing their stiffness, B3's ground storey collapses ({status.get('status')}: "
           f"{status.get('status_detail', '')[:80]})")
+    # A struck column failed by a push loses its stiffness there: its spring's failure instant is
+    # the push's, and it carries nothing at the end (final slip d / (1 - alpha)).
+    lost = status.get("struck_column_failures", {}).get("failures", [])
+    with open(out / "lose/yielding.csv") as f:
+        by_key = {(r["building"], r["storey"], r["column"], r["direction"]): r for r in csv.DictReader(f)}
+    spring_times = [by_key.get(("3", str(f["storey"]), f["column_key"], f["axis"]), {}).get("shear_failure_t_s")
+                    for f in lost]
+    check(bool(lost) and all(f["loses_stiffness"] for f in lost) and
+          all(t not in (None, "") and abs(float(t) - f["t_s"]) <= 1e-12 for t, f in zip(spring_times, lost)),
+          f"{len(lost)} struck columns lose their stiffness at their push's failure instant ({spring_times[:3]})")
     check_degrading(program, out, check)
     sys.exit(1 if failures else 0)
 

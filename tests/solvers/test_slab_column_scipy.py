@@ -67,6 +67,16 @@ opens; no force returns before a gap opens. Checked:
      maximum is known only to the square root of the value's error). The sway matters here: it adds
      up to 7.5 times the impact's own end shear, and taken the other way round it would move the
      largest shear by 18 % or more (both checked to exceed 100 times the tolerance);
+  2b. the struck columns' shear failures (docs/model.md 6b, "Sway and impact together"): every
+     column of the program's scenes has a shear capacity of 1200 kN, between the struck columns'
+     largest shears with their sway, so that some reach it and some do not (checked: 3, 2 and 1
+     of the 4 struck columns for kelvin, hertzdamp and the variant); the peer finds each column's
+     (and axis's) first instant at which that shear reaches the capacity, at a contact's onset if
+     it is over it there, else by Brent on its dense output. Against summary.json's
+     struck_column_failures: the same columns and axes, the instants within 1e-7 s (rtol 1e-10;
+     measured 7.6e-9 / 2.4e-8) and 2e-9 s (rtol 1e-12; 1.6e-10 / 5.1e-10 / 7.6e-10), the shear
+     then within 1e-5 and 1e-6 of the peer's (1.2e-7 / 3.8e-8; 2.5e-9 / 6.8e-10 / 3.6e-14): at a
+     located root it is the capacity, at an onset the shear found over it there;
   3. the program's energy audit closes (relative residual 2e-7 at rtol 1e-10, 1e-8 at 1e-12;
      measured 3.9e-8 / 4.1e-8, and 1.2e-9 / 1.3e-9 / 6.5e-10) and its impact loss is the peer's
      contact work (1e-5, 3e-7; measured 1.2e-7 / 1.1e-7, and 3.1e-9 / 3.0e-9 / 2.6e-9).
@@ -81,13 +91,16 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.linalg import eigh, expm
-from scipy.optimize import minimize_scalar
+from scipy.optimize import brentq, minimize_scalar
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "support"))
 import program_run  # noqa: E402
 
 ZETA, GAP_M, RESTITUTION, MARGIN_M, LEVEL_TOL_M = 0.05, 0.05, 0.6, 1.0, 1e-3
 KELVIN_K, HERTZ_KH = 93500.0, 2.0e6
+# Every column's shear capacity in the program's runs (check 2b): between the struck columns'
+# largest shears with their sway, so that some fail and some do not.
+CAPACITY_KN = 1200.0
 PULSE_MPS2, PULSE_PERIOD_S, PULSE_END_S, DT_S, DURATION_S, BETA_DEG = 8.0, 0.45, 1.8, 0.005, 3.0, 20.0
 # name, storey heights, slab (counter-clockwise), CM, floor masses, column grid (x, y), section (b, h),
 # E (kPa), frame factor
@@ -127,6 +140,7 @@ x = {list(b['grid'][0])!r}
 y = {list(b['grid'][1])!r}
 b_m = {b['section'][0]!r}
 h_m = {b['section'][1]!r}
+shear_capacity_kN = {CAPACITY_KN!r}
 [building.damping]
 ratio = {ZETA!r}
 modes = [1, 3]
@@ -274,8 +288,11 @@ class Peer:
     at the column points, integrated with DOP853 over each record interval, every switch a root
     located by solve_ivp's events and the integration restarted there in the new contact state."""
 
-    def __init__(self, law=None, rtol=1e-13, atol=1e-15, method="DOP853", buildings=BUILDINGS):
+    def __init__(self, law=None, rtol=1e-13, atol=1e-15, method="DOP853", buildings=BUILDINGS, capacity=None):
         self.b = [Building(s) for s in buildings]
+        # With a capacity: each struck column's first instant (by column and axis) at which its
+        # shear with the sway reaches it.
+        self.capacity, self.failures = capacity, {}
         self.off = [0, 3 * self.b[0].n]
         self.n = 3 * (self.b[0].n + self.b[1].n)
         self.m_diag = np.concatenate([b.m_diag for b in self.b])
@@ -481,6 +498,7 @@ class Peer:
             def total_at(t, sway_sign=1.0):
                 return self.column_shear(c, sol(t)[:self.n], max(0.0, force_at(t)), sway_sign)[0]
             rec = self.current[i]
+            self.locate_failure(c, t0, t1, total_at)
             # "flipped": the sway taken the other way round, a misreading the comparison must see.
             for value_at, key in ((force_at, "peak"), (total_at, "total_shear"),
                                   (lambda t: total_at(t, -1.0), "flipped_shear")):
@@ -494,6 +512,24 @@ class Peer:
                     rec[key] = best
                     if key == "total_shear":
                         rec["sway_shear"] = self.column_shear(c, sol(t_best)[:self.n], max(0.0, force_at(t_best)))[1]
+
+    def locate_failure(self, c, t0, t1, total_at):
+        """The first instant in [t0, t1] at which column c's shear with its sway (total_at) reaches the
+        capacity, once per column and axis: at t0 if it is over there (a contact's onset), else the
+        root (Brent) inside the first of 33 pieces whose end is over."""
+        if self.capacity is None:
+            return
+        key = (c.B, c.j, tuple(np.round(c.X, 9)), 0 if abs(c.n_rest[0]) >= abs(c.n_rest[1]) else 1)
+        if key in self.failures:
+            return
+        ts = np.linspace(t0, t1, 33)
+        over = [total_at(t) - self.capacity for t in ts]
+        for k, value in enumerate(over):
+            if value >= 0.0:
+                t = ts[0] if k == 0 else brentq(lambda t: total_at(t) - self.capacity, ts[k - 1], ts[k], xtol=1e-15,
+                                                rtol=1e-15)
+                self.failures[key] = (t, total_at(t))  # at t0: over the capacity already
+                return
 
     def run(self, times, accel, out_times=()):
         ag = lambda t: np.interp(t, times, accel)
@@ -677,11 +713,11 @@ RUNS = {
     "rtol 1e-10 (the scene's)": ([], dict(history_m=5e-8, history_rad=3e-9, t_s=1e-7, duration_s=1e-7,
                                           peak_force_kN=1e-5, impulse_kNs=1e-5, approach_velocity_mps=1e-5,
                                           column_total_shear_kN=1e-5, column_sway_shear_kN=2e-4,
-                                          residual=2e-7, loss=1e-5)),
+                                          residual=2e-7, loss=1e-5, failure_s=1e-7, failure_shear=1e-5)),
     "rtol 1e-12": (["--rtol", "1e-12", "--atol", "1e-14"],
                    dict(history_m=2e-9, history_rad=1e-10, t_s=2e-9, duration_s=2e-9, peak_force_kN=1e-6,
                         impulse_kNs=3e-7, approach_velocity_mps=2e-7, column_total_shear_kN=1e-6,
-                        column_sway_shear_kN=2e-4, residual=1e-8, loss=3e-7)),
+                        column_sway_shear_kN=2e-4, residual=1e-8, loss=3e-7, failure_s=2e-9, failure_shear=1e-6)),
 }
 
 
@@ -695,8 +731,9 @@ def check_program(program, out, law, label, times, accel, failures, buildings=BU
         failures.append(f"{name}: the program refused the scene or failed: {error.strip()}")
         return
     t_out, program_q, impacts, summary = result
-    peer = Peer(law, buildings=buildings)
+    peer = Peer(law, buildings=buildings, capacity=CAPACITY_KN)
     peer_q = peer.run(times, accel, t_out)
+    check_failures(name, peer, summary, tol, failures)
     diff = np.abs(program_q - peer_q)
     du, dphi = np.max(diff[:, [0, 1, 3, 4, 6, 7]]), np.max(diff[:, [2, 5, 8]])
     print(f"{name}: largest |u, v| difference {du:.2e} m, |phi| {dphi:.2e} rad over {len(t_out)} rows of three "
@@ -780,6 +817,30 @@ def check_program(program, out, law, label, times, accel, failures, buildings=BU
         failures.append(f"{name}: the energy audit does not close ({energy['relative_residual']:.1e})")
     if loss > tol["loss"]:
         failures.append(f"{name}: the impact loss differs from the peer's contact work by {loss:.1e}")
+
+
+def check_failures(name, peer, summary, tol, failures):
+    """Check 2b: the struck columns that reach their capacity with their sway, by column and axis,
+    and when, against summary.json's struck_column_failures."""
+    listed = summary.get("struck_column_failures", {}).get("failures", [])
+    program = {(f["struck_building"] - 1, f["storey"] - 1, tuple(np.round(f["column_rest"], 9)),
+                "xy".index(f["axis"])): f for f in listed}
+    if set(program) != set(peer.failures):
+        failures.append(f"{name}: failed columns {sorted(program)}, the peer's {sorted(peer.failures)}")
+        return
+    worst = max([abs(program[k]["t_s"] - t) for k, (t, _) in peer.failures.items()], default=0.0)
+    ratio = max([abs(program[k]["shear_kN"] / shear - 1.0) for k, (_, shear) in peer.failures.items()], default=0.0)
+    onsets = sum(shear > CAPACITY_KN * (1 + 1e-6) for _, shear in peer.failures.values())
+    struck = {(peer.cands[c["candidate"]].B, peer.cands[c["candidate"]].j, tuple(np.round(peer.cands[c["candidate"]].X, 9)))
+              for c in peer.contacts}
+    print(f"{name}: {len(listed)} of {len(struck)} struck columns reach {CAPACITY_KN:g} kN with their sway "
+          f"({onsets} over it at a contact's onset): instants within {worst:.1e} s of the peer's, their shear "
+          f"within {ratio:.1e} of the peer's (relative)")
+    if worst > tol["failure_s"] or ratio > tol["failure_shear"]:
+        failures.append(f"{name}: failure instants {worst:.2e} s apart (limit {tol['failure_s']:.0e}), shear at "
+                        f"failure {ratio:.2e} off the peer's (limit {tol['failure_shear']:.0e})")
+    if not 0 < len(listed) < len(struck):
+        failures.append(f"{name}: {len(listed)} of {len(struck)} struck columns fail: the capacity cannot tell")
 
 
 def check_impulse_refused(program, out, failures):

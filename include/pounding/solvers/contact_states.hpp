@@ -126,32 +126,39 @@ class CornerCover {
   std::vector<bool> covered_, live_, ever_live_;
 };
 
-/// The run's root functions ("witnesses"): three blocks, one entry per candidate, then one entry
-/// per yielding column spring (YieldStates::witness), none when every column stays elastic. A function
+/// The run's root functions ("witnesses"): three blocks, one entry per candidate (four when struck
+/// columns are watched), then one entry per yielding column spring (YieldStates::witness), none
+/// when every column stays elastic. A function
 /// that does not apply to a candidate in its mode is held at +1, so it never crosses; the
 /// integrators report falling crossings only, so each is written to fall at its event.
 enum class Witness {
-  gap,    // armed/masked: ContactStates::gap_witness. compliant/released: the overlap −g (falls where the gap opens)
-  force,  // held: the hold's force (kN). compliant/released: the law's switch function
-  edge,   // held or acting: distance of the contact point from the nearer end of its edge
-          // (fraction of the edge) plus on_segment()'s tolerance: falls where it slides off
+  gap,     // armed/masked: ContactStates::gap_witness. compliant/released: the overlap −g (falls where the gap opens)
+  force,   // held: the hold's force (kN). compliant/released: the law's switch function
+  edge,    // held or acting: distance of the contact point from the nearer end of its edge
+           // (fraction of the edge) plus on_segment()'s tolerance: falls where it slides off
+  column,  // a compliant slab-to-column contact whose column has a shear capacity V_c, until the
+           // column fails: (V_c − its shear with the sway)/V_c (falls where it fails); only with
+           // WitnessLayout's `struck_columns`
 };
 
 class WitnessLayout {
  public:
-  explicit WitnessLayout(std::size_t count, std::size_t springs = 0) : count_(count), springs_(springs) {}
-  int size() const { return static_cast<int>(3 * count_ + springs_); }
-  /// Index of candidate i's `witness` in the root vector.
+  /// `struck_columns`: the block of Witness::column is there (some struck column is watched).
+  explicit WitnessLayout(std::size_t count, std::size_t springs = 0, bool struck_columns = false)
+      : count_(count), springs_(springs), blocks_(struck_columns ? 4 : 3) {}
+  int size() const { return static_cast<int>(blocks_ * count_ + springs_); }
+  bool has_struck_columns() const { return blocks_ == 4; }
+  /// Index of candidate i's `witness` in the root vector. @pre Witness::column only with has_struck_columns().
   Eigen::Index at(Witness witness, std::size_t i) const {
     return static_cast<Eigen::Index>(static_cast<std::size_t>(witness) * count_ + i);
   }
   /// Index of yielding spring j's witness.
-  Eigen::Index at_spring(std::size_t j) const { return static_cast<Eigen::Index>(3 * count_ + j); }
+  Eigen::Index at_spring(std::size_t j) const { return static_cast<Eigen::Index>(blocks_ * count_ + j); }
   /// The candidates whose witnesses an integrator flagged (roots_found(): non-zero = crossed);
   /// the springs' are YieldStates::switch_branches' to find.
   struct Crossed {
-    std::vector<std::size_t> gap = {}, force = {}, edge = {};
-    bool contacts() const { return !gap.empty() || !force.empty() || !edge.empty(); }
+    std::vector<std::size_t> gap = {}, force = {}, edge = {}, column = {};
+    bool contacts() const { return !gap.empty() || !force.empty() || !edge.empty() || !column.empty(); }
   };
   Crossed crossed(const std::vector<int>& flags) const;
   bool flagged(const std::vector<int>& flags, Witness witness, std::size_t i) const {
@@ -161,6 +168,7 @@ class WitnessLayout {
  private:
   std::size_t count_;
   std::size_t springs_;
+  std::size_t blocks_;
 };
 
 }  // namespace pounding::solvers

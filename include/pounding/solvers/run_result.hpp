@@ -113,6 +113,22 @@ struct Peak {
   }
 };
 
+/// A struck column that reached its shear capacity under a slab's push (compliant slab-to-column
+/// contact, docs/model.md §6b): its shear with its sway, the larger of |V_s + N₁ F n_a| and
+/// |V_s − N₂ F n_a|, located where it reaches V_c (or found over it at the contact's onset).
+struct StruckColumnFailure : ContactIdentity {  // the contact's identity, as its impact's
+  double t_s = 0.0;
+  std::string column_key;                             // the column's scene key (model::column_key)
+  model::Point2 column_rest = model::Point2::Zero();  // its point at rest (m), the impact's vertex_rest
+  int storey = 1;                                     // the column's storey (1-based)
+  int axis = 0;                                       // 0: x, 1: y (the capacity's direction)
+  double capacity_kN = 0.0;
+  double shear_kN = 0.0;         // with its sway, at t_s (≥ capacity_kN)
+  double sway_shear_kN = 0.0;    // V_s at t_s
+  double force_kN = 0.0;         // the contact's force F at t_s
+  bool loses_stiffness = false;  // its spring along the axis went to the failed branch
+};
+
 /// One member-force quantity of a storey or a column (solvers/member_forces.hpp) and its peak.
 struct MemberForce {
   enum class Kind { shear_x, shear_y, torque, moment_x, moment_y };  // kN, kN, kN·m, kN·m, kN·m
@@ -312,6 +328,10 @@ struct RunResult {
   History history;
   std::vector<SpringResult> springs;       // empty unless some building's columns yield
   std::vector<MemberForce> member_forces;  // empty unless outputs.member_forces
+  /// Whether some struck column's shear with its sway was watched against its capacity, and
+  /// those that reached it, in order of time.
+  bool struck_columns_watched = false;
+  std::vector<StruckColumnFailure> struck_column_failures;
 };
 
 }  // namespace pounding::solvers
