@@ -339,7 +339,11 @@ void print_slab_axial_stiffness(const analysis::Scene& scene) {
       parts.push_back(fmt::format("{} {:.4g} kN/m", building->name, stiffnesses.back()));
     }
     std::string verdict;
-    if (stiffnesses.size() == 2) {
+    if (scene.pair_scene(pair).levels().empty()) {  // no slab meets a slab: the two in series mean nothing
+      verdict =
+          "; no common level: the slabs strike the other building's columns, whose own flexibility is in "
+          "series with the contact (docs/model.md §6b)";
+    } else if (stiffnesses.size() == 2) {
       const double series = stiffnesses[0] * stiffnesses[1] / (stiffnesses[0] + stiffnesses[1]);
       parts.push_back(fmt::format("in series {:.4g} kN/m", series));
       if (law.stiffness_unit == "kN/m") {

@@ -116,10 +116,12 @@ Scene with_restitution(Scene scene, double restitution) {
 
 /// The scene with output.history and output.peaks replaced (None: kept), checked, as `run
 /// --history --peaks` replace them.
-Scene with_outputs(Scene scene, std::optional<bool> history, std::optional<std::vector<std::string>> peaks) {
+Scene with_outputs(Scene scene, std::optional<bool> history, std::optional<std::vector<std::string>> peaks,
+                   std::optional<bool> member_forces) {
   try {
     if (history) scene.output.history = *history;
     if (peaks) scene.output.peaks = std::move(*peaks);
+    if (member_forces) scene.output.member_forces = *member_forces;
     scene.validate();
   } catch (const InputError& error) {
     rethrow_in_scene(error, scene);
@@ -440,6 +442,9 @@ PYBIND11_MODULE(_pounding, m) {
       .def_property_readonly(
           "peaks", [](const Scene& s) { return s.output.peaks; }, "output.peaks: the peak groups runs report")
       .def_property_readonly(
+          "member_forces", [](const Scene& s) { return s.output.member_forces; },
+          "output.member_forces: whether runs record the storeys' and columns' forces")
+      .def_property_readonly(
           "contact_free_reference", [](const Scene& s) { return s.output.contact_free_reference; },
           "output.contact_free_reference: whether runs also run without contact, for the pounding-induced demand")
       .def_property_readonly(
@@ -499,8 +504,10 @@ PYBIND11_MODULE(_pounding, m) {
            "The scene with the neighbouring pair first:second (building names) gap_m (m) apart, as `run --gap "
            "FIRST:SECOND=M` (the pair's second building moves, with its neighbours beyond)")
       .def("with_outputs", &with_outputs, py::arg("history") = py::none(), py::arg("peaks") = py::none(),
-           "The scene with output.history (bool) and output.peaks (a list of peak groups: displacements, "
-           "accelerations, drifts) replaced; None keeps the scene's")
+           py::arg("member_forces") = py::none(),
+           "The scene with output.history (bool), output.peaks (a list of peak groups: displacements, "
+           "accelerations, drifts) and output.member_forces (bool: storey and column forces) replaced; None keeps "
+           "the scene's")
       .def("with_direction", &with_direction, py::arg("direction_deg"),
            "The scene with excitation.direction_deg replaced (the record's angle from +x; a pair's second component "
            "at + 90 degrees), as `run --direction-deg`")

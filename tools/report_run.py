@@ -211,7 +211,50 @@ def struck_columns_table(summary):
              number(e["force"]["column_shear_kN"], 5), ratio_cell(e["force"].get("column_shear_ratio")),
              *total_cells(e["total"]))
             for (b, c, storey), e in sorted(columns.items())]
-    return table(header, rows, "struck-columns", text_columns=("column", "over capacity", "with sway over capacity"))
+    watched = summary.get("struck_column_failures")
+    if watched is not None:  # the located failures (docs/model.md 6b), the first of each column and storey
+        failed = {}
+        for f in watched["failures"]:
+            failed.setdefault((f["struck_building"], f["column"], f["storey"]), f)
+        header += ("failed in shear",)
+        rows = [row + (failure_cell(failed.get(key), columns[key]["force"].get("column_shear_ratio") is not None),)
+                for row, key in zip(rows, sorted(columns))]
+    return table(header, rows, "struck-columns",
+                 text_columns=("column", "over capacity", "with sway over capacity", "failed in shear"))
+
+
+def failure_cell(failure, has_capacity):
+    """'FAILED at 4.601653 s along x (loses its stiffness)', 'no' for a column with a capacity that
+    held, '' for one without."""
+    if failure is None:
+        return text("no" if has_capacity else "")
+    lost = " (loses its stiffness)" if failure["loses_stiffness"] else ""
+    return text(f"FAILED at {failure['t_s']:.6f} s along {failure['axis']}{lost}")
+
+
+def member_forces_table(summary):
+    """Per building and storey, its peak storey shears and torque and its largest column shear and end
+    moment (summary.json member_forces, docs/model.md 2c)."""
+    forces = summary.get("member_forces")
+    if not forces:
+        return ""
+    header = ("building", "storey", "|Vx| [kN]", "at [s]", "|Vy| [kN]", "at [s]", "|T| [kN m]", "at [s]",
+              "largest column |V| [kN]", "column", "largest end |M| [kN m]")
+
+    def peak(entry, key):
+        return number(abs(entry[key]["value"]), 5), f"{entry[key]['t_s']:.4f}"
+
+    rows = []
+    for building in forces["buildings"]:
+        for storey in building["storeys"]:
+            columns = storey.get("columns", [])
+            shears = [(abs(c[k]["value"]), c["column"]) for c in columns for k in ("Vx_kN", "Vy_kN")]
+            moments = [abs(c[k]["value"]) for c in columns for k in ("Mx_kNm", "My_kNm")]
+            shear, column = max(shears) if shears else (None, "")
+            rows.append((text(building["building"]), storey["storey"], *peak(storey, "Vx_kN"), *peak(storey, "Vy_kN"),
+                         *peak(storey, "T_kNm"), number(shear, 5) if shear is not None else "", text(column),
+                         number(max(moments), 5) if moments else ""))
+    return table(header, rows, "member-forces", text_columns=("building", "column"))
 
 
 def sustained_table(summary):
@@ -388,9 +431,13 @@ def bracket_section(document):
 
 
 def structural_sections(summary):
-    """The storeys' demands and the limit states, when the run has any."""
-    storeys, limits = storeys_table(summary), limit_states_table(summary)
+    """The storeys' demands, their member forces and the limit states, when the run has any."""
+    storeys, forces, limits = storeys_table(summary), member_forces_table(summary), limit_states_table(summary)
     parts = ["<h2>Storeys</h2>", storeys] if storeys else []
+    if forces:
+        parts += ["<h2>Member forces</h2>",
+                  '<p class="note">Peaks over the run\'s step ends, events and history samples: the storeys\' '
+                  "shears and torque about the CM, the columns' own forces (no damping, no P-Δ).</p>", forces]
     return parts + (["<h2>Limit states</h2>", limits] if limits else [])
 
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iterator>
@@ -171,7 +172,13 @@ void append_design_peaks(const analysis::RunReport& report, std::string& text) {
 void append_yielding(const analysis::RunReport& report, std::string& text) {
   if (report.springs.empty()) return;
   auto out = std::back_inserter(text);
-  fmt::format_to(out, "Yielding columns: {} yield events, hysteretic energy {:.3f} kJ\n",
+  // A storey given as a matrix yields as storey springs (docs/model.md §2a), not as columns.
+  const auto storey_spring = [](const dynamics::YieldingSpring& s) { return s.column.starts_with("storey_stiffness"); };
+  const std::size_t storey_springs = std::count_if(report.springs.begin(), report.springs.end(), storey_spring);
+  const std::string_view what = storey_springs == 0                       ? "columns"
+                                : storey_springs == report.springs.size() ? "storey springs"
+                                                                          : "columns and storey springs";
+  fmt::format_to(out, "Yielding {}: {} yield events, hysteretic energy {:.3f} kJ\n", what,
                  report.result.statistics.yield_events, report.result.energy.hysteretic_kJ);
   for (const analysis::StoreyYielding& s : analysis::storey_yielding(report.springs, report.result.springs)) {
     fmt::format_to(

@@ -350,6 +350,9 @@ std::vector<model::Column> read_columns(TableReader& table, int storeys) {
         columns.back().key = fmt::format("columns[{}]", i + 1);
         continue;
       }
+      if (!array[i].is_array()) {
+        throw table.error(array[i], entry_key, "expected [x, y, b, h] or a table {x, y, b_m, h_m, ...}");
+      }
       const auto v = table.numbers_of(array[i], entry_key, 4);
       columns.push_back({Point2(v[0], v[1]), v[2], v[3]});
     }

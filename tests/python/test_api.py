@@ -99,7 +99,8 @@ def test_output_schema_names_every_output_of_a_run_and_nothing_else():
     schema = pounding.output_schema()
     result = pounding.run(pounding.load_scene(PAPER, gap=0.05), method="cvode-bdf")
     patterns = [re.escape(f["column"]).replace(r"\{b\}", "[12]").replace(r"\{f\}", "[0-9]+")
-                .replace(r"\{n\}", "[0-9]+") for f in schema["history"]]
+                .replace(r"\{j\}", "[0-9]+").replace(r"\{n\}", "[0-9]+")
+                if "only_when" not in f else "(?!)" for f in schema["history"]]
     columns = list(result.history)
     assert columns[0] == "t_s" and schema["history"][0]["column"] == "t_s"
     slab = re.compile("^B[12]_f[0-9]+_")
@@ -109,7 +110,18 @@ def test_output_schema_names_every_output_of_a_run_and_nothing_else():
         assert len(matched) == 1, column
         order.append(matched[0])
         assert slab.match(column)
-    assert set(order) == set(range(1, len(patterns)))  # every declared quantity is written
+    always = [k for k, f in enumerate(schema["history"]) if "only_when" not in f]
+    assert set(order) == set(always[1:])  # every declared quantity is written
+    # The member forces (output.member_forces) are the last columns, each declared with its condition.
+    forces = [re.escape(f["column"]).replace(r"\{b\}", "[12]").replace(r"\{j\}", "[0-9]+")
+              .replace(r"\{n\}", "[0-9]+") for f in schema["history"] if f.get("only_when") == "output.member_forces"]
+    with_forces = pounding.run(pounding.load_scene(PAPER, gap=0.05).with_outputs(member_forces=True),
+                               method="cvode-bdf")
+    extra = list(with_forces.history)[len(columns):]
+    assert list(with_forces.history)[:len(columns)] == columns and extra
+    assert all(sum(bool(re.fullmatch(p, c)) for p in forces) == 1 for c in extra)
+    assert {k for c in extra for k, p in enumerate(forces) if re.fullmatch(p, c)} == set(range(len(forces)))
+    assert "member_forces" in with_forces.summary and "member_forces" not in result.summary
     summary = result.summary
     assert list(summary["impacts"][0]) == [f["key"] for f in schema["impacts"] if "only_when" not in f]
     header = [c for f in schema["impacts"] if "only_when" not in f for c in f["csv_columns"]]

@@ -22,12 +22,14 @@ shares no code with the program. Cases:
   C. a building of storey matrices (storey_stiffness, with a torsional coupling K_uphi): the
      storey forces are K dq of the given matrix (1e-9); with elastic-perfectly-plastic storey
      springs the storey's peak |V_x| is its yield shear (1e-9 relative);
+     `pounding report` shows a member-forces table, a row per storey;
   D. the opt-in: without the key history.csv and summary.json hold no member force; with
      contact_free_reference and a contact, pounding_demand gives each storey's shears with and
      without contact and their ratio.
 """
 import csv
 import json
+import subprocess
 import sys
 import tempfile
 import time
@@ -203,6 +205,15 @@ def case_a(program, out, failures):
         if not 0.0 <= t_s <= DURATION_S:
             failures.append(f"A: peak {name} at {t_s} s, outside the run")
     print(f"A: {len(expected)} forces over {len(history['t_s'])} rows; peaks at most {worst:.2e} above the rows")
+    report = subprocess.run([str(program), "report", str(out / "A/run")], capture_output=True, text=True)
+    if "has no Python" in report.stderr:  # a build without the Python module (the sanitizer pass)
+        print(f"A: skip report.html: {report.stderr.strip()}")
+        return
+    page = (out / "A/run/report.html").read_text() if report.returncode == 0 else ""
+    table = page.split('id="member-forces"')[1].split("</table>")[0] if 'id="member-forces"' in page else ""
+    rows = table.count("<tr>") - 1  # the header's
+    if rows != 3:  # Y's two storeys and E's one
+        failures.append(f"A: report.html's member-forces table has {rows} storey rows, not 3 ({report.stderr[-200:]})")
 
 
 def case_b(program, out, failures):
