@@ -2,6 +2,7 @@
 // their force integrated with the motion.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <set>
 
@@ -9,6 +10,7 @@
 #include "pounding/contact/column_contact.hpp"
 #include "pounding/contact/compliant_law.hpp"
 #include "pounding/solvers/floor_impacts.hpp"
+#include "pounding/solvers/root_finding.hpp"
 
 namespace pounding::solvers {
 
@@ -22,6 +24,9 @@ struct OpenContact {
   ImpactRecord record;
   double work_kJ = 0.0;  // ∫F ġ dt: the contact's work on the slabs (−energy lost)
 };
+
+/// A step inside a compliant contact is integrated (Simpson) on this many pieces of its interpolant.
+constexpr int kIntervals = 16;
 
 /// The plan axis (0: x, 1: y) nearer a slab-to-column contact's normal, the force's direction:
 /// the one whose capacity and sway shear its column's demands are measured along.
@@ -149,6 +154,11 @@ class CompliantEvents final : public LawEvents {
     open_[i]->record.duration_s = t - open_[i]->record.t_s;
   }
   void end_contact(std::size_t i, double t, const VectorXd& y);
+  /// dF/dt (kN/s) of acting contact i at (t, y), from the law's slopes and the gap's acceleration.
+  double force_rate_kN_per_s(std::size_t i, double t, const VectorXd& y) const;
+  /// Acting contact i's largest force in the step from t_a whose sample k (of kIntervals, h apart) is
+  /// its largest: the root of its rate on the step's interpolant, where that changes sign beside k.
+  void locate_peak_force(std::size_t i, double t_a, double h, int k, const StateInterpolant& at);
   /// Slab-to-column contact i pushing with `force_kN` at (t, y): its column's shear with the
   /// sway (docs/model.md §6b).
   ColumnShear column_shear(std::size_t i, const Eigen::Ref<const VectorXd>& y, double force_kN) const;
@@ -324,9 +334,11 @@ void CompliantEvents::integrate(double t_a, double t_b, const VectorXd& y_b, con
   // Composite Simpson on the step's interpolant: its error is of the interpolant's order, far
   // below the solver tolerance for the smooth force inside a contact (no switch inside a step).
   if (states_.acting().empty() || !(t_b > t_a)) return;
-  constexpr int kIntervals = 16;
   VectorXd y(system_.state_size());
   const double h = (t_b - t_a) / kIntervals;
+  const std::vector<std::size_t>& acting = states_.acting();
+  std::vector<int> largest(acting.size(), 0);  // the sample of each contact's largest force in the step
+  std::vector<double> largest_kN(acting.size(), -std::numeric_limits<double>::infinity());
   for (int k = 0; k <= kIntervals; ++k) {
     if (k == kIntervals) {
       y = y_b;
@@ -334,15 +346,49 @@ void CompliantEvents::integrate(double t_a, double t_b, const VectorXd& y_b, con
       at(t_a + k * h, y);
     }
     const double weight = (k == 0 || k == kIntervals ? 1.0 : k % 2 ? 4.0 : 2.0) * h / 3.0;
-    for (std::size_t i : states_.acting()) {
+    for (std::size_t n = 0; n < acting.size(); ++n) {
+      const std::size_t i = acting[n];
       const double force = force_kN(i, y);
       OpenContact& open = *open_[i];
       open.record.peak_force_kN = std::max(open.record.peak_force_kN, force);
+      if (force > largest_kN[n]) largest_kN[n] = force, largest[n] = k;
       note_column_shear(i, k == kIntervals ? t_b : t_a + k * h, y, std::max(0.0, force));
       open.record.impulse_kNs += weight * force;
       open.work_kJ += weight * force * system_.gap(y, i).gap_rate_mps;
     }
   }
+  for (std::size_t n = 0; n < acting.size(); ++n) {
+    // Only a step that holds the contact's largest force so far can raise it.
+    if (largest_kN[n] >= open_[acting[n]]->record.peak_force_kN) locate_peak_force(acting[n], t_a, h, largest[n], at);
+  }
+}
+
+double CompliantEvents::force_rate_kN_per_s(std::size_t i, double t, const VectorXd& y) const {
+  VectorXd y_dot(system_.state_size());
+  context_.derivative(t, y, y_dot);
+  const contact::GapState s = system_.gap(y, i);
+  const contact::ForceSlopes slopes = open_[i]->law.slopes(-s.gap_m, -s.gap_rate_mps);
+  // F(δ, δ̇) with δ = −g: Ḟ = ∂F/∂δ δ̇ + ∂F/∂δ̇ δ̈.
+  return -(slopes.per_overlap_kN_per_m * s.gap_rate_mps +
+           slopes.per_rate_kNs_per_m * system_.gap_acceleration(y, y_dot, i));
+}
+
+void CompliantEvents::locate_peak_force(std::size_t i, double t_a, double h, int k, const StateInterpolant& at) {
+  VectorXd y(system_.state_size());
+  const auto rate = [&](double t) {
+    at(t, y);
+    return force_rate_kN_per_s(i, t, y);
+  };
+  // The sample k is the step's largest: Ḟ falls through zero beside it, after it where it still rises.
+  const double rate_k = rate(t_a + k * h);
+  const int first = rate_k > 0.0 ? k : k - 1;    // the piece [t_a + first h, + h] holding the turning point
+  if (first < 0 || first >= kIntervals) return;  // it lies in a neighbouring step
+  const double lo_s = t_a + first * h, hi_s = lo_s + h;
+  const double rate_lo = first == k ? rate_k : rate(lo_s), rate_hi = first == k ? rate(hi_s) : rate_k;
+  if (!(rate_lo > 0.0 && rate_hi <= 0.0)) return;  // no turning point there (a kink, or round-off)
+  at(find_root(rate, lo_s, hi_s, rate_lo, rate_hi), y);
+  OpenContact& open = *open_[i];
+  open.record.peak_force_kN = std::max(open.record.peak_force_kN, force_kN(i, y));
 }
 
 void CompliantEvents::finish(double t, const VectorXd& y) {
