@@ -372,7 +372,9 @@ void check_work(const WorkEstimate& estimate, const RunLimits& limits) {
   if (estimate.history_values() > limits.max_history_values) {
     throw InputError("limits.max_history_values", format_value(limits.max_history_values),
                      fmt::format("history.csv would hold {:.3g} values ({:.3g} rows of {} columns), above this "
-                                 "limit; raise output.history_interval_s or list fewer output.history_floors",
+                                 "limit; raise output.history_interval_s, list fewer output.history_floors or "
+                                 "(with output.member_forces, a column group per column) keep the member forces to "
+                                 "summary.json's peaks with output.history = false",
                                  estimate.history_values(), estimate.history_rows, estimate.history_columns));
   }
 }

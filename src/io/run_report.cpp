@@ -216,9 +216,10 @@ void append_struck_column_failures(const analysis::RunReport& report, std::strin
                  r.struck_column_failures.size());
   for (const solvers::StruckColumnFailure& f : r.struck_column_failures) {
     fmt::format_to(
-        out, "  {} {} storey {} along {} at {:.6f} s: {:.1f} kN of {:.1f} kN (sway {:.1f} kN, force {:.1f} kN){}\n",
+        out, "  {} {} storey {} along {} at {:.6f} s: {:.4g} kN of {:.4g} kN (sway {:.4g} kN, force {:.4g} kN){}{}\n",
         r.peaks.at(static_cast<std::size_t>(f.struck_building - 1)).name, f.column_key, f.storey,
         f.axis == 0 ? "x" : "y", f.t_s, f.shear_kN, f.capacity_kN, f.sway_shear_kN, f.force_kN,
+        f.sway_over_capacity ? "; its sway alone was over it as the push began" : "",
         f.loses_stiffness ? "; loses its stiffness" : "");
   }
 }

@@ -380,12 +380,14 @@ json struck_column_failures_json(const solvers::RunResult& result) {
                         {"ratio", f.shear_kN / f.capacity_kN},
                         {"sway_shear_kN", f.sway_shear_kN},
                         {"force_kN", f.force_kN},
+                        {"sway_over_capacity", f.sway_over_capacity},
                         {"loses_stiffness", f.loses_stiffness}});
   }
   return {{"definition",
            "a struck column whose shear with its sway, the larger of |V_s + N1 F n_a| and |V_s - N2 F n_a| along the "
            "plan axis nearer the edge's normal, reached its shear capacity during a compliant contact: located as a "
-           "root (or found over it at the contact's onset), once a column and axis (docs/model.md 6b)"},
+           "root (or found over it where the push began), once a column and axis (docs/model.md 6b); "
+           "sway_over_capacity: its sway alone was over it then (an elastic column is checked only while pushed)"},
           {"failures", failures}};
 }
 

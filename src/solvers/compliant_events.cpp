@@ -144,7 +144,9 @@ class CompliantEvents final : public LawEvents {
     if (law.law() != contact::ContactLaw::jankowski && force_kN(j, y) < 0.0) {
       law.toggle();
       release(j, t, y);
+      return;
     }
+    fail_column_if_over(j, t, y);
   }
   /// Compliant contact i's force turned tensile at (t, y): released, the slabs flying apart while
   /// they still overlap, until the gap opens.
@@ -177,6 +179,12 @@ class CompliantEvents final : public LawEvents {
   /// Contact i's struck column has reached its capacity at (t, y): a failure, and, where its
   /// building's columns lose their stiffness, its spring's failed branch.
   void fail_column(std::size_t i, double t, const VectorXd& y);
+  /// Where contact i starts to push (onset, a push again before the gap opened, a hand-over round
+  /// a corner) its column's witness starts there, so no falling crossing shows a column already
+  /// over its capacity (a kelvin law's first force c v, or an elastic column's sway): it fails now.
+  void fail_column_if_over(std::size_t i, double t, const VectorXd& y) {
+    if (watches(i) && column_witness(i, y) <= 0.0) fail_column(i, t, y);
+  }
   std::array<std::size_t, 4> column_of(std::size_t i) const {
     const StruckColumn& c = *struck_[i];
     return {static_cast<std::size_t>(c.building), static_cast<std::size_t>(c.storey), c.column,
@@ -215,7 +223,8 @@ void CompliantEvents::on_event(double t, VectorXd& y, const WitnessLayout::Cross
       release(i, t, y);  // tensile from here on
     } else if (!acted) {
       states_.start_acting(i);  // pushing again before the gap opened: the same contact goes on
-    }                           // else a jankowski contact changed phase and acts on
+      fail_column_if_over(i, t, y);
+    }  // else a jankowski contact changed phase and acts on
   }
   for (std::size_t i : crossed.gap) {
     const contact::GapState s = system_.gap(y, i);
@@ -246,8 +255,7 @@ void CompliantEvents::begin_contact(std::size_t i, double t, const VectorXd& y) 
   open_[i]->record.peak_force_kN = std::max(0.0, force_kN(i, y));
   note_column_shear(i, t, y, open_[i]->record.peak_force_kN);
   states_.start_acting(i);
-  // A push whose first force (a kelvin law's c v) already takes the column over: it fails at onset.
-  if (watches(i) && column_witness(i, y) <= 0.0) fail_column(i, t, y);
+  fail_column_if_over(i, t, y);
 }
 
 ColumnShear CompliantEvents::column_shear(std::size_t i, const Eigen::Ref<const VectorXd>& y, double force_kN) const {
@@ -293,10 +301,12 @@ void CompliantEvents::fail_column(std::size_t i, double t, const VectorXd& y) {
   failure.shear_kN = shear.total_kN;
   failure.sway_shear_kN = shear.sway_kN;
   failure.force_kN = force;
+  failure.sway_over_capacity = std::abs(shear.sway_kN) >= column.capacity_kN;
   failed_.insert(column_of(i));
-  if (column.spring) {
-    context_.fail_spring(*column.spring, t, y);
-    failure.loses_stiffness = system_.springs()[*column.spring].loses_stiffness;
+  if (column.spring && system_.springs()[*column.spring].loses_stiffness) {
+    context_.lose_stiffness(*column.spring, t, y);
+    failure.loses_stiffness = true;
+    ++result_.statistics.yield_events;  // a branch change, as a sway failure's
   }
   result_.struck_column_failures.push_back(std::move(failure));
 }

@@ -197,7 +197,7 @@ class EventDrivenSystem final : public HybridSystem {
                                yields_.states(),
                                [this](double t, const VectorXd& y, Eigen::Ref<VectorXd> y_dot) { rhs(t, y, y_dot); },
                                [this](std::size_t j) { return yields_.failed_in_shear(j); },
-                               [this](std::size_t j, double t, const VectorXd& y) { yields_.fail_in_shear(j, t, y); }};
+                               [this](std::size_t j, double t, const VectorXd& y) { yields_.lose_stiffness(j, t, y); }};
     return options_.law == contact::ContactLaw::impulse ? make_impulse_events(context) : make_compliant_events(context);
   }
   /// For the recorder: this rhs, the law's contact forces, and whether none acts (is_free_motion).

@@ -35,10 +35,11 @@ struct EventContext {
   const dynamics::SpringStates* springs;
   /// The run's ẏ at (t, y), with the present holds and contact forces.
   std::function<void(double, const dynamics::VectorXd&, Eigen::Ref<dynamics::VectorXd>)> derivative;
-  /// Whether yielding spring j's column has failed in shear (YieldStates).
+  /// Whether yielding spring j's column has failed in shear (YieldStates::failed_in_shear).
   std::function<bool(std::size_t j)> spring_failed;
-  /// Spring j's column failed in shear at (t, y) under a slab's push (YieldStates::fail_in_shear).
-  std::function<void(std::size_t j, double t, const dynamics::VectorXd& y)> fail_spring;
+  /// Spring j's column, failed in shear at (t, y) under a slab's push, loses its stiffness
+  /// (YieldStates::lose_stiffness).
+  std::function<void(std::size_t j, double t, const dynamics::VectorXd& y)> lose_stiffness;
 
   /// Masks candidate i until its gap exceeds reopen_m, with a root at its floor.
   void mask(std::size_t i, double reopen_m, const dynamics::VectorXd& y) const {

@@ -139,9 +139,8 @@ void YieldStates::end_yielding(std::size_t j, double slip_m) {
   --yielding_;
 }
 
-void YieldStates::fail_in_shear(std::size_t j, double t, const Eigen::VectorXd& y) {
+void YieldStates::lose_stiffness(std::size_t j, double t, const Eigen::VectorXd& y) {
   results_[j].shear_failure_t_s = t;
-  if (!springs_[j].loses_stiffness) return;
   fail(j, y);
   count_switch(j, t);
 }

@@ -123,9 +123,12 @@ struct StruckColumnFailure : ContactIdentity {  // the contact's identity, as it
   int storey = 1;                                     // the column's storey (1-based)
   int axis = 0;                                       // 0: x, 1: y (the capacity's direction)
   double capacity_kN = 0.0;
-  double shear_kN = 0.0;         // with its sway, at t_s (≥ capacity_kN)
-  double sway_shear_kN = 0.0;    // V_s at t_s
-  double force_kN = 0.0;         // the contact's force F at t_s
+  double shear_kN = 0.0;       // with its sway, at t_s (≥ capacity_kN)
+  double sway_shear_kN = 0.0;  // V_s at t_s
+  double force_kN = 0.0;       // the contact's force F at t_s
+  /// |V_s| alone was at or over the capacity: an elastic column (checked only while pushed) whose
+  /// sway had taken it over before the push began.
+  bool sway_over_capacity = false;
   bool loses_stiffness = false;  // its spring along the axis went to the failed branch
 };
 

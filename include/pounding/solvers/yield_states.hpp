@@ -63,15 +63,15 @@ class YieldStates {
   /// first, the shear failure of every watched spring whose force has reached its capacity.
   /// @return the number switched.
   int switch_branches(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& y_dot);
-  /// Whether spring j's column has failed in shear (its sway shear or a slab's push reached its
-  /// capacity) or lost its stiffness.
+  /// Whether spring j's column has failed in shear (its sway shear reached its capacity) or lost
+  /// its stiffness.
   bool failed_in_shear(std::size_t j) const {
     return !std::isnan(results_[j].shear_failure_t_s) || states_[j].branch == dynamics::SpringBranch::failed;
   }
-  /// Spring j's column failed in shear at (t, y) under a slab's push with its sway (docs/model.md
-  /// §6b): its shear_failure_t_s, and, where it loses its stiffness, the failed branch (a restart
-  /// follows: the event's). @pre !failed_in_shear(j).
-  void fail_in_shear(std::size_t j, double t, const Eigen::VectorXd& y);
+  /// Spring j's column, failed in shear at (t, y) under a slab's push with its sway (docs/model.md
+  /// §6b), loses its stiffness: its shear_failure_t_s and the failed branch (a restart follows: the
+  /// event's). @pre springs()[j].loses_stiffness, !failed_in_shear(j).
+  void lose_stiffness(std::size_t j, double t, const Eigen::VectorXd& y);
   /// The first spring that switched more than max_switches_per_s times within one simulated
   /// second (a drift rate held at round-off on the yield drift), if any.
   std::optional<std::size_t> chattering() const { return chattering_; }
