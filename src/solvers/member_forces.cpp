@@ -46,8 +46,8 @@ MemberForces::MemberForces(const dynamics::CoupledSystem& system) : springs_(sys
           Member m{.stiffness_kN_per_m = split.stiffness_kN_per_m[direction],
                    .row = as_row(split.rows[direction]),
                    .spring = springs_.index_of(b, storey, 0, direction),
-                   .out = -1,
-                   .half_height_m = 0.5 * height_m};
+                   .out = -1,  // a storey spring has no column forces of its own
+                   .half_height_m = 0.0};
           s.remainder -= m.stiffness_kN_per_m * m.row.transpose() * m.row;
           s.members.push_back(m);
         }

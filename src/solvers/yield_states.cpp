@@ -90,13 +90,12 @@ int YieldStates::switch_branches(double t, const Eigen::VectorXd& y, const Eigen
   int switched = 0;
   for (std::size_t j = 0; j < springs_.size(); ++j) {
     if (watches_capacity(j) && capacity_witness(y, j) <= 0.0) {
-      results_[j].shear_failure_t_s = t;
       if (springs_[j].loses_stiffness) {
-        fail(j, y);
-        count_switch(j, t);
+        lose_stiffness(j, t, y);
         ++switched;
         continue;
       }
+      results_[j].shear_failure_t_s = t;
     }
     if (states_[j].branch == SpringBranch::failed || branch_witness(y, j) > 0.0) continue;
     dynamics::SpringState& state = states_[j];

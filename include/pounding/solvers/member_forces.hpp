@@ -41,7 +41,7 @@ class MemberForces {
     Eigen::RowVector3d row;
     std::optional<std::size_t> spring;  // its yielding spring, if it yields
     int out = -1;                       // its V's index in the output (columns); -1: a storey spring
-    double half_height_m = 0.0;
+    double half_height_m = 0.0;         // H/2: its end moment per kN of shear (columns)
   };
   struct Storey {
     int upper = 0, lower = -1;  // first index of the floors' (u, v, φ) in y; -1: the ground

@@ -68,9 +68,9 @@ class YieldStates {
   bool failed_in_shear(std::size_t j) const {
     return !std::isnan(results_[j].shear_failure_t_s) || states_[j].branch == dynamics::SpringBranch::failed;
   }
-  /// Spring j's column, failed in shear at (t, y) under a slab's push with its sway (docs/model.md
-  /// §6b), loses its stiffness: its shear_failure_t_s and the failed branch (a restart follows: the
-  /// event's). @pre springs()[j].loses_stiffness, !failed_in_shear(j).
+  /// Spring j's column, failed in shear at (t, y) by its sway or under a slab's push with it
+  /// (docs/model.md §6b), loses its stiffness: its shear_failure_t_s and the failed branch (a
+  /// restart follows: the event's). @pre springs()[j].loses_stiffness, !failed_in_shear(j).
   void lose_stiffness(std::size_t j, double t, const Eigen::VectorXd& y);
   /// The first spring that switched more than max_switches_per_s times within one simulated
   /// second (a drift rate held at round-off on the yield drift), if any.
